@@ -1,0 +1,71 @@
+# prefilter - Makefile (the primary build). Header-only: nothing to build for users.
+#   make test         every test in every build (C99 float/double, C++11, clang sanitizers,
+#                     -ffast-math edge tests); ends with "N passed, N failed"
+#   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot)
+#   make portability  tcc, nvcc, GLSL -> SPIR-V -> HLSL, Cortex-M4F object checks
+#   make clean
+
+CC    ?= gcc
+CXX   ?= g++
+CLANG ?= clang
+BUILD ?= build
+
+WARN_C   := -std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion
+WARN_CXX := -std=c++11 -Wall -Wextra -Werror
+INC      := -Iinclude -Itests
+
+HEADERS  := $(wildcard include/*.h) $(wildcard tests/*.h)
+TEST_SRC := $(wildcard tests/test_*.c)
+TESTS    := $(TEST_SRC:tests/%.c=%)
+
+# Test builds: name, compiler, flags. The fastmath builds run only the edge_ tests.
+CONFIGS := c99-float c99-double cxx11-float clang-san-float fastmath-float fastmath-double
+TCC_c99-float        = $(CC)
+TFLAGS_c99-float     = $(WARN_C) -O2
+TCC_c99-double       = $(CC)
+TFLAGS_c99-double    = $(WARN_C) -O2 -DPF_DOUBLE
+TCC_cxx11-float      = $(CXX) -x c++
+TFLAGS_cxx11-float   = $(WARN_CXX) -O2
+TCC_clang-san-float  = $(CLANG)
+TFLAGS_clang-san-float = $(WARN_C) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+TCC_fastmath-float   = $(CC)
+TFLAGS_fastmath-float  = $(WARN_C) -O2 -ffast-math
+TCC_fastmath-double  = $(CC)
+TFLAGS_fastmath-double = $(WARN_C) -O2 -ffast-math -DPF_DOUBLE
+
+define test_rule
+$(BUILD)/$(1)/%: tests/%.c $(HEADERS)
+	@mkdir -p $$(@D)
+	$$(TCC_$(1)) $$(TFLAGS_$(1)) -DPF_TEST_CONFIG='"$(1)"' $(INC) $$< -o $$@ -lm
+endef
+$(foreach c,$(CONFIGS),$(eval $(call test_rule,$(c))))
+
+TEST_BINS := $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(TESTS)))
+
+.PHONY: test test-build bench portability docs clean
+test-build: $(TEST_BINS)
+
+test: test-build
+	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS)"
+
+# ---------------------------------------------------------------- bench (the main job)
+BENCH_SRC   := $(wildcard bench/bench_*.c)
+BENCH_FLAGS := $(WARN_C) -O2 -Ibench -Iinclude
+BENCH_BINS  := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-float) $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-double)
+
+$(BUILD)/bench/%-float: bench/%.c $(HEADERS) $(wildcard bench/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_FLAGS) $< -o $@ -lm
+$(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h)
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_FLAGS) -DPF_DOUBLE $< -o $@ -lm
+
+bench: $(BENCH_BINS)
+	@sh bench/run.sh $(BUILD)/bench
+
+# ---------------------------------------------------------------- portability
+portability:
+	@sh tests/portability/run.sh
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,189 @@
+/* pf_test.h - the tiny test harness shared by every tests/test_*.c.
+
+   The same test bodies compile as C99 float, C99 double (-DPF_DOUBLE), C++11 and under
+   sanitizers; they use pf_real and compare against long double references, so one source
+   checks every build. No assert(): checks are counted and reported, and they survive NDEBUG.
+
+   A test file:
+     #include "pf_test.h"
+     static void test_erfc_grid(void) { ... PF_CHECK(err <= bound, "max %g ulp", err); }
+     int main(int argc, char **argv) { PF_TEST_BEGIN(argc, argv);
+                                       PF_TEST_RUN(test_erfc_grid); return PF_TEST_END(); }
+
+   Running `test_x edge` runs only the tests whose name starts with "edge_" (the -ffast-math
+   build runs those: finiteness and range, no tight accuracy bounds). Each test prints one line,
+   "ok" or "FAIL", with the notes it recorded (measured errors). The last line is
+   "RESULT <passed> <failed>", which tests/run.sh sums. */
+#ifndef PF_TEST_H
+#define PF_TEST_H
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef PF_TEST_CONFIG
+#  define PF_TEST_CONFIG "unknown"
+#endif
+
+static int pf_test_cases_passed = 0;
+static int pf_test_cases_failed = 0;
+static int pf_test_current_failures = 0;
+static int pf_test_edge_only = 0;
+static char pf_test_notes[2048];
+
+/* Record a note (a measured number) for the current test's result line. */
+static void pf_test_note(const char *fmt, ...)
+{
+    size_t used = strlen(pf_test_notes);
+    va_list ap;
+    if (used + 4 >= sizeof pf_test_notes) return;
+    if (used > 0) {
+        strcat(pf_test_notes, "; ");
+        used += 2;
+    }
+    va_start(ap, fmt);
+    vsnprintf(pf_test_notes + used, sizeof pf_test_notes - used, fmt, ap);
+    va_end(ap);
+}
+
+static void pf_test_fail_at(const char *file, int line, const char *cond, const char *fmt, ...)
+{
+    va_list ap;
+    pf_test_current_failures++;
+    if (pf_test_current_failures > 8) return; /* keep the log readable */
+    printf("    %s:%d: check failed: %s\n      ", file, line, cond);
+    va_start(ap, fmt);
+    vprintf(fmt, ap);
+    va_end(ap);
+    printf("\n");
+}
+
+/* PF_CHECK(condition, printf-style explanation with the measured values). */
+#define PF_CHECK(cond, ...) \
+    do { \
+        if (!(cond)) pf_test_fail_at(__FILE__, __LINE__, #cond, __VA_ARGS__); \
+    } while (0)
+
+#define PF_TEST_BEGIN(argc, argv) \
+    do { \
+        if ((argc) > 1 && strcmp((argv)[1], "edge") == 0) pf_test_edge_only = 1; \
+    } while (0)
+
+static void pf_test_run(void (*fn)(void), const char *name)
+{
+    if (pf_test_edge_only && strncmp(name, "edge_", 5) != 0) return;
+    pf_test_current_failures = 0;
+    pf_test_notes[0] = '\0';
+    fn();
+    if (pf_test_current_failures == 0) pf_test_cases_passed++;
+    else pf_test_cases_failed++;
+    printf("%s %-40s [%s] %s\n", pf_test_current_failures ? "FAIL" : "ok  ", name, PF_TEST_CONFIG,
+           pf_test_notes);
+    fflush(stdout);
+}
+
+#define PF_TEST_RUN(fn) pf_test_run(fn, #fn)
+
+static int pf_test_end(void)
+{
+    printf("RESULT %d %d\n", pf_test_cases_passed, pf_test_cases_failed);
+    return pf_test_cases_failed ? 1 : 0;
+}
+#define PF_TEST_END() pf_test_end()
+
+/* ------------------------------------------------------------------ error measures */
+
+/* Size of one unit in the last place of pf_real at the value ref (ref rounded to pf_real),
+   with subnormal spacing below the smallest normal. */
+static long double pf_test_ulp_of(long double ref)
+{
+#ifdef PF_DOUBLE
+    const int mant = 53, emin = -1021;
+#else
+    const int mant = 24, emin = -125;
+#endif
+    int e;
+    long double a = fabsl(ref);
+    if (a == 0.0L) return ldexpl(1.0L, emin - mant);
+    frexpl(a, &e); /* a = f * 2^e, f in [0.5, 1) */
+    if (e < emin) e = emin;
+    return ldexpl(1.0L, e - mant);
+}
+
+/* Error of got against the long double reference, in ulps of pf_real at ref. */
+static long double pf_test_ulp_error(pf_real got, long double ref)
+{
+    if (isnan((double)got) || isinf((double)got)) return INFINITY;
+    return fabsl((long double)got - ref) / pf_test_ulp_of(ref);
+}
+
+/* Relative error |got - ref| / |ref|; absolute when ref is 0. */
+static long double pf_test_rel_error(long double got, long double ref)
+{
+    if (isnan((double)got) || isinf((double)got)) return INFINITY;
+    if (ref == 0.0L) return fabsl(got);
+    return fabsl(got - ref) / fabsl(ref);
+}
+
+static int pf_test_finite(pf_real x) { return !(isnan((double)x) || isinf((double)x)); }
+
+/* Running maximum of an error with the input where it happened. */
+typedef struct pf_test_max {
+    long double err;
+    long double at;
+} pf_test_max;
+
+static pf_test_max pf_test_max_init(void)
+{
+    pf_test_max m;
+    m.err = 0.0L;
+    m.at = 0.0L;
+    return m;
+}
+
+static void pf_test_max_update(pf_test_max *m, long double err, long double at)
+{
+    if (!(err <= m->err)) { /* NaN errors count as worse than anything */
+        m->err = err;
+        m->at = at;
+    }
+}
+
+/* ------------------------------------------------------------------ seeded random numbers */
+
+/* splitmix64: fixed seeds, identical sequence on every platform and build. */
+typedef struct pf_test_rng {
+    unsigned long long state;
+} pf_test_rng;
+
+static pf_test_rng pf_test_rng_seed(unsigned long long seed)
+{
+    pf_test_rng r;
+    r.state = seed;
+    return r;
+}
+
+static unsigned long long pf_test_rng_next(pf_test_rng *r)
+{
+    unsigned long long z = (r->state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    return z ^ (z >> 31);
+}
+
+/* Uniform in [a, b). */
+static double pf_test_uniform(pf_test_rng *r, double a, double b)
+{
+    double u = (double)(pf_test_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
+    return a + (b - a) * u;
+}
+
+/* Log-uniform in [a, b), a > 0: equal density per decade. */
+static double pf_test_log_uniform(pf_test_rng *r, double a, double b)
+{
+    return exp(pf_test_uniform(r, log(a), log(b)));
+}
+
+#endif /* PF_TEST_H */
