@@ -23,6 +23,13 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Harness functions are static and not all files use all of them. */
+#if defined(__GNUC__) || defined(__clang__)
+#  define PF_TEST_FN static __attribute__((unused))
+#else
+#  define PF_TEST_FN static
+#endif
+
 #ifndef PF_TEST_CONFIG
 #  define PF_TEST_CONFIG "unknown"
 #endif
@@ -34,7 +41,7 @@ static int pf_test_edge_only = 0;
 static char pf_test_notes[2048];
 
 /* Record a note (a measured number) for the current test's result line. */
-static void pf_test_note(const char *fmt, ...)
+PF_TEST_FN void pf_test_note(const char *fmt, ...)
 {
     size_t used = strlen(pf_test_notes);
     va_list ap;
@@ -48,7 +55,7 @@ static void pf_test_note(const char *fmt, ...)
     va_end(ap);
 }
 
-static void pf_test_fail_at(const char *file, int line, const char *cond, const char *fmt, ...)
+PF_TEST_FN void pf_test_fail_at(const char *file, int line, const char *cond, const char *fmt, ...)
 {
     va_list ap;
     pf_test_current_failures++;
@@ -71,7 +78,7 @@ static void pf_test_fail_at(const char *file, int line, const char *cond, const 
         if ((argc) > 1 && strcmp((argv)[1], "edge") == 0) pf_test_edge_only = 1; \
     } while (0)
 
-static void pf_test_run(void (*fn)(void), const char *name)
+PF_TEST_FN void pf_test_run(void (*fn)(void), const char *name)
 {
     if (pf_test_edge_only && strncmp(name, "edge_", 5) != 0) return;
     pf_test_current_failures = 0;
@@ -86,7 +93,7 @@ static void pf_test_run(void (*fn)(void), const char *name)
 
 #define PF_TEST_RUN(fn) pf_test_run(fn, #fn)
 
-static int pf_test_end(void)
+PF_TEST_FN int pf_test_end(void)
 {
     printf("RESULT %d %d\n", pf_test_cases_passed, pf_test_cases_failed);
     return pf_test_cases_failed ? 1 : 0;
@@ -97,7 +104,7 @@ static int pf_test_end(void)
 
 /* Size of one unit in the last place of pf_real at the value ref (ref rounded to pf_real),
    with subnormal spacing below the smallest normal. */
-static long double pf_test_ulp_of(long double ref)
+PF_TEST_FN long double pf_test_ulp_of(long double ref)
 {
 #ifdef PF_DOUBLE
     const int mant = 53, emin = -1021;
@@ -113,21 +120,21 @@ static long double pf_test_ulp_of(long double ref)
 }
 
 /* Error of got against the long double reference, in ulps of pf_real at ref. */
-static long double pf_test_ulp_error(pf_real got, long double ref)
+PF_TEST_FN long double pf_test_ulp_error(pf_real got, long double ref)
 {
-    if (isnan((double)got) || isinf((double)got)) return INFINITY;
+    if (isnan((double)got) || isinf((double)got)) return (long double)INFINITY;
     return fabsl((long double)got - ref) / pf_test_ulp_of(ref);
 }
 
 /* Relative error |got - ref| / |ref|; absolute when ref is 0. */
-static long double pf_test_rel_error(long double got, long double ref)
+PF_TEST_FN long double pf_test_rel_error(long double got, long double ref)
 {
-    if (isnan((double)got) || isinf((double)got)) return INFINITY;
+    if (isnan((double)got) || isinf((double)got)) return (long double)INFINITY;
     if (ref == 0.0L) return fabsl(got);
     return fabsl(got - ref) / fabsl(ref);
 }
 
-static int pf_test_finite(pf_real x) { return !(isnan((double)x) || isinf((double)x)); }
+PF_TEST_FN int pf_test_finite(pf_real x) { return !(isnan((double)x) || isinf((double)x)); }
 
 /* Running maximum of an error with the input where it happened. */
 typedef struct pf_test_max {
@@ -135,7 +142,7 @@ typedef struct pf_test_max {
     long double at;
 } pf_test_max;
 
-static pf_test_max pf_test_max_init(void)
+PF_TEST_FN pf_test_max pf_test_max_init(void)
 {
     pf_test_max m;
     m.err = 0.0L;
@@ -143,7 +150,7 @@ static pf_test_max pf_test_max_init(void)
     return m;
 }
 
-static void pf_test_max_update(pf_test_max *m, long double err, long double at)
+PF_TEST_FN void pf_test_max_update(pf_test_max *m, long double err, long double at)
 {
     if (!(err <= m->err)) { /* NaN errors count as worse than anything */
         m->err = err;
@@ -158,14 +165,14 @@ typedef struct pf_test_rng {
     unsigned long long state;
 } pf_test_rng;
 
-static pf_test_rng pf_test_rng_seed(unsigned long long seed)
+PF_TEST_FN pf_test_rng pf_test_rng_seed(unsigned long long seed)
 {
     pf_test_rng r;
     r.state = seed;
     return r;
 }
 
-static unsigned long long pf_test_rng_next(pf_test_rng *r)
+PF_TEST_FN unsigned long long pf_test_rng_next(pf_test_rng *r)
 {
     unsigned long long z = (r->state += 0x9E3779B97F4A7C15ULL);
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -174,14 +181,14 @@ static unsigned long long pf_test_rng_next(pf_test_rng *r)
 }
 
 /* Uniform in [a, b). */
-static double pf_test_uniform(pf_test_rng *r, double a, double b)
+PF_TEST_FN double pf_test_uniform(pf_test_rng *r, double a, double b)
 {
     double u = (double)(pf_test_rng_next(r) >> 11) * (1.0 / 9007199254740992.0);
     return a + (b - a) * u;
 }
 
 /* Log-uniform in [a, b), a > 0: equal density per decade. */
-static double pf_test_log_uniform(pf_test_rng *r, double a, double b)
+PF_TEST_FN double pf_test_log_uniform(pf_test_rng *r, double a, double b)
 {
     return exp(pf_test_uniform(r, log(a), log(b)));
 }
