@@ -76,7 +76,13 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 	$(CC) $(BENCH_FLAGS) -DPF_DOUBLE $< -o $@ -lm
 
 bench: $(BENCH_BINS)
-	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' sh bench/run.sh $(BUILD)/bench
+	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/run.sh $(BUILD)/bench
+
+# docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
+# are replaced by that module's section of bench/out/summary.md (run make bench first), so the
+# tables in docs are the bench's, never typed by hand.
+docs:
+	@sh bench/update_docs.sh bench/out/summary.md docs
 
 .PHONY: pf-bench-always
 
