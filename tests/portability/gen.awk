@@ -12,7 +12,7 @@
 # What counts as a public function: a declaration that starts a line with
 #     PF_DEF <return type> pf_<name>(<args>)
 # (args may continue on later lines; the declaration is joined up to its closing paren).
-# Names starting pf__ are private and skipped. Comments and #define lines are ignored.
+# Names not starting pf_ (private helpers are pfi_...) are skipped. Comments and #define lines are ignored.
 #
 # Arguments are synthesised from their type:
 #   pf_real            a value read from the input buffer (in[k] / pfp_in.v[k]) so nothing folds

@@ -27,7 +27,7 @@
 # Prints one line per check (ok / FAIL / SKIP (reason)), the M4F code-size table (also written to
 # BUILD_DIR/portability/sizes.md), and exits 1 on any FAIL. Logs: BUILD_DIR/portability/<check>/.
 # Installs nothing. Environment: NVCC (nvcc path), PF_NVCC_ARCH (default sm_75, else the oldest
-# architecture nvcc lists), PF_PORT_STRICT=1 (glslang warnings fail the GLSL checks),
+# architecture nvcc lists), PF_PORT_STRICT=0 (glslang warnings reported but not fatal; default 1: they fail the GLSL checks),
 # PF_PORT_UPDATE_DOCS=1 (copy the size table into docs/porting.md between its markers).
 set -u
 ROOT=$(cd "$(dirname "$0")/../.." && pwd) || exit 2
@@ -96,7 +96,7 @@ check_selftest() {
     grep -q 'pfp_pf_fx_multiline' "$d/fixture.c" || why="$why multi-line declaration missed;"
     grep -q 'pfp_a1.dir = pf_vec3_make(' "$d/fixture.c" || why="$why struct without maker not built;"
     grep -q 'pfp_r.n' "$d/fixture.c" || why="$why struct result leaves not summed;"
-    grep -q 'pf_fx_in_comment\|pfp_pf__' "$d/fixture.c" && why="$why comment or private function wrapped;"
+    grep -q 'pf_fx_in_comment\|pfp_pfi_' "$d/fixture.c" && why="$why comment or private function wrapped;"
     grep -q 'pf_fx_sum: C-only' "$d/fixture.c" || why="$why C-only pointer function not skipped;"
     grep -q 'pfp_pf_fx_glsl_only' "$d/fixture.c" && why="$why GLSL-only function called from C;"
     grep -q 'pfp_pf_fx_glsl_only' "$d/fixture.comp" || why="$why GLSL-only function not called from GLSL;"
@@ -223,7 +223,7 @@ check_glsl() { # include|paste
     grep -h '^WARNING' $wlog | sed 's/^WARNING: //; s/[[:space:]]*$//' |
         awk '{ k = $0; sub(/^[^ ]*: /, "", k); if (!(k in seen)) { seen[k] = 1; print } }' > "$d/warnings.txt"
     nw=$(wc -l < "$d/warnings.txt" | tr -d ' ')
-    if [ "${PF_PORT_STRICT:-0}" = 1 ]; then
+    if [ "${PF_PORT_STRICT:-1}" = 1 ]; then
         report FAIL "$name" "$nw distinct glslang warnings, PF_PORT_STRICT=1:"
     else
         report ok "$name" "$detail; $nw distinct glslang warnings:"

@@ -15,14 +15,14 @@ PF_STRUCT_BEGIN(pf_fx_pair)       /* no maker: built member by member */
     int n;
 PF_STRUCT_END(pf_fx_pair)
 
-PF_DEF pf_real pf__fx_private(pf_real x) { return x; }
+PF_DEF pf_real pfi_fx_private(pf_real x) { return x; }
 
 /* a declaration split over three lines */
 PF_DEF pf_real pf_fx_multiline(pf_real a,
                                pf_fx_pair p,
                                int n)
 {
-    return a + p.dir.z + p.a * p.b + PF_R(n + p.n) + pf__fx_private(a);
+    return a + p.dir.z + p.a * p.b + PF_R(n + p.n) + pfi_fx_private(a);
 }
 
 PF_DEF pf_fx_pair pf_fx_pair_twice(pf_fx_pair p)

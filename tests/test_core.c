@@ -1,0 +1,444 @@
+/* test_core.c - tests of pf_core.h: pf_erfc / pf_erf against long double erfcl / erfl,
+   their edge cases, the scalar helpers and the small vectors (cross-checked against GLM
+   when compiled as C++).
+
+   Built as C99 float, C99 double (-DPF_DOUBLE), C++11, clang sanitizers and -ffast-math
+   (edge_* tests only). The accuracy tests assert the bounds stated in pf_core.h and
+   docs/core.md and record the measured maxima with pf_test_note. */
+#include "pf_core.h"
+#include "pf_test.h"
+
+#ifdef __cplusplus
+#  include <glm/glm.hpp>
+#endif
+
+#ifdef PF_DOUBLE
+#  define T_NEXT(x, to) nextafter(x, to)
+#else
+#  define T_NEXT(x, to) nextafterf(x, to)
+#endif
+
+/* ------------------------------------------------------------------ bounds (see docs/core.md) */
+#ifdef PF_DOUBLE
+#  define ERFC_MAX_ULP 2.5L      /* normal results */
+#  define ERF_MAX_ULP 2.5L
+#  define ERFC_SUB_UNITS 2.0L    /* subnormal results: absolute error in 2^-1074 */
+#  define ERFC_ZERO_AT 27.25     /* erfc(x) < 2^-1075 from here on: rounds to 0 */
+#  define ERFC_TAIL_END 27.5
+#else
+#  define ERFC_MAX_ULP 2.0L
+#  define ERF_MAX_ULP 2.0L
+#  define ERFC_SUB_UNITS 2.0L    /* in units of 2^-149 */
+#  define ERFC_ZERO_AT 10.07
+#  define ERFC_TAIL_END 10.5
+#endif
+
+/* Accumulates the error of one function over many points: ulps where the reference is a
+   normal number, units of the smallest subnormal where it is not. */
+typedef struct acc_err {
+    pf_test_max normal;
+    pf_test_max sub;
+    long n;
+} acc_err;
+
+static acc_err acc_init(void)
+{
+    acc_err a;
+    a.normal = pf_test_max_init();
+    a.sub = pf_test_max_init();
+    a.n = 0;
+    return a;
+}
+
+static void acc_erfc(acc_err *a, pf_real x)
+{
+    long double ref = erfcl((long double)x);
+    long double e = pf_test_ulp_error(pf_erfc(x), ref);
+    if (fabsl(ref) >= (long double)PF_REAL_MIN) pf_test_max_update(&a->normal, e, (long double)x);
+    else pf_test_max_update(&a->sub, e, (long double)x);
+    a->n++;
+}
+
+static void acc_erf(acc_err *a, pf_real x)
+{
+    long double ref = erfl((long double)x);
+    long double e = pf_test_ulp_error(pf_erf(x), ref);
+    if (fabsl(ref) >= (long double)PF_REAL_MIN || ref == 0.0L) pf_test_max_update(&a->normal, e, (long double)x);
+    else pf_test_max_update(&a->sub, e, (long double)x);
+    a->n++;
+}
+
+/* Points where the method changes: the small/large split of erfc and erf, the exp tail
+   switch, the subnormal and underflow boundaries, the clamp. */
+static const double erfc_breaks[] = {0.0, 0.5, 1.0, 9.19, 9.274, 9.345, 10.05, 10.125, 26.46, 26.55, 27.23, 27.25};
+
+static void test_erfc_grid(void)
+{
+    acc_err a = acc_init();
+    int i, k;
+    /* uniform grid over the whole interesting line, both signs */
+    for (i = 0; i <= 200000; ++i) {
+        double x = -6.0 + (ERFC_TAIL_END + 6.0) * i / 200000.0;
+        acc_erfc(&a, (pf_real)x);
+    }
+    /* dense neighbourhoods of every break point (a few thousand ulps either side) */
+    for (k = 0; k < (int)(sizeof erfc_breaks / sizeof erfc_breaks[0]); ++k) {
+        pf_real c = (pf_real)erfc_breaks[k];
+        pf_real x = c, y = c;
+        for (i = 0; i < 4000; ++i) {
+            acc_erfc(&a, x);
+            acc_erfc(&a, -y);
+            acc_erfc(&a, y);
+            x = T_NEXT(x, (pf_real)100);
+            y = T_NEXT(y, (pf_real)-100);
+        }
+    }
+    pf_test_note("%ld points: max %.3Lf ulp at x=%.9Lg (normal), %.3Lf x min-subnormal at x=%.9Lg", a.n,
+                 a.normal.err, a.normal.at, a.sub.err, a.sub.at);
+    PF_CHECK(a.normal.err <= ERFC_MAX_ULP, "erfc max %.3Lf ulp at x=%.9Lg", a.normal.err, a.normal.at);
+    PF_CHECK(a.sub.err <= ERFC_SUB_UNITS, "erfc subnormal max %.3Lf units at x=%.9Lg", a.sub.err, a.sub.at);
+}
+
+static void test_erfc_random(void)
+{
+    acc_err a = acc_init();
+    pf_test_rng r = pf_test_rng_seed(0xE4FC0001ULL);
+    int i;
+    for (i = 0; i < 150000; ++i) {
+        acc_erfc(&a, (pf_real)pf_test_uniform(&r, -7.0, ERFC_TAIL_END + 0.5));
+        acc_erfc(&a, (pf_real)(pf_test_log_uniform(&r, 1e-30, 1.0) * (i & 1 ? -1.0 : 1.0)));
+    }
+    pf_test_note("%ld points: max %.3Lf ulp at x=%.9Lg (normal), %.3Lf x min-subnormal at x=%.9Lg", a.n,
+                 a.normal.err, a.normal.at, a.sub.err, a.sub.at);
+    PF_CHECK(a.normal.err <= ERFC_MAX_ULP, "erfc max %.3Lf ulp at x=%.9Lg", a.normal.err, a.normal.at);
+    PF_CHECK(a.sub.err <= ERFC_SUB_UNITS, "erfc subnormal max %.3Lf units at x=%.9Lg", a.sub.err, a.sub.at);
+}
+
+static void test_erf_grid_random(void)
+{
+    acc_err a = acc_init();
+    pf_test_rng r = pf_test_rng_seed(0xE4F00002ULL);
+    int i;
+    for (i = 0; i <= 100000; ++i) acc_erf(&a, (pf_real)(-7.0 + 14.0 * i / 100000.0));
+    for (i = 0; i < 100000; ++i) {
+        acc_erf(&a, (pf_real)pf_test_uniform(&r, -6.0, 6.0));
+        /* tiny |x| down to subnormals: erf must stay relatively accurate */
+        acc_erf(&a, (pf_real)(pf_test_log_uniform(&r, 1e-40, 1.0) * (i & 1 ? -1.0 : 1.0)));
+    }
+    pf_test_note("%ld points: max %.3Lf ulp at x=%.9Lg; subnormal results max %.3Lf units at x=%.9Lg", a.n,
+                 a.normal.err, a.normal.at, a.sub.err, a.sub.at);
+    PF_CHECK(a.normal.err <= ERF_MAX_ULP, "erf max %.3Lf ulp at x=%.9Lg", a.normal.err, a.normal.at);
+    PF_CHECK(a.sub.err <= 1.0L, "erf subnormal max %.3Lf units at x=%.9Lg", a.sub.err, a.sub.at);
+}
+
+/* ------------------------------------------------------------------ erfc / erf edge cases
+   These run in the -ffast-math builds too, so they check values that survive it (exact
+   simple cases, range, symmetry, monotonicity with a small slack); the checks that need
+   IEEE semantics (inf, NaN, signed zero, subnormals) are skipped under __FAST_MATH__. */
+static void edge_erfc_special_values(void)
+{
+    PF_CHECK(pf_erfc(PF_R(0.0)) == PF_R(1.0), "erfc(0) = %.9g", (double)pf_erfc(PF_R(0.0)));
+    PF_CHECK(pf_erfc(-PF_R(0.0)) == PF_R(1.0), "erfc(-0) = %.9g", (double)pf_erfc(-PF_R(0.0)));
+    PF_CHECK(pf_erf(PF_R(0.0)) == PF_R(0.0), "erf(0) = %.9g", (double)pf_erf(PF_R(0.0)));
+    PF_CHECK(pf_erfc(PF_R(1e30)) == PF_R(0.0), "erfc(1e30) = %.9g", (double)pf_erfc(PF_R(1e30)));
+    PF_CHECK(pf_erfc(-PF_R(1e30)) == PF_R(2.0), "erfc(-1e30) = %.9g", (double)pf_erfc(-PF_R(1e30)));
+    PF_CHECK(pf_erfc(PF_REAL_MAX) == PF_R(0.0), "erfc(max) = %.9g", (double)pf_erfc(PF_REAL_MAX));
+    PF_CHECK(pf_erfc(-PF_REAL_MAX) == PF_R(2.0), "erfc(-max) = %.9g", (double)pf_erfc(-PF_REAL_MAX));
+    PF_CHECK(pf_erf(PF_REAL_MAX) == PF_R(1.0), "erf(max) = %.9g", (double)pf_erf(PF_REAL_MAX));
+    PF_CHECK(pf_erf(-PF_REAL_MAX) == PF_R(-1.0), "erf(-max) = %.9g", (double)pf_erf(-PF_REAL_MAX));
+    PF_CHECK(pf_erfc(PF_R(ERFC_ZERO_AT)) == PF_R(0.0), "erfc(%g) = %.9g", ERFC_ZERO_AT,
+             (double)pf_erfc(PF_R(ERFC_ZERO_AT)));
+#ifndef __FAST_MATH__
+    {
+        pf_real inf = PF_REAL_MAX * PF_R(2.0);
+        pf_real nan = inf - inf;
+        PF_CHECK(pf_erfc(inf) == PF_R(0.0) && pf_erfc(-inf) == PF_R(2.0), "erfc(+-inf) = %g, %g",
+                 (double)pf_erfc(inf), (double)pf_erfc(-inf));
+        PF_CHECK(pf_erf(inf) == PF_R(1.0) && pf_erf(-inf) == PF_R(-1.0), "erf(+-inf) = %g, %g",
+                 (double)pf_erf(inf), (double)pf_erf(-inf));
+        PF_CHECK(isnan((double)pf_erfc(nan)) && isnan((double)pf_erf(nan)), "NaN in gives %g, %g",
+                 (double)pf_erfc(nan), (double)pf_erf(nan));
+        PF_CHECK(signbit((double)pf_erf(-PF_R(0.0))), "erf(-0) = %g, want -0", (double)pf_erf(-PF_R(0.0)));
+    }
+#endif
+}
+
+static void edge_erf_tiny(void)
+{
+    /* erf(x) ~ 2x/sqrt(pi) down to the smallest subnormal: never 1 - erfc */
+    pf_real x = PF_R(1e-3);
+    int i;
+    for (i = 0; i < 400 && x > PF_R(0.0); ++i, x = x * PF_R(0.7)) {
+        pf_real e = pf_erf(x), m = pf_erf(-x);
+        PF_CHECK(pf_test_finite(e) && e == -m, "erf(%g) = %g, erf(-x) = %g", (double)x, (double)e, (double)m);
+        PF_CHECK(pf_erfc(x) <= PF_R(1.0) && pf_erfc(-x) >= PF_R(1.0), "erfc(+-%g) = %.9g %.9g", (double)x,
+                 (double)pf_erfc(x), (double)pf_erfc(-x));
+#ifndef __FAST_MATH__
+        /* relative error (one ulp of slack) where x is normal, absolute below */
+        long double want = erfl((long double)x);
+        if (x >= PF_REAL_MIN) {
+            PF_CHECK(pf_test_rel_error((long double)e, want) <= 2.0L * (long double)PF_REAL_EPSILON,
+                     "erf(%g) = %.9g, want %.9Lg", (double)x, (double)e, want);
+        } else {
+            PF_CHECK(pf_test_ulp_error(e, want) <= 1.0L, "erf(%g) = %g, want %Lg", (double)x, (double)e, want);
+        }
+#else
+        PF_CHECK(e >= PF_R(0.0) && e <= PF_R(1.2) * x + PF_REAL_MIN, "erf(%g) = %g", (double)x, (double)e);
+#endif
+    }
+}
+
+static void edge_erfc_range_symmetry(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0xED6E0003ULL);
+    int i, bad_range = 0, bad_sym = 0, bad_fin = 0;
+    for (i = 0; i < 60000; ++i) {
+        /* log-uniform magnitudes from 1e-30 to 1e30, both signs */
+        pf_real x = (pf_real)(pf_test_log_uniform(&r, 1e-30, 1e30) * (i & 1 ? -1.0 : 1.0));
+        pf_real c = pf_erfc(x), e = pf_erf(x), en = pf_erf(-x);
+        if (!pf_test_finite(c) || !pf_test_finite(e)) bad_fin++;
+        if (!(c >= PF_R(0.0) && c <= PF_R(2.0) && e >= PF_R(-1.0) && e <= PF_R(1.0))) bad_range++;
+        if (en != -e) bad_sym++;
+    }
+    PF_CHECK(bad_fin == 0, "%d non-finite results for finite inputs", bad_fin);
+    PF_CHECK(bad_range == 0, "%d results outside [0, 2] / [-1, 1]", bad_range);
+    PF_CHECK(bad_sym == 0, "%d inputs with erf(-x) != -erf(x)", bad_sym);
+}
+
+/* erfc must not increase, also across the internal boundaries and into the underflow. */
+static void edge_erfc_monotonic(void)
+{
+    /* slack: none in IEEE builds (a correctly rounded monotone function stays monotone to
+       within the error bound; check with 4 ulp), a relative 1e-4 under fast-math */
+#ifdef __FAST_MATH__
+    const long double slack = 1e-4L;
+#else
+    const long double slack = 4.0L * (long double)PF_REAL_EPSILON;
+#endif
+    pf_real prev = pf_erfc(PF_R(-7.0));
+    int i, bad = 0;
+    double worst_at = 0.0;
+    for (i = 1; i <= 100000; ++i) {
+        pf_real x = (pf_real)(-7.0 + (ERFC_TAIL_END + 7.5) * i / 100000.0);
+        pf_real c = pf_erfc(x);
+        if ((long double)c > (long double)prev * (1.0L + slack)) {
+            if (!bad) worst_at = (double)x;
+            bad++;
+        }
+        prev = c;
+    }
+    PF_CHECK(bad == 0, "%d increases, first at x=%.9g", bad, worst_at);
+    /* ulp by ulp across each break point */
+    {
+        int k;
+        for (k = 0; k < (int)(sizeof erfc_breaks / sizeof erfc_breaks[0]); ++k) {
+            pf_real x = T_NEXT((pf_real)erfc_breaks[k], (pf_real)-100);
+            pf_real p = pf_erfc(x);
+            int j;
+            x = (pf_real)erfc_breaks[k];
+            for (j = 0; j < 2000; ++j) {
+                pf_real sx = x;
+                pf_real c;
+                x = T_NEXT(x, (pf_real)100);
+                c = pf_erfc(sx);
+                PF_CHECK((long double)c <= (long double)p * (1.0L + slack),
+                         "erfc increases at x=%.9g: %.9g after %.9g", (double)sx, (double)c, (double)p);
+                p = c;
+            }
+        }
+    }
+}
+
+static void edge_erfc_underflow(void)
+{
+    /* tail: non-negative, tiny, exactly 0 past the underflow point */
+    pf_real x;
+    int bad = 0;
+    for (x = PF_R(ERFC_ZERO_AT) - PF_R(1.0); x < PF_R(ERFC_ZERO_AT) + PF_R(2.0); x += PF_R(0.001)) {
+        pf_real c = pf_erfc(x);
+        if (!(c >= PF_R(0.0)) || !(c < PF_R(1e-30)) || (x >= PF_R(ERFC_ZERO_AT) && c != PF_R(0.0))) bad++;
+        if (pf_erfc(-x) != PF_R(2.0) || pf_erf(x) != PF_R(1.0)) bad++;
+    }
+    PF_CHECK(bad == 0, "%d bad values in the tail", bad);
+}
+
+/* ------------------------------------------------------------------ scalar helpers */
+static void edge_scalar_helpers(void)
+{
+    PF_CHECK(pf_min(PF_R(1.0), PF_R(2.0)) == PF_R(1.0) && pf_min(PF_R(2.0), PF_R(-3.0)) == PF_R(-3.0), "pf_min");
+    PF_CHECK(pf_max(PF_R(1.0), PF_R(2.0)) == PF_R(2.0) && pf_max(PF_R(2.0), PF_R(-3.0)) == PF_R(2.0), "pf_max");
+    PF_CHECK(pf_clamp(PF_R(5.0), PF_R(-1.0), PF_R(1.0)) == PF_R(1.0), "clamp high");
+    PF_CHECK(pf_clamp(PF_R(-5.0), PF_R(-1.0), PF_R(1.0)) == PF_R(-1.0), "clamp low");
+    PF_CHECK(pf_clamp(PF_R(0.25), PF_R(-1.0), PF_R(1.0)) == PF_R(0.25), "clamp inside");
+    PF_CHECK(pf_saturate(PF_R(1.5)) == PF_R(1.0) && pf_saturate(PF_R(-0.5)) == PF_R(0.0)
+             && pf_saturate(PF_R(0.75)) == PF_R(0.75), "pf_saturate");
+    PF_CHECK(pf_sq(PF_R(-3.0)) == PF_R(9.0), "pf_sq");
+#ifndef __FAST_MATH__
+    {
+        pf_real nan = (PF_REAL_MAX * PF_R(2.0)) - (PF_REAL_MAX * PF_R(2.0));
+        /* documented: pf_max(NaN, 0) is 0, a sanitizer */
+        PF_CHECK(pf_max(nan, PF_R(0.0)) == PF_R(0.0), "pf_max(NaN, 0) = %g", (double)pf_max(nan, PF_R(0.0)));
+    }
+#endif
+}
+
+/* ------------------------------------------------------------------ vectors */
+static long double ld_len3(pf_vec3 v)
+{
+    long double x = (long double)v.x, y = (long double)v.y, z = (long double)v.z;
+    return sqrtl(x * x + y * y + z * z);
+}
+
+static pf_vec3 rand_vec3(pf_test_rng *r, double lo, double hi)
+{
+    return pf_vec3_make((pf_real)pf_test_uniform(r, lo, hi), (pf_real)pf_test_uniform(r, lo, hi),
+                        (pf_real)pf_test_uniform(r, lo, hi));
+}
+
+static void test_vec_ops(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x7EC30004ULL);
+    pf_test_max dot_err = pf_test_max_init(), cross_err = pf_test_max_init(), len_err = pf_test_max_init();
+    int i;
+    pf_vec2 u = pf_vec2_make(PF_R(3.0), PF_R(-4.0));
+    PF_CHECK(u.x == PF_R(3.0) && u.y == PF_R(-4.0), "pf_vec2_make");
+    PF_CHECK(pf_vec2_dot(u, pf_vec2_make(PF_R(2.0), PF_R(0.5))) == PF_R(4.0), "pf_vec2_dot");
+    {
+        pf_vec3 a = pf_vec3_make(PF_R(1.0), PF_R(2.0), PF_R(3.0)), b = pf_vec3_make(PF_R(-2.0), PF_R(0.5), PF_R(4.0));
+        pf_vec3 s = pf_vec3_add(a, b), d = pf_vec3_sub(a, b), k = pf_vec3_scale(a, PF_R(-2.0));
+        pf_vec3 c = pf_vec3_cross(pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0)), pf_vec3_make(PF_R(0.0), PF_R(1.0), PF_R(0.0)));
+        PF_CHECK(s.x == PF_R(-1.0) && s.y == PF_R(2.5) && s.z == PF_R(7.0), "pf_vec3_add");
+        PF_CHECK(d.x == PF_R(3.0) && d.y == PF_R(1.5) && d.z == PF_R(-1.0), "pf_vec3_sub");
+        PF_CHECK(k.x == PF_R(-2.0) && k.y == PF_R(-4.0) && k.z == PF_R(-6.0), "pf_vec3_scale");
+        PF_CHECK(pf_vec3_dot(a, b) == PF_R(11.0), "pf_vec3_dot = %g", (double)pf_vec3_dot(a, b));
+        PF_CHECK(c.x == PF_R(0.0) && c.y == PF_R(0.0) && c.z == PF_R(1.0), "x cross y = z");
+        PF_CHECK(pf_vec3_length(pf_vec3_make(PF_R(2.0), PF_R(3.0), PF_R(6.0))) == PF_R(7.0), "length 7");
+    }
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 a = rand_vec3(&r, -10.0, 10.0), b = rand_vec3(&r, -10.0, 10.0);
+        long double ax = (long double)a.x, ay = (long double)a.y, az = (long double)a.z;
+        long double bx = (long double)b.x, by = (long double)b.y, bz = (long double)b.z;
+        long double dref = ax * bx + ay * by + az * bz;
+        long double scale = ld_len3(a) * ld_len3(b);
+        pf_vec3 c = pf_vec3_cross(a, b);
+        long double cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+        long double cerr = sqrtl(((long double)c.x - cx) * ((long double)c.x - cx) + ((long double)c.y - cy) * ((long double)c.y - cy)
+                                 + ((long double)c.z - cz) * ((long double)c.z - cz));
+        /* errors relative to |a||b|, the natural scale of both products */
+        pf_test_max_update(&dot_err, fabsl((long double)pf_vec3_dot(a, b) - dref) / scale, (long double)i);
+        pf_test_max_update(&cross_err, cerr / scale, (long double)i);
+        pf_test_max_update(&len_err, pf_test_rel_error((long double)pf_vec3_length(a), ld_len3(a)), (long double)i);
+    }
+    pf_test_note("dot %.2Lf eps, cross %.2Lf eps, length %.2Lf eps (relative to |a||b|, |a|)",
+                 dot_err.err / (long double)PF_REAL_EPSILON, cross_err.err / (long double)PF_REAL_EPSILON,
+                 len_err.err / (long double)PF_REAL_EPSILON);
+    PF_CHECK(dot_err.err <= 4.0L * (long double)PF_REAL_EPSILON, "dot error %Lg", dot_err.err);
+    PF_CHECK(cross_err.err <= 4.0L * (long double)PF_REAL_EPSILON, "cross error %Lg", cross_err.err);
+    PF_CHECK(len_err.err <= 3.0L * (long double)PF_REAL_EPSILON, "length error %Lg", len_err.err);
+}
+
+static void edge_vec3_normalize(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x7EC30005ULL);
+    int i;
+    long double worst = 0.0L;
+    pf_vec3 n = pf_vec3_normalize(pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0)));
+    PF_CHECK(n.x == PF_R(0.0) && n.y == PF_R(0.0) && n.z == PF_R(1.0), "normalize(0) = (%g %g %g)", (double)n.x,
+             (double)n.y, (double)n.z);
+    n = pf_vec3_normalize(pf_vec3_make(PF_R(0.0), PF_R(-5.0), PF_R(0.0)));
+    PF_CHECK(n.x == PF_R(0.0) && n.y == PF_R(-1.0) && n.z == PF_R(0.0), "normalize(0,-5,0)");
+    /* tiny and huge vectors: squaring them would underflow / overflow */
+    for (i = 0; i < 3000; ++i) {
+        double mag = (i % 3 == 0) ? 1e-30 : (i % 3 == 1 ? 1e30 : 1.0);
+#ifdef PF_DOUBLE
+        if (i % 3 == 0) mag = 1e-300;
+        if (i % 3 == 1) mag = 1e300;
+#endif
+        pf_vec3 a = rand_vec3(&r, -mag, mag);
+        pf_vec3 u = pf_vec3_normalize(a);
+        long double l = ld_len3(u);
+        PF_CHECK(pf_test_finite(u.x) && pf_test_finite(u.y) && pf_test_finite(u.z), "non-finite normalize");
+        if (fabsl(l - 1.0L) > worst) worst = fabsl(l - 1.0L);
+        /* same direction: u * |a| ~ a */
+        PF_CHECK(pf_vec3_dot(u, pf_vec3_scale(a, PF_R(1.0) / pf_max(pf_max(PF_FABS(a.x), PF_FABS(a.y)), PF_FABS(a.z))))
+                     > PF_R(0.0), "normalize flips direction");
+    }
+    pf_test_note("| |normalize(v)| - 1 | <= %.2Lf eps", worst / (long double)PF_REAL_EPSILON);
+#ifdef __FAST_MATH__
+    PF_CHECK(worst <= 1e-3L, "| |n| - 1 | = %Lg", worst);
+#else
+    PF_CHECK(worst <= 4.0L * (long double)PF_REAL_EPSILON, "| |n| - 1 | = %Lg", worst);
+#endif
+}
+
+#ifdef __cplusplus
+/* GLM as an independent implementation of the same vector operations. */
+#  ifdef PF_DOUBLE
+typedef glm::dvec3 glm_v3;
+#  else
+typedef glm::vec3 glm_v3;
+#  endif
+static glm_v3 to_glm(pf_vec3 a) { return glm_v3(a.x, a.y, a.z); }
+
+static long double v3_rel(pf_vec3 a, glm_v3 g)
+{
+    long double dx = (long double)a.x - g.x, dy = (long double)a.y - g.y, dz = (long double)a.z - g.z;
+    long double gl = sqrtl((long double)g.x * g.x + (long double)g.y * g.y + (long double)g.z * g.z);
+    return sqrtl(dx * dx + dy * dy + dz * dz) / (gl > 0.0L ? gl : 1.0L);
+}
+
+static void test_vec_vs_glm(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x61A0006ULL);
+    long double worst = 0.0L, e;
+    int i;
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 a = rand_vec3(&r, -100.0, 100.0), b = rand_vec3(&r, -100.0, 100.0);
+        pf_real s = (pf_real)pf_test_uniform(&r, -4.0, 4.0);
+        glm_v3 ga = to_glm(a), gb = to_glm(b);
+        long double scale = (long double)glm::length(ga) * (long double)glm::length(gb);
+        e = v3_rel(pf_vec3_add(a, b), ga + gb);
+        if (e > worst) worst = e;
+        e = v3_rel(pf_vec3_sub(a, b), ga - gb);
+        if (e > worst) worst = e;
+        e = v3_rel(pf_vec3_scale(a, s), ga * s);
+        if (e > worst) worst = e;
+        e = v3_rel(pf_vec3_normalize(a), glm::normalize(ga));
+        if (e > worst) worst = e;
+        e = fabsl((long double)pf_vec3_length(a) - (long double)glm::length(ga)) / (long double)glm::length(ga);
+        if (e > worst) worst = e;
+        /* products: compare relative to |a||b| (cancellation makes them small) */
+        e = fabsl((long double)pf_vec3_dot(a, b) - (long double)glm::dot(ga, gb)) / scale;
+        if (e > worst) worst = e;
+        {
+            glm_v3 gc = glm::cross(ga, gb);
+            pf_vec3 c = pf_vec3_cross(a, b);
+            long double dx = (long double)c.x - gc.x, dy = (long double)c.y - gc.y, dz = (long double)c.z - gc.z;
+            e = sqrtl(dx * dx + dy * dy + dz * dz) / scale;
+            if (e > worst) worst = e;
+        }
+    }
+    pf_test_note("max relative difference to GLM %.2Lf eps", worst / (long double)PF_REAL_EPSILON);
+    PF_CHECK(worst <= 8.0L * (long double)PF_REAL_EPSILON, "difference to GLM %Lg", worst);
+}
+#endif
+
+int main(int argc, char **argv)
+{
+    PF_TEST_BEGIN(argc, argv);
+    PF_TEST_RUN(test_erfc_grid);
+    PF_TEST_RUN(test_erfc_random);
+    PF_TEST_RUN(test_erf_grid_random);
+    PF_TEST_RUN(edge_erfc_special_values);
+    PF_TEST_RUN(edge_erf_tiny);
+    PF_TEST_RUN(edge_erfc_range_symmetry);
+    PF_TEST_RUN(edge_erfc_monotonic);
+    PF_TEST_RUN(edge_erfc_underflow);
+    PF_TEST_RUN(edge_scalar_helpers);
+    PF_TEST_RUN(test_vec_ops);
+    PF_TEST_RUN(edge_vec3_normalize);
+#ifdef __cplusplus
+    PF_TEST_RUN(test_vec_vs_glm);
+#endif
+    return PF_TEST_END();
+}
