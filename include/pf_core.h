@@ -132,61 +132,39 @@ typedef float pf_real;
 #  ifndef PF_ATAN2
 #    define PF_ATAN2(y, x) atan(y, x)
 #  endif
-#elif defined(PF_DOUBLE)
-#  ifndef PF_SQRT
-#    define PF_SQRT(x) sqrt(x)
-#  endif
-#  ifndef PF_EXP
-#    define PF_EXP(x) exp(x)
-#  endif
-#  ifndef PF_LOG
-#    define PF_LOG(x) log(x)
-#  endif
-#  ifndef PF_FABS
-#    define PF_FABS(x) fabs(x)
-#  endif
-#  ifndef PF_FLOOR
-#    define PF_FLOOR(x) floor(x)
-#  endif
-#  ifndef PF_POW
-#    define PF_POW(x, y) pow(x, y)
-#  endif
-#  ifndef PF_SIN
-#    define PF_SIN(x) sin(x)
-#  endif
-#  ifndef PF_COS
-#    define PF_COS(x) cos(x)
-#  endif
-#  ifndef PF_ATAN2
-#    define PF_ATAN2(y, x) atan2(y, x)
-#  endif
 #else
+/* PFI_LIBM(sqrt) is sqrt in double builds and sqrtf in float builds. */
+#  ifdef PF_DOUBLE
+#    define PFI_LIBM(name) name
+#  else
+#    define PFI_LIBM(name) name##f
+#  endif
 #  ifndef PF_SQRT
-#    define PF_SQRT(x) sqrtf(x)
+#    define PF_SQRT(x) PFI_LIBM(sqrt)(x)
 #  endif
 #  ifndef PF_EXP
-#    define PF_EXP(x) expf(x)
+#    define PF_EXP(x) PFI_LIBM(exp)(x)
 #  endif
 #  ifndef PF_LOG
-#    define PF_LOG(x) logf(x)
+#    define PF_LOG(x) PFI_LIBM(log)(x)
 #  endif
 #  ifndef PF_FABS
-#    define PF_FABS(x) fabsf(x)
+#    define PF_FABS(x) PFI_LIBM(fabs)(x)
 #  endif
 #  ifndef PF_FLOOR
-#    define PF_FLOOR(x) floorf(x)
+#    define PF_FLOOR(x) PFI_LIBM(floor)(x)
 #  endif
 #  ifndef PF_POW
-#    define PF_POW(x, y) powf(x, y)
+#    define PF_POW(x, y) PFI_LIBM(pow)(x, y)
 #  endif
 #  ifndef PF_SIN
-#    define PF_SIN(x) sinf(x)
+#    define PF_SIN(x) PFI_LIBM(sin)(x)
 #  endif
 #  ifndef PF_COS
-#    define PF_COS(x) cosf(x)
+#    define PF_COS(x) PFI_LIBM(cos)(x)
 #  endif
 #  ifndef PF_ATAN2
-#    define PF_ATAN2(y, x) atan2f(y, x)
+#    define PF_ATAN2(y, x) PFI_LIBM(atan2)(y, x)
 #  endif
 #endif
 

@@ -443,6 +443,19 @@ PF_ORACLE_DEF void pf_oracle__sums(const pf_oracle__interval *heap, int n, long 
 }
 
 /* The globally adaptive driver over npieces pieces, each starting as one interval in t. */
+/* The result of a call that did no work: value 0, status PF_ORACLE_BAD_INPUT. */
+PF_ORACLE_DEF pf_oracle_result pf_oracle__result_bad_input(void)
+{
+    pf_oracle_result r;
+    r.value = 0.0L;
+    r.error = 0.0L;
+    r.converged = 0;
+    r.status = PF_ORACLE_BAD_INPUT;
+    r.intervals = 0;
+    r.evals = 0;
+    return r;
+}
+
 PF_ORACLE_DEF pf_oracle_result pf_oracle__adapt(pf_oracle__job *job, const long double *t0s,
                                                 const long double *t1s, int npieces,
                                                 long double epsabs, long double epsrel,
@@ -452,12 +465,7 @@ PF_ORACLE_DEF pf_oracle_result pf_oracle__adapt(pf_oracle__job *job, const long 
     pf_oracle_result r;
     long double value = 0.0L, err = 0.0L, ferr = 0.0L; /* ferr: error of frozen intervals */
     int n = 0, i, iter = 0;
-    r.value = 0.0L;
-    r.error = 0.0L;
-    r.converged = 0;
-    r.status = PF_ORACLE_BAD_INPUT;
-    r.intervals = 0;
-    r.evals = 0;
+    r = pf_oracle__result_bad_input();
     if (max_intervals > PF_ORACLE_MAX_INTERVALS) max_intervals = PF_ORACLE_MAX_INTERVALS;
     if (npieces > max_intervals || !(epsabs >= 0.0L) || !(epsrel >= 0.0L)) return r;
     for (i = 0; i < npieces; i++) {
@@ -559,12 +567,7 @@ PF_ORACLE_DEF pf_oracle_result pf_oracle_integrate_points(pf_oracle_fn f, void *
     pf_oracle_result r;
     long double sign = 1.0L;
     int ncut = 0, i, j;
-    r.value = 0.0L;
-    r.error = 0.0L;
-    r.converged = 0;
-    r.status = PF_ORACLE_BAD_INPUT;
-    r.intervals = 0;
-    r.evals = 0;
+    r = pf_oracle__result_bad_input();
     if (a != a || b != b || npoints < 0 || npoints > PF_ORACLE_MAX_POINTS ||
         (npoints > 0 && points == NULL) || f == NULL)
         return r;

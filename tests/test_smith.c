@@ -147,18 +147,25 @@ static int slope_plane_ypoints(long double x, long double *pts, int max_points, 
     return n;
 }
 
-static long double one_plus_lambda_2d(config k, long double *err)
+/* Integral of f over the whole slope plane, split at x = x0 (outer) and at the points
+   ypoints(x) (inner: the kink line, the peak). Returns the oracle's result. */
+static pf_oracle_result slope_plane_integral(pf_oracle_fn2 f, void *ctx, long double x0,
+                                             pf_oracle_points_fn ypoints, long double epsrel, int max_intervals)
 {
-    pf_oracle_2d pb = pf_oracle_2d_make(slope_plane_integrand, &k, -HUGE_VALL, HUGE_VALL, -HUGE_VALL, HUGE_VALL);
+    pf_oracle_2d pb = pf_oracle_2d_make(f, ctx, -HUGE_VALL, HUGE_VALL, -HUGE_VALL, HUGE_VALL);
     long double xp[1];
-    pf_oracle_result r;
-    xp[0] = k.mx;
+    xp[0] = x0;
     pb.xpoints = xp;
     pb.nxpoints = 1;
-    pb.ypoints = slope_plane_ypoints;
-    pb.epsrel = 1e-14L;
-    pb.max_intervals = 600;
-    r = pf_oracle_integrate_2d(&pb);
+    pb.ypoints = ypoints;
+    pb.epsrel = epsrel;
+    pb.max_intervals = max_intervals;
+    return pf_oracle_integrate_2d(&pb);
+}
+
+static long double one_plus_lambda_2d(config k, long double *err)
+{
+    pf_oracle_result r = slope_plane_integral(slope_plane_integrand, &k, k.mx, slope_plane_ypoints, 1e-14L, 600);
     *err = r.converged ? r.error : -1.0L;
     return r.value / (k.wz - k.wx * k.mx - k.wy * k.my);
 }
@@ -511,22 +518,14 @@ static void test_ggx_anisotropic_2d(void)
     int i;
     for (i = 0; i < 3; i++) {
         ggx2d g;
-        pf_oracle_2d pb;
         pf_oracle_result r;
-        long double xp[1] = {0.0L};
         pf_vec3 w = pf_vec3_make((pf_real)cfg[i][0], (pf_real)cfg[i][1], (pf_real)cfg[i][2]);
         g.wx = (long double)w.x;
         g.wy = (long double)w.y;
         g.wz = (long double)w.z;
         g.ax = (long double)(pf_real)cfg[i][3];
         g.ay = (long double)(pf_real)cfg[i][4];
-        pb = pf_oracle_2d_make(ggx2d_integrand, &g, -HUGE_VALL, HUGE_VALL, -HUGE_VALL, HUGE_VALL);
-        pb.xpoints = xp;
-        pb.nxpoints = 1;
-        pb.ypoints = ggx2d_ypoints;
-        pb.epsrel = 1e-12L;
-        pb.max_intervals = 800;
-        r = pf_oracle_integrate_2d(&pb);
+        r = slope_plane_integral(ggx2d_integrand, &g, 0.0L, ggx2d_ypoints, 1e-12L, 800);
         PF_CHECK(r.converged, "GGX 2D quadrature %d: %s", i, pf_oracle_status_name(r.status));
         pf_test_max_update(&m, pf_test_rel_error(1.0L + (long double)pf_lambda_ggx(w, (pf_real)g.ax, (pf_real)g.ay),
                                                  r.value / g.wz),
