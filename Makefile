@@ -81,8 +81,8 @@ bench: $(BENCH_BINS)
 # docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
 # are replaced by that module's section of bench/out/summary.md (run make bench first), so the
 # tables in docs are the bench's, never typed by hand.
-docs:
-	@sh bench/update_docs.sh bench/out/summary.md docs
+docs: $(BUILD)/c99-float/test_smith $(BUILD)/c99-double/test_smith $(BUILD)/c99-float/test_core $(BUILD)/c99-double/test_core
+	@BUILD=$(BUILD) sh bench/update_docs.sh bench/out/summary.md docs
 
 .PHONY: pf-bench-always
 
