@@ -26,7 +26,7 @@
      slope statistics  pf_slope_stats_make, pf_slope_stats_from_moments, pf_slope_along,
                        pf_smith_nu, pf_smith_nu_iso
      Beckmann          pf_lambda_beckmann, pf_g1_beckmann            exact (see below)
-                       pf_lambda_beckmann_fast, pf_g1_beckmann_fast  ours: 9.6e-5, Walter's cost
+                       pf_lambda_beckmann_fast, pf_g1_beckmann_fast  ours: 1.04e-4, branch-free
                        pf_lambda_beckmann_walter, pf_g1_beckmann_walter  Walter et al. 2007, 3.1e-3
      GGX               pf_lambda_ggx, pf_g1_ggx (anisotropic, from the direction vector),
                        pf_lambda_ggx_iso, pf_g1_ggx_iso (from cos theta)
@@ -42,8 +42,9 @@
      value for every finite input; NaN inputs give G1 = 0.
 
    ACCURACY AND COST (measured; docs/smith.md has the tables, bench/bench_smith.c the timings)
-     pf_g1_beckmann    float: one (5,5) rational, max rel. error 2e-7 class; double: few ulp.
-     pf_g1_beckmann_fast   max rel. error 9.6e-5 (33x below Walter) at Walter's cost.
+     pf_g1_beckmann        float: one (5,5) rational, max rel. error 2.7e-7 (bound 1e-6);
+                           double: 4e-16. Lambda: <= 5 ulp in float and double.
+     pf_g1_beckmann_fast   max rel. error 1.04e-4 (30x below Walter), branch-free.
 
    SOURCES
      Smith 1967; Walter, Marschner, Li, Torrance 2007 (Beckmann rational, GGX Lambda);
@@ -254,7 +255,7 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
    [1.5482, 1.6) and G1 = 1/(1 + Lambda) reaches 1.00006. Our Walter tier clamps Lambda at 0
    (G1 at 1) there and is otherwise the published formula. Max relative error of G1:
    3.13e-3 at nu = 1.336 (measured in tests/test_smith.c). Kept as the baseline most
-   renderers ship; prefer pf_g1_beckmann_fast, which costs the same. */
+   renderers ship; prefer pf_g1_beckmann_fast (30x more accurate, cost in docs/smith.md). */
 PF_DEF pf_real pf_lambda_beckmann_walter(pf_real nu)
 {
     if (!(nu > PF_R(0.5) * PF_INV_SQRT_PI / PF_LAMBDA_MAX)) return PF_LAMBDA_MAX;
@@ -274,32 +275,33 @@ PF_DEF pf_real pf_g1_beckmann_walter(pf_real nu)
 }
 
 /* ---------------------------------------------------------------- our fast tier
-   G1 = nu P3(nu) / Q2(nu) on [0, 2.2), 1 beyond: a near-minimax relative fit of G1/nu
-   (bench/fit/fit_smith.py). One division and two more multiply-adds than Walter's form;
-   max relative error of G1 9.6e-5 (33x below Walter's 3.13e-3), the jump at 2.2 included
-   (1 - G1(2.2) = 8.2e-5). Never leaves [0, 1]. Coefficients: fit_smith.py's H(3,2) divided
-   through by its Q2 so the denominator is monic. */
+   G1 = nu P3(nu) / Q2(nu) with nu clamped to [0, 2.2]: a near-minimax relative fit of
+   G1/nu on [0, 2.2] that is also pulled toward G1 = 1 at 2.2, so that the clamped value
+   serves every nu beyond (bench/fit/fit_smith.py, 'fast'). Branch-free (a max and a min
+   instead of Walter's two tests) and continuous (no jump at a cutoff). Max relative error
+   of G1 1.05e-4 over all nu > 0 (30x below Walter's 3.13e-3); it peaks at 0.99994 < 1, so it
+   never leaves [0, 1]; at nu = 0 (and nu <= 0, NaN) it is exactly 0. The denominator is
+   monic (one multiply fewer). */
 PF_DEF pf_real pf_g1_beckmann_fast(pf_real nu)
 {
-    if (!(nu > PF_R(0.0))) return PF_R(0.0);
-    if (nu >= PF_R(2.2)) return PF_R(1.0);
-    /* monic denominator; the fit peaks below 1 on [0, 2.2) (checked on every float there),
-       so unlike Walter's form it needs no clamp */
-    return nu * (PF_R(4.069361687) + nu * (PF_R(-0.6997067332) + nu * (PF_R(0.5927062035) +
-           nu * PF_R(-0.07940597832)))) / (PF_R(1.148054957) + nu * (PF_R(1.832155824) + nu));
+    pf_real n = pf_min(pf_max(nu, PF_R(0.0)), PF_R(2.2)); /* max first: NaN -> 0 */
+    return n * (PF_R(4.018333074) + n * (PF_R(-0.6657327309) + n * (PF_R(0.5771723645) +
+           n * PF_R(-0.07668278205)))) / (PF_R(1.133668816) + n * (PF_R(1.815881917) + n));
 }
 
-/* Lambda of the fast tier, 1/G1_fast - 1 = (Q2 - nu P3) / (nu P3), clamped at 0 against
-   rounding. Its error is stated in G1 terms: |dLambda| / (1 + Lambda)
-   <= 9.6e-5, so it is an absolute, not relative, bound for small Lambda. */
+/* Lambda of the fast tier, 1/G1_fast - 1 = (Q2 - nu P3) / (nu P3) below 2.2 and 0 beyond
+   (like Walter's form; G1_fast there is 0.9999 and the difference is within the bound).
+   Its error is stated in G1 terms: |dLambda| / (1 + Lambda) <= 1.1e-4, an absolute, not
+   relative, bound for small Lambda. */
 PF_DEF pf_real pf_lambda_beckmann_fast(pf_real nu)
 {
     pf_real p;
     if (!(nu > PF_R(0.5) * PF_INV_SQRT_PI / PF_LAMBDA_MAX)) return PF_LAMBDA_MAX;
     if (nu >= PF_R(2.2)) return PF_R(0.0);
-    p = nu * (PF_R(4.069361687) + nu * (PF_R(-0.6997067332) + nu * (PF_R(0.5927062035) +
-        nu * PF_R(-0.07940597832))));
-    return pf_max((PF_R(1.148054957) + nu * (PF_R(1.832155824) + nu)) / p - PF_R(1.0), PF_R(0.0));
+    p = nu * (PF_R(4.018333074) + nu * (PF_R(-0.6657327309) + nu * (PF_R(0.5771723645) +
+        nu * PF_R(-0.07668278205))));
+    return pf_min(pf_max((PF_R(1.133668816) + nu * (PF_R(1.815881917) + nu)) / p - PF_R(1.0), PF_R(0.0)),
+                  PF_LAMBDA_MAX);
 }
 
 /* ---------------------------------------------------------------- GGX (Trowbridge-Reitz)

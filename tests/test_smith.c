@@ -240,8 +240,8 @@ static void test_g1_fast_and_walter(void)
     }
     pf_test_note("fast %.3g at nu=%.3f; Walter %.3g at nu=%.3f; ratio %.1fx; fast Lambda %.3g", (double)mf.err,
                  (double)mf.at, (double)mw.err, (double)mw.at, (double)(mw.err / mf.err), (double)mlf.err);
-    PF_CHECK(mf.err <= 1.0e-4L, "fast tier G1 max rel %.3g at %.5g", (double)mf.err, (double)mf.at);
-    PF_CHECK(mlf.err <= 1.0e-4L, "fast tier Lambda error %.3g at %.5g", (double)mlf.err, (double)mlf.at);
+    PF_CHECK(mf.err <= 1.1e-4L, "fast tier G1 max rel %.3g at %.5g", (double)mf.err, (double)mf.at);
+    PF_CHECK(mlf.err <= 1.1e-4L, "fast tier Lambda error %.3g at %.5g", (double)mlf.err, (double)mlf.at);
     PF_CHECK(mw.err >= 3.0e-3L && mw.err <= 3.2e-3L, "Walter G1 max rel %.4g at %.5g (expected 3.13e-3)",
              (double)mw.err, (double)mw.at);
     PF_CHECK(mw.err >= 10.0L * mf.err, "fast tier only %.1fx better than Walter", (double)(mw.err / mf.err));

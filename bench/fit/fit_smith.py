@@ -54,8 +54,12 @@ def best_cutoff(m, n, cuts):
 if __name__ == "__main__":
     what = sys.argv[1:] or ["fast", "g1f", "kf", "kd"]
     if "fast" in what:
-        tot, c, p, q = best_cutoff(3, 2, [2.10, 2.15, 2.20, 2.25])
-        show("G1 fast tier H(3,2) on [0, %.3f]" % c, p, q, tot, 10)
+        # Branch-free tier: nu is clamped to [0, c] and the fit at c serves every nu beyond,
+        # so it is also fitted toward G1 = 1 at c (an extra target point H = 1/c).
+        for c in [mpf("2.2"), mpf("2.3")]:
+            e, p, q = fit(H, 0, c, 3, 2, count=200, iters=50, extra=[(c, 1 / c)])
+            show("G1 fast tier H(3,2) on [0, %s], clamped beyond (divide P, Q by Q's last coefficient "
+                 "for the header's monic form)" % nstr(c, 3), p, q, e, 10)
     if "g1f" in what:
         tot, c, p, q = best_cutoff(5, 5, [3.1, 3.2, 3.3, 3.4])
         show("G1 float path H(5,5) on [0, %.3f]" % c, p, q, tot, 10)

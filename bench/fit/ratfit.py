@@ -17,11 +17,15 @@ def horner(c, x):
         r = r * x + v
     return r
 
-def fit(f, a, b, m, n, count=400, iters=60, xs=None):
+def fit(f, a, b, m, n, count=400, iters=60, xs=None, extra=()):
+    """extra: additional (x, target) pairs fitted with the same relative weight, e.g. a
+    second target at an end point that the fit must also approach."""
     a, b = mpf(a), mpf(b)
     if xs is None:
         xs = cheb_points(a, b, count) + [a, b]
     fs = [f(x) for x in xs]
+    xs = xs + [mpf(x) for x, _ in extra]
+    fs = fs + [mpf(t) for _, t in extra]
     w = [mpf(1)] * len(xs)
     qprev = [mpf(1)] * len(xs)
     best = None
