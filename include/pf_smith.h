@@ -277,7 +277,7 @@ PF_DEF pf_real pf_g1_beckmann_walter(pf_real nu)
 /* ---------------------------------------------------------------- our fast tier
    G1 = nu P3(nu) / Q2(nu) with nu clamped to [0, 2.2]: a near-minimax relative fit of
    G1/nu on [0, 2.2] that is also pulled toward G1 = 1 at 2.2, so that the clamped value
-   serves every nu beyond (bench/fit/fit_smith.py, 'fast'). Branch-free (a max and a min
+   serves every nu beyond (bench/fit/fit_smith.py, 'fast'). Without branches (a max and a min
    instead of Walter's two tests) and continuous (no jump at a cutoff). Max relative error
    of G1 1.05e-4 over all nu > 0 (30x below Walter's 3.13e-3); it peaks at 0.99994 < 1, so it
    never leaves [0, 1]; at nu = 0 (and nu <= 0, NaN) it is exactly 0. The denominator is
