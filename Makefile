@@ -42,11 +42,24 @@ $(foreach c,$(CONFIGS),$(eval $(call test_rule,$(c))))
 
 TEST_BINS := $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(TESTS)))
 
+# C++ tests that cross-check against GLM (tests/test_*.cpp; Debian libglm-dev): C++11, float
+# and double. GLM is a test-only dependency, never needed by the headers.
+GLM_TEST_SRC := $(wildcard tests/test_*.cpp)
+GLM_TESTS    := $(GLM_TEST_SRC:tests/%.cpp=%)
+GLM_CONFIGS  := glm-float glm-double
+$(BUILD)/glm-float/%: tests/%.cpp $(HEADERS)
+	@mkdir -p $(@D)
+	$(CXX) $(WARN_CXX) -O2 -DPF_TEST_CONFIG='"glm-float"' $(INC) $< -o $@ -lm
+$(BUILD)/glm-double/%: tests/%.cpp $(HEADERS)
+	@mkdir -p $(@D)
+	$(CXX) $(WARN_CXX) -O2 -DPF_DOUBLE -DPF_TEST_CONFIG='"glm-double"' $(INC) $< -o $@ -lm
+TEST_BINS += $(foreach c,$(GLM_CONFIGS),$(addprefix $(BUILD)/$(c)/,$(GLM_TESTS)))
+
 .PHONY: test test-build bench portability docs clean
 test-build: $(TEST_BINS)
 
 test: test-build
-	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS)"
+	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS)" "$(GLM_CONFIGS)" "$(GLM_TESTS)"
 
 # ---------------------------------------------------------------- bench (the main job)
 #   make bench                  float + double builds of bench/bench_*.c, run by bench/run.sh:
@@ -81,7 +94,8 @@ bench: $(BENCH_BINS)
 # docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
 # are replaced by that module's section of bench/out/summary.md (run make bench first), so the
 # tables in docs are the bench's, never typed by hand.
-docs: $(BUILD)/c99-float/test_smith $(BUILD)/c99-double/test_smith $(BUILD)/c99-float/test_core $(BUILD)/c99-double/test_core
+DOC_TESTS := core smith beckmann moments toksvig shadow gaussgrid height
+docs: $(foreach t,$(DOC_TESTS),$(BUILD)/c99-float/test_$(t) $(BUILD)/c99-double/test_$(t))
 	@BUILD=$(BUILD) sh bench/update_docs.sh bench/out/summary.md docs
 
 .PHONY: pf-bench-always

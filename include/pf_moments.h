@@ -1,12 +1,125 @@
 /* pf_moments.h - linear moments for pre-filtering: slope moments (LEAN/LEADR), scalar-map
-   moments, depth moments for shadow maps, and their mip reductions and sampling.
+   moments, average normals (Toksvig), depth moments for shadow maps; their mip reductions,
+   mip pyramids and bilinear/trilinear sampling.
 
-   (doc block: to be completed with the reductions and pyramid functions)
+   WHY MOMENTS. A shading function f that is non-linear in a map's values cannot be filtered by
+   averaging the map. It can be filtered exactly when it is rewritten as a linear function of new
+   per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1, eq. 40): averaging those quantities
+   over a footprint then averages f. Raw moments E[1], E[m], E[m m^T], ... of a texel's values
+   are such quantities: the moments of a union (a mixture) of footprints are the weighted
+   averages of their moments (sec. 7.2). So everything in this header is averaged with plain
+   weighted sums - a box mip reduction, a bilinear or trilinear sampler - and the statistics
+   (mean, variance, covariance) are formed only after filtering, in the shader:
+     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010 as
+                     summarized by Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and
+                     sec. 4.1, which stores exactly these five in mipmapped textures);
+     scalar moments  E[f], E[f^2] of a colour-driving or height map: the mean and variance of a
+                     Gaussian filtering distribution (Heitz et al. 2014 sec. 4.2);
+     average normal  E[n] of unit normals, unnormalized; its length shrinks as the normals
+                     spread, which is what Toksvig's variance estimate reads (pf_toksvig.h;
+                     Bruneton & Neyret 2012 sec. 3.2.1, 7.2.2);
+     depth moments   (z, z^2) for VSM, warped (exp) moments for EVSM, (z, z^2, z^3, z^4) for
+                     moment shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); and ESM's
+                     E[exp(c z)] kept as its logarithm and reduced with log-sum-exp, so that no
+                     float ever holds exp(c z) and nothing overflows, whatever c.
+
+   USAGE (shader or CPU: the evaluators)
+     pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
+     pf_slope_moments m = pf_slope_moments_reduce2x2(t00, t10, t01, t11);   -- one mip texel
+     pf_slope_stats   s = pf_slope_moments_stats(m, base_var);               -- after filtering
+   USAGE (CPU: a whole pyramid in one caller buffer, no allocation)
+     long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
+     pf_real *pyr = <n * 5 pf_reals from the caller>;
+     pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr);
+     pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, PF_BORDER_WRAP);
+
+   FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
+     types and texels  pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
+                       pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
+                       pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
+                       pf_normal_avg_from_normal, pf_normal_avg_from_slope;
+                       pf_esm_log_from_depth, pf_esm_log_combine2
+     linear algebra    pf_<T>_add, pf_<T>_scale (scalar, depth2, depth4, evsm; the slope
+                       moments' and pf_vec3's live in pf_beckmann.h and pf_core.h)
+     reductions        for T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
+                       evsm_moments, normal_avg (a pf_vec3):
+                         pf_<T>_reduce2x2(a, b, c, d)       the even-size mip texel (box)
+                         pf_<T>_reduce3(a, b, c, w)         3 texels, weights w (odd edge)
+                         pf_<T>_reduce3x3(t00 .. t22, wx, wy)  9 texels (odd corner),
+                                                            separable weights
+                         pf_<T>_accumulate(acc, t, w)       acc + w t: N texels, one at a time
+                         pf_<T>_lerp(a, b, t), pf_<T>_bilinear(t00, t10, t01, t11, fx, fy)
+                       pf_mip_next_size(n), pf_mip_weights3(j, n)   the odd-size weights below
+     ESM (log space)   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
+                       pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
+                       (N texels, streaming)
+     height maps       pf_height_slope_central, pf_height_slope_edge,
+                       pf_slope_moments_from_heights
+   FUNCTIONS (CPU only: they walk caller-owned buffers; linkage PF_CPU_DEF; compiled out under
+   PF_GLSL, skipped by the shader-subset portability checks)
+     pyramid layout    pf_mip_level_count, pf_mip_level_size, pf_mip_level_offset,
+                       pf_mip_texel_count
+     building          pf_mip_build (linear, any channel count), pf_mip_build_log (ESM),
+                       pf_slope_moments_map_from_heights (level 0 only),
+                       pf_slope_pyramid_from_heights, pf_depth_pyramid_from_depths,
+                       pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
+     N texels          pf_moments_weighted_mean, pf_esm_log_weighted_mean
+     sampling          pf_mip_sample_bilinear, pf_mip_sample_trilinear, and their _log
+                       variants (ESM); typed: pf_slope_moments_sample, pf_scalar_moments_sample,
+                       pf_depth_moments2_sample, pf_depth_moments4_sample,
+                       pf_evsm_moments_sample, pf_normal_avg_sample, pf_esm_log_sample
+
+   CONVENTIONS
+     Buffers. A map with C channels is an array of pf_real, texel (i, j) (column i, row j) at
+     [(j w + i) C ... + C - 1]: the interleaved layout of an RGBA32F upload. The moment structs
+     map to channels in member order: slope (ex, ey, exx, eyy, exy) = 5 channels; scalar and
+     depth2 2; depth4 and evsm 4; normal_avg 3; ESM log 1. One builder serves every linear
+     type (pf_mip_build with the channel count), so a caller who splits the five slope moments
+     into an RGBA and an R texture builds two pyramids with C = 4 and C = 1 (or builds one with
+     C = 5 and splits it while uploading).
+     Pyramid. Level 0 is w x h; level l+1 is pf_mip_next_size of each side, i.e. floor(n/2),
+     but never below 1; the last level is 1 x 1. Levels are stored one after the other, level 0
+     first, each row-major: pf_mip_level_offset gives where level l starts (in texels; multiply
+     by C for pf_reals). pf_mip_texel_count(w, h) is the total (< 4/3 w h + levels).
+     Odd sizes (polyphase box). A destination texel covers exactly n_src / n_dst source texels,
+     so every texel of a level has the same footprint, the mean of every level equals the mean
+     of level 0 exactly, and the 1 x 1 top is the global mean. With n_src = 2k + 1 and
+     n_dst = k, destination texel j covers source texels 2j, 2j+1, 2j+2 with weights
+     (k - j, k, j + 1) / (2k + 1): the last column is not simply folded into the last texel
+     (which would give that texel a 1.5x footprint and make the next level's plain 2x2 average
+     no longer the mean). Even sizes use (1/2, 1/2, 0); size 1 stays 1 with (1, 0, 0).
+     pf_mip_weights3 returns these weights; in 2D they are separable (3x3 in a corner where both
+     sizes are odd, 3x2 on an odd edge).
+     Sampling follows the GPU convention: texel i of an n-texel level has its centre at
+     u = (i + 0.5)/n; PF_BORDER_WRAP repeats, PF_BORDER_CLAMP clamps to the edge texel; a
+     trilinear lod is clamped to [0, levels - 1].
+     Height maps. Texel (i, j) of a w x h height map sits at x = (i + 0.5) dx, y = (j + 0.5) dy
+     (row j + 1 is +y). The slope is height_scale * grad h (Dupuy et al. 2013 sec. 4.2, height
+     scaling), from the central difference (h[i+1] - h[i-1]) / (2 dx): second order, error
+     (dx^2 / 6) h''' (measured in tests/test_moments.c). PF_BORDER_WRAP for tiling maps;
+     PF_BORDER_CLAMP reads no texel outside the map and uses the second-order one-sided
+     difference (-3 h0 + 4 h1 - h2) / (2 dx) on the first and last column/row, so the order is
+     2 everywhere (2 texels: (h1 - h0)/dx, first order; 1 texel: slope 0).
+     Weights are applied before summing (w a + w b, never w (a + b)), so reducing values near
+     the largest float (EVSM's second moment exp(2c) at c = 44 is 1.6e38) stays finite.
+     NaN texels propagate: a NaN texel makes NaN every texel that averages it with a nonzero
+     weight (its ancestors in the pyramid, a sample whose footprint covers it) and nothing else;
+     texels with zero weight are never read, so nothing is read out of bounds. Zero-size maps
+     (w < 1 or h < 1), null pointers and channel counts < 1 make the CPU functions do nothing
+     (the counts return 0). Indices are int within a row and long long for offsets; a map
+     needs w C < 2^30.
+
+   ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
+   timings). Reductions and sampling are sums of a few products: the moments of a reduction
+   equal the mixture moments of its texels to a few ulps (tests/test_moments.c). The 5-moment
+   pyramid of a 4096^2 float height map is built in one pass over the heights, each level
+   reduced while the rows it needs are still in cache.
 
    SOURCES
-     Dupuy et al. 2013 (LEADR) sec. 4.1-4.2; Bruneton & Neyret 2012 sec. 3.2.1, 5.2 and 7.2;
-     Heitz et al. 2014 sec. 4.2; Donnelly & Lauritzen 2006 (VSM); Salvi 2008 / Annen et al.
-     2008 (ESM); Lauritzen & McCool 2008 (EVSM); Peters & Klein 2015 (moment shadow maps). */
+     Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
+     (eq. 19, Toksvig), 5.2 (eqs. 34-38) and 7.2; Heitz et al. 2014 sec. 4.2; Donnelly &
+     Lauritzen 2006 (VSM); Salvi 2008 / Annen et al. 2008 (ESM); Lauritzen & McCool 2008
+     (EVSM); Peters & Klein 2015 (moment shadow maps). */
 #ifndef PF_MOMENTS_H
 #define PF_MOMENTS_H
 
@@ -132,5 +245,1236 @@ PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w
     pf_real m = pf_max(l0, l1);
     return m + PF_LOG(w0 * PF_EXP(l0 - m) + w1 * PF_EXP(l1 - m));
 }
+
+/* a + b and w a, componentwise (the moments are linear). */
+PF_DEF pf_depth_moments2 pf_depth_moments2_add(pf_depth_moments2 a, pf_depth_moments2 b)
+{
+    return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_scale(pf_depth_moments2 a, pf_real w)
+{
+    return pf_depth_moments2_make(w * a.m1, w * a.m2);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_add(pf_depth_moments4 a, pf_depth_moments4 b)
+{
+    return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_scale(pf_depth_moments4 a, pf_real w)
+{
+    return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
+{
+    return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
+{
+    return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2);
+}
+
+/* ---------------------------------------------------------------- scalar-map moments
+   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After
+   filtering, f over the footprint is modelled as a Gaussian with mean E[f] and variance
+   E[f^2] - E[f]^2, and a colour map is filtered by convolving it with that Gaussian
+   (Heitz et al. 2014 sec. 4.2, eq. 9; the variance there is printed as "f^2 bar - f bar",
+   meaning E[f^2] - E[f]^2). */
+PF_STRUCT_BEGIN(pf_scalar_moments)
+    pf_real m1;
+    pf_real m2;
+PF_STRUCT_END(pf_scalar_moments)
+
+PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
+{
+    pf_scalar_moments m;
+    m.m1 = m1;
+    m.m2 = m2;
+    return m;
+}
+
+/* One texel: (f, f^2). */
+PF_DEF pf_scalar_moments pf_scalar_moments_from_value(pf_real f)
+{
+    return pf_scalar_moments_make(f, f * f);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_add(pf_scalar_moments a, pf_scalar_moments b)
+{
+    return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_scale(pf_scalar_moments a, pf_real w)
+{
+    return pf_scalar_moments_make(w * a.m1, w * a.m2);
+}
+
+PF_DEF pf_real pf_scalar_moments_mean(pf_scalar_moments m) { return m.m1; }
+
+/* Variance E[f^2] - E[f]^2, clamped at 0: rounding in the filtered moments (and 16-bit
+   storage) can make it slightly negative where the map is flat. NaN gives 0. */
+PF_DEF pf_real pf_scalar_moments_variance(pf_scalar_moments m)
+{
+    return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0));
+}
+
+PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
+{
+    return PF_SQRT(pf_scalar_moments_variance(m));
+}
+
+/* ---------------------------------------------------------------- average normals
+   A texel of a normal map is a unit normal; the pyramid averages them without renormalizing,
+   so a coarse texel holds E[n], whose length |E[n]| <= 1 measures how much the normals below
+   it disagree (Toksvig 2005; pf_toksvig.h turns it into a variance). Type: pf_vec3. */
+
+/* The texel of a normal n: n normalized (the zero vector gives (0, 0, 1), see
+   pf_vec3_normalize). */
+PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n)
+{
+    return pf_vec3_normalize(n);
+}
+
+/* The texel of a slope (x, y): the unit normal (-x, -y, 1)/sqrt(1 + x^2 + y^2)
+   (Dupuy et al. 2013 sec. 4.1 slope convention). */
+PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
+{
+    return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0)));
+}
+
+/* ---------------------------------------------------------------- mip geometry */
+/* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
+PF_DEF int pf_mip_next_size(int n)
+{
+    return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0);
+}
+
+/* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
+   texels is reduced to pf_mip_next_size(n_src) (see CONVENTIONS, odd sizes):
+     n_src even        (1/2, 1/2, 0)
+     n_src = 2k + 1    ((k - j), k, (j + 1)) / (2k + 1)   (polyphase box, j in [0, k))
+     n_src = 1         (1, 0, 0)
+   The weights sum to 1 and every source texel gets a total weight of n_dst / n_src. A zero
+   weight means "do not read that texel" (it may be outside the map). j is clamped to the
+   destination size; n_src < 1 gives (0, 0, 0). */
+PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
+{
+    int k = n_src / 2;
+    int jc = j < 0 ? 0 : (j > k - 1 ? k - 1 : j);
+    pf_real n = PF_R(n_src);
+    if (n_src < 1) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    if (n_src == 1) return pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0));
+    if (n_src - 2 * k == 0) return pf_vec3_make(PF_R(0.5), PF_R(0.5), PF_R(0.0));
+    return pf_vec3_make(PF_R(k - jc) / n, PF_R(k) / n, PF_R(jc + 1) / n);
+}
+
+/* ---------------------------------------------------------------- reductions and sampling
+   For every linear moment type T: the 2x2 box of an even mip level, the 3-texel and 9-texel
+   weighted sums of odd levels (weights from pf_mip_weights3; reduce3x3 applies wx along rows
+   and wy across them: t<col><row>), N texels by accumulation (acc + w t, then scale by
+   1/sum(w)), and the lerp / bilinear interpolation of a sampler. Weights are applied to each
+   texel before summing (see CONVENTIONS). */
+
+/* ---- pf_slope_moments: five slope moments (pf_beckmann.h) */
+PF_DEF pf_slope_moments pf_slope_moments_lerp(pf_slope_moments a, pf_slope_moments b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_slope_moments_make(s * a.ex + t * b.ex, s * a.ey + t * b.ey, s * a.exx + t * b.exx,
+                                 s * a.eyy + t * b.eyy, s * a.exy + t * b.exy);
+}
+
+PF_DEF pf_slope_moments pf_slope_moments_reduce2x2(pf_slope_moments a, pf_slope_moments b,
+                                                   pf_slope_moments c, pf_slope_moments d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_slope_moments_make(q * a.ex + q * b.ex + q * c.ex + q * d.ex,
+                                 q * a.ey + q * b.ey + q * c.ey + q * d.ey,
+                                 q * a.exx + q * b.exx + q * c.exx + q * d.exx,
+                                 q * a.eyy + q * b.eyy + q * c.eyy + q * d.eyy,
+                                 q * a.exy + q * b.exy + q * c.exy + q * d.exy);
+}
+
+PF_DEF pf_slope_moments pf_slope_moments_reduce3(pf_slope_moments a, pf_slope_moments b,
+                                                 pf_slope_moments c, pf_vec3 w)
+{
+    return pf_slope_moments_make(w.x * a.ex + w.y * b.ex + w.z * c.ex,
+                                 w.x * a.ey + w.y * b.ey + w.z * c.ey,
+                                 w.x * a.exx + w.y * b.exx + w.z * c.exx,
+                                 w.x * a.eyy + w.y * b.eyy + w.z * c.eyy,
+                                 w.x * a.exy + w.y * b.exy + w.z * c.exy);
+}
+
+PF_DEF pf_slope_moments pf_slope_moments_reduce3x3(pf_slope_moments t00, pf_slope_moments t10,
+                                                   pf_slope_moments t20, pf_slope_moments t01,
+                                                   pf_slope_moments t11, pf_slope_moments t21,
+                                                   pf_slope_moments t02, pf_slope_moments t12,
+                                                   pf_slope_moments t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_slope_moments r0 = pf_slope_moments_reduce3(t00, t10, t20, wx);
+    pf_slope_moments r1 = pf_slope_moments_reduce3(t01, t11, t21, wx);
+    pf_slope_moments r2 = pf_slope_moments_reduce3(t02, t12, t22, wx);
+    return pf_slope_moments_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_slope_moments pf_slope_moments_accumulate(pf_slope_moments acc, pf_slope_moments t,
+                                                    pf_real w)
+{
+    return pf_slope_moments_make(acc.ex + w * t.ex, acc.ey + w * t.ey, acc.exx + w * t.exx,
+                                 acc.eyy + w * t.eyy, acc.exy + w * t.exy);
+}
+
+PF_DEF pf_slope_moments pf_slope_moments_bilinear(pf_slope_moments t00, pf_slope_moments t10,
+                                                  pf_slope_moments t01, pf_slope_moments t11,
+                                                  pf_real fx, pf_real fy)
+{
+    return pf_slope_moments_lerp(pf_slope_moments_lerp(t00, t10, fx),
+                                 pf_slope_moments_lerp(t01, t11, fx), fy);
+}
+
+/* ---- pf_scalar_moments: scalar-map moments */
+PF_DEF pf_scalar_moments pf_scalar_moments_lerp(pf_scalar_moments a, pf_scalar_moments b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_scalar_moments_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_reduce2x2(pf_scalar_moments a, pf_scalar_moments b,
+                                                     pf_scalar_moments c, pf_scalar_moments d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_scalar_moments_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
+                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_reduce3(pf_scalar_moments a, pf_scalar_moments b,
+                                                   pf_scalar_moments c, pf_vec3 w)
+{
+    return pf_scalar_moments_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
+                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_reduce3x3(pf_scalar_moments t00, pf_scalar_moments t10,
+                                                     pf_scalar_moments t20, pf_scalar_moments t01,
+                                                     pf_scalar_moments t11, pf_scalar_moments t21,
+                                                     pf_scalar_moments t02, pf_scalar_moments t12,
+                                                     pf_scalar_moments t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_scalar_moments r0 = pf_scalar_moments_reduce3(t00, t10, t20, wx);
+    pf_scalar_moments r1 = pf_scalar_moments_reduce3(t01, t11, t21, wx);
+    pf_scalar_moments r2 = pf_scalar_moments_reduce3(t02, t12, t22, wx);
+    return pf_scalar_moments_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_accumulate(pf_scalar_moments acc, pf_scalar_moments t,
+                                                      pf_real w)
+{
+    return pf_scalar_moments_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
+}
+
+PF_DEF pf_scalar_moments pf_scalar_moments_bilinear(pf_scalar_moments t00, pf_scalar_moments t10,
+                                                    pf_scalar_moments t01, pf_scalar_moments t11,
+                                                    pf_real fx, pf_real fy)
+{
+    return pf_scalar_moments_lerp(pf_scalar_moments_lerp(t00, t10, fx),
+                                  pf_scalar_moments_lerp(t01, t11, fx), fy);
+}
+
+/* ---- pf_depth_moments2: VSM / EVSM-2 moments */
+PF_DEF pf_depth_moments2 pf_depth_moments2_lerp(pf_depth_moments2 a, pf_depth_moments2 b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_depth_moments2_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_reduce2x2(pf_depth_moments2 a, pf_depth_moments2 b,
+                                                     pf_depth_moments2 c, pf_depth_moments2 d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_depth_moments2_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
+                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3(pf_depth_moments2 a, pf_depth_moments2 b,
+                                                   pf_depth_moments2 c, pf_vec3 w)
+{
+    return pf_depth_moments2_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
+                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3x3(pf_depth_moments2 t00, pf_depth_moments2 t10,
+                                                     pf_depth_moments2 t20, pf_depth_moments2 t01,
+                                                     pf_depth_moments2 t11, pf_depth_moments2 t21,
+                                                     pf_depth_moments2 t02, pf_depth_moments2 t12,
+                                                     pf_depth_moments2 t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_depth_moments2 r0 = pf_depth_moments2_reduce3(t00, t10, t20, wx);
+    pf_depth_moments2 r1 = pf_depth_moments2_reduce3(t01, t11, t21, wx);
+    pf_depth_moments2 r2 = pf_depth_moments2_reduce3(t02, t12, t22, wx);
+    return pf_depth_moments2_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_accumulate(pf_depth_moments2 acc, pf_depth_moments2 t,
+                                                      pf_real w)
+{
+    return pf_depth_moments2_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
+}
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_bilinear(pf_depth_moments2 t00, pf_depth_moments2 t10,
+                                                    pf_depth_moments2 t01, pf_depth_moments2 t11,
+                                                    pf_real fx, pf_real fy)
+{
+    return pf_depth_moments2_lerp(pf_depth_moments2_lerp(t00, t10, fx),
+                                  pf_depth_moments2_lerp(t01, t11, fx), fy);
+}
+
+/* ---- pf_depth_moments4: MSM power moments */
+PF_DEF pf_depth_moments4 pf_depth_moments4_lerp(pf_depth_moments4 a, pf_depth_moments4 b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_depth_moments4_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2, s * a.m3 + t * b.m3,
+                                  s * a.m4 + t * b.m4);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_reduce2x2(pf_depth_moments4 a, pf_depth_moments4 b,
+                                                     pf_depth_moments4 c, pf_depth_moments4 d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_depth_moments4_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
+                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2,
+                                  q * a.m3 + q * b.m3 + q * c.m3 + q * d.m3,
+                                  q * a.m4 + q * b.m4 + q * c.m4 + q * d.m4);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3(pf_depth_moments4 a, pf_depth_moments4 b,
+                                                   pf_depth_moments4 c, pf_vec3 w)
+{
+    return pf_depth_moments4_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
+                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2,
+                                  w.x * a.m3 + w.y * b.m3 + w.z * c.m3,
+                                  w.x * a.m4 + w.y * b.m4 + w.z * c.m4);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3x3(pf_depth_moments4 t00, pf_depth_moments4 t10,
+                                                     pf_depth_moments4 t20, pf_depth_moments4 t01,
+                                                     pf_depth_moments4 t11, pf_depth_moments4 t21,
+                                                     pf_depth_moments4 t02, pf_depth_moments4 t12,
+                                                     pf_depth_moments4 t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_depth_moments4 r0 = pf_depth_moments4_reduce3(t00, t10, t20, wx);
+    pf_depth_moments4 r1 = pf_depth_moments4_reduce3(t01, t11, t21, wx);
+    pf_depth_moments4 r2 = pf_depth_moments4_reduce3(t02, t12, t22, wx);
+    return pf_depth_moments4_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_accumulate(pf_depth_moments4 acc, pf_depth_moments4 t,
+                                                      pf_real w)
+{
+    return pf_depth_moments4_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2, acc.m3 + w * t.m3,
+                                  acc.m4 + w * t.m4);
+}
+
+PF_DEF pf_depth_moments4 pf_depth_moments4_bilinear(pf_depth_moments4 t00, pf_depth_moments4 t10,
+                                                    pf_depth_moments4 t01, pf_depth_moments4 t11,
+                                                    pf_real fx, pf_real fy)
+{
+    return pf_depth_moments4_lerp(pf_depth_moments4_lerp(t00, t10, fx),
+                                  pf_depth_moments4_lerp(t01, t11, fx), fy);
+}
+
+/* ---- pf_evsm_moments: EVSM-4 moments */
+PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_evsm_moments_make(s * a.pos1 + t * b.pos1, s * a.pos2 + t * b.pos2,
+                                s * a.neg1 + t * b.neg1, s * a.neg2 + t * b.neg2);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
+                                                 pf_evsm_moments c, pf_evsm_moments d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_evsm_moments_make(q * a.pos1 + q * b.pos1 + q * c.pos1 + q * d.pos1,
+                                q * a.pos2 + q * b.pos2 + q * c.pos2 + q * d.pos2,
+                                q * a.neg1 + q * b.neg1 + q * c.neg1 + q * d.neg1,
+                                q * a.neg2 + q * b.neg2 + q * c.neg2 + q * d.neg2);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,
+                                               pf_evsm_moments c, pf_vec3 w)
+{
+    return pf_evsm_moments_make(w.x * a.pos1 + w.y * b.pos1 + w.z * c.pos1,
+                                w.x * a.pos2 + w.y * b.pos2 + w.z * c.pos2,
+                                w.x * a.neg1 + w.y * b.neg1 + w.z * c.neg1,
+                                w.x * a.neg2 + w.y * b.neg2 + w.z * c.neg2);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_reduce3x3(pf_evsm_moments t00, pf_evsm_moments t10,
+                                                 pf_evsm_moments t20, pf_evsm_moments t01,
+                                                 pf_evsm_moments t11, pf_evsm_moments t21,
+                                                 pf_evsm_moments t02, pf_evsm_moments t12,
+                                                 pf_evsm_moments t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_evsm_moments r0 = pf_evsm_moments_reduce3(t00, t10, t20, wx);
+    pf_evsm_moments r1 = pf_evsm_moments_reduce3(t01, t11, t21, wx);
+    pf_evsm_moments r2 = pf_evsm_moments_reduce3(t02, t12, t22, wx);
+    return pf_evsm_moments_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_accumulate(pf_evsm_moments acc, pf_evsm_moments t, pf_real w)
+{
+    return pf_evsm_moments_make(acc.pos1 + w * t.pos1, acc.pos2 + w * t.pos2, acc.neg1 + w * t.neg1,
+                                acc.neg2 + w * t.neg2);
+}
+
+PF_DEF pf_evsm_moments pf_evsm_moments_bilinear(pf_evsm_moments t00, pf_evsm_moments t10,
+                                                pf_evsm_moments t01, pf_evsm_moments t11,
+                                                pf_real fx, pf_real fy)
+{
+    return pf_evsm_moments_lerp(pf_evsm_moments_lerp(t00, t10, fx),
+                                pf_evsm_moments_lerp(t01, t11, fx), fy);
+}
+
+/* ---- pf_vec3: unnormalized average normals (Toksvig) */
+PF_DEF pf_vec3 pf_normal_avg_lerp(pf_vec3 a, pf_vec3 b, pf_real t)
+{
+    pf_real s = PF_R(1.0) - t;
+    return pf_vec3_make(s * a.x + t * b.x, s * a.y + t * b.y, s * a.z + t * b.z);
+}
+
+PF_DEF pf_vec3 pf_normal_avg_reduce2x2(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 d)
+{
+    pf_real q = PF_R(0.25);
+    return pf_vec3_make(q * a.x + q * b.x + q * c.x + q * d.x,
+                        q * a.y + q * b.y + q * c.y + q * d.y,
+                        q * a.z + q * b.z + q * c.z + q * d.z);
+}
+
+PF_DEF pf_vec3 pf_normal_avg_reduce3(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 w)
+{
+    return pf_vec3_make(w.x * a.x + w.y * b.x + w.z * c.x,
+                        w.x * a.y + w.y * b.y + w.z * c.y,
+                        w.x * a.z + w.y * b.z + w.z * c.z);
+}
+
+PF_DEF pf_vec3 pf_normal_avg_reduce3x3(pf_vec3 t00, pf_vec3 t10, pf_vec3 t20, pf_vec3 t01,
+                                       pf_vec3 t11, pf_vec3 t21, pf_vec3 t02, pf_vec3 t12,
+                                       pf_vec3 t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_vec3 r0 = pf_normal_avg_reduce3(t00, t10, t20, wx);
+    pf_vec3 r1 = pf_normal_avg_reduce3(t01, t11, t21, wx);
+    pf_vec3 r2 = pf_normal_avg_reduce3(t02, t12, t22, wx);
+    return pf_normal_avg_reduce3(r0, r1, r2, wy);
+}
+
+PF_DEF pf_vec3 pf_normal_avg_accumulate(pf_vec3 acc, pf_vec3 t, pf_real w)
+{
+    return pf_vec3_make(acc.x + w * t.x, acc.y + w * t.y, acc.z + w * t.z);
+}
+
+PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_vec3 t11,
+                                      pf_real fx, pf_real fy)
+{
+    return pf_normal_avg_lerp(pf_normal_avg_lerp(t00, t10, fx),
+                              pf_normal_avg_lerp(t01, t11, fx), fy);
+}
+
+/* ---------------------------------------------------------------- ESM in log space
+   An ESM texel stores l = c z (pf_esm_log_from_depth) instead of exp(c z). A reduction
+   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)) with m the largest l
+   among the texels of positive weight: every exponential is <= 1 and the sum is in
+   (0, sum w], so the result is finite for any finite l and any c (exp(c z) itself overflows
+   float for c z > 88.7). The result is the log of the weighted mean when the weights sum to
+   1. Texels of zero weight are skipped (not even their exponential is formed). */
+
+/* Floor of the exponent arguments l - m (<= 0) in the sums below: exp(-80) = 1.8e-35 is below
+   the rounding of any sum that holds a 1 (float and double), and stopping there keeps every
+   exponential normal (libm's underflow path is slow, and subnormals are slow on most CPUs). */
+#define PFI_LSE_ARG_MIN PF_R(-80.0)
+
+/* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
+PF_DEF pf_real pfi_lse_arg(pf_real d)
+{
+    return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d;
+}
+
+/* log of the mean of exp(l) over 4 texels (the 2x2 box). */
+PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
+{
+    pf_real m = pf_max(pf_max(l0, l1), pf_max(l2, l3));
+    pf_real s = PF_R(0.25) * PF_EXP(pfi_lse_arg(l0 - m))
+              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l1 - m))
+              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l2 - m))
+              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l3 - m));
+    return m + PF_LOG(s);
+}
+
+/* log(w.x exp(l0) + w.y exp(l1) + w.z exp(l2)), weights >= 0. All weights <= 0 (or NaN):
+   -PF_REAL_MAX (the log of an empty sum, kept finite). */
+PF_DEF pf_real pf_esm_log_reduce3(pf_real l0, pf_real l1, pf_real l2, pf_vec3 w)
+{
+    pf_real m = -PF_REAL_MAX;
+    pf_real s;
+    if (w.x > PF_R(0.0) && l0 > m) m = l0;
+    if (w.y > PF_R(0.0) && l1 > m) m = l1;
+    if (w.z > PF_R(0.0) && l2 > m) m = l2;
+    s = (w.x > PF_R(0.0) ? w.x * PF_EXP(pfi_lse_arg(l0 - m)) : PF_R(0.0))
+      + (w.y > PF_R(0.0) ? w.y * PF_EXP(pfi_lse_arg(l1 - m)) : PF_R(0.0))
+      + (w.z > PF_R(0.0) ? w.z * PF_EXP(pfi_lse_arg(l2 - m)) : PF_R(0.0));
+    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
+}
+
+/* 9 texels, separable weights (wx along rows, wy across rows; t<col><row>). */
+PF_DEF pf_real pf_esm_log_reduce3x3(pf_real t00, pf_real t10, pf_real t20, pf_real t01,
+                                    pf_real t11, pf_real t21, pf_real t02, pf_real t12,
+                                    pf_real t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_real r0 = wy.x > PF_R(0.0) ? pf_esm_log_reduce3(t00, t10, t20, wx) : PF_R(0.0);
+    pf_real r1 = wy.y > PF_R(0.0) ? pf_esm_log_reduce3(t01, t11, t21, wx) : PF_R(0.0);
+    pf_real r2 = wy.z > PF_R(0.0) ? pf_esm_log_reduce3(t02, t12, t22, wx) : PF_R(0.0);
+    return pf_esm_log_reduce3(r0, r1, r2, wy);
+}
+
+/* What a bilinear sampler returns for an ESM map, in log space:
+   log((1-fx)(1-fy) e^t00 + fx (1-fy) e^t10 + (1-fx) fy e^t01 + fx fy e^t11). */
+PF_DEF pf_real pf_esm_log_bilinear(pf_real t00, pf_real t10, pf_real t01, pf_real t11,
+                                   pf_real fx, pf_real fy)
+{
+    pf_real gx = PF_R(1.0) - fx, gy = PF_R(1.0) - fy;
+    pf_real r0 = pf_esm_log_reduce3(t00, t10, t10, pf_vec3_make(gx, fx, PF_R(0.0)));
+    pf_real r1 = pf_esm_log_reduce3(t01, t11, t11, pf_vec3_make(gx, fx, PF_R(0.0)));
+    return pf_esm_log_reduce3(r0, r1, r1, pf_vec3_make(gy, fy, PF_R(0.0)));
+}
+
+/* Streaming log-sum-exp over N texels: lmax is the largest log seen, sum = sum_i w_i
+   exp(l_i - lmax), weight = sum_i w_i. Start from PF_ESM_LOG_SUM_EMPTY (or
+   pf_esm_log_sum_first), add texels with
+   pf_esm_log_sum_add, read log(sum w e^l / sum w) with pf_esm_log_sum_mean. */
+PF_STRUCT_BEGIN(pf_esm_log_sum)
+    pf_real lmax;
+    pf_real sum;
+    pf_real weight;
+PF_STRUCT_END(pf_esm_log_sum)
+
+PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
+{
+    pf_esm_log_sum a;
+    a.lmax = lmax;
+    a.sum = sum;
+    a.weight = weight;
+    return a;
+}
+
+/* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
+   in the portability generator). */
+#define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
+
+/* The sum of one texel l of weight w > 0 (a start without the empty state). */
+PF_DEF pf_esm_log_sum pf_esm_log_sum_first(pf_real l, pf_real w)
+{
+    return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY;
+}
+
+/* Adds texel l with weight w (w <= 0 or NaN: skipped). When l is a new maximum the running
+   sum is rescaled by exp(old max - l) <= 1, so nothing grows beyond sum(w). */
+PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
+{
+    if (!(w > PF_R(0.0))) return a;
+    if (l > a.lmax) {
+        a.sum = a.sum * PF_EXP(pfi_lse_arg(a.lmax - l)) + w;
+        a.lmax = l;
+    } else {
+        a.sum = a.sum + w * PF_EXP(pfi_lse_arg(l - a.lmax));
+    }
+    a.weight = a.weight + w;
+    return a;
+}
+
+/* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
+PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
+{
+    if (!(a.weight > PF_R(0.0))) return -PF_REAL_MAX;
+    return a.lmax + PF_LOG(a.sum / a.weight);
+}
+
+/* ---------------------------------------------------------------- slopes from a height map
+   Central difference (second order, error (d^2/6) h''' + O(d^4)) and the one-sided
+   second-order difference used on a clamped border; d is the texel spacing. */
+PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
+{
+    return (h_plus - h_minus) / (PF_R(2.0) * spacing);
+}
+
+/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''). For
+   the far border pass the texels in reverse order and negate. */
+PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
+{
+    return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing);
+}
+
+/* Slope moments of an interior texel of a height map from its four neighbours (left, right,
+   below, above) by central differences: slope = height_scale * (dh/dx, dh/dy)
+   (Dupuy et al. 2013 sec. 4.2; height scaling multiplies slopes by the scale and the
+   second moments by its square). texel_size_x/y: texel spacing in surface units. */
+PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp, pf_real h_ym,
+                                                      pf_real h_yp, pf_real texel_size_x,
+                                                      pf_real texel_size_y, pf_real height_scale)
+{
+    pf_real sx = height_scale * pf_height_slope_central(h_xm, h_xp, texel_size_x);
+    pf_real sy = height_scale * pf_height_slope_central(h_ym, h_yp, texel_size_y);
+    return pf_slope_moments_from_slope(sx, sy);
+}
+
+/* ================================================================ CPU only
+   Everything below walks caller-owned buffers (pointers, loops over a whole map). It is C/C++
+   host code: linkage PF_CPU_DEF (static inline by default, never __device__), compiled out
+   under PF_GLSL. Nothing allocates: the caller provides every buffer. */
+#ifndef PF_GLSL
+
+#ifndef PF_CPU_DEF
+#  define PF_CPU_DEF static inline
+#endif
+
+/* Border handling of the height-map stencils and of sampling. */
+#define PF_BORDER_CLAMP 0
+#define PF_BORDER_WRAP 1
+
+/* Depth-moment kinds of pf_depth_pyramid_from_depths (channels in brackets). */
+#define PF_DEPTH_VSM 0     /* [2] z, z^2                                 pf_depth_moments2 */
+#define PF_DEPTH_EVSM2 1   /* [2] p, p^2, p = exp(c_pos (2z - 1))        pf_depth_moments2 */
+#define PF_DEPTH_EVSM4 2   /* [4] p, p^2, n, n^2, n = -exp(-c_neg (2z-1)) pf_evsm_moments */
+#define PF_DEPTH_MSM 3     /* [4] z, z^2, z^3, z^4                       pf_depth_moments4 */
+#define PF_DEPTH_ESM_LOG 4 /* [1] c_pos z, reduced with log-sum-exp      pf_esm_log_* */
+
+/* More levels than any int-sized map has (2^31 texels on a side gives 32). */
+#define PF_MIP_MAX_LEVELS 32
+
+/* ---------------------------------------------------------------- pyramid layout */
+/* Number of levels of a w x h pyramid, the 1 x 1 top included (0 if w < 1 or h < 1). */
+PF_CPU_DEF int pf_mip_level_count(int w, int h)
+{
+    int n = 0;
+    if (w < 1 || h < 1) return 0;
+    for (;;) {
+        ++n;
+        if (w == 1 && h == 1) return n;
+        w = pf_mip_next_size(w);
+        h = pf_mip_next_size(h);
+    }
+}
+
+/* Size along one axis at a level: n halved (floor, never below 1) level times. */
+PF_CPU_DEF int pf_mip_level_size(int n, int level)
+{
+    int l;
+    if (n < 1) return 0;
+    for (l = 0; l < level && n > 1; ++l) n = pf_mip_next_size(n);
+    return n;
+}
+
+/* Where level `level` starts, in texels from the start of the pyramid (multiply by the
+   channel count for pf_reals). level >= pf_mip_level_count gives the total. */
+PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
+{
+    long long off = 0;
+    int l, nl = pf_mip_level_count(w, h);
+    for (l = 0; l < level && l < nl; ++l) {
+        off += (long long)w * (long long)h;
+        w = pf_mip_next_size(w);
+        h = pf_mip_next_size(h);
+    }
+    return off;
+}
+
+/* Texels of the whole pyramid of a w x h base (all levels, one buffer); 0 for an empty map.
+   The buffer holds pf_mip_texel_count(w, h) * channels pf_reals. */
+PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
+{
+    return pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS);
+}
+
+/* ---------------------------------------------------------------- level reduction (private)
+   The pyramid is reduced as a cascade over rows: as soon as the source rows a destination
+   row needs are complete (2j, 2j+1 and, for odd heights, 2j+2), that row is reduced, and the
+   same check runs one level up. Level l+1 is therefore computed while the rows of level l it
+   reads are still in cache, and a pyramid built from a height or depth map costs about one
+   pass over memory. */
+typedef struct pfi_mip_cascade {
+    pf_real *pyr;
+    int channels;
+    int log_space;
+    int levels;
+    int lw[PF_MIP_MAX_LEVELS];
+    int lh[PF_MIP_MAX_LEVELS];
+    int next_row[PF_MIP_MAX_LEVELS];
+    long long off[PF_MIP_MAX_LEVELS]; /* in pf_reals */
+} pfi_mip_cascade;
+
+/* Returns 0 (and builds nothing) for an empty map, a null buffer or channels < 1. */
+PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int h, int channels,
+                                    int log_space)
+{
+    int l;
+    long long off = 0;
+    c->levels = pf_mip_level_count(w, h);
+    if (c->levels == 0 || !pyr || channels < 1) return 0;
+    c->pyr = pyr;
+    c->channels = channels;
+    c->log_space = log_space;
+    for (l = 0; l < c->levels; ++l) {
+        c->lw[l] = w;
+        c->lh[l] = h;
+        c->next_row[l] = 0;
+        c->off[l] = off;
+        off += (long long)w * (long long)h * (long long)channels;
+        w = pf_mip_next_size(w);
+        h = pf_mip_next_size(h);
+    }
+    return 1;
+}
+
+/* The 2x2 box with a compile-time channel count (the common case: both sizes even). */
+PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
+{
+    const pf_real q = PF_R(0.25);
+    int i, k;
+    for (i = 0; i < dw; ++i) {
+        const pf_real *a0 = a + 2 * i * nc, *b0 = b + 2 * i * nc;
+        pf_real *d = dst + i * nc;
+        for (k = 0; k < nc; ++k) d[k] = q * a0[k] + q * a0[nc + k] + q * b0[k] + q * b0[nc + k];
+    }
+}
+
+/* Number of source texels with a nonzero weight along an axis of n_src texels. */
+PF_CPU_DEF int pfi_mip_taps(int n_src)
+{
+    return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2);
+}
+
+/* Reduces row j of level l + 1 from level l. */
+PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
+{
+    const int nc = c->channels, sw = c->lw[l], sh = c->lh[l], dw = c->lw[l + 1];
+    const pf_real *src = c->pyr + c->off[l];
+    pf_real *dst = c->pyr + c->off[l + 1] + (long long)j * dw * nc;
+    const pf_real *rows[3];
+    pf_real wy[3];
+    pf_vec3 v = pf_mip_weights3(j, sh);
+    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, i, k, a;
+    wy[0] = v.x;
+    wy[1] = v.y;
+    wy[2] = v.z;
+    for (b = 0; b < ny; ++b) rows[b] = src + (long long)(2 * j + b) * sw * nc;
+    if (!c->log_space && nx == 2 && ny == 2) {
+        switch (nc) { /* constant channel counts let the compiler unroll and vectorize */
+        case 1: pfi_mip_box_row(dst, rows[0], rows[1], dw, 1); return;
+        case 2: pfi_mip_box_row(dst, rows[0], rows[1], dw, 2); return;
+        case 3: pfi_mip_box_row(dst, rows[0], rows[1], dw, 3); return;
+        case 4: pfi_mip_box_row(dst, rows[0], rows[1], dw, 4); return;
+        case 5: pfi_mip_box_row(dst, rows[0], rows[1], dw, 5); return;
+        default: pfi_mip_box_row(dst, rows[0], rows[1], dw, nc); return;
+        }
+    }
+    if (c->log_space && nx == 2 && ny == 2) {
+        for (i = 0; i < dw; ++i)
+            for (k = 0; k < nc; ++k) {
+                const pf_real *a0 = rows[0] + 2 * i * nc + k, *b0 = rows[1] + 2 * i * nc + k;
+                dst[i * nc + k] = pf_esm_log_reduce2x2(a0[0], a0[nc], b0[0], b0[nc]);
+            }
+        return;
+    }
+    for (i = 0; i < dw; ++i) {
+        pf_real wx[3], wt[9];
+        const pf_real *tap[9];
+        int nt = 0;
+        v = pf_mip_weights3(i, sw);
+        wx[0] = v.x;
+        wx[1] = v.y;
+        wx[2] = v.z;
+        for (b = 0; b < ny; ++b)
+            for (a = 0; a < nx; ++a) {
+                wt[nt] = wy[b] * wx[a];
+                tap[nt] = rows[b] + (2 * i + a) * nc;
+                ++nt;
+            }
+        for (k = 0; k < nc; ++k) {
+            pf_real s = PF_R(0.0);
+            int t;
+            if (!c->log_space) {
+                for (t = 0; t < nt; ++t) s += wt[t] * tap[t][k];
+                dst[i * nc + k] = s;
+            } else {
+                pf_real m = -PF_REAL_MAX;
+                for (t = 0; t < nt; ++t)
+                    if (tap[t][k] > m) m = tap[t][k];
+                for (t = 0; t < nt; ++t) s += wt[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
+                /* s >= the largest weight > 0 unless a tap is NaN, which then propagates */
+                dst[i * nc + k] = m + PF_LOG(s);
+            }
+        }
+    }
+}
+
+/* Row r of level l is complete: reduce every row above that now has all its inputs. */
+PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
+{
+    while (l + 1 < c->levels) {
+        int j = c->next_row[l + 1], sh = c->lh[l];
+        int last = sh == 1 ? 0 : ((sh & 1) ? 2 * j + 2 : 2 * j + 1);
+        if (j >= c->lh[l + 1] || last > r) return;
+        pfi_mip_reduce_row(c, l, j);
+        c->next_row[l + 1] = j + 1;
+        ++l;
+        r = j;
+    }
+}
+
+/* ---------------------------------------------------------------- building */
+/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
+   pf_reals, at the start of pyr) the caller has filled; pyr holds pf_mip_texel_count(w, h)
+   * channels pf_reals. Works for every linear moment type (the channel count says which). */
+PF_CPU_DEF void pf_mip_build(pf_real *pyr, int w, int h, int channels)
+{
+    pfi_mip_cascade c;
+    int r;
+    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 0)) return;
+    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+}
+
+/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
+   holds log of the mean of exp over its footprint). */
+PF_CPU_DEF void pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
+{
+    pfi_mip_cascade c;
+    int r;
+    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 1)) return;
+    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+}
+
+/* Row r of the slope-moment map of a height map (5 channels), see CONVENTIONS. */
+PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
+                              pf_real height_scale, int border, pf_real *out)
+{
+    /* y derivative as c0 R0[i] + c1 R1[i] + c2 R2[i] (scaled by height_scale / (2 dy)) */
+    const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
+    const pf_real *r0 = heights + (long long)r * w, *r1 = r0, *r2 = r0;
+    const pf_real *row = r0;
+    pf_real c0 = PF_R(0.0), c1 = PF_R(0.0), c2 = PF_R(0.0);
+    int i;
+    if (h >= 2) {
+        if (border == PF_BORDER_WRAP || (r > 0 && r < h - 1)) {
+            r0 = heights + (long long)((r + h - 1) % h) * w;
+            r1 = heights + (long long)((r + 1) % h) * w;
+            c0 = -ky;
+            c1 = ky;
+        } else if (h == 2) { /* (h1 - h0) / dy at both rows */
+            r0 = heights;
+            r1 = heights + w;
+            c0 = -PF_R(2.0) * ky;
+            c1 = PF_R(2.0) * ky;
+        } else if (r == 0) { /* (-3 h0 + 4 h1 - h2) / (2 dy) */
+            r0 = heights;
+            r1 = heights + w;
+            r2 = heights + 2LL * w;
+            c0 = -PF_R(3.0) * ky;
+            c1 = PF_R(4.0) * ky;
+            c2 = -ky;
+        } else { /* last row: (3 h[n-1] - 4 h[n-2] + h[n-3]) / (2 dy) */
+            r0 = heights + (long long)(h - 1) * w;
+            r1 = heights + (long long)(h - 2) * w;
+            r2 = heights + (long long)(h - 3) * w;
+            c0 = PF_R(3.0) * ky;
+            c1 = -PF_R(4.0) * ky;
+            c2 = ky;
+        }
+    }
+    /* interior texels: branch-free, so the compiler can vectorize the row */
+    for (i = 1; i < w - 1; ++i) {
+        pf_real sx = kx * (row[i + 1] - row[i - 1]);
+        pf_real sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
+        pf_real *o = out + 5 * i;
+        o[0] = sx;
+        o[1] = sy;
+        o[2] = sx * sx;
+        o[3] = sy * sy;
+        o[4] = sx * sy;
+    }
+    /* the first and last texels of the row */
+    for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
+        pf_real sx, sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
+        pf_real *o = out + 5 * i;
+        if (w == 1) {
+            sx = PF_R(0.0);
+        } else if (border == PF_BORDER_WRAP) {
+            sx = kx * (row[(i + 1) % w] - row[(i + w - 1) % w]);
+        } else if (w == 2) {
+            sx = PF_R(2.0) * kx * (row[1] - row[0]);
+        } else if (i == 0) {
+            sx = kx * (PF_R(4.0) * row[1] - PF_R(3.0) * row[0] - row[2]);
+        } else {
+            sx = kx * (PF_R(3.0) * row[w - 1] - PF_R(4.0) * row[w - 2] + row[w - 3]);
+        }
+        o[0] = sx;
+        o[1] = sy;
+        o[2] = sx * sx;
+        o[3] = sy * sy;
+        o[4] = sx * sy;
+    }
+}
+
+/* Level 0 only: the slope moments (5 interleaved channels, pf_slope_moments order) of every
+   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major.
+   dx, dy: texel spacing; height_scale multiplies the heights; border: PF_BORDER_WRAP or
+   PF_BORDER_CLAMP (see CONVENTIONS for the stencils). */
+PF_CPU_DEF void pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                                  pf_real dy, pf_real height_scale, int border,
+                                                  pf_real *out)
+{
+    int r;
+    if (!heights || !out || w < 1 || h < 1) return;
+    for (r = 0; r < h; ++r)
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
+}
+
+/* The whole 5-moment pyramid of a height map in one pass: level 0 as
+   pf_slope_moments_map_from_heights, every level above reduced as the rows arrive.
+   pyr: pf_mip_texel_count(w, h) * 5 pf_reals. */
+PF_CPU_DEF void pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                              pf_real dy, pf_real height_scale, int border,
+                                              pf_real *pyr)
+{
+    pfi_mip_cascade c;
+    int r;
+    if (!heights || !pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) return;
+    for (r = 0; r < h; ++r) {
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
+        pfi_mip_push_row(&c, 0, r);
+    }
+}
+
+/* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
+PF_CPU_DEF int pf_depth_moment_channels(int kind)
+{
+    switch (kind) {
+    case PF_DEPTH_VSM: return 2;
+    case PF_DEPTH_EVSM2: return 2;
+    case PF_DEPTH_EVSM4: return 4;
+    case PF_DEPTH_MSM: return 4;
+    case PF_DEPTH_ESM_LOG: return 1;
+    default: return 0;
+    }
+}
+
+/* The pyramid of a depth map (w h depths in [0, 1], row-major) for one PF_DEPTH_* kind:
+   c_pos is the EVSM positive exponent and the ESM exponent, c_neg the EVSM negative one
+   (ignored by the others). PF_DEPTH_ESM_LOG stores c_pos z and reduces in log space.
+   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. */
+PF_CPU_DEF void pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
+                                             pf_real c_pos, pf_real c_neg, pf_real *pyr)
+{
+    pfi_mip_cascade c;
+    int nc = pf_depth_moment_channels(kind), r, i;
+    if (!depths || nc == 0 || !pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG))
+        return;
+    for (r = 0; r < h; ++r) {
+        const pf_real *z = depths + (long long)r * w;
+        pf_real *o = pyr + (long long)r * w * nc;
+        switch (kind) {
+        case PF_DEPTH_VSM:
+            for (i = 0; i < w; ++i) {
+                o[2 * i] = z[i];
+                o[2 * i + 1] = z[i] * z[i];
+            }
+            break;
+        case PF_DEPTH_EVSM2:
+            for (i = 0; i < w; ++i) {
+                pf_depth_moments2 m = pf_evsm2_from_depth(z[i], c_pos);
+                o[2 * i] = m.m1;
+                o[2 * i + 1] = m.m2;
+            }
+            break;
+        case PF_DEPTH_EVSM4:
+            for (i = 0; i < w; ++i) {
+                pf_evsm_moments m = pf_evsm_moments_from_depth(z[i], c_pos, c_neg);
+                o[4 * i] = m.pos1;
+                o[4 * i + 1] = m.pos2;
+                o[4 * i + 2] = m.neg1;
+                o[4 * i + 3] = m.neg2;
+            }
+            break;
+        case PF_DEPTH_MSM:
+            for (i = 0; i < w; ++i) {
+                pf_real z2 = z[i] * z[i];
+                o[4 * i] = z[i];
+                o[4 * i + 1] = z2;
+                o[4 * i + 2] = z2 * z[i];
+                o[4 * i + 3] = z2 * z2;
+            }
+            break;
+        default: /* PF_DEPTH_ESM_LOG */
+            for (i = 0; i < w; ++i) o[i] = c_pos * z[i];
+            break;
+        }
+        pfi_mip_push_row(&c, 0, r);
+    }
+}
+
+/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values. */
+PF_CPU_DEF void pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
+{
+    pfi_mip_cascade c;
+    int r, i;
+    if (!values || !pfi_mip_cascade_init(&c, pyr, w, h, 2, 0)) return;
+    for (r = 0; r < h; ++r) {
+        const pf_real *f = values + (long long)r * w;
+        pf_real *o = pyr + (long long)r * w * 2;
+        for (i = 0; i < w; ++i) {
+            o[2 * i] = f[i];
+            o[2 * i + 1] = f[i] * f[i];
+        }
+        pfi_mip_push_row(&c, 0, r);
+    }
+}
+
+/* The pyramid of average normals (3 channels) of a normal map (w h normals, 3 interleaved
+   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). */
+PF_CPU_DEF void pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
+{
+    pfi_mip_cascade c;
+    int r, i;
+    if (!normals || !pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) return;
+    for (r = 0; r < h; ++r) {
+        const pf_real *n = normals + (long long)r * w * 3;
+        pf_real *o = pyr + (long long)r * w * 3;
+        for (i = 0; i < w; ++i) {
+            const pf_real *t = n + 3 * i;
+            pf_vec3 u = pf_normal_avg_from_normal(pf_vec3_make(t[0], t[1], t[2]));
+            o[3 * i] = u.x;
+            o[3 * i + 1] = u.y;
+            o[3 * i + 2] = u.z;
+        }
+        pfi_mip_push_row(&c, 0, r);
+    }
+}
+
+/* ---------------------------------------------------------------- N texels */
+/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n texels of `channels` pf_reals. Texels
+   with w_i <= 0 (or NaN) are skipped, not read. No positive weight: out is zeroed. */
+PF_CPU_DEF void pf_moments_weighted_mean(const pf_real *texels, int channels,
+                                         const pf_real *weights, int n, pf_real *out)
+{
+    pf_real wsum = PF_R(0.0);
+    int i, k;
+    if (!texels || !weights || !out || channels < 1) return;
+    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0)) wsum += weights[i];
+    if (!(wsum > PF_R(0.0))) return;
+    for (i = 0; i < n; ++i) {
+        pf_real w = weights[i] / wsum;
+        if (!(weights[i] > PF_R(0.0))) continue;
+        for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
+    }
+}
+
+/* log of the weighted mean of exp(l_i) (ESM, log space); -PF_REAL_MAX if no weight is
+   positive. */
+PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
+{
+    pf_esm_log_sum a = PF_ESM_LOG_SUM_EMPTY;
+    int i;
+    if (!logs || !weights) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i]);
+    return pf_esm_log_sum_mean(a);
+}
+
+/* ---------------------------------------------------------------- sampling */
+/* Texel indices and the fraction for coordinate u on an axis of n texels (GPU convention:
+   centre of texel i at (i + 0.5)/n). NaN and infinite u are treated as 0; huge u lose
+   precision but never index out of bounds. */
+PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, int *i0, int *i1, pf_real *f)
+{
+    pf_real x, fl;
+    int i;
+    if (!(u > -PF_R(1.0e6) && u < PF_R(1.0e6))) u = PF_R(0.0);
+    if (border == PF_BORDER_WRAP) u = u - PF_FLOOR(u);
+    else u = pf_clamp(u, PF_R(0.0), PF_R(1.0));
+    x = u * PF_R(n) - PF_R(0.5);
+    fl = PF_FLOOR(x);
+    *f = x - fl;
+    i = (int)fl;
+    if (border == PF_BORDER_WRAP) {
+        i = ((i % n) + n) % n;
+        *i0 = i;
+        *i1 = (i + 1) % n;
+    } else {
+        *i0 = i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
+        *i1 = i + 1 < 0 ? 0 : (i + 1 > n - 1 ? n - 1 : i + 1);
+    }
+}
+
+/* Bilinear weights and the four texel offsets (in pf_reals) of (u, v) at one level. */
+typedef struct pfi_mip_bilerp {
+    long long t[4];
+    pf_real w[4];
+} pfi_mip_bilerp;
+
+PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(int w, int h, int channels, int level, pf_real u,
+                                            pf_real v, int border)
+{
+    pfi_mip_bilerp b;
+    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level);
+    int x0, x1, y0, y1;
+    pf_real fx, fy;
+    long long base = pf_mip_level_offset(w, h, level) * channels;
+    pfi_mip_axis(u, lw, border, &x0, &x1, &fx);
+    pfi_mip_axis(v, lh, border, &y0, &y1, &fy);
+    b.t[0] = base + ((long long)y0 * lw + x0) * channels;
+    b.t[1] = base + ((long long)y0 * lw + x1) * channels;
+    b.t[2] = base + ((long long)y1 * lw + x0) * channels;
+    b.t[3] = base + ((long long)y1 * lw + x1) * channels;
+    b.w[0] = (PF_R(1.0) - fx) * (PF_R(1.0) - fy);
+    b.w[1] = fx * (PF_R(1.0) - fy);
+    b.w[2] = (PF_R(1.0) - fx) * fy;
+    b.w[3] = fx * fy;
+    return b;
+}
+
+PF_CPU_DEF pf_real pfi_mip_bilerp_channel(const pf_real *pyr, const pfi_mip_bilerp *b, int k,
+                                          int log_space)
+{
+    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
+    int t;
+    if (!log_space) {
+        for (t = 0; t < 4; ++t)
+            if (b->w[t] > PF_R(0.0)) s += b->w[t] * pyr[b->t[t] + k];
+        return s;
+    }
+    for (t = 0; t < 4; ++t)
+        if (b->w[t] > PF_R(0.0) && pyr[b->t[t] + k] > m) m = pyr[b->t[t] + k];
+    for (t = 0; t < 4; ++t)
+        if (b->w[t] > PF_R(0.0)) s += b->w[t] * PF_EXP(pfi_lse_arg(pyr[b->t[t] + k] - m));
+    return m + PF_LOG(s);
+}
+
+PF_CPU_DEF void pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                               pf_real u, pf_real v, int border, int log_space, pf_real *out)
+{
+    int nl = pf_mip_level_count(w, h), l0, k;
+    pf_real fl;
+    pfi_mip_bilerp b0, b1;
+    if (!pyr || !out || nl == 0 || channels < 1) return;
+    if (!(lod > PF_R(0.0))) lod = PF_R(0.0); /* NaN too */
+    if (lod > PF_R(nl - 1)) lod = PF_R(nl - 1);
+    l0 = (int)PF_FLOOR(lod);
+    fl = lod - PF_R(l0);
+    b0 = pfi_mip_bilerp_at(w, h, channels, l0, u, v, border);
+    if (!(fl > PF_R(0.0)) || l0 + 1 >= nl) {
+        for (k = 0; k < channels; ++k) out[k] = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
+        return;
+    }
+    b1 = pfi_mip_bilerp_at(w, h, channels, l0 + 1, u, v, border);
+    for (k = 0; k < channels; ++k) {
+        pf_real a = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
+        pf_real c = pfi_mip_bilerp_channel(pyr, &b1, k, log_space);
+        out[k] = log_space ? pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl)
+                           : (PF_R(1.0) - fl) * a + fl * c;
+    }
+}
+
+/* Bilinear sample of level `level` (clamped to the pyramid) at (u, v): `channels` pf_reals
+   into out. */
+PF_CPU_DEF void pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
+                                       pf_real u, pf_real v, int border, pf_real *out)
+{
+    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out);
+}
+
+/* Trilinear sample: bilinear at floor(lod) and floor(lod) + 1, blended by the fraction. */
+PF_CPU_DEF void pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels,
+                                        pf_real lod, pf_real u, pf_real v, int border,
+                                        pf_real *out)
+{
+    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out);
+}
+
+/* The same for log-space (ESM) pyramids: the weights apply to exp of the texels. */
+PF_CPU_DEF void pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels,
+                                           int level, pf_real u, pf_real v, int border,
+                                           pf_real *out)
+{
+    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out);
+}
+
+PF_CPU_DEF void pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels,
+                                            pf_real lod, pf_real u, pf_real v, int border,
+                                            pf_real *out)
+{
+    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out);
+}
+
+/* Typed trilinear samples (an integer lod is a bilinear sample of that level). */
+PF_CPU_DEF pf_slope_moments pf_slope_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
+                                                    pf_real u, pf_real v, int border)
+{
+    pf_real t[5] = {0, 0, 0, 0, 0};
+    pfi_mip_sample(pyr, w, h, 5, lod, u, v, border, 0, t);
+    return pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]);
+}
+
+PF_CPU_DEF pf_scalar_moments pf_scalar_moments_sample(const pf_real *pyr, int w, int h,
+                                                      pf_real lod, pf_real u, pf_real v,
+                                                      int border)
+{
+    pf_real t[2] = {0, 0};
+    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
+    return pf_scalar_moments_make(t[0], t[1]);
+}
+
+PF_CPU_DEF pf_depth_moments2 pf_depth_moments2_sample(const pf_real *pyr, int w, int h,
+                                                      pf_real lod, pf_real u, pf_real v,
+                                                      int border)
+{
+    pf_real t[2] = {0, 0};
+    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
+    return pf_depth_moments2_make(t[0], t[1]);
+}
+
+PF_CPU_DEF pf_depth_moments4 pf_depth_moments4_sample(const pf_real *pyr, int w, int h,
+                                                      pf_real lod, pf_real u, pf_real v,
+                                                      int border)
+{
+    pf_real t[4] = {0, 0, 0, 0};
+    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
+    return pf_depth_moments4_make(t[0], t[1], t[2], t[3]);
+}
+
+PF_CPU_DEF pf_evsm_moments pf_evsm_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
+                                                  pf_real u, pf_real v, int border)
+{
+    pf_real t[4] = {0, 0, 0, 0};
+    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
+    return pf_evsm_moments_make(t[0], t[1], t[2], t[3]);
+}
+
+PF_CPU_DEF pf_vec3 pf_normal_avg_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
+                                        pf_real v, int border)
+{
+    pf_real t[3] = {0, 0, 0};
+    pfi_mip_sample(pyr, w, h, 3, lod, u, v, border, 0, t);
+    return pf_vec3_make(t[0], t[1], t[2]);
+}
+
+PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
+                                     pf_real v, int border)
+{
+    pf_real t = -PF_REAL_MAX;
+    pfi_mip_sample(pyr, w, h, 1, lod, u, v, border, 1, &t);
+    return t;
+}
+
+#endif /* !PF_GLSL */
 
 #endif /* PF_MOMENTS_H */
