@@ -1,12 +1,13 @@
 # bench/chart.gp - error versus cost for one family (called by bench/run.sh).
-# Variables (gnuplot -e): fam (title), datf (tab-separated: ns, max rel error, method,
+# Variables (gnuplot -e): fam (title), datf (tab-separated: ns, max rel error (mean abs error
+# for methods entered with PFB_ENTRY_ABS: fractions), method,
 # build 1 = float / 2 = double, label slot), outf (the .svg to write).
 set terminal svg size 900,560 dynamic enhanced font 'Helvetica,12' background rgb 'white'
 set output outf
 set datafile separator "\t"
-set title sprintf("%s: max relative error versus cost", fam) noenhanced
+set title sprintf("%s: max error versus cost", fam) noenhanced
 set xlabel "cost: median ns per evaluation (log)"
-set ylabel "max relative error over the accuracy grid (log)"
+set ylabel "max relative error over the accuracy grid (mean absolute for fractions, log)"
 set logscale xy
 set format y "10^{%L}"
 set grid xtics ytics mxtics mytics lc rgb '#dddddd'

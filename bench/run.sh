@@ -82,8 +82,9 @@ if [ $have_gp = 1 ]; then
             # ns, error (floored at 1e-20 so an exact 0 stays on a log axis), label, build
             # (1 float, 2 double), label slot: how many earlier points of the same build sit
             # (nearly) on this one, so that the chart staggers their labels
-            awk -F, -v f="$fam" 'NR > 1 && $1 == f && $9 != "" {
-                e = $9 + 0; if (e < 1e-20) e = 1e-20
+            # max rel error, or mean abs error for fraction-valued families (max_rel_err empty)
+            awk -F, -v f="$fam" 'NR > 1 && $1 == f && ($9 != "" || $17 != "") {
+                e = ($9 != "" ? $9 : $17) + 0; if (e < 1e-20) e = 1e-20
                 bd = ($3 == "float") ? 1 : 2
                 lx = log($4 + 1e-9) / log(10); ly = log(e) / log(10); k = 0
                 for (j = 0; j < n; ++j)
@@ -159,16 +160,17 @@ timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
             awk -F'\t' -v f="$fam" '$1 == f && $2 !~ /^A\/A/ && !seen[$2]++ { print "- " $2 }' "$out/$m.notes"
             awk -F'\t' -v f="$fam" '$1 == f && $2 ~ /^A\/A/ && !seen[$2]++ { print "- " $2 }' "$out/$m.notes"
             echo
-            echo "| method | build | ns/eval | x baseline | sorted: ns/eval | sorted: x baseline | instr/eval | max abs err | max rel err | max ulp | worst input |"
-            echo "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|---|"
+            echo "| method | build | ns/eval | x baseline | sorted: ns/eval | sorted: x baseline | instr/eval | max abs err | max rel err | max ulp | mean abs err | worst input |"
+            echo "|---|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|"
             awk -F, -v f="$fam" 'NR > 1 && $1 == f {
                 base = ($2 == $6) ? " (baseline)" : ""
-                printf "| `%s`%s | %s | %.2f | %.3f | %.2f | %.3f | %s | %s | %s | %s | %s |\n",
+                printf "| `%s`%s | %s | %.2f | %.3f | %.2f | %.3f | %s | %s | %s | %s | %s | %s |\n",
                     $2, base, $3, $4, $5, $15, $16, ($7 == "" ? "-" : $7), ($8 == "" ? "-" : $8),
-                    ($9 == "" ? "-" : $9), ($10 == "" ? "-" : $10), ($11 == "" ? "-" : $11) }' "$out/$m.csv"
+                    ($9 == "" ? "-" : $9), ($10 == "" ? "-" : $10), ($17 == "" ? "-" : $17),
+                    ($11 == "" ? "-" : $11) }' "$out/$m.csv"
             if [ -f "$out/${m}_$fam.svg" ]; then
                 echo
-                echo "![$m / $fam: max relative error versus cost](${m}_$fam.svg)"
+                echo "![$m / $fam: max error versus cost](${m}_$fam.svg)"
             fi
         done
     done

@@ -1,12 +1,50 @@
 /* pf_beckmann.h - noncentered anisotropic Beckmann distribution from five linear slope
    moments, and the LEADR specular BRDF (Dupuy et al. 2013).
 
-   (doc block completed below with the evaluators)
+   A LEAN/LEADR map stores, per texel, the five moments E[x], E[y], E[x^2], E[y^2], E[xy] of
+   the micro-slopes. They are linear, so mipmapping and bilinear filtering average them
+   correctly (pf_moments.h). After filtering, this header turns them into the mean slope and
+   slope covariance of the pixel footprint, the normal distribution D of that footprint (a
+   Beckmann lobe whose mean slope need not be zero), and the physically based specular BRDF
+   of LEADR eq. 17: normalized, with the reflection Jacobian, the projected-area
+   normalization and Smith's joint masking-shadowing of the noncentered distribution.
+
+   USAGE
+     #include "pf_beckmann.h"
+     pf_slope_moments m = ...;                          -- filtered texture fetch (5 channels)
+     pf_slope_stats s = pf_slope_moments_stats(m, base_var);   -- + micro-BRDF roughness
+     pf_real I = pf_leadr_specular(wo, wi, s, f0);      -- times the light's radiance
+
+   FUNCTIONS
+     moments      pf_slope_moments_make, _from_slope, _from_normal, _add, _scale,
+                  _from_stats, pf_slope_moments_stats, pf_slope_stats_correlation
+     deformation  pf_slope_moments_deform (eq. 12), pf_slope_moments_scale_height
+     distribution pf_beckmann_p22 (eq. 8), pf_beckmann_d (eq. 10), pf_beckmann_mesonormal
+                  (eq. 11), pf_beckmann_projected_area (eq. 1), pf_beckmann_lambda,
+                  pf_beckmann_g1, pf_beckmann_masking_shadowing (eq. 13)
+     BRDF         pf_fresnel_schlick, pf_leadr_specular (eq. 17), pf_leadr_specular_masking
+                  (LEADR sec. 6), pf_leadr_specular_point
+
+   CONVENTIONS
+     Directions are in the tangent frame of the macrosurface (w_g = +z). A micro-normal n has
+     slope (-n.x/n.z, -n.y/n.z) = (dh/dx, dh/dy) for a height field h; the mesonormal is
+     (-E[x], -E[y], 1)/norm. pf_leadr_specular returns the reflected radiance for unit light
+     radiance, the light's cosine included (a classic BRDF times cos theta_i); directions on or
+     below the macrosurface or the mean plane give 0, never NaN.
+
+   CONFIGURATION
+     PF_BECKMANN_MIN_VAR   smallest slope variance pf_slope_moments_stats adds (default 1e-6)
+
+   ACCURACY AND COST (measured; docs/beckmann.md has the tables, tests/test_beckmann.c the
+   oracles, bench/bench_beckmann.c the timings)
+     D, P22: relative error a few eps times the condition number (1 + q/2)(1 + 1/(1 - r^2) + ...)
+     of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
+     LEADR specular costs about 2.5-3.5x a LEAN lobe on a CPU (see the bench).
 
    SOURCES
      Dupuy, Heitz, Iehl, Poulin, Neyret, Ostromoukhov 2013, "Linear Efficient Antialiased
      Displacement and Reflectance Mapping" (LEADR), eqs. 1-17; Olano & Baker 2010 (LEAN),
-     as summarized in Bruneton & Neyret 2012 sec. 3.2.1, eq. 19. */
+     as summarized in Bruneton & Neyret 2012 sec. 3.2.1, eq. 19; Schlick 1994 (Fresnel). */
 #ifndef PF_BECKMANN_H
 #define PF_BECKMANN_H
 

@@ -827,6 +827,50 @@ static void test_moments_stats(void)
     }
 }
 
+/* ------------------------------------------------------------------ worked example (docs) */
+/* docs/beckmann.md walks through this: four texels of a LEADR map (one slope each), averaged
+   as a 2x2 mip reduction does, a base roughness, one view and one light. The reference is
+   the long double composition of the test's own P22, Lambda (quadrature) and area. */
+static void test_worked_example(void)
+{
+    static const pf_real texel_slopes[4][2] = {
+        {PF_R(0.10), PF_R(0.00)}, {PF_R(-0.20), PF_R(0.10)}, {PF_R(0.30), PF_R(0.20)}, {PF_R(0.00), PF_R(-0.10)}};
+    pf_slope_moments m = pf_slope_moments_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    pf_slope_stats s;
+    pf_vec3 wo = pf_vec3_normalize(pf_vec3_make(PF_R(0.3), PF_R(0.0), PF_R(1.0)));
+    pf_vec3 wi = pf_vec3_normalize(pf_vec3_make(PF_R(-0.4), PF_R(0.1), PF_R(1.0)));
+    pf_real got;
+    bcfg k;
+    long double o[3], w[3], h[3], hl, d, lo, li, ao, cd, F, ref;
+    int j;
+    for (j = 0; j < 4; j++)
+        m = pf_slope_moments_add(m, pf_slope_moments_scale(pf_slope_moments_from_slope(texel_slopes[j][0], texel_slopes[j][1]),
+                                                           PF_R(0.25)));
+    s = pf_slope_moments_stats(m, PF_R(0.01));
+    got = pf_leadr_specular(wo, wi, s, PF_R(0.04));
+    k.mx = (long double)s.mean_x; k.my = (long double)s.mean_y; k.vx = (long double)s.var_x;
+    k.vy = (long double)s.var_y; k.cxy = (long double)s.cov_xy;
+    o[0] = (long double)wo.x; o[1] = (long double)wo.y; o[2] = (long double)wo.z;
+    w[0] = (long double)wi.x; w[1] = (long double)wi.y; w[2] = (long double)wi.z;
+    for (j = 0; j < 3; j++) h[j] = o[j] + w[j];
+    hl = sqrtl(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    d = p22_ref(k, -h[0] / h[2], -h[1] / h[2]) * powl(hl / h[2], 4.0L);
+    lo = lambda_def(k, o[0], o[1], o[2]);
+    li = lambda_def(k, w[0], w[1], w[2]);
+    ao = o[2] - k.mx * o[0] - k.my * o[1];
+    cd = (w[0] * h[0] + w[1] * h[1] + w[2] * h[2]) / hl;
+    F = 0.04L + 0.96L * powl(1.0L - cd, 5.0L);
+    ref = F * d / (4.0L * ao * (1.0L + lo + li));
+    pf_test_note("moments (%.4f, %.4f, %.4f, %.4f, %.4f) -> mean (%.4f, %.4f), var (%.4f, %.4f), cov %.4f; "
+                 "D %.5f, Lambda_o %.3g, Lambda_i %.3g, A_o %.5f, F %.5f; I = %.6f (long double %.6Lf)",
+                 (double)m.ex, (double)m.ey, (double)m.exx, (double)m.eyy, (double)m.exy, (double)s.mean_x,
+                 (double)s.mean_y, (double)s.var_x, (double)s.var_y, (double)s.cov_xy,
+                 (double)pf_beckmann_d(pf_vec3_add(wo, wi), s), (double)pf_beckmann_lambda(wo, s),
+                 (double)pf_beckmann_lambda(wi, s), (double)pf_beckmann_projected_area(wo, s),
+                 (double)pf_fresnel_schlick(PF_R(0.04), (pf_real)cd), (double)got, ref);
+    PF_CHECK(pf_test_rel_error((long double)got, ref) <= 64.0L * EPS, "worked example %g vs %Lg", (double)got, ref);
+}
+
 /* ------------------------------------------------------------------ edges */
 static int finite_nonneg(pf_real x) { return pf_test_finite(x) && x >= PF_R(0.0); }
 
@@ -972,6 +1016,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_deformation_brute_force);
     PF_TEST_RUN(test_centered_reduces_to_textbook);
     PF_TEST_RUN(test_moments_stats);
+    PF_TEST_RUN(test_worked_example);
     PF_TEST_RUN(edge_filtered_moments);
     PF_TEST_RUN(edge_directions);
     PF_TEST_RUN(edge_sigma_to_zero);

@@ -275,6 +275,8 @@ function emit_function(i,    f, na, a, j, ty, e, call, where) {
         if (!add_leaves("pfp_r", ret, 0)) die(where ": cannot read back result type '" ret "' of " f)
     } else die(where ": cannot use return type '" ret "' of " f)
 
+    # a function of no pf_real argument reads no input: keep -Wunused-parameter quiet
+    if (nin == 0 && mode != "glsl") setup = "    (void)in;\n" setup
     nout++; out_name[nout] = f
     if (mode == "glsl") printf "float pfp_%s()\n", f
     else if (mode == "cuda") printf "__device__ pf_real pfp_%s(const pf_real *in)\n", f
