@@ -837,8 +837,8 @@ static void test_worked_example(void)
         {PF_R(0.10), PF_R(0.00)}, {PF_R(-0.20), PF_R(0.10)}, {PF_R(0.30), PF_R(0.20)}, {PF_R(0.00), PF_R(-0.10)}};
     pf_slope_moments m = pf_slope_moments_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
     pf_slope_stats s;
-    pf_vec3 wo = pf_vec3_normalize(pf_vec3_make(PF_R(0.3), PF_R(0.0), PF_R(1.0)));
-    pf_vec3 wi = pf_vec3_normalize(pf_vec3_make(PF_R(-0.4), PF_R(0.1), PF_R(1.0)));
+    pf_vec3 wo = pf_vec3_normalize(pf_vec3_make(PF_R(2.0), PF_R(0.0), PF_R(1.0)));
+    pf_vec3 wi = pf_vec3_normalize(pf_vec3_make(PF_R(-1.5), PF_R(0.3), PF_R(1.0)));
     pf_real got;
     bcfg k;
     long double o[3], w[3], h[3], hl, d, lo, li, ao, cd, F, ref;
