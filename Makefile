@@ -2,7 +2,8 @@
 #   make test         every test in every build (C99 float/double, C++11, clang sanitizers,
 #                     -ffast-math edge tests); ends with "N passed, N failed"
 #   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot)
-#   make portability  tcc, nvcc, GLSL -> SPIR-V -> HLSL, Cortex-M4F object checks
+#   make portability  tcc, nvcc, GLSL -> SPIR-V -> HLSL/MSL, Cortex-M4F, amalgamation, matrix, ARM
+#   make install      headers + pkg-config (PREFIX, DESTDIR); make amalgamate: prefilter.h
 #   make clean
 
 CC    ?= gcc
@@ -101,8 +102,49 @@ docs: $(foreach t,$(DOC_TESTS),$(BUILD)/c99-float/test_$(t) $(BUILD)/c99-double/
 .PHONY: pf-bench-always
 
 # ---------------------------------------------------------------- portability
+#   make portability        every check of tests/portability/run.sh: tcc, nvcc, GLSL -> SPIR-V ->
+#                           HLSL/MSL, Cortex-M4F, the amalgamation, the compiler/flag matrix, the
+#                           float suite on ARM under qemu-arm, the consumer projects (docs/porting.md)
+#   make portability PF_PORT_ONLY="m4f-float amalgam"   only the named checks (prefix match)
 portability:
-	@sh tests/portability/run.sh $(BUILD)
+	@PF_PORT_ONLY='$(PF_PORT_ONLY)' sh tests/portability/run.sh $(BUILD)
+
+# Only the compiler/flag matrix, the ARM run, the consumer projects (subsets of portability).
+.PHONY: matrix arm consumers amalgamate install uninstall
+matrix:
+	@PF_PORT_ONLY=mx- sh tests/portability/run.sh $(BUILD)
+arm:
+	@PF_PORT_ONLY=arm- sh tests/portability/run.sh $(BUILD)
+consumers:
+	@PF_PORT_ONLY=consumer- sh tests/portability/run.sh $(BUILD)
+
+# docs/porting.md's generated tables: the float-versus-double accuracy table from the C99 test
+# builds' notes (tests/portability/accuracy.sh; with the ARM column when make portability ran),
+# and the Cortex-M4F size table (run make portability with PF_PORT_UPDATE_DOCS=1 for that one).
+.PHONY: porting-docs
+porting-docs: $(addprefix $(BUILD)/c99-float/,$(TESTS)) $(addprefix $(BUILD)/c99-double/,$(TESTS))
+	@sh tests/portability/accuracy.sh $(BUILD) --update
+
+# ---------------------------------------------------------------- amalgamation, install
+# prefilter.h (committed) = every include/pf_*.h in dependency order; regenerate after editing.
+amalgamate:
+	@sh tests/portability/amalgamate.sh prefilter.h && echo "prefilter.h regenerated"
+
+# make install PREFIX=/usr/local [DESTDIR=...]: the headers (include/pf_*.h and prefilter.h) and
+# the pkg-config file (Cflags only). Nothing is compiled. CMake users: cmake --install instead.
+PREFIX     ?= /usr/local
+INCLUDEDIR ?= $(PREFIX)/include
+PCDIR      ?= $(PREFIX)/share/pkgconfig
+PF_VERSION := $(shell awk '/^project.prefilter VERSION/ { print $$3 }' CMakeLists.txt)
+PF_INSTALL_HEADERS := $(notdir $(wildcard include/pf_*.h)) prefilter.h
+install:
+	install -d '$(DESTDIR)$(INCLUDEDIR)' '$(DESTDIR)$(PCDIR)'
+	install -m 644 $(wildcard include/pf_*.h) prefilter.h '$(DESTDIR)$(INCLUDEDIR)'
+	sed -e 's|@PF_PREFIX@|$(PREFIX)|' -e 's|@PF_INCLUDEDIR@|$(INCLUDEDIR)|' \
+	    -e 's|@PF_VERSION@|$(PF_VERSION)|' prefilter.pc.in > '$(DESTDIR)$(PCDIR)/prefilter.pc'
+	chmod 644 '$(DESTDIR)$(PCDIR)/prefilter.pc'
+uninstall:
+	rm -f $(addprefix '$(DESTDIR)$(INCLUDEDIR)'/,$(PF_INSTALL_HEADERS)) '$(DESTDIR)$(PCDIR)/prefilter.pc'
 
 clean:
 	rm -rf $(BUILD)
