@@ -309,7 +309,7 @@ PF_DEF pf_real pf_lambda_beckmann_fast(pf_real nu)
    alpha_x, alpha_y along the tangent axes: with t^2 = (alpha_x^2 w.x^2 + alpha_y^2 w.y^2)/w.z^2
    (= alpha(phi)^2 tan^2 theta),
        Lambda = (sqrt(1 + t^2) - 1)/2 = t^2 / (2 (1 + sqrt(1 + t^2)))    (no cancellation)
-       G1 = 2 w.z / (w.z + sqrt(w.z^2 + alpha_x^2 w.x^2 + alpha_y^2 w.y^2)) (no overflow).
+       G1 = 2 / (1 + sqrt(1 + t^2)), t computed as u / w.z, u = sqrt(alpha_x^2 w.x^2 + alpha_y^2 w.y^2).
    Centered only. w need not be normalized; w.z <= 0 gives Lambda = PF_LAMBDA_MAX, G1 = 0.
    Lambda saturates at PF_LAMBDA_MAX at grazing angles instead of overflowing. */
 PF_DEF pf_real pf_lambda_ggx(pf_vec3 w, pf_real alpha_x, pf_real alpha_y)
@@ -323,11 +323,17 @@ PF_DEF pf_real pf_lambda_ggx(pf_vec3 w, pf_real alpha_x, pf_real alpha_y)
     return t * t / (PF_R(2.0) * (PF_R(1.0) + PF_SQRT(PF_R(1.0) + t * t)));
 }
 
-/* G1 of GGX, 1/(1 + Lambda), in the overflow-free form above. */
+/* G1 of GGX, 1/(1 + Lambda) = 2 / (1 + sqrt(1 + t^2)), from t = u / w.z so that no square
+   of a component of w is formed (w.z^2 overflows float for |w.z| > 1.8e19, and w need not
+   be normalized); past t = 1e18, where t^2 would overflow, G1 = 2/t to float precision. */
 PF_DEF pf_real pf_g1_ggx(pf_vec3 w, pf_real alpha_x, pf_real alpha_y)
 {
+    pf_real u, t;
     if (!(w.z > PF_R(0.0))) return PF_R(0.0);
-    return PF_R(2.0) * w.z / (w.z + PF_SQRT(w.z * w.z + pf_sq(alpha_x * w.x) + pf_sq(alpha_y * w.y)));
+    u = PF_SQRT(pf_sq(alpha_x * w.x) + pf_sq(alpha_y * w.y)); /* t w.z */
+    if (!(u < PF_R(1.0e18) * w.z)) return PF_R(2.0) * (w.z / u);
+    t = u / w.z;
+    return PF_R(2.0) / (PF_R(1.0) + PF_SQRT(PF_R(1.0) + t * t));
 }
 
 /* Isotropic GGX from cos theta (clamped to [-1, 1]). */
