@@ -8,8 +8,9 @@
                                 normalization (pf_beckmann_p22 at (-h.x/h.z, -h.y/h.z)).
      blinn_phong_mesonormal     the engine fallback: a normalized Blinn-Phong lobe
                                 (n + 2)/(8 pi) (n_bar . h)^n around the mesonormal, with the
-                                exponent from the mean slope variance, n = 2/s^2 - 2
-                                (Walter et al. 2007's Beckmann <-> Phong correspondence).
+                                exponent from the mean slope variance s^2 through the
+                                Beckmann roughness m = sqrt(2) s and Walter et al. 2007's
+                                n = 2/m^2 - 2 (pf_beckmann_to_blinn_phong).
      pf_leadr_specular          LEADR eq. 17, joint masking-shadowing (eq. 13), Fresnel on.
      pf_leadr_specular_masking  the same with masking only (LEADR sec. 6).
    LEAN and Blinn-Phong are different models, not approximations of eq. 17 to a stated
@@ -25,13 +26,15 @@
    below the mesosurface are redrawn (a renderer culls them). A method's input x is an index
    into the table, so every method pays the same gather (like the texture fetch of the moments).
 
-   REFERENCE (long double, written here from the paper, independent of pf_beckmann.h): P22 by
-   the explicit inverse of the covariance, D = P22 / cos^4, Lambda(nu) = exp(-nu^2)/(2 nu
-   sqrt(pi)) - erfc(nu)/2 with nu by trigonometry (eqs. 14-15) and a continued fraction past
-   nu = 2, A_o = (n_bar . w_o)/(n_bar . w_g) from the normalized mesonormal, Schlick's Fresnel
-   with the normalized half vector. */
+   REFERENCE (long double, independent of pf_beckmann.h): P22 by the explicit inverse of the
+   covariance and Lambda(nu) = exp(-nu^2)/(2 nu sqrt(pi)) - erfc(nu)/2 (continued fraction past
+   nu = 2), both from tests/pf_oracle.h; D = P22 / cos^4 and nu by trigonometry (eqs. 14-15),
+   A_o = (n_bar . w_o)/(n_bar . w_g) from the normalized mesonormal, Schlick's Fresnel with the
+   normalized half vector. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_beckmann.h"
+#include "pf_toksvig.h"             /* Blinn-Phong exponent of a Beckmann roughness */
+#include "../tests/pf_oracle.h"     /* long double P22 and Lambda references */
 
 #define PFB_TABLE 16384
 #define F0_BENCH PF_R(0.04)
@@ -63,17 +66,6 @@ PFB_METHOD(leadr_joint, pf_leadr_specular(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[
 PFB_METHOD(leadr_masking, pf_leadr_specular_masking(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)], F0_BENCH))
 
 /* ---------------------------------------------------------------- reference */
-static long double ref_lambda_nu(long double nu)
-{
-    long double t = 0.0L;
-    int k, kmax;
-    if (nu <= 0.0L) return HUGE_VALL;
-    if (nu <= 2.0L) return expl(-nu * nu) / (2.0L * PFB_SQRT_PI_L * nu) - 0.5L * erfcl(nu);
-    kmax = 40 + (int)(240.0L / (nu * nu));
-    for (k = kmax; k >= 1; --k) t = (0.5L * (long double)k) / (nu + t);
-    return expl(-nu * nu) / (2.0L * PFB_SQRT_PI_L) * t / (nu * (nu + t));
-}
-
 typedef struct ref_cfg {
     long double mx, my, vx, vy, c;
 } ref_cfg;
@@ -86,14 +78,14 @@ static long double ref_lambda(ref_cfg k, long double wx, long double wy, long do
     long double mu = cp * k.mx + sp * k.my;
     long double sigma = sqrtl(cp * cp * k.vx + sp * sp * k.vy + 2.0L * cp * sp * k.c);
     if (theta == 0.0L) return 0.0L;
-    return ref_lambda_nu((cosl(theta) / sinl(theta) - mu) / (sigma * sqrtl(2.0L)));
+    return pf_oracle_lambda_beckmann((cosl(theta) / sinl(theta) - mu) / (sigma * sqrtl(2.0L)));
 }
 
 static long double ref_specular(long double x, int masking_only)
 {
     int i = (int)x;
     ref_cfg k;
-    long double o[3], w[3], h[3], hl, det, i11, i22, i12, sx, sy, dx, dy, p22, cz, d, lo, li, nl, ao, ai,
+    long double o[3], w[3], h[3], hl, sx, sy, p22, cz, d, lo, li, nl, ao, ai,
         F, cd, f0 = (long double)F0_BENCH;
     int j;
     k.mx = (long double)tab_s[i].mean_x;
@@ -110,15 +102,9 @@ static long double ref_specular(long double x, int masking_only)
     for (j = 0; j < 3; j++) h[j] = o[j] + w[j];
     hl = sqrtl(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
     if (h[2] <= 0.0L) return 0.0L;
-    det = k.vx * k.vy - k.c * k.c;
-    i11 = k.vy / det;
-    i22 = k.vx / det;
-    i12 = -k.c / det;
     sx = -h[0] / h[2];
     sy = -h[1] / h[2];
-    dx = sx - k.mx;
-    dy = sy - k.my;
-    p22 = expl(-0.5L * (i11 * dx * dx + 2.0L * i12 * dx * dy + i22 * dy * dy)) / (2.0L * 3.141592653589793238462643383279503L * sqrtl(det));
+    p22 = pf_oracle_normal2_pdf(sx - k.mx, sy - k.my, k.vx, k.vy, k.c);
     cz = h[2] / hl;
     d = p22 / (cz * cz * cz * cz);
     lo = ref_lambda(k, o[0], o[1], o[2]);
@@ -182,7 +168,8 @@ static void make_table(void)
             tab_wo[i] = wo;
             tab_wi[i] = wi;
             tab_s[i] = s;
-            tab_n[i] = PF_R(2.0) / (PF_R(0.5) * (s.var_x + s.var_y)) - PF_R(2.0);
+            /* Beckmann roughness m = sqrt(2) sigma, sigma^2 the mean of the two variances */
+            tab_n[i] = pf_beckmann_to_blinn_phong(PF_SQRT(s.var_x + s.var_y));
             break;
         }
     }

@@ -116,14 +116,12 @@ static long double lambda_ld(const refcfg *c, long double wx, long double wy, lo
     if (num <= 0.0L) return HUGE_VALL;
     if (var <= 0.0L) return 0.0L;
     nu = num / sqrtl(2.0L * var);
-    if (nu > 40.0L) return 0.0L;
-    return expl(-nu * nu) / (2.0L * nu * sqrtl(pil)) - 0.5L * erfcl(nu);
+    return pf_oracle_lambda_beckmann(nu);
 }
 
 static long double p22(const refcfg *c, long double x, long double y)
 {
-    long double det = c->vx * c->vy - c->cxy * c->cxy, dx = x - c->mx, dy = y - c->my;
-    return expl(-0.5L * (c->vy * dx * dx - 2.0L * c->cxy * dx * dy + c->vx * dy * dy) / det) / (2.0L * pil * sqrtl(det));
+    return pf_oracle_normal2_pdf(x - c->mx, y - c->my, c->vx, c->vy, c->cxy);
 }
 
 static long double diffuse_f(long double x, long double y, void *ctx)

@@ -14,7 +14,8 @@
                       reads "cost relative to the Beckmann baseline for the same shading input".
                       beckmann_fast_g1_cos is the same anchor for pf_g1_beckmann_fast.
 
-   REFERENCE (long double, written here, independent of pf_smith.h)
+   REFERENCE (long double, pf_oracle_lambda_beckmann of tests/pf_oracle.h, independent of
+   pf_smith.h)
      Lambda(nu) = exp(-nu^2) / (2 nu sqrt(pi)) - erfc(nu) / 2,   G1 = 1 / (1 + Lambda).
      nu <= 2: the formula as written with expl and erfcl. The two terms cancel by at most a
               factor ~10 (at nu = 2), i.e. ~3.5 of the 64 bits.
@@ -33,6 +34,7 @@
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_smith.h"
+#include "../tests/pf_oracle.h" /* the long double Lambda reference, shared with the tests */
 
 /* ---------------------------------------------------------------- methods */
 /* the G1 / Lambda most code bases carry: closed form with the libm erfc */
@@ -58,15 +60,7 @@ PFB_METHOD(ggx_anchor_walter, pf_g1_beckmann_walter(x / (y * z)))
 PFB_METHOD(ggx_anchor_fast, pf_g1_beckmann_fast(x / (y * z)))
 
 /* ---------------------------------------------------------------- references */
-static long double ref_lambda_beckmann(long double nu)
-{
-    long double t = 0.0L;
-    int k, kmax;
-    if (nu <= 2.0L) return expl(-nu * nu) / (2.0L * PFB_SQRT_PI_L * nu) - 0.5L * erfcl(nu);
-    kmax = 40 + (int)(240.0L / (nu * nu));
-    for (k = kmax; k >= 1; --k) t = (0.5L * (long double)k) / (nu + t);
-    return expl(-nu * nu) / (2.0L * PFB_SQRT_PI_L) * t / (nu * (nu + t));
-}
+static long double ref_lambda_beckmann(long double nu) { return pf_oracle_lambda_beckmann(nu); }
 
 static long double ref_lambda(long double x, long double y, long double z)
 {

@@ -23,6 +23,14 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* pf_real's machine epsilon in long double, the unit of the tests' error bounds, and pi. */
+#ifdef PF_DOUBLE
+#  define PF_TEST_EPS 2.220446049250313e-16L
+#else
+#  define PF_TEST_EPS 1.1920928955078125e-7L
+#endif
+#define PF_TEST_PI 3.14159265358979323846264338327950288L
+
 /* Harness functions are static and not all files use all of them. */
 #if defined(__GNUC__) || defined(__clang__)
 #  define PF_TEST_FN static __attribute__((unused))

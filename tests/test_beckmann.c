@@ -17,13 +17,6 @@
 #include "pf_oracle.h"
 #include "pf_test.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
-static const long double pil = 3.14159265358979323846264338327950288L;
 
 /* ------------------------------------------------------------------ configurations */
 /* A slope distribution (mean, covariance) and a view, in long double, rounded to pf_real so
@@ -115,31 +108,15 @@ static long double d_cond(bcfg k, long double q, long double sx, long double sy)
     return (1.0L + q) * (1.0L + 1.0L / (1.0L - r2) + (1.0L + sqrtl(sx * sx + sy * sy)) * sqrtl(2.0L * q) / smin);
 }
 
-/* Independent P22 (eq. 8) in long double: explicit inverse. */
+/* Independent P22 (eq. 8) in long double (tests/pf_oracle.h: explicit inverse). */
 static long double p22_ref(bcfg k, long double x, long double y)
 {
-    long double det = k.vx * k.vy - k.cxy * k.cxy;
-    long double i11 = k.vy / det, i22 = k.vx / det, i12 = -k.cxy / det;
-    long double dx = x - k.mx, dy = y - k.my;
-    return expl(-0.5L * (i11 * dx * dx + 2.0L * i12 * dx * dy + i22 * dy * dy)) / (2.0L * pil * sqrtl(det));
+    return pf_oracle_normal2_pdf(x - k.mx, y - k.my, k.vx, k.vy, k.cxy);
 }
 
 static pf_vec3 vec3_of(long double x, long double y, long double z)
 {
     return pf_vec3_make((pf_real)x, (pf_real)y, (pf_real)z);
-}
-
-/* Lambda from its definition (eq. 13 text): 1D integral over the slope density along the
-   azimuth, written relative to the tail point. Used only in the centered textbook test. */
-typedef struct tail1d {
-    long double c, mu, sigma;
-} tail1d;
-
-static long double tail1d_fn(long double u, void *ctx)
-{
-    const tail1d *t = (const tail1d *)ctx;
-    long double z = (t->c + u - t->mu) / t->sigma;
-    return u * expl(-0.5L * z * z) / (t->sigma * sqrtl(2.0L * pil));
 }
 
 /* ------------------------------------------------------------------ D: pointwise */
@@ -180,10 +157,10 @@ static void test_d_pointwise(void)
     }
     pf_test_note("D vs long double P22/cos^4, 20000 points within 4 sigma: max rel error %.3g eps x "
                  "(1 + q/2)(1 + 1/(1 - r^2) + (1 + |slope|) sqrt(q) / sigma_min) (kind %s)",
-                 (double)(m.err / EPS), kind_name[(int)m.at]);
-    pf_test_note("P22: max rel error %.3g eps x (1 + q/2)(1 + 1/(1 - r^2))", (double)(mp.err / EPS));
-    PF_CHECK(m.err <= 16.0L * EPS, "D pointwise: %.3g eps-units (kind %d)", (double)(m.err / EPS), (int)m.at);
-    PF_CHECK(mp.err <= 16.0L * EPS, "P22 pointwise: %.3g eps-units (kind %d)", (double)(mp.err / EPS), (int)mp.at);
+                 (double)(m.err / PF_TEST_EPS), kind_name[(int)m.at]);
+    pf_test_note("P22: max rel error %.3g eps x (1 + q/2)(1 + 1/(1 - r^2))", (double)(mp.err / PF_TEST_EPS));
+    PF_CHECK(m.err <= 16.0L * PF_TEST_EPS, "D pointwise: %.3g eps-units (kind %d)", (double)(m.err / PF_TEST_EPS), (int)m.at);
+    PF_CHECK(mp.err <= 16.0L * PF_TEST_EPS, "P22 pointwise: %.3g eps-units (kind %d)", (double)(mp.err / PF_TEST_EPS), (int)mp.at);
 }
 
 /* ------------------------------------------------------------------ normalization */
@@ -265,7 +242,7 @@ static long double norm_bound(bcfg k)
     long double smin = sqrtl(fminl(k.vx, k.vy) * (1.0L - k.cxy * k.cxy / (k.vx * k.vy)));
     long double mean = sqrtl(k.mx * k.mx + k.my * k.my);
     long double r2 = k.cxy * k.cxy / (k.vx * k.vy);
-    return 64.0L * EPS * (1.0L + 1.0L / (1.0L - r2) + (1.0L + mean) / smin) + 1e-12L;
+    return 64.0L * PF_TEST_EPS * (1.0L + 1.0L / (1.0L - r2) + (1.0L + mean) / smin) + 1e-12L;
 }
 
 /* A quadrature is good enough when its error estimate is a quarter of the bound checked: the
@@ -337,7 +314,7 @@ static void test_normalization_polar(void)
         c.k = bcfg_random(&rng, i % 4); /* not the tiny-sigma kind */
         c.L = chol_of(c.k);
         c.s = bcfg_stats(c.k);
-        pb = pf_oracle_2d_make(polar_integrand, &c, -pil, pil, 0.0L, pil / 2.0L);
+        pb = pf_oracle_2d_make(polar_integrand, &c, -PF_TEST_PI, PF_TEST_PI, 0.0L, PF_TEST_PI / 2.0L);
         xp[0] = atan2l(-c.k.my, -c.k.mx); /* the mesonormal's azimuth */
         pb.xpoints = xp;
         pb.nxpoints = 1;
@@ -445,9 +422,9 @@ static int sphere_tpoints(long double p, long double *pts, int max_points, void 
     int n = 0, j;
     (void)p;
     for (j = 0; j < 4 && n < max_points; j++)
-        if (mult[j] * c->width < pil) pts[n++] = mult[j] * c->width;
+        if (mult[j] * c->width < PF_TEST_PI) pts[n++] = mult[j] * c->width;
     for (j = 0; j < 4 && n < max_points; j++)
-        if (mult[j] * c->width_min < pil && mult[j] * c->width_min < 0.25L * c->width) pts[n++] = mult[j] * c->width_min;
+        if (mult[j] * c->width_min < PF_TEST_PI && mult[j] * c->width_min < 0.25L * c->width) pts[n++] = mult[j] * c->width_min;
     return n;
 }
 
@@ -483,7 +460,7 @@ static long double sphere_integral(sphere_ctx *c, pf_vec3 wo, int what, int *con
     c->e2[0] = c->e0[1] * c->e1[2] - c->e0[2] * c->e1[1];
     c->e2[1] = c->e0[2] * c->e1[0] - c->e0[0] * c->e1[2];
     c->e2[2] = c->e0[0] * c->e1[1] - c->e0[1] * c->e1[0];
-    pb = pf_oracle_2d_make(sphere_integrand, c, -pil, pil, 0.0L, pil);
+    pb = pf_oracle_2d_make(sphere_integrand, c, -PF_TEST_PI, PF_TEST_PI, 0.0L, PF_TEST_PI);
     pb.ypoints = sphere_tpoints;
     pb.epsrel = c->epsrel;
     pb.max_intervals = 800;
@@ -568,14 +545,10 @@ static void test_brdf_identity_and_energy(void)
    the test's own P22, Lambda (1D quadrature of its definition) and projected area. */
 static long double lambda_def(bcfg k, long double wx, long double wy, long double wz)
 {
+    /* slopes along the azimuth of w by trigonometry (eqs. 14-15), then the 1D definition */
     long double r = sqrtl(wx * wx + wy * wy), cp = r > 0.0L ? wx / r : 1.0L, sp = r > 0.0L ? wy / r : 0.0L;
-    tail1d t;
-    pf_oracle_result res;
-    t.c = wz / r;
-    t.mu = cp * k.mx + sp * k.my;
-    t.sigma = sqrtl(cp * cp * k.vx + sp * sp * k.vy + 2.0L * cp * sp * k.cxy);
-    res = pf_oracle_integrate(tail1d_fn, &t, 0.0L, HUGE_VALL, 0.0L, 1e-16L, PF_ORACLE_MAX_INTERVALS);
-    return res.value / (t.c - t.mu);
+    return pf_oracle_lambda_1d(wz / r, cp * k.mx + sp * k.my,
+                               sqrtl(cp * cp * k.vx + sp * sp * k.vy + 2.0L * cp * sp * k.cxy));
 }
 
 static void test_specular_pointwise(void)
@@ -632,12 +605,12 @@ static void test_specular_pointwise(void)
     }
     pf_test_note("LEADR specular vs long double composition (own P22, Lambda by quadrature): joint %.3g, "
                  "masking %.3g eps x the condition number of D",
-                 (double)(mj.err / EPS), (double)(mm.err / EPS));
-    pf_test_note("reciprocity I(o,i) A_o = I(i,o) A_i: max %.3g eps x the condition number of D", (double)(mrec.err / EPS));
+                 (double)(mj.err / PF_TEST_EPS), (double)(mm.err / PF_TEST_EPS));
+    pf_test_note("reciprocity I(o,i) A_o = I(i,o) A_i: max %.3g eps x the condition number of D", (double)(mrec.err / PF_TEST_EPS));
     /* Lambda's own bound is a few eps; D's error grows with the (scaled) exponent */
-    PF_CHECK(mj.err <= 64.0L * EPS, "joint: %.3g eps (at %d)", (double)(mj.err / EPS), (int)mj.at);
-    PF_CHECK(mm.err <= 64.0L * EPS, "masking: %.3g eps (at %d)", (double)(mm.err / EPS), (int)mm.at);
-    PF_CHECK(mrec.err <= 64.0L * EPS, "reciprocity: %.3g eps", (double)(mrec.err / EPS));
+    PF_CHECK(mj.err <= 64.0L * PF_TEST_EPS, "joint: %.3g eps (at %d)", (double)(mj.err / PF_TEST_EPS), (int)mj.at);
+    PF_CHECK(mm.err <= 64.0L * PF_TEST_EPS, "masking: %.3g eps (at %d)", (double)(mm.err / PF_TEST_EPS), (int)mm.at);
+    PF_CHECK(mrec.err <= 64.0L * PF_TEST_EPS, "reciprocity: %.3g eps", (double)(mrec.err / PF_TEST_EPS));
     PF_CHECK(zero_ok, "light below the macrosurface must give 0");
 }
 
@@ -670,7 +643,7 @@ static void test_deformation_brute_force(void)
                 /* Box-Muller with the seeded generator */
                 long double u1 = (long double)pf_test_uniform(&rng, 1e-300, 1.0), u2 = (long double)pf_test_uniform(&rng, 0.0, 1.0);
                 long double rad = sqrtl(-2.0L * logl(u1));
-                long double g1 = rad * cosl(2.0L * pil * u2), g2 = rad * sinl(2.0L * pil * u2);
+                long double g1 = rad * cosl(2.0L * PF_TEST_PI * u2), g2 = rad * sinl(2.0L * PF_TEST_PI * u2);
                 long double su_ = kuv.mx + L.a * g1, sv_ = kuv.my + L.b * g1 + L.c * g2;
                 long double x = eta * (a * su_ + b * sv_), y = eta * (c * su_ + d * sv_);
                 acc[0] += x; acc[1] += y; acc[2] += x * x; acc[3] += y * y; acc[4] += x * y;
@@ -718,9 +691,9 @@ static void test_deformation_brute_force(void)
     }
     pf_test_note("eq. 12 + height scale vs 400000 transformed Gaussian samples x 6: max %.2f standard errors; "
                  "transform of sample moments = sample moments of transformed slopes to %.3g eps (scaled)",
-                 (double)worst_stat, (double)(worst_lin / EPS));
+                 (double)worst_stat, (double)(worst_lin / PF_TEST_EPS));
     PF_CHECK(worst_stat <= 5.0L, "eq. 12 vs samples: %.3g standard errors", (double)worst_stat);
-    PF_CHECK(worst_lin <= 64.0L * EPS, "linearity: %.3g eps", (double)(worst_lin / EPS));
+    PF_CHECK(worst_lin <= 64.0L * PF_TEST_EPS, "linearity: %.3g eps", (double)(worst_lin / PF_TEST_EPS));
 }
 
 /* ------------------------------------------------------------------ centered: textbook */
@@ -745,7 +718,7 @@ static void test_centered_reduces_to_textbook(void)
         long double mx = (long double)m.x, my = (long double)m.y, mz = (long double)m.z;
         long double ml2 = mx * mx + my * my + mz * mz, c2 = mz * mz / ml2, tan2 = (1.0L - c2) / c2;
         long double phi = atan2l(my, mx), cp = cosl(phi), sp = sinl(phi);
-        long double dref = expl(-tan2 * (cp * cp / (ax * ax) + sp * sp / (ay * ay))) / (pil * ax * ay * c2 * c2);
+        long double dref = expl(-tan2 * (cp * cp / (ax * ax) + sp * sp / (ay * ay))) / (PF_TEST_PI * ax * ay * c2 * c2);
         long double q = tan2 * (cp * cp / (ax * ax) + sp * sp / (ay * ay));
         pf_vec3 w = vec3_of(sinl(t) * cosl(p), sinl(t) * sinl(p), cosl(t));
         long double wx = (long double)w.x, wy = (long double)w.y, wz = (long double)w.z;
@@ -756,7 +729,7 @@ static void test_centered_reduces_to_textbook(void)
         if (wr > 0.0L) {
             alpha = sqrtl((wx * wx * ax * ax + wy * wy * ay * ay) / (wr * wr));
             a = wz / (alpha * wr);
-            lam = 0.5L * (erfl(a) - 1.0L) + expl(-a * a) / (2.0L * a * sqrtl(pil));
+            lam = 0.5L * (erfl(a) - 1.0L) + expl(-a * a) / (2.0L * a * sqrtl(PF_TEST_PI));
             if (a > 3.0L) lam = lambda_def(centered_cfg(sx, sy), wx, wy, wz);
             g1ref = 1.0L / (1.0L + lam);
             pf_test_max_update(&mg, pf_test_rel_error((long double)pf_beckmann_g1(w, s), g1ref), (long double)i);
@@ -784,7 +757,7 @@ static void test_centered_reduces_to_textbook(void)
             ht2 = (1.0L - hc2) / hc2;
             hp = atan2l(h[1], h[0]);
             qh = ht2 * (cosl(hp) * cosl(hp) / (ax * ax) + sinl(hp) * sinl(hp) / (ay * ay));
-            dh = expl(-qh) / (pil * ax * ay * hc2 * hc2);
+            dh = expl(-qh) / (PF_TEST_PI * ax * ay * hc2 * hc2);
             lo = lambda_def(centered_cfg(sx, sy), ol[0], ol[1], ol[2]);
             li = lambda_def(centered_cfg(sx, sy), wl[0], wl[1], wl[2]);
             ref = dh / (4.0L * ol[2] * (1.0L + lo + li));
@@ -794,11 +767,11 @@ static void test_centered_reduces_to_textbook(void)
         }
     }
     pf_test_note("centered, uncorrelated vs textbook: D %.3g eps x (1 + q), G1 %.3g eps, BRDF %.3g eps x (1 + q)",
-                 (double)(md.err / EPS), (double)(mg.err / EPS), (double)(mb.err / EPS));
-    PF_CHECK(md.err <= 16.0L * EPS, "centered D: %.3g eps", (double)(md.err / EPS));
-    PF_CHECK(mg.err <= 16.0L * EPS + 1e-15L, "centered G1: %.3g eps", (double)(mg.err / EPS));
-    PF_CHECK(mb.err <= 64.0L * EPS, "centered BRDF: %.3g eps", (double)(mb.err / EPS));
-    PF_CHECK(mn.err <= 4.0L * EPS, "centered mesonormal / area: %.3g", (double)mn.err);
+                 (double)(md.err / PF_TEST_EPS), (double)(mg.err / PF_TEST_EPS), (double)(mb.err / PF_TEST_EPS));
+    PF_CHECK(md.err <= 16.0L * PF_TEST_EPS, "centered D: %.3g eps", (double)(md.err / PF_TEST_EPS));
+    PF_CHECK(mg.err <= 16.0L * PF_TEST_EPS + 1e-15L, "centered G1: %.3g eps", (double)(mg.err / PF_TEST_EPS));
+    PF_CHECK(mb.err <= 64.0L * PF_TEST_EPS, "centered BRDF: %.3g eps", (double)(mb.err / PF_TEST_EPS));
+    PF_CHECK(mn.err <= 4.0L * PF_TEST_EPS, "centered mesonormal / area: %.3g", (double)mn.err);
 }
 
 /* ------------------------------------------------------------------ moments and stats */
@@ -809,7 +782,7 @@ static void test_moments_stats(void)
     pf_slope_stats s1 = pf_slope_moments_stats(pf_slope_moments_from_stats(s0), PF_R(0.0));
     pf_slope_stats s2 = pf_slope_moments_stats(pf_slope_moments_from_stats(s0), PF_R(0.01));
     pf_slope_moments a = pf_slope_moments_from_normal(pf_vec3_normalize(pf_vec3_make(PF_R(0.2), PF_R(-0.4), PF_R(1.0))));
-    long double tol = 64.0L * EPS;
+    long double tol = 64.0L * PF_TEST_EPS;
     PF_CHECK(fabsl((long double)s1.var_x - 0.04L - 1e-6L) <= tol, "var_x round trip %.9g", (double)s1.var_x);
     PF_CHECK(fabsl((long double)s1.cov_xy - 0.012L) <= tol, "cov round trip %.9g", (double)s1.cov_xy);
     PF_CHECK(fabsl((long double)s2.var_y - 0.1L) <= tol, "base roughness added: %.9g", (double)s2.var_y);
@@ -868,7 +841,7 @@ static void test_worked_example(void)
                  (double)pf_beckmann_d(pf_vec3_add(wo, wi), s), (double)pf_beckmann_lambda(wo, s),
                  (double)pf_beckmann_lambda(wi, s), (double)pf_beckmann_projected_area(wo, s),
                  (double)pf_fresnel_schlick(PF_R(0.04), (pf_real)cd), (double)got, ref);
-    PF_CHECK(pf_test_rel_error((long double)got, ref) <= 64.0L * EPS, "worked example %g vs %Lg", (double)got, ref);
+    PF_CHECK(pf_test_rel_error((long double)got, ref) <= 64.0L * PF_TEST_EPS, "worked example %g vs %Lg", (double)got, ref);
 }
 
 /* ------------------------------------------------------------------ edges */
@@ -937,7 +910,7 @@ static void edge_directions(void)
         pf_real a = pf_leadr_specular_point(graze, pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(1.6)), s, PF_R(0.5));
         pf_real b = pf_leadr_specular(graze, pf_vec3_normalize(pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(1.6))), s, PF_R(0.5));
         long double d2 = 0.36L + 2.56L;
-        PF_CHECK(fabsl((long double)a * d2 - (long double)b) <= 8.0L * EPS * fabsl((long double)b) + 1e-30L,
+        PF_CHECK(fabsl((long double)a * d2 - (long double)b) <= 8.0L * PF_TEST_EPS * fabsl((long double)b) + 1e-30L,
                  "point light falloff %g vs %g", (double)a, (double)b);
     }
 }

@@ -15,12 +15,10 @@
 typedef glm::dvec3 gvec3;
 typedef glm::dvec2 gvec2;
 typedef glm::dmat2 gmat2;
-#  define EPS 2.220446049250313e-16L
 #else
 typedef glm::vec3 gvec3;
 typedef glm::vec2 gvec2;
 typedef glm::mat2 gmat2;
-#  define EPS 1.1920928955078125e-7L
 #endif
 
 static pf_vec3 from_glm(gvec3 v) { return pf_vec3_make(v.x, v.y, v.z); }
@@ -80,13 +78,13 @@ static void test_vectors_against_glm(void)
     }
     pf_test_note("vs GLM (20000 random pairs): half vector %.2g, reflection %.2g, length %.2g, mesonormal %.2g, "
                  "projected area %.2g (in eps: %.1f %.1f %.1f %.1f %.1f)",
-                 (double)eh, (double)er, (double)en, (double)em, (double)ed, (double)(eh / EPS), (double)(er / EPS),
-                 (double)(en / EPS), (double)(em / EPS), (double)(ed / EPS));
-    PF_CHECK(eh <= 8.0L * EPS, "half vector: %.3g", (double)eh);
-    PF_CHECK(er <= 16.0L * EPS, "reflection: %.3g", (double)er);
-    PF_CHECK(en <= 4.0L * EPS, "length: %.3g", (double)en);
-    PF_CHECK(em <= 8.0L * EPS, "mesonormal: %.3g", (double)em);
-    PF_CHECK(ed <= 64.0L * EPS, "projected area: %.3g", (double)ed);
+                 (double)eh, (double)er, (double)en, (double)em, (double)ed, (double)(eh / PF_TEST_EPS), (double)(er / PF_TEST_EPS),
+                 (double)(en / PF_TEST_EPS), (double)(em / PF_TEST_EPS), (double)(ed / PF_TEST_EPS));
+    PF_CHECK(eh <= 8.0L * PF_TEST_EPS, "half vector: %.3g", (double)eh);
+    PF_CHECK(er <= 16.0L * PF_TEST_EPS, "reflection: %.3g", (double)er);
+    PF_CHECK(en <= 4.0L * PF_TEST_EPS, "length: %.3g", (double)en);
+    PF_CHECK(em <= 8.0L * PF_TEST_EPS, "mesonormal: %.3g", (double)em);
+    PF_CHECK(ed <= 64.0L * PF_TEST_EPS, "projected area: %.3g", (double)ed);
 }
 
 // P22 (eq. 8) and D (eq. 10) recomputed with glm::inverse / glm::determinant of the 2x2
@@ -129,14 +127,14 @@ static void test_covariance_against_glm(void)
     }
     pf_test_note("vs GLM (20000 random covariances): P22 by glm::inverse and by Cholesky %.3g eps x (1 + q), "
                  "D %.3g eps x (1 + q); glm cov*inv - I %.2g, L L^T - cov %.2g",
-                 (double)(ep / EPS), (double)(ed / EPS), (double)einv, (double)ec);
+                 (double)(ep / PF_TEST_EPS), (double)(ed / PF_TEST_EPS), (double)einv, (double)ec);
     // glm's own float inverse and Cholesky carry their rounding, amplified by the condition
     // number (|r| up to 0.95, ratio of deviations up to 16): bounds are loose on purpose,
     // and a convention slip (transposed inverse, sign of c_xy) would give errors of order 1.
-    PF_CHECK(ep <= 4096.0L * EPS, "P22 vs glm: %.3g eps", (double)(ep / EPS));
-    PF_CHECK(ed <= 4096.0L * EPS, "D vs glm: %.3g eps", (double)(ed / EPS));
-    PF_CHECK(einv <= 4096.0L * EPS, "glm inverse sanity: %.3g", (double)einv);
-    PF_CHECK(ec <= 64.0L * EPS, "Cholesky sanity: %.3g", (double)ec);
+    PF_CHECK(ep <= 4096.0L * PF_TEST_EPS, "P22 vs glm: %.3g eps", (double)(ep / PF_TEST_EPS));
+    PF_CHECK(ed <= 4096.0L * PF_TEST_EPS, "D vs glm: %.3g eps", (double)(ed / PF_TEST_EPS));
+    PF_CHECK(einv <= 4096.0L * PF_TEST_EPS, "glm inverse sanity: %.3g", (double)einv);
+    PF_CHECK(ec <= 64.0L * PF_TEST_EPS, "Cholesky sanity: %.3g", (double)ec);
 }
 
 int main(int argc, char **argv)

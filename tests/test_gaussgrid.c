@@ -12,13 +12,6 @@
 #include "pf_oracle.h"
 #include "pf_test.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
-static const long double pil = 3.14159265358979323846264338327950288L;
 static const char *set_name[3] = { "uniform", "hermite", "matched" };
 
 /* ------------------------------------------------------------------ 1D node sets */
@@ -61,7 +54,7 @@ static void test_node_moments(void)
             for (d = 0; d <= top; d++) {
                 long double e = fabsl(set_moment(set, n, d) - normal_moment(d)) / (normal_moment(d) + 1.0L);
                 if (d % 2 == 0 || set != PF_GG_UNIFORM) worst_exact = fmaxl(worst_exact, e / (long double)(d + 1));
-                PF_CHECK(e <= 64.0L * (long double)(d + 1) * EPS, "%s N=%d moment %d off by %.3g", set_name[set], n, d,
+                PF_CHECK(e <= 64.0L * (long double)(d + 1) * PF_TEST_EPS, "%s N=%d moment %d off by %.3g", set_name[set], n, d,
                          (double)e);
             }
             /* the next even moment is NOT exact (a test that proves the documented limit) */
@@ -75,7 +68,7 @@ static void test_node_moments(void)
     snprintf(buf, sizeof buf, "variance captured by LEADR's uniform grid: N=3 %.4f, N=5 %.4f, N=9 %.4f",
              (double)set_moment(PF_GG_UNIFORM, 3, 2), (double)set_moment(PF_GG_UNIFORM, 5, 2),
              (double)set_moment(PF_GG_UNIFORM, 9, 2));
-    pf_test_note("%s; exact moments within %.2g eps; symmetry %.2g", buf, (double)(worst_exact / EPS),
+    pf_test_note("%s; exact moments within %.2g eps; symmetry %.2g", buf, (double)(worst_exact / PF_TEST_EPS),
                  (double)worst_sym);
     PF_CHECK(bad_order == 0, "%d nodes out of order", bad_order);
     PF_CHECK(worst_sym == 0.0L, "tables not exactly symmetric (%.3g)", (double)worst_sym);
@@ -86,17 +79,17 @@ static void test_node_moments(void)
             long double p = 1.8L * ((long double)j / 2.0L - 1.0L), e = expl(-0.5L * p * p);
             s += e;
             m2 += e * p * p;
-            PF_CHECK(fabsl((long double)pf_gg_node(PF_GG_UNIFORM, 5, j) - p) <= 4.0L * EPS, "N=5 node %d", j);
+            PF_CHECK(fabsl((long double)pf_gg_node(PF_GG_UNIFORM, 5, j) - p) <= 4.0L * PF_TEST_EPS, "N=5 node %d", j);
         }
         v = m2 / s;
-        PF_CHECK(fabsl((long double)pf_gg_node_variance(PF_GG_UNIFORM, 5) - v) <= 8.0L * EPS,
+        PF_CHECK(fabsl((long double)pf_gg_node_variance(PF_GG_UNIFORM, 5) - v) <= 8.0L * PF_TEST_EPS,
                  "N=5 variance %.9g vs %.9Lg", (double)pf_gg_node_variance(PF_GG_UNIFORM, 5), v);
         PF_CHECK(v > 0.86L && v < 0.87L, "LEADR's N=5 variance %.5Lg, expected ~0.8656", v);
         for (j = 0; j < 5; j++) {
             long double p = 1.8L * ((long double)j / 2.0L - 1.0L);
-            PF_CHECK(fabsl((long double)pf_gg_weight(PF_GG_UNIFORM, 5, j) - expl(-0.5L * p * p) / s) <= 4.0L * EPS,
+            PF_CHECK(fabsl((long double)pf_gg_weight(PF_GG_UNIFORM, 5, j) - expl(-0.5L * p * p) / s) <= 4.0L * PF_TEST_EPS,
                      "N=5 weight %d", j);
-            PF_CHECK(fabsl((long double)pf_gg_node(PF_GG_MATCHED, 5, j) - p / sqrtl(v)) <= 8.0L * EPS, "matched node %d", j);
+            PF_CHECK(fabsl((long double)pf_gg_node(PF_GG_MATCHED, 5, j) - p / sqrtl(v)) <= 8.0L * PF_TEST_EPS, "matched node %d", j);
         }
     }
 }
@@ -135,10 +128,10 @@ static void test_generators(void)
     PF_CHECK(pf_gg_hermite_generate(0, nodes, weights) == 0 && pf_gg_hermite_generate(PF_GG_GENERATE_MAX + 1, nodes, weights) == 0,
              "out-of-range n accepted");
     pf_test_note("any-N uniform vs tables %.2g eps; generated Hermite vs tables %.2g eps; N=10..64 moments 0..12 rel %.2g",
-                 (double)(worst_u / EPS), (double)(worst_h / EPS), (double)worst_big);
-    PF_CHECK(worst_u <= 16.0L * EPS, "uniform any-N differs from tables by %.3g", (double)worst_u);
-    PF_CHECK(worst_h <= 32.0L * EPS, "generated Hermite differs from tables by %.3g", (double)worst_h);
-    PF_CHECK(worst_big <= 2000.0L * EPS, "generated Hermite moments off by %.3g", (double)worst_big);
+                 (double)(worst_u / PF_TEST_EPS), (double)(worst_h / PF_TEST_EPS), (double)worst_big);
+    PF_CHECK(worst_u <= 16.0L * PF_TEST_EPS, "uniform any-N differs from tables by %.3g", (double)worst_u);
+    PF_CHECK(worst_h <= 32.0L * PF_TEST_EPS, "generated Hermite differs from tables by %.3g", (double)worst_h);
+    PF_CHECK(worst_big <= 2000.0L * PF_TEST_EPS, "generated Hermite moments off by %.3g", (double)worst_big);
 }
 
 /* Convergence on a smooth and on kinked integrands, reference by 1D quadrature. */
@@ -203,7 +196,7 @@ static void test_node_convergence(void)
                 PF_CHECK(err[set][9] < err[set][3], "%s: %s does not converge (%.3g at N=3, %.3g at N=9)", fname[fi],
                          set_name[set], (double)err[set][3], (double)err[set][9]);
             PF_CHECK(err[1][9] <= 1e-7L, "%s: hermite N=9 %.3g", fname[fi], (double)err[1][9]);
-            PF_CHECK(e64h <= 1e-13L + 64.0L * EPS && e64u <= 1e-9L + 64.0L * EPS && e64m <= 1e-9L + 64.0L * EPS,
+            PF_CHECK(e64h <= 1e-13L + 64.0L * PF_TEST_EPS && e64u <= 1e-9L + 64.0L * PF_TEST_EPS && e64m <= 1e-9L + 64.0L * PF_TEST_EPS,
                      "%s: N=64 errors %.3g %.3g %.3g", fname[fi], (double)e64u, (double)e64h, (double)e64m);
         } else {
             /* kinked: slow and not monotone in N (a kink between nodes); the uniform grid's even
@@ -280,15 +273,15 @@ static void test_warp_moments(void)
         }
     }
     pf_test_note("LEADR 5x5: sampled slope covariance = %.4f x the true one (x and y alike); others exact to %.2g eps",
-                 (double)ratio5, (double)(worst / EPS));
-    PF_CHECK(worst <= 64.0L * EPS, "warped moments off by %.3g", (double)worst);
+                 (double)ratio5, (double)(worst / PF_TEST_EPS));
+    PF_CHECK(worst <= 64.0L * PF_TEST_EPS, "warped moments off by %.3g", (double)worst);
     PF_CHECK(ratio5 > 0.86L && ratio5 < 0.87L, "LEADR 5x5 variance ratio %.4g", (double)ratio5);
 }
 
 /* ------------------------------------------------------------------ references (2D slope plane) */
 
-/* Smith Lambda of Gaussian slopes in long double, closed form (Dupuy et al. 2013 sec. 4.3) with
-   erfcl; +inf (returned as HUGE_VALL) on or below the mesosurface. */
+/* Smith Lambda of Gaussian slopes in long double, closed form (Dupuy et al. 2013 sec. 4.3,
+   tests/pf_oracle.h); +inf (returned as HUGE_VALL) on or below the mesosurface. */
 static long double lambda_ld(const cfg *c, long double wx, long double wy, long double wz)
 {
     long double num = wz - wx * c->mx - wy * c->my;
@@ -297,16 +290,12 @@ static long double lambda_ld(const cfg *c, long double wx, long double wy, long 
     if (num <= 0.0L) return HUGE_VALL;
     if (var <= 0.0L) return 0.0L;
     nu = num / sqrtl(2.0L * var);
-    if (nu > 40.0L) return 0.0L;
-    return expl(-nu * nu) / (2.0L * nu * sqrtl(pil)) - 0.5L * erfcl(nu);
+    return pf_oracle_lambda_beckmann(nu);
 }
 
 static long double p22(const cfg *c, long double x, long double y)
 {
-    long double det = c->vx * c->vy - c->cxy * c->cxy;
-    long double dx = x - c->mx, dy = y - c->my;
-    long double q = (c->vy * dx * dx - 2.0L * c->cxy * dx * dy + c->vx * dy * dy) / det;
-    return expl(-0.5L * q) / (2.0L * pil * sqrtl(det));
+    return pf_oracle_normal2_pdf(x - c->mx, y - c->my, c->vx, c->vy, c->cxy);
 }
 
 /* eq. 21 integrand for one directional light (without the constant factors) */
@@ -374,7 +363,7 @@ static long double diffuse_ref(cfg *c, int *ok)
     long double lo = lambda_ld(c, c->wox, c->woy, c->woz), li = lambda_ld(c, c->wix, c->wiy, c->wiz);
     long double integral = slope_integral(diffuse_integrand, c, 1e-11L, ok);
     if (li >= HUGE_VALL) return 0.0L;
-    return integral / (pil * den * (1.0L + lo + li));
+    return integral / (PF_TEST_PI * den * (1.0L + lo + li));
 }
 
 static long double specular_ref(cfg *c, int *ok)
@@ -545,17 +534,17 @@ static void test_env_geometry(void)
         jac = sqrtl(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]);
         worst_j = fmaxl(worst_j, pf_test_rel_error((long double)pf_gg_jacobian(s.normal, cfg_wo(&c)), jac));
         smax = fmaxl(sqrtl(c.vx), sqrtl(c.vy));
-        PF_CHECK(pf_test_rel_error((long double)e.solid_angle, jac * (long double)s.cell * smax * smax) <= 1e-5L + 64.0L * EPS,
+        PF_CHECK(pf_test_rel_error((long double)e.solid_angle, jac * (long double)s.cell * smax * smax) <= 1e-5L + 64.0L * PF_TEST_EPS,
                  "solid angle of sample %d", i);
         sum_cell += (long double)s.cell * pf_oracle_normal_pdf((long double)pf_gg_node(PF_GG_HERMITE, 5, i / 5)) *
                     pf_oracle_normal_pdf((long double)pf_gg_node(PF_GG_HERMITE, 5, i % 5));
     }
     pf_test_note("reflected dir %.2g eps; Jacobian vs finite differences %.2g; cells x density sum to %.6f",
-                 (double)(worst_dir / EPS), (double)worst_j, (double)sum_cell);
-    PF_CHECK(worst_dir <= 32.0L * EPS, "reflected direction off by %.3g", (double)worst_dir);
-    PF_CHECK(worst_j <= 1e-6L + 64.0L * EPS, "Jacobian off by %.3g", (double)worst_j);
-    PF_CHECK(fabsl(sum_cell - 1.0L) <= 64.0L * EPS, "cells do not tile the measure: %.9g", (double)sum_cell);
-    PF_CHECK(pf_gg_env_lod(PF_R(4.0e-4), PF_R(1.0e-4)) == PF_R(1.0) || fabsl((long double)pf_gg_env_lod(PF_R(4.0e-4), PF_R(1.0e-4)) - 1.0L) <= 8.0L * EPS,
+                 (double)(worst_dir / PF_TEST_EPS), (double)worst_j, (double)sum_cell);
+    PF_CHECK(worst_dir <= 32.0L * PF_TEST_EPS, "reflected direction off by %.3g", (double)worst_dir);
+    PF_CHECK(worst_j <= 1e-6L + 64.0L * PF_TEST_EPS, "Jacobian off by %.3g", (double)worst_j);
+    PF_CHECK(fabsl(sum_cell - 1.0L) <= 64.0L * PF_TEST_EPS, "cells do not tile the measure: %.9g", (double)sum_cell);
+    PF_CHECK(pf_gg_env_lod(PF_R(4.0e-4), PF_R(1.0e-4)) == PF_R(1.0) || fabsl((long double)pf_gg_env_lod(PF_R(4.0e-4), PF_R(1.0e-4)) - 1.0L) <= 8.0L * PF_TEST_EPS,
              "lod of 4 texels is %g", (double)pf_gg_env_lod(PF_R(4.0e-4), PF_R(1.0e-4)));
 }
 
@@ -564,8 +553,8 @@ static void test_env_geometry(void)
 /* Real SH basis up to l = 2 in long double, from the closed forms (independent constants). */
 static void sh_basis_ld(long double x, long double y, long double z, long double *yb)
 {
-    long double k0 = 0.5L / sqrtl(pil), k1 = sqrtl(3.0L / (4.0L * pil)), k2 = sqrtl(15.0L / (4.0L * pil));
-    long double k20 = sqrtl(5.0L / (16.0L * pil)), k22 = sqrtl(15.0L / (16.0L * pil));
+    long double k0 = 0.5L / sqrtl(PF_TEST_PI), k1 = sqrtl(3.0L / (4.0L * PF_TEST_PI)), k2 = sqrtl(15.0L / (4.0L * PF_TEST_PI));
+    long double k20 = sqrtl(5.0L / (16.0L * PF_TEST_PI)), k22 = sqrtl(15.0L / (16.0L * PF_TEST_PI));
     yb[0] = k0;
     yb[1] = k1 * y;
     yb[2] = k1 * z;
@@ -594,7 +583,7 @@ static long double sphere_integrand(long double ph, long double th, void *ctx)
 
 static long double sphere_integral(sphctx *s)
 {
-    pf_oracle_2d pb = pf_oracle_2d_make(sphere_integrand, s, -pil, pil, 0.0L, pil);
+    pf_oracle_2d pb = pf_oracle_2d_make(sphere_integrand, s, -PF_TEST_PI, PF_TEST_PI, 0.0L, PF_TEST_PI);
     pb.epsrel = 1e-13L;
     return pf_oracle_integrate_2d(&pb).value;
 }
@@ -620,8 +609,8 @@ static void test_sh_irradiance(void)
            L_0 = 0.5 + 0.2/3, L_1 = 0.3 x, L_2 = 0.2 (z^2 - 1/3) - 0.1 x y */
         {
             long double x = (long double)n.x, y = (long double)n.y, z = (long double)n.z;
-            ref = pil * (0.5L + 0.2L / 3.0L) + (2.0L * pil / 3.0L) * 0.3L * x +
-                  (pil / 4.0L) * (0.2L * (z * z - 1.0L / 3.0L) - 0.1L * x * y);
+            ref = PF_TEST_PI * (0.5L + 0.2L / 3.0L) + (2.0L * PF_TEST_PI / 3.0L) * 0.3L * x +
+                  (PF_TEST_PI / 4.0L) * (0.2L * (z * z - 1.0L / 3.0L) - 0.1L * x * y);
         }
         worst_env = fmaxl(worst_env, pf_test_rel_error((long double)pf_sh9_irradiance(sh, n), ref));
     }
@@ -635,10 +624,10 @@ static void test_sh_irradiance(void)
         c[3] = (long double)shd.l11; c[4] = (long double)shd.l2m2; c[5] = (long double)shd.l2m1;
         c[6] = (long double)shd.l20; c[7] = (long double)shd.l21; c[8] = (long double)shd.l22;
         for (i = 0; i < 9; i++) worst_coef = fmaxl(worst_coef, fabsl(c[i] - yb[i]));
-        PF_CHECK(fabsl((long double)pf_sh9_add_directional(shd, d, PF_R(2.0)).l20 - 3.0L * yb[6]) <= 16.0L * EPS,
+        PF_CHECK(fabsl((long double)pf_sh9_add_directional(shd, d, PF_R(2.0)).l20 - 3.0L * yb[6]) <= 16.0L * PF_TEST_EPS,
                  "irradiance scaling");
         for (b = 0; b < 200; b++) {
-            long double tn = pil * (long double)b / 199.0L, pn = 0.37L * (long double)b;
+            long double tn = PF_TEST_PI * (long double)b / 199.0L, pn = 0.37L * (long double)b;
             pf_vec3 n = pf_vec3_make((pf_real)(sinl(tn) * cosl(pn)), (pf_real)(sinl(tn) * sinl(pn)), (pf_real)cosl(tn));
             long double exact = fmaxl(0.0L, (long double)n.x * (long double)d.x + (long double)n.y * (long double)d.y +
                                                 (long double)n.z * (long double)d.z);
@@ -651,11 +640,11 @@ static void test_sh_irradiance(void)
     }
     pf_test_note("band-limited env: max rel err %.2g; directional light: coefficients %.2g eps, max |E_SH - E| = %.4f of "
                  "the peak (where exact E = %.3f)",
-                 (double)worst_env, (double)(worst_coef / EPS), (double)worst_dir, (double)at);
-    PF_CHECK(worst_env <= 64.0L * EPS + 1e-12L, "SH irradiance of a band-limited env off by %.3g", (double)worst_env);
-    PF_CHECK(worst_coef <= 8.0L * EPS, "SH coefficients of a direction off by %.3g", (double)worst_coef);
+                 (double)worst_env, (double)(worst_coef / PF_TEST_EPS), (double)worst_dir, (double)at);
+    PF_CHECK(worst_env <= 64.0L * PF_TEST_EPS + 1e-12L, "SH irradiance of a band-limited env off by %.3g", (double)worst_env);
+    PF_CHECK(worst_coef <= 8.0L * PF_TEST_EPS, "SH coefficients of a direction off by %.3g", (double)worst_coef);
     /* order-2 SH of the clamped cosine: 1/4 + t/2 + (5/32)(3 t^2 - 1); worst at t = 0: 3/32 */
-    PF_CHECK(worst_dir >= 0.0935L && worst_dir <= 0.0938L + 16.0L * EPS, "SH error %.5g, expected 3/32", (double)worst_dir);
+    PF_CHECK(worst_dir >= 0.0935L && worst_dir <= 0.0938L + 16.0L * PF_TEST_EPS, "SH error %.5g, expected 3/32", (double)worst_dir);
 }
 
 /* LEADR algorithms 2 + 3 (SH) against the direct evaluation and the quadrature reference, one
@@ -677,8 +666,8 @@ static void test_diffuse_sh_vs_direct(void)
         /* light overhead, same surface: the scale the SH error is measured against */
         long double peak = (long double)pf_gg_diffuse_directional(g, pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0)));
         int set;
-        PF_CHECK(pf_test_rel_error((long double)rgb.x, via_sh) <= 8.0L * EPS &&
-                     pf_test_rel_error((long double)rgb.y, 2.0L * via_sh) <= 8.0L * EPS && rgb.z == PF_R(0.0),
+        PF_CHECK(pf_test_rel_error((long double)rgb.x, via_sh) <= 8.0L * PF_TEST_EPS &&
+                     pf_test_rel_error((long double)rgb.y, 2.0L * via_sh) <= 8.0L * PF_TEST_EPS && rgb.z == PF_R(0.0),
                  "rgb channels differ from single-channel calls (config %d)", i);
         worst_sh_direct = fmaxl(worst_sh_direct, pf_test_rel_error(via_sh, direct));
         worst_sh_ref = fmaxl(worst_sh_ref, pf_test_rel_error(via_sh, diffuse_refs[i]));
@@ -711,7 +700,7 @@ static long double oren_nayar(long double s, long double to, long double ti, lon
 {
     long double s2 = s * s, A = 1.0L - 0.5L * s2 / (s2 + 0.33L), B = 0.45L * s2 / (s2 + 0.09L);
     long double a = fmaxl(to, ti), b = fminl(to, ti);
-    return (A + B * fmaxl(0.0L, cosl(dphi)) * sinl(a) * tanl(b)) / pil;
+    return (A + B * fmaxl(0.0L, cosl(dphi)) * sinl(a) * tanl(b)) / PF_TEST_PI;
 }
 
 static void test_oren_nayar(void)

@@ -17,13 +17,6 @@
 #include "pf_oracle.h"
 #include "pf_test.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
-static const long double pil = 3.14159265358979323846264338327950288L;
 
 static pf_real *alloc_real(long long n)
 {
@@ -296,12 +289,12 @@ static void test_reductions_equal_union_moments(void)
             e = union_error(&got, t, w, 7, ty->nc, scale);
             if (e > worst) worst = e;
         }
-        pf_test_note("%s %.2Lf eps", ty->name, worst / EPS);
-        PF_CHECK(worst <= 4.0L * EPS, "%s: %Lg eps", ty->name, worst / EPS);
+        pf_test_note("%s %.2Lf eps", ty->name, worst / PF_TEST_EPS);
+        PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "%s: %Lg eps", ty->name, worst / PF_TEST_EPS);
     }
     /* against the raw samples the texels' own rounding (one ulp each) adds in */
-    pf_test_note("2x2 vs the samples: %.2Lf eps", worst_union / EPS);
-    PF_CHECK(worst_union <= 6.0L * EPS, "%Lg eps", worst_union / EPS);
+    pf_test_note("2x2 vs the samples: %.2Lf eps", worst_union / PF_TEST_EPS);
+    PF_CHECK(worst_union <= 6.0L * PF_TEST_EPS, "%Lg eps", worst_union / PF_TEST_EPS);
 }
 
 /* pf_mip_weights3 against the overlap weights; every source texel gets n_dst / n_src. */
@@ -336,9 +329,9 @@ static void test_mip_weights_exact(void)
         }
         free(total);
     }
-    pf_test_note("weights %.2Lf eps, per-source totals %.2Lf eps", worst / EPS, worst_total / EPS);
-    PF_CHECK(worst <= EPS, "%Lg", worst);
-    PF_CHECK(worst_total <= 2.0L * EPS, "%Lg", worst_total);
+    pf_test_note("weights %.2Lf eps, per-source totals %.2Lf eps", worst / PF_TEST_EPS, worst_total / PF_TEST_EPS);
+    PF_CHECK(worst <= PF_TEST_EPS, "%Lg", worst);
+    PF_CHECK(worst_total <= 2.0L * PF_TEST_EPS, "%Lg", worst_total);
 }
 
 /* ------------------------------------------------------------------ pyramids */
@@ -386,11 +379,11 @@ static void test_pyramid_matches_reference(void)
         free(l0);
         free(ref);
     }
-    pf_test_note("levels vs reference %.2Lf eps, level means vs global mean %.2Lf eps", worst / EPS,
-                 worst_top / EPS);
+    pf_test_note("levels vs reference %.2Lf eps, level means vs global mean %.2Lf eps", worst / PF_TEST_EPS,
+                 worst_top / PF_TEST_EPS);
     PF_CHECK(ok_layout, "texel count, offsets or level sizes disagree with the reference");
-    PF_CHECK(worst <= 16.0L * EPS, "%Lg eps", worst / EPS);
-    PF_CHECK(worst_top <= 16.0L * EPS, "%Lg eps", worst_top / EPS);
+    PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "%Lg eps", worst / PF_TEST_EPS);
+    PF_CHECK(worst_top <= 16.0L * PF_TEST_EPS, "%Lg eps", worst_top / PF_TEST_EPS);
 }
 
 /* GPU bilinear formula: x = u n - 0.5, i0 = floor(x), f = x - i0. The coordinate arithmetic is
@@ -495,9 +488,9 @@ static void test_sampling_equals_weighted_texels(void)
         free(pyr);
     }
     pf_test_note("trilinear vs weighted texels %.2Lf eps, pf_slope_moments_bilinear %.2Lf eps",
-                 worst / EPS, worst_eval / EPS);
-    PF_CHECK(worst <= 8.0L * EPS, "%Lg eps", worst / EPS);
-    PF_CHECK(worst_eval <= 8.0L * EPS, "%Lg eps", worst_eval / EPS);
+                 worst / PF_TEST_EPS, worst_eval / PF_TEST_EPS);
+    PF_CHECK(worst <= 8.0L * PF_TEST_EPS, "%Lg eps", worst / PF_TEST_EPS);
+    PF_CHECK(worst_eval <= 8.0L * PF_TEST_EPS, "%Lg eps", worst_eval / PF_TEST_EPS);
 }
 
 /* After reduction and interpolation the slope statistics are a valid covariance. */
@@ -577,9 +570,9 @@ static void test_esm_log_matches_direct(void)
             if (e > worst_s) worst_s = e;
             bad += !pf_test_finite(got);
         }
-        pf_test_note("c %.0Lf: %.2Lf eps, samples %.2Lf eps (of c)", c, worst / EPS, worst_s / EPS);
-        PF_CHECK(worst <= 16.0L * EPS, "c %Lg: %Lg eps", c, worst / EPS);
-        PF_CHECK(worst_s <= 8.0L * EPS, "c %Lg: %Lg eps", c, worst_s / EPS);
+        pf_test_note("c %.0Lf: %.2Lf eps, samples %.2Lf eps (of c)", c, worst / PF_TEST_EPS, worst_s / PF_TEST_EPS);
+        PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "c %Lg: %Lg eps", c, worst / PF_TEST_EPS);
+        PF_CHECK(worst_s <= 8.0L * PF_TEST_EPS, "c %Lg: %Lg eps", c, worst_s / PF_TEST_EPS);
         free(ref);
     }
     PF_CHECK(bad == 0, "%d non-finite", bad);
@@ -596,8 +589,8 @@ typedef struct wave_field {
 
 static long double field_h(const wave_field *f, long double x, long double y)
 {
-    return f->a[0] * sinl(2.0L * pil * (f->fx[0] * x + f->fy[0] * y) + f->p[0]) +
-           f->a[1] * sinl(2.0L * pil * (f->fx[1] * x + f->fy[1] * y) + f->p[1]);
+    return f->a[0] * sinl(2.0L * PF_TEST_PI * (f->fx[0] * x + f->fy[0] * y) + f->p[0]) +
+           f->a[1] * sinl(2.0L * PF_TEST_PI * (f->fx[1] * x + f->fy[1] * y) + f->p[1]);
 }
 
 static void field_grad(const wave_field *f, long double x, long double y, long double *gx, long double *gy)
@@ -605,7 +598,7 @@ static void field_grad(const wave_field *f, long double x, long double y, long d
     int k;
     *gx = *gy = 0.0L;
     for (k = 0; k < 2; ++k) {
-        long double c = f->a[k] * 2.0L * pil * cosl(2.0L * pil * (f->fx[k] * x + f->fy[k] * y) + f->p[k]);
+        long double c = f->a[k] * 2.0L * PF_TEST_PI * cosl(2.0L * PF_TEST_PI * (f->fx[k] * x + f->fy[k] * y) + f->p[k]);
         *gx += c * f->fx[k];
         *gy += c * f->fy[k];
     }
@@ -723,7 +716,7 @@ static void test_height_evaluators(void)
                                                                hgt[(j - 1) * w + i], hgt[(j + 1) * w + i],
                                                                PF_R(0.5), PF_R(0.25), PF_R(3.0));
             const pf_real *o = out + 5 * (j * w + i);
-            long double tol = 4.0L * EPS * 3.0L * 4.0L;
+            long double tol = 4.0L * PF_TEST_EPS * 3.0L * 4.0L;
             bad += fabsl((long double)m.ex - (long double)o[0]) > tol * 2.0L;
             bad += fabsl((long double)m.ey - (long double)o[1]) > tol * 4.0L;
         }
@@ -734,9 +727,9 @@ static void test_height_evaluators(void)
         long double e = fabsl((long double)s - b);
         if (e > worst_edge) worst_edge = e;
     }
-    pf_test_note("edge stencil on quadratics: %.2Lf eps", worst_edge / EPS);
+    pf_test_note("edge stencil on quadratics: %.2Lf eps", worst_edge / PF_TEST_EPS);
     PF_CHECK(bad == 0, "%d interior texels differ", bad);
-    PF_CHECK(worst_edge <= 32.0L * EPS, "%Lg", worst_edge);
+    PF_CHECK(worst_edge <= 32.0L * PF_TEST_EPS, "%Lg", worst_edge);
 }
 
 /* ------------------------------------------------------------------ other map kinds */
@@ -799,9 +792,9 @@ static void test_map_kinds_top_is_mean(void)
             if (e > worst) worst = e;
         }
     }
-    pf_test_note("top vs mean %.2Lf eps (relative to the largest channel value)", worst / EPS);
+    pf_test_note("top vs mean %.2Lf eps (relative to the largest channel value)", worst / PF_TEST_EPS);
     PF_CHECK(bad0 == 0, "%d level-0 texels differ from the per-texel evaluators", bad0);
-    PF_CHECK(worst <= 16.0L * EPS, "%Lg eps", worst / EPS);
+    PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "%Lg eps", worst / PF_TEST_EPS);
     free(z);
     free(pyr);
 }
@@ -851,9 +844,9 @@ static void test_weighted_means(void)
         long double e2 = fabsl((long double)pf_esm_log_sum_mean(ls) - logl(es));
         if (e2 > worst_log) worst_log = e2;
     }
-    pf_test_note("weighted mean %.2Lf eps, ESM log %.2Lf eps of 120", worst / EPS, worst_log / 120.0L / EPS);
-    PF_CHECK(worst <= 16.0L * EPS, "%Lg", worst / EPS);
-    PF_CHECK(worst_log <= 8.0L * 120.0L * EPS, "%Lg", worst_log);
+    pf_test_note("weighted mean %.2Lf eps, ESM log %.2Lf eps of 120", worst / PF_TEST_EPS, worst_log / 120.0L / PF_TEST_EPS);
+    PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "%Lg", worst / PF_TEST_EPS);
+    PF_CHECK(worst_log <= 8.0L * 120.0L * PF_TEST_EPS, "%Lg", worst_log);
 }
 
 /* NaN texels (documented: propagate): a NaN makes NaN exactly the texels whose footprint
@@ -925,7 +918,7 @@ static void test_half_storage_variance(void)
             for (i = 0; i < 4096; ++i) {
                 long double u1 = 1.0L - (long double)pf_test_uniform(&rng, 0.0, 1.0);
                 long double u2 = (long double)pf_test_uniform(&rng, 0.0, 1.0);
-                long double x = mus[a] + sds[b] * sqrtl(-2.0L * logl(u1)) * cosl(2.0L * pil * u2);
+                long double x = mus[a] + sds[b] * sqrtl(-2.0L * logl(u1)) * cosl(2.0L * PF_TEST_PI * u2);
                 m1 += x / 4096.0L;
                 m2 += x * x / 4096.0L;
             }

@@ -11,12 +11,6 @@
 #include "pf_test.h"
 #include "shadow_scenes.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
 #define MINVAR PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT
 #define ALPHA PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT
 #define CPOS PF_SHADOW_EVSM_POS_DEFAULT
@@ -154,10 +148,10 @@ static void test_planar_occluder_exact(void)
                 n++;
             }
     pf_test_note("%d cases; VSM %.2g eps x cond (cond <= %.3g); EVSM-2 %.2g; EVSM-4 %.2g; MSM %.2g "
-                 "(bias %.0e), %.2g (no bias); ESM vs its brute-force leak %.2g", n, (double)(worst_vsm / EPS),
+                 "(bias %.0e), %.2g (no bias); ESM vs its brute-force leak %.2g", n, (double)(worst_vsm / PF_TEST_EPS),
                  (double)worst_cond, (double)worst_evsm2, (double)worst_evsm4, (double)worst_msm, (double)ALPHA,
                  (double)worst_msm0, (double)worst_esm);
-    PF_CHECK(worst_vsm <= 16.0L * EPS, "VSM error %.3g eps x cond", (double)(worst_vsm / EPS));
+    PF_CHECK(worst_vsm <= 16.0L * PF_TEST_EPS, "VSM error %.3g eps x cond", (double)(worst_vsm / PF_TEST_EPS));
 #ifdef PF_DOUBLE
     PF_CHECK(worst_evsm2 <= 1e-9L && worst_evsm4 <= 1e-9L, "EVSM %.3g %.3g", (double)worst_evsm2, (double)worst_evsm4);
     PF_CHECK(worst_esm <= 1e-12L, "ESM %.3g", (double)worst_esm);
@@ -222,13 +216,13 @@ static void test_fully_lit_and_shadowed(void)
     for (m = 0; m < SHS_N_METHODS; ++m) {
         pf_test_note("%s lit>=%.6f dark<=%.2g/%.2g/%.2g", shs_method_names[m], (double)lit_min[m],
                      (double)dark_max[m][0], (double)dark_max[m][1], (double)dark_max[m][2]);
-        PF_CHECK(lit_min[m] >= 1.0L - (long double)ALPHA - 1e3L * EPS, "%s lit footprint reads %.9g",
+        PF_CHECK(lit_min[m] >= 1.0L - (long double)ALPHA - 1e3L * PF_TEST_EPS, "%s lit footprint reads %.9g",
                  shs_method_names[m], (double)lit_min[m]);
     }
     for (g = 0; g < 3; ++g) {
         long double gg = (long double)gaps[g], v = (long double)MINVAR;
-        long double vsm_floor = v / (v + gg * gg) * 1.01L + 1e3L * EPS;
-        long double esm_floor = expl(-(long double)CESM * (gg - 1e-6L)) + 1e3L * EPS;
+        long double vsm_floor = v / (v + gg * gg) * 1.01L + 1e3L * PF_TEST_EPS;
+        long double esm_floor = expl(-(long double)CESM * (gg - 1e-6L)) + 1e3L * PF_TEST_EPS;
         PF_CHECK(dark_max[SHS_M_VSM][g] <= vsm_floor, "VSM dark %.3g > %.3g", (double)dark_max[SHS_M_VSM][g],
                  (double)vsm_floor);
         PF_CHECK(dark_max[SHS_M_ESM][g] <= esm_floor, "ESM dark %.3g > %.3g", (double)dark_max[SHS_M_ESM][g],
@@ -274,7 +268,7 @@ static void test_chebyshev_upper_bound_random(void)
     pf_test_note("%d distributions; min (bound - truth): VSM %.2g, EVSM-2 %.2g, EVSM-4 %.2g; mean VSM slack %.3f",
                  n, (double)worst[0], (double)worst[1], (double)worst[2], (double)(slack / n));
     PF_CHECK(n > 4000, "only %d cases", n);
-    PF_CHECK(worst[0] >= -64.0L * EPS, "VSM below the truth by %.3g", (double)-worst[0]);
+    PF_CHECK(worst[0] >= -64.0L * PF_TEST_EPS, "VSM below the truth by %.3g", (double)-worst[0]);
 #ifdef PF_DOUBLE
     PF_CHECK(worst[1] >= -1e-9L && worst[2] >= -1e-9L, "EVSM below the truth by %.3g %.3g", (double)-worst[1],
              (double)-worst[2]);
@@ -395,7 +389,7 @@ static void test_reduce_bleeding(void)
             if (ref < 0) ref = 0;
             if (fabsl(v - ref) > worst) worst = fabsl(v - ref);
         }
-    PF_CHECK(worst <= 8.0L * EPS, "bleeding reduction off by %.3g", (double)worst);
+    PF_CHECK(worst <= 8.0L * PF_TEST_EPS, "bleeding reduction off by %.3g", (double)worst);
 }
 
 /* ------------------------------------------------------------------ synthetic shadow maps */
@@ -437,7 +431,7 @@ static void scene_test(int scene)
             if (m == SHS_M_VSM && (long double)L[i].d > (long double)L[i].vsm.m1) {
                 /* in units of the rounding of the bound: eps E[z^2] / max(Var, v) */
                 long double m1 = (long double)L[i].vsm.m1, m2 = (long double)L[i].vsm.m2, var = m2 - m1 * m1;
-                long double u = (L[i].truth - (long double)v) / (EPS * m2 / (var > (long double)MINVAR ? var : (long double)MINVAR));
+                long double u = (L[i].truth - (long double)v) / (PF_TEST_EPS * m2 / (var > (long double)MINVAR ? var : (long double)MINVAR));
                 if (u > vsm_under) vsm_under = u;
             }
         }
@@ -505,7 +499,7 @@ static void edge_shadow_finite(void)
         }
         for (k = 0; k < (int)(sizeof perturb / sizeof perturb[0]); ++k) {
             /* perturb the higher moments by a few ulps: negative variance, singular Hankel */
-            pf_real s = PF_R(1.0) + (pf_real)(perturb[k] * (double)EPS);
+            pf_real s = PF_R(1.0) + (pf_real)(perturb[k] * (double)PF_TEST_EPS);
             pf_depth_moments2 v = pf_depth_moments2_make(m.vsm.m1, m.vsm.m2 * s);
             pf_depth_moments2 e2 = pf_depth_moments2_make(m.evsm2.m1, m.evsm2.m2 * s);
             pf_evsm_moments e4 = pf_evsm_moments_make(m.evsm4.pos1, m.evsm4.pos2 * s, m.evsm4.neg1, m.evsm4.neg2 * s);

@@ -9,14 +9,7 @@
 #include "pf_oracle.h"
 #include "pf_test.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
 static const long double sqrt2l = 1.41421356237309504880168872420969808L;
-static const long double pil = 3.14159265358979323846264338327950288L;
 
 /* ------------------------------------------------------------------ references */
 
@@ -38,27 +31,11 @@ static long double lambda_ref(long double nu)
     return pf_oracle_normal_pdf(zc) * r.value / zc;
 }
 
-/* 1D noncentered: Lambda = integral_c^inf (x - c) N(x; mu, sigma^2) dx / (c - mu). */
-typedef struct gauss1d {
-    long double c, mu, sigma;
-} gauss1d;
-
-static long double gauss1d_integrand(long double u, void *ctx)
-{
-    const gauss1d *g = (const gauss1d *)ctx;
-    long double z = (g->c + u - g->mu) / g->sigma;
-    return u * expl(-0.5L * z * z) / (g->sigma * 2.50662827463100050241576528481104525L);
-}
-
+/* 1D noncentered: Lambda = integral_c^inf (x - c) N(x; mu, sigma^2) dx / (c - mu), by
+   quadrature (tests/pf_oracle.h). */
 static long double lambda_ref_1d(long double c, long double mu, long double sigma)
 {
-    gauss1d g;
-    pf_oracle_result r;
-    g.c = c;
-    g.mu = mu;
-    g.sigma = sigma;
-    r = pf_oracle_integrate(gauss1d_integrand, &g, 0.0L, HUGE_VALL, 0.0L, 1e-18L, PF_ORACLE_MAX_INTERVALS);
-    return r.value / (c - mu);
+    return pf_oracle_lambda_1d(c, mu, sigma);
 }
 
 /* A random direction and noncentered, anisotropic, correlated slope statistics. */
@@ -123,10 +100,7 @@ static void config_along(config k, long double *c, long double *mu, long double 
    / (wz - wx mx - wy my)   (Dupuy et al. 2013 eqs. 1, 6, 10 with D dm = P22 / (m.g) ds). */
 static long double p22(const config *k, long double x, long double y)
 {
-    long double det = k->vx * k->vy - k->cxy * k->cxy;
-    long double dx = x - k->mx, dy = y - k->my;
-    long double q = (k->vy * dx * dx - 2.0L * k->cxy * dx * dy + k->vx * dy * dy) / det;
-    return expl(-0.5L * q) / (2.0L * pil * sqrtl(det));
+    return pf_oracle_normal2_pdf(x - k->mx, y - k->my, k->vx, k->vy, k->cxy);
 }
 
 static long double slope_plane_integrand(long double x, long double y, void *ctx)
@@ -205,7 +179,7 @@ static void test_lambda_beckmann_quadrature(void)
 static void test_g1_beckmann_quadrature(void)
 {
 #ifdef PF_DOUBLE
-    const long double bound = 8.0L * EPS;
+    const long double bound = 8.0L * PF_TEST_EPS;
 #else
     const long double bound = 1e-6L; /* the float target; measured value in the note */
 #endif
@@ -259,7 +233,7 @@ static void test_walter_clamped(void)
         if (pf_lambda_beckmann_walter(nu) < PF_R(0.0) || pf_g1_beckmann_walter(nu) > PF_R(1.0)) bad++;
         /* elsewhere our tier is the published formula */
         if (published > 0.0L) /* absolute: the numerator cancels near its root */
-            PF_CHECK(fabsl((long double)pf_lambda_beckmann_walter(nu) - published) <= 16.0L * EPS,
+            PF_CHECK(fabsl((long double)pf_lambda_beckmann_walter(nu) - published) <= 16.0L * PF_TEST_EPS,
                      "Walter tier differs from the published form at nu=%.6g", (double)nu);
     }
     PF_CHECK(bad == 0, "%d points out of range", bad);
@@ -289,7 +263,7 @@ static void test_noncentered_1d(void)
         /* nu's numerator w.z - w.x E[x] - w.y E[y] cancels near the mesosurface horizon */
         num = k.wz - k.wx * k.mx - k.wy * k.my;
         cond = (2.0L * nu_ref * nu_ref + 2.0L) * (fabsl(k.wz) + fabsl(k.wx * k.mx) + fabsl(k.wy * k.my)) / num;
-        pf_test_max_update(&m, pf_test_rel_error((long double)lam, ref) / (cond * EPS), nu_ref);
+        pf_test_max_update(&m, pf_test_rel_error((long double)lam, ref) / (cond * PF_TEST_EPS), nu_ref);
         used++;
     }
     pf_test_note("%d configs; max rel error %.2f eps x (2 nu^2 + 2), at nu=%.3g", used, (double)m.err, (double)m.at);
@@ -324,7 +298,7 @@ static void test_noncentered_2d(void)
     pf_test_note("%d configs; max rel error of 1+Lambda %.3g (at nu=%.3g)", used, (double)m.err, (double)m.at);
     PF_CHECK(failed_quad == 0, "%d 2D quadratures did not converge", failed_quad);
     PF_CHECK(used >= 10, "only %d usable configs", used);
-    PF_CHECK(m.err <= 64.0L * EPS + 1e-12L, "1+Lambda vs 2D integral: %.3g", (double)m.err);
+    PF_CHECK(m.err <= 64.0L * PF_TEST_EPS + 1e-12L, "1+Lambda vs 2D integral: %.3g", (double)m.err);
 }
 
 /* The NDF route: integrate max(0, w.m) D(m) over the hemisphere of micro-normals with
@@ -377,7 +351,7 @@ static void test_ndf_hemisphere(void)
         k.vy = cfg[i][6];
         k.cxy = cfg[i][7];
         k = round_config(k);
-        pb = pf_oracle_2d_make(hemi_integrand, &k, -pil, pil, 0.0L, pil / 2.0L);
+        pb = pf_oracle_2d_make(hemi_integrand, &k, -PF_TEST_PI, PF_TEST_PI, 0.0L, PF_TEST_PI / 2.0L);
         pb.ypoints = hemi_tpoints;
         pb.epsrel = 1e-12L;
         pb.max_intervals = 600;
@@ -390,7 +364,7 @@ static void test_ndf_hemisphere(void)
         pf_test_max_update(&m, pf_test_rel_error(1.0L + (long double)lam, integral), (long double)i);
     }
     pf_test_note("max rel error of 1+Lambda vs hemisphere NDF integral %.3g", (double)m.err);
-    PF_CHECK(m.err <= 64.0L * EPS + 1e-10L, "1+Lambda vs hemisphere integral: %.3g (config %d)", (double)m.err,
+    PF_CHECK(m.err <= 64.0L * PF_TEST_EPS + 1e-10L, "1+Lambda vs hemisphere integral: %.3g (config %d)", (double)m.err,
              (int)m.at);
 }
 
@@ -419,11 +393,11 @@ static void test_centered_reduces_to_textbook(void)
         pf_test_max_update(&ma, pf_test_rel_error((long double)along.y, sigma), (long double)i);
     }
     pf_test_note("nu max rel %.3g; slope_along %.3g", (double)mnu.err, (double)ma.err);
-    PF_CHECK(mnu.err <= 8.0L * EPS, "centered nu vs textbook: %.3g", (double)mnu.err);
-    PF_CHECK(ma.err <= 64.0L * EPS, "pf_slope_along vs trig: %.3g", (double)ma.err);
+    PF_CHECK(mnu.err <= 8.0L * PF_TEST_EPS, "centered nu vs textbook: %.3g", (double)mnu.err);
+    PF_CHECK(ma.err <= 64.0L * PF_TEST_EPS, "pf_slope_along vs trig: %.3g", (double)ma.err);
     /* isotropic helper */
     PF_CHECK(pf_test_rel_error((long double)pf_smith_nu_iso(PF_R(0.6), PF_R(0.3)),
-                               0.6L / (sqrt2l * 0.3L * 0.8L)) <= 8.0L * EPS,
+                               0.6L / (sqrt2l * 0.3L * 0.8L)) <= 8.0L * PF_TEST_EPS,
              "pf_smith_nu_iso(0.6, 0.3) = %.9g", (double)pf_smith_nu_iso(PF_R(0.6), PF_R(0.3)));
 }
 
@@ -482,8 +456,8 @@ static void test_ggx_quadrature(void)
                                                   1.0L / (1.0L + lam_ref)), ct);
     }
     pf_test_note("GGX Lambda max rel %.3g, G1 %.3g", (double)m.err, (double)mg.err);
-    PF_CHECK(m.err <= 64.0L * EPS, "GGX Lambda max rel %.3g at theta=%.5g", (double)m.err, (double)m.at);
-    PF_CHECK(mg.err <= 16.0L * EPS, "GGX G1 max rel %.3g at theta=%.5g", (double)mg.err, (double)mg.at);
+    PF_CHECK(m.err <= 64.0L * PF_TEST_EPS, "GGX Lambda max rel %.3g at theta=%.5g", (double)m.err, (double)m.at);
+    PF_CHECK(mg.err <= 16.0L * PF_TEST_EPS, "GGX G1 max rel %.3g at theta=%.5g", (double)mg.err, (double)mg.at);
 }
 
 /* 2D check of the anisotropic GGX marginal claim: 1 + Lambda = integral of
@@ -497,7 +471,7 @@ static long double ggx2d_integrand(long double x, long double y, void *ctx)
     const ggx2d *g = (const ggx2d *)ctx;
     long double proj = g->wz - g->wx * x - g->wy * y;
     long double e = 1.0L + x * x / (g->ax * g->ax) + y * y / (g->ay * g->ay);
-    return proj > 0.0L ? proj / (pil * g->ax * g->ay * e * e) : 0.0L;
+    return proj > 0.0L ? proj / (PF_TEST_PI * g->ax * g->ay * e * e) : 0.0L;
 }
 
 static int ggx2d_ypoints(long double x, long double *pts, int max_points, void *ctx)
@@ -532,7 +506,7 @@ static void test_ggx_anisotropic_2d(void)
                            (long double)i);
     }
     pf_test_note("1+Lambda vs 2D GGX integral %.3g", (double)m.err);
-    PF_CHECK(m.err <= 64.0L * EPS + 1e-10L, "GGX 2D: %.3g", (double)m.err);
+    PF_CHECK(m.err <= 64.0L * PF_TEST_EPS + 1e-10L, "GGX 2D: %.3g", (double)m.err);
 }
 
 /* ------------------------------------------------------------------ masking-shadowing */
@@ -555,11 +529,11 @@ static void test_joint_masking_shadowing(void)
     }
     pf_test_note("joint from G1 max rel %.3g; from Lambda %.3g", (double)m.err, (double)ml.err);
 #ifdef PF_DOUBLE
-    PF_CHECK(m.err <= 32.0L * EPS, "joint from G1: %.3g", (double)m.err);
+    PF_CHECK(m.err <= 32.0L * PF_TEST_EPS, "joint from G1: %.3g", (double)m.err);
 #else
     PF_CHECK(m.err <= 3e-6L, "joint from G1: %.3g", (double)m.err);
 #endif
-    PF_CHECK(ml.err <= 32.0L * EPS, "joint from Lambda: %.3g", (double)ml.err);
+    PF_CHECK(ml.err <= 32.0L * PF_TEST_EPS, "joint from Lambda: %.3g", (double)ml.err);
     /* separable is the product and never exceeds the joint form */
     PF_CHECK(pf_smith_separable(PF_R(0.5), PF_R(0.25)) == PF_R(0.125), "separable product");
     PF_CHECK(pf_smith_separable(PF_R(0.5), PF_R(0.25)) <= pf_smith_joint(PF_R(0.5), PF_R(0.25)), "separable <= joint");

@@ -17,13 +17,6 @@
 #include "pf_test.h"
 #include "../bench/fit/toksvig_convolution.h"
 
-#ifdef PF_DOUBLE
-#  define EPS 2.220446049250313e-16L
-#else
-#  define EPS 1.1920928955078125e-7L
-#endif
-
-static const long double pil = 3.14159265358979323846264338327950288L;
 
 /* ------------------------------------------------------------------ normal distributions */
 #define SHAPE10_BOUND 0.045L /* measured 0.0434 */
@@ -63,15 +56,15 @@ static long double dist_expect(int kind, long double p, int moment)
     d.kind = kind;
     d.p = p;
     width = kind == DIST_VMF ? 1.0L / sqrtl(p) : p;
-    hi = kind == DIST_SLOPES ? HUGE_VALL : pil;
+    hi = kind == DIST_SLOPES ? HUGE_VALL : PF_TEST_PI;
     pts[0] = 0.5L * width;
     pts[1] = width;
     pts[2] = 4.0L * width;
     d.moment = moment;
-    num = pf_oracle_integrate_points(dist_integrand, &d, 0.0L, hi, pts, pts[2] < pil || kind == DIST_SLOPES ? 3 : 2,
+    num = pf_oracle_integrate_points(dist_integrand, &d, 0.0L, hi, pts, pts[2] < PF_TEST_PI || kind == DIST_SLOPES ? 3 : 2,
                                      0.0L, 1e-17L, PF_ORACLE_MAX_INTERVALS).value;
     d.moment = 0;
-    den = pf_oracle_integrate_points(dist_integrand, &d, 0.0L, hi, pts, pts[2] < pil || kind == DIST_SLOPES ? 3 : 2,
+    den = pf_oracle_integrate_points(dist_integrand, &d, 0.0L, hi, pts, pts[2] < PF_TEST_PI || kind == DIST_SLOPES ? 3 : 2,
                                      0.0L, 1e-17L, PF_ORACLE_MAX_INTERVALS).value;
     return num / den;
 }
@@ -79,7 +72,7 @@ static long double dist_expect(int kind, long double p, int moment)
 /* One unit normal drawn from the distribution (fixed-seed generator of pf_test.h). */
 static pf_vec3 dist_draw(pf_test_rng *rng, int kind, long double p)
 {
-    long double t, ph = 2.0L * pil * (long double)pf_test_uniform(rng, 0.0, 1.0);
+    long double t, ph = 2.0L * PF_TEST_PI * (long double)pf_test_uniform(rng, 0.0, 1.0);
     if (kind == DIST_SLOPES) {
         /* Box-Muller pair */
         long double u1 = 1.0L - (long double)pf_test_uniform(rng, 0.0, 1.0);
@@ -95,7 +88,7 @@ static pf_vec3 dist_draw(pf_test_rng *rng, int kind, long double p)
         for (;;) {
             long double u1 = 1.0L - (long double)pf_test_uniform(rng, 0.0, 1.0);
             t = p * sqrtl(-2.0L * logl(u1));
-            if (t < pil && (long double)pf_test_uniform(rng, 0.0, 1.0) * t <= sinl(t)) break;
+            if (t < PF_TEST_PI && (long double)pf_test_uniform(rng, 0.0, 1.0) * t <= sinl(t)) break;
         }
     }
     return pf_vec3_make((pf_real)(sinl(t) * cosl(ph)), (pf_real)(sinl(t) * sinl(ph)), (pf_real)cosl(t));
@@ -130,7 +123,7 @@ static void test_variance_vs_true_distributions(void)
         /* measured: gaussian angle 0.178, vMF 0.202, slopes 0.138 (at sigma ~0.4-0.5);
            <= 6.7e-3 for sigma <= 0.1. Float adds the rounding of 1 - |mu| (~eps/sigma^2). */
         PF_CHECK(worst.err <= 0.21L, "%s: %Lg", dist_name(kind), worst.err);
-        PF_CHECK(worst_small.err <= 0.0075L + 4.0L * EPS / 4e-4L, "%s: %Lg", dist_name(kind),
+        PF_CHECK(worst_small.err <= 0.0075L + 4.0L * PF_TEST_EPS / 4e-4L, "%s: %Lg", dist_name(kind),
                  worst_small.err);
     }
 }
@@ -153,7 +146,7 @@ static void test_variance_monte_carlo(void)
             int i;
             for (i = 0; i < n; ++i)
                 acc = pf_normal_avg_accumulate(acc, dist_draw(&rng, kind, p), PF_R(1.0) / (pf_real)n);
-            z = fabsl((long double)pf_vec3_length(acc) - ec) / (sd + (long double)n * EPS);
+            z = fabsl((long double)pf_vec3_length(acc) - ec) / (sd + (long double)n * PF_TEST_EPS);
             if (z > worst_z) worst_z = z;
         }
         pf_test_note("%s: |mean| within %.2Lf sd of E[cos t]", dist_name(kind), worst_z);
@@ -178,8 +171,8 @@ static void test_factor_forms_agree(void)
             pf_test_max_update(&worst, e1 > e2 ? e1 : e2, l);
         }
     }
-    pf_test_note("max rel err %.3Lg (%.2Lf eps)", worst.err, worst.err / EPS);
-    PF_CHECK(worst.err <= 8.0L * EPS, "%Lg", worst.err);
+    pf_test_note("max rel err %.3Lg (%.2Lf eps)", worst.err, worst.err / PF_TEST_EPS);
+    PF_CHECK(worst.err <= 8.0L * PF_TEST_EPS, "%Lg", worst.err);
 }
 
 /* ------------------------------------------------------------------ lobes versus convolution */
@@ -198,7 +191,7 @@ static long double lobe_error(int kind, long double param, long double sigma, lo
     for (k = 0; k <= 6; ++k) {
         long double beta = (long double)k * 0.5L * width;
         long double ex, e;
-        if (beta >= 0.5L * pil) break;
+        if (beta >= 0.5L * PF_TEST_PI) break;
         ex = k == 0 ? peak : tkc_filtered(kind, param, sigma, beta, &okk);
         if (k > 0 && !okk) *ok = 0;
         e = fabsl(approx(beta, ctx) - ex) / peak;
@@ -241,8 +234,8 @@ static void test_lobe_vs_convolution(void)
         pf_test_note("sigma %.2Lf: %.3Lg (alpha %.0Lf), estimated sigma^2: %.3Lg", s, worst, at, worst_est);
         /* measured: 1.04 sigma^2 (sigma <= 0.05), 1.4 sigma^2 (0.1 .. 0.3, at alpha 1),
            0.78 sigma^2 (0.5); the estimated variance (float: rounding of 1 - |mu|) alike */
-        PF_CHECK(worst <= 1.5L * s * s + 64.0L * EPS, "sigma %Lg: %Lg", s, worst);
-        PF_CHECK(worst_est <= 1.5L * s * s + 16.0L * EPS / (s * s), "sigma %Lg: %Lg", s, worst_est);
+        PF_CHECK(worst <= 1.5L * s * s + 64.0L * PF_TEST_EPS, "sigma %Lg: %Lg", s, worst);
+        PF_CHECK(worst_est <= 1.5L * s * s + 16.0L * PF_TEST_EPS / (s * s), "sigma %Lg: %Lg", s, worst_est);
         if (worst > all) all = worst;
         if (worst_est > all_est) all_est = worst_est;
     }
@@ -259,9 +252,9 @@ static long double ndf_eval(long double beta, const void *ctx)
 {
     const ndf_ctx *c = (const ndf_ctx *)ctx;
     long double c2 = cosl(beta) * cosl(beta), q;
-    if (c->kind == TKC_BECKMANN) return expl(-(1.0L - c2) / (c2 * c->r * c->r)) / (pil * c->r * c->r * c2 * c2);
+    if (c->kind == TKC_BECKMANN) return expl(-(1.0L - c2) / (c2 * c->r * c->r)) / (PF_TEST_PI * c->r * c->r * c2 * c2);
     q = c2 * (c->r * c->r - 1.0L) + 1.0L;
-    return c->r * c->r / (pil * q * q);
+    return c->r * c->r / (PF_TEST_PI * q * q);
 }
 
 /* Beckmann and GGX NDFs convolved with the normal spread versus the widened roughness. For
@@ -294,7 +287,7 @@ static void test_roughness_widening_vs_convolution(void)
             if (kind == TKC_BECKMANN) {
                 /* measured: 0.0021 (sigma 0.02), 0.048 (0.1), 0.35 (0.5): about 0.7 sigma */
                 pf_test_note("beckmann sigma %.2Lf: %.3Lg", s, worst);
-                PF_CHECK(worst <= 0.75L * s + 64.0L * EPS, "beckmann sigma %Lg: %Lg", s, worst);
+                PF_CHECK(worst <= 0.75L * s + 64.0L * PF_TEST_EPS, "beckmann sigma %Lg: %Lg", s, worst);
             } else {
                 /* measured: 0.24 up to sigma 0.2, 0.52 at sigma 0.5 (where sigma >> a) */
                 pf_test_note("ggx sigma %.2Lf: %.3Lg (a^2 + 4 sigma^2: %.3Lg)", s, worst, worst2);
@@ -320,14 +313,14 @@ static void test_blinn_phong_beckmann_conversion(void)
     for (i = 0; i <= 40; ++i) {
         long double a = powl(10.0L, (long double)i / 10.0L); /* 1 .. 1e4 */
         pf_real m = pf_blinn_phong_to_beckmann((pf_real)a);
-        long double ml = sqrtl(2.0L / (a + 2.0L)), peak = (a + 2.0L) / (2.0L * pil), worst = 0.0L;
+        long double ml = sqrtl(2.0L / (a + 2.0L)), peak = (a + 2.0L) / (2.0L * PF_TEST_PI), worst = 0.0L;
         long double back = (long double)pf_beckmann_to_blinn_phong(m);
         pf_test_max_update(&trip, fabsl(back - a) / (a + 2.0L), a);
-        PF_CHECK(pf_test_rel_error((long double)m, ml) <= 2.0L * EPS, "alpha %Lg", a);
+        PF_CHECK(pf_test_rel_error((long double)m, ml) <= 2.0L * PF_TEST_EPS, "alpha %Lg", a);
         for (k = 0; k < 400; ++k) {
-            long double t = (long double)k / 400.0L * 0.5L * pil, c = cosl(t), c2 = c * c;
+            long double t = (long double)k / 400.0L * 0.5L * PF_TEST_PI, c = cosl(t), c2 = c * c;
             long double dp = peak * powl(c, a);
-            long double db = expl(-(1.0L - c2) / (c2 * ml * ml)) / (pil * ml * ml * c2 * c2);
+            long double db = expl(-(1.0L - c2) / (c2 * ml * ml)) / (PF_TEST_PI * ml * ml * c2 * c2);
             long double e = fabsl(dp - db) / peak;
             if (e > worst) worst = e;
         }
@@ -336,7 +329,7 @@ static void test_blinn_phong_beckmann_conversion(void)
     }
     pf_test_note("round trip %.3Lg (relative to alpha + 2); NDF distance %.3Lg of the peak (alpha %.0Lf), "
                  "%.3Lg for alpha >= 10", trip.err, shape.err, shape.at, shape10.err);
-    PF_CHECK(trip.err <= 8.0L * EPS, "%Lg", trip.err);
+    PF_CHECK(trip.err <= 8.0L * PF_TEST_EPS, "%Lg", trip.err);
     PF_CHECK(shape.err <= 0.40L, "%Lg", shape.err); /* measured 0.391 at alpha 1 */
     PF_CHECK(shape10.err <= SHAPE10_BOUND, "%Lg", shape10.err);
 }
