@@ -89,8 +89,31 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_FLAGS) -DPF_DOUBLE $< -o $@ -lm
 
-bench: $(BENCH_BINS)
+# The report's own programs (not bench_*.c: they are not per-module method tables), each built
+# once in float (the library's default) and run once by bench/run.sh:
+#   bench/microsurface.c  ground truth: library answers against brute force on synthetic
+#                         microsurfaces, error tables and charts, cost against footprint size
+#   bench/pictures.c      brute force against the filtered formulas, side by side (PNG)
+# They include tests/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
+REPORT_PROGS := microsurface pictures
+REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
+$(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_FLAGS) -Itests $< -o $@ -lm
+
+bench: $(BENCH_BINS) $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/run.sh $(BUILD)/bench
+
+# The stability table (docs/stability.md): every public evaluator swept with seeded inputs from
+# its documented domain in float, double and both under -ffast-math (bench/stability.sh; make
+# bench runs it with 10^6 inputs per evaluator and build, STABILITY_N=... for more).
+# The libFuzzer harnesses, one per module (tests/fuzz/run.sh; clang with libclang-rt-dev):
+#   make fuzz FUZZ_SECONDS=5     each harness, float and double, 5 s (CI); longer by hand
+.PHONY: fuzz stability
+fuzz:
+	@FUZZ_SECONDS='$(or $(FUZZ_SECONDS),5)' CLANG='$(CLANG)' sh tests/fuzz/run.sh $(BUILD)
+stability:
+	@CC='$(CC)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/stability.sh $(BUILD)
 
 # docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
 # are replaced by that module's section of bench/out/summary.md (run make bench first), so the

@@ -5,14 +5,15 @@
 #   <module>_<family>.svg   error versus cost, one chart per family (needs gnuplot)
 #   summary.md              compiler, flags, CPU, date, then markdown tables per family
 # Called by `make bench` from the repository root:  sh bench/run.sh BUILD_DIR
-# Environment: CC and BENCH_FLAGS (recorded in the summary), CALLGRIND=1 (instruction counts).
+# Environment: CC and BENCH_FLAGS (recorded in the summary), CALLGRIND=0/1 (instruction counts;
+# default: on in a full run when valgrind is installed), BENCH_QUICK=1 (CI smoke run).
 set -e
 
 dir=${1:-build/bench}
 out=bench/out
 mkdir -p "$out"
 rm -f "$out"/*.csv "$out"/*.notes "$out"/*.instr "$out"/*.svg "$out"/*.dat \
-      "$out"/summary.md "$out"/callgrind.*
+      "$out"/*.md "$out"/*.png "$out"/callgrind.*
 
 t_start=$(date +%s)
 
@@ -23,9 +24,16 @@ case "${BENCH_QUICK:-0}" in
     *) quick="--reps 9"; echo "bench: BENCH_QUICK set, 9 repetitions (smoke run; do not publish these timings)" ;;
 esac
 
+# Instruction counts (callgrind) are deterministic where timings are noisy. Default: on in a
+# full run when valgrind is installed (about 3 minutes more), off in a BENCH_QUICK run;
+# CALLGRIND=0 or 1 forces it.
 use_cg=0
-case "${CALLGRIND:-0}" in
-    ""|0|no|NO) ;;
+cg=${CALLGRIND:-}
+if [ -z "$cg" ]; then
+    if [ -z "$quick" ] && command -v valgrind >/dev/null 2>&1; then cg=1; else cg=0; fi
+fi
+case "$cg" in
+    0|no|NO) ;;
     *)
         if command -v valgrind >/dev/null 2>&1; then
             use_cg=1
@@ -70,6 +78,33 @@ for m in $modules; do
         fi
     done
 done
+
+# ---------------------------------------------------------------- report programs
+# Each writes its own fragment <name>.md (and CSV, charts, images) into $out; BENCH_QUICK is
+# inherited from the environment. Order: cheapest first.
+for prog in microsurface pictures; do
+    if [ ! -x "$dir/$prog" ]; then
+        echo "bench: missing $dir/$prog (run through make bench)" >&2
+        exit 1
+    fi
+    echo "bench: $prog ..."
+    t0=$(date +%s)
+    case $prog in
+        microsurface) "$dir/$prog" --out "$out" --gp bench/microsurface.gp ;;
+        *) "$dir/$prog" "$out" ;;
+    esac
+    echo "bench: $prog done ($(($(date +%s) - t0)) s)"
+done
+# The stability sweep (its own four builds; 10^6 inputs per evaluator and build in a full run,
+# 10^5 under BENCH_QUICK; STABILITY_N overrides).
+echo "bench: stability sweep ..."
+t0=$(date +%s)
+if [ -z "$quick" ]; then
+    STABILITY_N=${STABILITY_N:-1000000} sh bench/stability.sh "$(dirname "$dir")"
+else
+    sh bench/stability.sh "$(dirname "$dir")"
+fi
+echo "bench: stability done ($(($(date +%s) - t0)) s)"
 
 # ---------------------------------------------------------------- charts
 have_gp=0
@@ -142,7 +177,7 @@ timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
     if [ $use_cg = 1 ]; then
         echo "- instructions: $(valgrind --version) callgrind, collection on in pfb_measured only; instr/eval includes the loop (load, store, index, branch: ~4-5 instructions)"
     else
-        echo "- instructions: not measured (\`make bench CALLGRIND=1\`)"
+        echo "- instructions: not measured (BENCH_QUICK run or valgrind missing; \`make bench CALLGRIND=1\` forces it)"
     fi
     echo "- timing: each method in its own loop with the method inlined, over $timing; ns/eval = median; in each repetition every method is timed back to back with the baseline (alternating which goes first, methods in rotating order); x baseline = median over repetitions of method/baseline of the pair (quartiles in the CSV)"
     echo "- two input orders: the headline columns use the random inputs as generated (branches on the input unpredictable, like incoherent rays; the buffer is large so the branch predictor cannot learn it); the sorted columns use the same inputs sorted ascending (branches predictable, like neighbouring pixels). Branchy methods (Walter: nu >= 1.6 test) differ a lot between the two"
@@ -181,3 +216,8 @@ files="summary.md"
 for m in $modules; do files="$files, $m.csv"; done
 for c in $charts; do files="$files, $c"; done
 echo "bench: wrote $files in $out/ ($(($(date +%s) - t_start)) s)"
+
+# ---------------------------------------------------------------- method guide and report
+sh bench/choosing.sh "$out"
+sh bench/report.sh "$out"
+echo "bench: the report is $out/report.md ($(($(date +%s) - t_start)) s in all)"

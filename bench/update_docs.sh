@@ -59,11 +59,11 @@ done
 
 for page in "$docs"/*.md; do
     grep -q '<!-- BEGIN GENERATED: [a-z]* -->' "$page" || continue
-    awk -v summary="$summary" '
+    awk -v summary="$summary" -v outdir="$(dirname "$summary")" '
         function section(mod,    line, on, hdr, out) {
-            out = ""; on = 0; hdr = 1
+            out = ""; on = 0; hdr = 1; found = 0
             while ((getline line < summary) > 0) {
-                if (line ~ /^## /) { hdr = 0; on = (line == "## " mod); continue }
+                if (line ~ /^## /) { hdr = 0; on = (line == "## " mod); if (on) found = 1; continue }
                 if (hdr && line ~ /^- (date|compiler|flags|CPU|timing|two input orders|instructions):/) {
                     out = out line "\n"; continue
                 }
@@ -74,6 +74,13 @@ for page in "$docs"/*.md; do
                 }
             }
             close(summary)
+            # not a module of the summary: a report fragment bench/out/<name>.md (stability)
+            # is copied whole, its images pointed at charts/
+            if (!found && (getline line < (outdir "/" mod ".md")) > 0) {
+                out = ""
+                do { gsub(/\]\(/, "](charts/", line); out = out line "\n" } while ((getline line < (outdir "/" mod ".md")) > 0)
+                close(outdir "/" mod ".md")
+            }
             return out
         }
         /<!-- BEGIN GENERATED: [a-z_]* -->/ {
@@ -92,4 +99,22 @@ for page in "$docs"/*.md; do
         cp "$(dirname "$summary")/$chart" "$docs/charts/$chart"
     done
     echo "update_docs: refreshed $page"
+done
+
+# The report and the pages generated whole from it: docs/report.md is bench/out/report.md and
+# docs/choosing.md is bench/out/choosing.md, each with its images (SVG charts, PNG pictures)
+# copied to docs/charts/ and the links rewritten to point there.
+out_dir=$(dirname "$summary")
+for page in report choosing; do
+    src="$out_dir/$page.md"
+    if [ ! -f "$src" ]; then
+        echo "update_docs: $src missing; run a full 'make bench'" >&2
+        exit 1
+    fi
+    mkdir -p "$docs/charts"
+    for img in $(grep -o '](\([A-Za-z0-9_.-]*\)\.\(svg\|png\))' "$src" | sed 's/^](//; s/)$//' | sort -u); do
+        cp "$out_dir/$img" "$docs/charts/$img"
+    done
+    sed 's/](\([A-Za-z0-9_.-]*\.\(svg\|png\)\))/](charts\/\1)/g; s/`make docs` copies it to docs\/report.md with its charts./This copy in docs\/ was refreshed by `make docs`./' "$src" > "$docs/$page.md"
+    echo "update_docs: wrote $docs/$page.md"
 done

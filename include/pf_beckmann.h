@@ -184,11 +184,20 @@ PF_DEF pf_slope_moments pf_slope_moments_scale_height(pf_slope_moments m, pf_rea
 #else
 #  define PFI_BECKMANN_VAR_FLOOR PF_R(1.0e-15)
 #endif
+/* Largest variance they work with: its square (var_x var_y in the determinant) must stay
+   finite; var_x near PF_REAL_MAX made var_x var_y = inf and inf/inf = NaN. A larger variance
+   (a slope deviation above 3e7 (float) / 1e75 (double), where D and P22 are flat and below
+   1e-16 / 1e-151 everywhere) is read as this value. */
+#ifdef PF_DOUBLE
+#  define PFI_BECKMANN_VAR_CEIL PF_R(1.0e150)
+#else
+#  define PFI_BECKMANN_VAR_CEIL PF_R(1.0e15)
+#endif
 
 PF_DEF pf_slope_stats pfi_beckmann_floor(pf_slope_stats s)
 {
-    s.var_x = pf_max(s.var_x, PFI_BECKMANN_VAR_FLOOR);
-    s.var_y = pf_max(s.var_y, PFI_BECKMANN_VAR_FLOOR);
+    s.var_x = pf_min(pf_max(s.var_x, PFI_BECKMANN_VAR_FLOOR), PFI_BECKMANN_VAR_CEIL);
+    s.var_y = pf_min(pf_max(s.var_y, PFI_BECKMANN_VAR_FLOOR), PFI_BECKMANN_VAR_CEIL);
     return s;
 }
 

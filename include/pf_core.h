@@ -441,19 +441,43 @@ PF_DEF pf_vec3 pf_vec3_cross(pf_vec3 a, pf_vec3 b)
 
 PF_DEF pf_real pf_vec3_length(pf_vec3 a) { return PF_SQRT(pf_vec3_dot(a, a)); }
 
-/* Unit vector along a. The zero vector (and any vector whose squared length underflows)
-   returns (0, 0, 1), the macronormal, rather than NaN. */
+/* Power-of-two scales of pf_vec3_normalize: vectors whose largest component m lies outside
+   [PFI_NORM_TINY, PFI_NORM_HUGE] are multiplied by PFI_NORM_UP or PFI_NORM_DOWN (exact: a
+   power of two) first. Inside that range the squared length neither overflows (3 m^2 <
+   PF_REAL_MAX) nor loses the largest component (m^2 >= 2^26 PF_REAL_MIN, so components whose
+   squares go subnormal, or are flushed to 0 under -ffast-math, weigh < 2^-26 of it); every
+   scaled m lands inside it: float 2^-149 .. 2^128 becomes 2^-49 .. 2^58; double
+   2^-1074 .. 2^1024 becomes 2^-474 .. 2^424. */
+#ifdef PF_DOUBLE
+#  define PFI_NORM_TINY PF_R(3.2033329522929615e-145) /* 2^-480 */
+#  define PFI_NORM_HUGE PF_R(3.273390607896142e150)   /* 2^500 */
+#  define PFI_NORM_UP   PF_R(4.149515568880993e180)   /* 2^600 */
+#  define PFI_NORM_DOWN PF_R(2.409919865102884e-181)  /* 2^-600 */
+#else
+#  define PFI_NORM_TINY PF_R(8.881784197001252e-16)   /* 2^-50 */
+#  define PFI_NORM_HUGE PF_R(1.152921504606847e18)    /* 2^60 */
+#  define PFI_NORM_UP   PF_R(1.2676506002282294e30)   /* 2^100 */
+#  define PFI_NORM_DOWN PF_R(8.470329472543003e-22)   /* 2^-70 */
+#endif
+
+/* Unit vector along a, for every finite a: a / sqrt(a.a) (what GLSL normalize computes, and
+   bit for bit the same for components in [2^-50, 2^60] (float) / [2^-480, 2^500] (double)).
+   Outside that range a is first scaled by a power of two (PFI_NORM_*), so subnormal and huge
+   components neither underflow nor overflow when squared; no reciprocal of the largest
+   component is formed (1/m overflows for a subnormal m, and is subnormal - flushed to 0 under
+   -ffast-math - for m > 2^126). The zero vector (and a NaN largest component) returns
+   (0, 0, 1), the macronormal, rather than NaN. Cost: two comparisons instead of the division
+   by m of the earlier scaled form (docs/core.md). */
 PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
 {
     pf_real m = pf_max(pf_max(PF_FABS(a.x), PF_FABS(a.y)), PF_FABS(a.z));
+    pf_real s = PF_R(1.0);
     pf_vec3 b;
-    pf_real len;
     if (!(m > PF_R(0.0))) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
-    /* Scale by the largest component first so that tiny or huge inputs neither
-       underflow nor overflow when squared. */
-    b = pf_vec3_scale(a, PF_R(1.0) / m);
-    len = pf_vec3_length(b);
-    return pf_vec3_scale(b, PF_R(1.0) / len);
+    if (m < PFI_NORM_TINY) s = PFI_NORM_UP;
+    if (m > PFI_NORM_HUGE) s = PFI_NORM_DOWN;
+    b = pf_vec3_scale(a, s);
+    return pf_vec3_scale(b, PF_R(1.0) / pf_vec3_length(b));
 }
 
 #endif /* PF_CORE_H */

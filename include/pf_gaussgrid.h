@@ -265,8 +265,9 @@ PF_DEF pf_real pfi_gg_hermite_weight(int n, int k)
 PF_DEF int pfi_gg_clamp_n(int n) { return n < 1 ? 1 : (n > PF_GG_MAX_N ? PF_GG_MAX_N : n); }
 
 /* Index of node j (0 .. n-1, ascending) in the stored non-negative half: |2j - n + 1| / 2
-   rounded down (0 is the centre node for odd n, the smallest positive one for even n). An
-   index outside 0 .. n-1 maps past the table, whose default is node 0 with weight 0. */
+   rounded down (0 is the centre node for odd n, the smallest positive one for even n).
+   Only for j in 0 .. n-1: its callers check the range first, so 2j cannot overflow an int
+   (it did for |j| >= 2^30, undefined behaviour that UBSan caught). */
 PF_DEF int pfi_gg_half_index(int n, int j)
 {
     int d = 2 * j - n + 1;
@@ -274,12 +275,18 @@ PF_DEF int pfi_gg_half_index(int n, int j)
 }
 
 /* pf_gg_node(set, n, j): node j (0 .. n-1, ascending) of the n-point set for a standard
-   normal (n clamped to [1, PF_GG_MAX_N]; j outside the range gives 0). */
+   normal. n is clamped to [1, PF_GG_MAX_N]; j outside 0 .. n-1 (for the clamped n) gives 0;
+   a node_set other than PF_GG_HERMITE and PF_GG_MATCHED reads as PF_GG_UNIFORM (so every int
+   is a valid set: pf_gg_node, pf_gg_weight and the grid agree on it). The range is tested
+   before the table index is formed: j = -1 used to fold onto the table's other half (the
+   n = 4 node 0.5196 for j = -1, n = 3). */
 PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 {
     int m = pfi_gg_clamp_n(n);
-    int k = pfi_gg_half_index(m, j);
+    int k;
     pf_real p;
+    if (j < 0 || j >= m) return PF_R(0.0);
+    k = pfi_gg_half_index(m, j);
     if (node_set == PF_GG_HERMITE) p = pfi_gg_hermite_node(m, k);
     else if (node_set == PF_GG_MATCHED) p = pfi_gg_matched_node(m, k);
     else p = pfi_gg_uniform_node(m, k);
@@ -287,12 +294,14 @@ PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 }
 
 /* pf_gg_weight(set, n, j): the normalized weight of node j (the n weights sum to 1); 0 for j
-   outside 0 .. n-1. The matched set shares the uniform set's weights. */
+   outside 0 .. n-1. n and node_set as pf_gg_node; the matched set shares the uniform set's
+   weights. */
 PF_DEF pf_real pf_gg_weight(int node_set, int n, int j)
 {
     int m = pfi_gg_clamp_n(n);
-    int k = pfi_gg_half_index(m, j);
+    int k;
     if (j < 0 || j >= m) return PF_R(0.0);
+    k = pfi_gg_half_index(m, j);
     if (node_set == PF_GG_HERMITE) return pfi_gg_hermite_weight(m, k);
     return pfi_gg_uniform_weight(m, k);
 }
@@ -321,28 +330,46 @@ PF_DEF pf_real pf_gg_uniform_lambda(int n)
 PF_DEF pf_real pf_gg_uniform_node_any(int n, pf_real lambda, int j)
 {
     if (n <= 1) return PF_R(0.0);
-    return lambda * PF_R(2 * j - n + 1) / PF_R(n - 1);
+    /* 2j - n + 1 in pf_real: as an int it overflows for |j| >= 2^30 */
+    return lambda * (PF_R(2.0) * PF_R(j) - PF_R(n - 1)) / PF_R(n - 1);
 }
 
-/* Weight of node j: exp(-p_j^2/2) / sum_k exp(-p_k^2/2) (1 for n <= 1, 0 outside 0 .. n-1). */
+/* exp(-(p^2 - pc^2)/2) for |p| >= pc >= 0: the Gaussian weight of node p relative to the
+   central node pc (the nearest to 0), written as a product so that it keeps its accuracy. */
+PF_DEF pf_real pfi_gg_rel_weight(pf_real p, pf_real pc)
+{
+    pf_real a = PF_FABS(p);
+    return PF_EXP(PF_R(-0.5) * (a - pc) * (a + pc));
+}
+
+/* Weight of node j: exp(-p_j^2/2) / sum_k exp(-p_k^2/2) (1 for n <= 1, 0 outside 0 .. n-1).
+   Every exponential is taken relative to the central node pc (exp(-(p^2 - pc^2)/2)), so the
+   sum is >= 1: for a wide grid the plain exp(-p^2/2) of every node underflows (float: n = 2,
+   lambda = 16 gave 0/0 = NaN; from lambda = 13.9 under -ffast-math, which flushes
+   subnormals), whereas now the far weights underflow to 0 and the central ones stay. */
 PF_DEF pf_real pf_gg_uniform_weight_any(int n, pf_real lambda, int j)
 {
-    pf_real s = PF_R(0.0);
+    pf_real s = PF_R(0.0), pc;
     int k;
     if (j < 0 || j >= n) return PF_R(0.0);
     if (n <= 1) return PF_R(1.0);
-    for (k = 0; k < n; ++k) s += PF_EXP(PF_R(-0.5) * pf_sq(pf_gg_uniform_node_any(n, lambda, k)));
-    return PF_EXP(PF_R(-0.5) * pf_sq(pf_gg_uniform_node_any(n, lambda, j))) / s;
+    pc = PF_FABS(pf_gg_uniform_node_any(n, lambda, n / 2));
+    for (k = 0; k < n; ++k) s += pfi_gg_rel_weight(pf_gg_uniform_node_any(n, lambda, k), pc);
+    return pfi_gg_rel_weight(pf_gg_uniform_node_any(n, lambda, j), pc) / s;
 }
 
-/* sum W_j p_j^2 of that grid; the matched grid's nodes are pf_gg_uniform_node_any / sqrt(it). */
+/* sum W_j p_j^2 of that grid; the matched grid's nodes are pf_gg_uniform_node_any / sqrt(it).
+   Weights relative to the central node, as pf_gg_uniform_weight_any (finite and exact for wide
+   grids too, where the plain sum underflowed and gave 0). */
 PF_DEF pf_real pf_gg_uniform_variance_any(int n, pf_real lambda)
 {
-    pf_real s = PF_R(0.0), m2 = PF_R(0.0);
+    pf_real s = PF_R(0.0), m2 = PF_R(0.0), pc;
     int k;
+    if (n < 1) return PF_R(0.0);
+    pc = PF_FABS(pf_gg_uniform_node_any(n, lambda, n / 2));
     for (k = 0; k < n; ++k) {
         pf_real p = pf_gg_uniform_node_any(n, lambda, k);
-        pf_real e = PF_EXP(PF_R(-0.5) * p * p);
+        pf_real e = pfi_gg_rel_weight(p, pc);
         s += e;
         m2 += e * p * p;
     }
@@ -454,7 +481,7 @@ PF_DEF pf_real pf_gg_jacobian(pf_vec3 wn, pf_vec3 wo)
 PF_STRUCT_BEGIN(pf_gg_env_sample)
     pf_vec3 dir;         /* reflected direction w_i = 2 (w_n.w_o) w_n - w_o (eq. 18) */
     pf_real weight;      /* W <w_n,w_o>/(w_n.w_g) (w_nbar.w_g)/(w_nbar.w_o) / (1 + Lambda_o + Lambda_i) (eq. 22 without L and F) */
-    pf_real cos_d;       /* max(0, w_n.w_o) = w_n.w_i: the angle for the Fresnel term F */
+    pf_real cos_d;       /* w_n.w_o = w_n.w_i clamped to [0, 1]: the angle for the Fresnel term F */
     pf_real solid_angle; /* alpha = J * A: the sample's solid angle around dir, for the LOD */
 PF_STRUCT_END(pf_gg_env_sample)
 
@@ -473,7 +500,9 @@ PF_DEF pf_gg_env_sample pf_gg_env_sample_at(pf_gg_grid g, int i)
     pf_real smax = pf_max(g.sigma_x, g.sigma_y);
     e.dir = pf_vec3_sub(pf_vec3_scale(smp.normal, PF_R(2.0) * c), g.wo);
     e.weight = smp.weight * smp.proj * pf_smith_joint(g.g1_o, pf_g1_beckmann(pf_smith_nu(e.dir, g.stats)));
-    e.cos_d = pf_max(c, PF_R(0.0));
+    /* clamped to [0, 1]: w_n . w_o of two unit vectors rounds up to 1 + 2 ulp near normal
+       incidence (the sweep found 1.00000024); max first, so NaN gives 0 */
+    e.cos_d = pf_min(pf_max(c, PF_R(0.0)), PF_R(1.0));
     e.solid_angle = pf_gg_jacobian(smp.normal, g.wo) * smp.cell * smax * smax;
     return e;
 }

@@ -567,8 +567,10 @@ PF_DEF pf_transfer_moments pfi_transfer_segment(pfi_gauss_knot ka, pfi_gauss_kno
         u2 = pf_min(pf_max(u2, PF_R(0.0)), u1);
     }
     per_w = m0 / w;
+    /* E[g^2] >= 0 clamped: its three terms cancel where g crosses 0 on the segment, and
+       rounding left -3.4e-21 (float) */
     return pf_transfer_moments_make(g0 * m0 + dgv * u1,
-                                    g0 * g0 * m0 + PF_R(2.0) * g0 * dgv * u1 + dgv * dgv * u2,
+                                    pf_max(g0 * g0 * m0 + PF_R(2.0) * g0 * dgv * u1 + dgv * dgv * u2, PF_R(0.0)),
                                     dgv * per_w,
                                     dgv * dgv / w * per_w);
 }

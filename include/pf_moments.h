@@ -238,12 +238,18 @@ PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c)
     return c * z;
 }
 
-/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0 with w0 + w1 > 0, without overflow:
-   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m = max(l0, l1). */
+/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow:
+   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m the larger log among those of positive weight,
+   so the sum holds that term's weight times exp(0) = 1 and never underflows to 0: a zero
+   weight on the larger log (l0 = 1504, w0 = 0, l1 = 1277, w1 = 0.88 gave log(0) = -inf when m
+   was max(l0, l1)) now gives l1 + log(w1). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log
+   of an empty sum kept finite, as pf_esm_log_reduce3; a NaN log propagates. */
 PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
 {
-    pf_real m = pf_max(l0, l1);
-    return m + PF_LOG(w0 * PF_EXP(l0 - m) + w1 * PF_EXP(l1 - m));
+    pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
+    pf_real s = (w0 > PF_R(0.0) ? w0 * PF_EXP(l0 - m) : PF_R(0.0))
+              + (w1 > PF_R(0.0) ? w1 * PF_EXP(l1 - m) : PF_R(0.0));
+    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
 }
 
 /* a + b and w a, componentwise (the moments are linear). */
@@ -592,14 +598,28 @@ PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b
                                 s * a.neg1 + t * b.neg1, s * a.neg2 + t * b.neg2);
 }
 
+/* Midpoint (a + b)/2 of two values of the same sign, as a + (b - a)/2: |b - a| <= max(|a|, |b|),
+   so nothing overflows. */
+PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b)
+{
+    return a + PF_R(0.5) * (b - a);
+}
+
+/* The 2x2 box as midpoints of midpoints, not q a + q b + q c + q d: with one constant weight
+   q, -ffast-math (and GPU compilers, which reassociate freely) factor that sum into
+   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the
+   float sum (the sweep found 14 inf per 10^6 under gcc -ffast-math). A compiler does not
+   distribute the half over b - a, so the midpoint form stays finite in every build. Each
+   member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0), as the
+   midpoints need; error <= 2 ulp (tests/test_moments.c). Two operations more per member
+   than the weighted sum. */
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
                                                  pf_evsm_moments c, pf_evsm_moments d)
 {
-    pf_real q = PF_R(0.25);
-    return pf_evsm_moments_make(q * a.pos1 + q * b.pos1 + q * c.pos1 + q * d.pos1,
-                                q * a.pos2 + q * b.pos2 + q * c.pos2 + q * d.pos2,
-                                q * a.neg1 + q * b.neg1 + q * c.neg1 + q * d.neg1,
-                                q * a.neg2 + q * b.neg2 + q * c.neg2 + q * d.neg2);
+    return pf_evsm_moments_make(pfi_midpoint(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(c.pos1, d.pos1)),
+                                pfi_midpoint(pfi_midpoint(a.pos2, b.pos2), pfi_midpoint(c.pos2, d.pos2)),
+                                pfi_midpoint(pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(c.neg1, d.neg1)),
+                                pfi_midpoint(pfi_midpoint(a.neg2, b.neg2), pfi_midpoint(c.neg2, d.neg2)));
 }
 
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,

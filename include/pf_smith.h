@@ -97,7 +97,9 @@ PF_DEF pf_slope_stats pf_slope_stats_from_moments(pf_real ex, pf_real ey, pf_rea
     pf_real vx = pf_max(exx - ex * ex, PF_R(0.0));
     pf_real vy = pf_max(eyy - ey * ey, PF_R(0.0));
     pf_real c = exy - ex * ey;
-    pf_real cmax = PF_SQRT(vx * vy);
+    /* sqrt(vx) sqrt(vy), not sqrt(vx vy): the product underflows (vx vy subnormal or flushed
+       to 0 gave |c| > sigma_x sigma_y) and overflows for huge variances; one sqrt more */
+    pf_real cmax = PF_SQRT(vx) * PF_SQRT(vy);
     return pf_slope_stats_make(ex, ey, vx, vy, pf_clamp(c, -cmax, cmax));
 }
 
@@ -128,7 +130,10 @@ PF_DEF pf_real pf_smith_nu(pf_vec3 w, pf_slope_stats s)
     pf_real num = w.z - w.x * s.mean_x - w.y * s.mean_y;
     pf_real var = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
     if (!(num > PF_R(0.0))) return PF_R(0.0);
-    var = pf_max(var, PF_R(0.0));
+    /* capped at PF_REAL_MAX/4 (nu then <= num / 1.3e19, G1 ~ 0 either way): an infinite
+       variance along w (huge variances or w) would meet gcc -ffast-math's float
+       num * rsqrt(2 var) expansion as inf * 0 = NaN */
+    var = pf_min(pf_max(var, PF_R(0.0)), PF_R(0.25) * PF_REAL_MAX);
     if (PF_R(2.0) * var <= num * num / (PF_NU_MAX * PF_NU_MAX)) return PF_NU_MAX;
     return num / PF_SQRT(PF_R(2.0) * var);
 }
@@ -140,9 +145,12 @@ PF_DEF pf_real pf_smith_nu_iso(pf_real cos_theta, pf_real sigma)
 {
     pf_real c = pf_clamp(cos_theta, PF_R(-1.0), PF_R(1.0));
     pf_real sin_theta = PF_SQRT(pf_max(PF_R(1.0) - c * c, PF_R(0.0)));
+    /* sigma sin_theta first: it cannot overflow (sin_theta <= 1), whereas sqrt(2) sigma did
+       for sigma near PF_REAL_MAX, and inf * (sin_theta = 0) made NaN */
+    pf_real d = sigma * sin_theta;
     if (!(c > PF_R(0.0))) return PF_R(0.0);
-    if (PF_SQRT2 * sigma * sin_theta <= c / PF_NU_MAX) return PF_NU_MAX;
-    return c / (PF_SQRT2 * sigma * sin_theta);
+    if (d <= c * (PF_INV_SQRT2 / PF_NU_MAX)) return PF_NU_MAX;
+    return (c * PF_INV_SQRT2) / d;
 }
 
 /* ---------------------------------------------------------------- Beckmann Lambda, exact
@@ -357,11 +365,16 @@ PF_DEF pf_real pf_g1_ggx_iso(pf_real cos_theta, pf_real alpha)
    Dupuy et al. 2013 eq. 13), written in terms of the two G1 = 1/(1 + Lambda):
        1/(1 + Lambda_o + Lambda_i) = G1o G1i / (G1o + G1i - G1o G1i),
    which stays finite when a Lambda is huge; 0 when either G1 is 0 (a direction below the
-   mean surface), never 0/0. The result lies in [0, min(G1o, G1i)]. */
+   mean surface), never 0/0. A G1 above 1 (impossible; any finite input is accepted) is read
+   as 1. The result lies in [0, min(G1o, G1i)]. */
 PF_DEF pf_real pf_smith_joint(pf_real g1_o, pf_real g1_i)
 {
-    if (!(g1_o > PF_R(0.0)) || !(g1_i > PF_R(0.0))) return PF_R(0.0);
-    return g1_o * g1_i / (g1_o + g1_i - g1_o * g1_i);
+    pf_real a = pf_min(PF_R(1.0), g1_o), b = pf_min(PF_R(1.0), g1_i); /* NaN stays NaN */
+    if (!(a > PF_R(0.0)) || !(b > PF_R(0.0))) return PF_R(0.0);
+    /* a (b / den), not a b / den: the denominator den = b + a (1 - b) >= b, so b / den <= 1
+       and the result <= a, even where a b is subnormal (a = 1.2e-33, b = 4.4e-8 lost the
+       product's low bits and came out 1.00013 a) */
+    return a * (b / (a + b - a * b));
 }
 
 /* The same moment from the two Lambdas; negative Lambdas (impossible, but produced by some
@@ -373,8 +386,12 @@ PF_DEF pf_real pf_smith_joint_lambda(pf_real lambda_o, pf_real lambda_i)
 }
 
 /* Separable (uncorrelated) masking-shadowing G1o G1i, for comparison: it double-counts
-   occlusion, always <= the joint form. */
-PF_DEF pf_real pf_smith_separable(pf_real g1_o, pf_real g1_i) { return g1_o * g1_i; }
+   occlusion, always <= the joint form. Each G1 is clamped to [0, 1] (NaN to 0) first, so the
+   product is in [0, 1] for every input (a product of two finite values can overflow). */
+PF_DEF pf_real pf_smith_separable(pf_real g1_o, pf_real g1_i)
+{
+    return pf_min(pf_max(g1_o, PF_R(0.0)), PF_R(1.0)) * pf_min(pf_max(g1_i, PF_R(0.0)), PF_R(1.0));
+}
 
 /* Joint Beckmann masking-shadowing from the two nus (pf_smith_nu of view and light). */
 PF_DEF pf_real pf_g2_beckmann(pf_real nu_o, pf_real nu_i)
