@@ -473,19 +473,39 @@ PF_DEF pf_vec3 pf_vec3_cross(pf_vec3 a, pf_vec3 b)
 
 PF_DEF pf_real pf_vec3_length(pf_vec3 a) { return PF_SQRT(pf_vec3_dot(a, a)); }
 
-/* Unit vector along a. The zero vector (and any vector whose squared length underflows)
-   returns (0, 0, 1), the macronormal, rather than NaN. */
+/* Power-of-two scales of pf_vec3_normalize: vectors whose largest component m lies outside
+   [PFI_NORM_TINY, PFI_NORM_HUGE] are multiplied by PFI_NORM_UP or PFI_NORM_DOWN (exact: a
+   power of two) first. Inside that range the squared length neither overflows (3 m^2 <
+   PF_REAL_MAX) nor loses the largest component (m^2 >= 2^26 PF_REAL_MIN, so components whose
+   squares go subnormal, or are flushed to 0 under -ffast-math, weigh < 2^-26 of it); every
+   scaled m lands inside it: float 2^-149 .. 2^128 becomes 2^-49 .. 2^58; double
+   2^-1074 .. 2^1024 becomes 2^-474 .. 2^424. */
+#ifdef PF_DOUBLE
+#  define PFI_NORM_TINY PF_R(3.2033329522929615e-145) /* 2^-480 */
+#  define PFI_NORM_HUGE PF_R(3.273390607896142e150)   /* 2^500 */
+#  define PFI_NORM_UP   PF_R(4.149515568880993e180)   /* 2^600 */
+#  define PFI_NORM_DOWN PF_R(2.409919865102884e-181)  /* 2^-600 */
+#else
+#  define PFI_NORM_TINY PF_R(8.881784197001252e-16)   /* 2^-50 */
+#  define PFI_NORM_HUGE PF_R(1.152921504606847e18)    /* 2^60 */
+#  define PFI_NORM_UP   PF_R(1.2676506002282294e30)   /* 2^100 */
+#  define PFI_NORM_DOWN PF_R(8.470329472543003e-22)   /* 2^-70 */
+#endif
+
+/* Unit vector along a, for every finite a: a / sqrt(a.a) (what GLSL normalize computes, and
+   bit for bit the same for components in [2^-50, 2^60] (float) / [2^-480, 2^500] (double)).
+   Outside that range a is first scaled by a power of two (PFI_NORM_*), so subnormal and huge
+   components neither underflow nor overflow when squared; no reciprocal of the largest
+   component is formed (1/m overflows for a subnormal m, and is subnormal - flushed to 0 under
+   -ffast-math - for m > 2^126). The zero vector (and a NaN largest component) returns
+   (0, 0, 1), the macronormal, rather than NaN. Cost: two comparisons instead of the division
+   by m of the earlier scaled form (docs/core.md). */
 PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
 {
     pf_real m = pf_max(pf_max(PF_FABS(a.x), PF_FABS(a.y)), PF_FABS(a.z));
-    pf_vec3 b;
-    pf_real len;
     if (!(m > PF_R(0.0))) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
-    /* Scale by the largest component first so that tiny or huge inputs neither
-       underflow nor overflow when squared. */
-    b = pf_vec3_scale(a, PF_R(1.0) / m);
-    len = pf_vec3_length(b);
-    return pf_vec3_scale(b, PF_R(1.0) / len);
+    if (m < PFI_NORM_TINY || m > PFI_NORM_HUGE) a = pf_vec3_scale(a, m < PFI_NORM_TINY ? PFI_NORM_UP : PFI_NORM_DOWN);
+    return pf_vec3_scale(a, PF_R(1.0) / pf_vec3_length(a));
 }
 
 #endif /* PF_CORE_H */
@@ -532,7 +552,11 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
      the macrosurface (w_g = +z) and need not be normalized for pf_smith_nu and the GGX
      functions. Lambda = +inf is returned as PF_LAMBDA_MAX (finite, so sums stay finite and
      -ffast-math builds stay defined); nu = +inf as PF_NU_MAX. Every function returns a finite
-     value for every finite input; NaN inputs give G1 = 0.
+     value for every finite input, except pf_slope_along, whose mean and variance along w are
+     sums that overflow where their exact value does (statistics near PF_REAL_MAX); NaN inputs
+     give G1 = 0. Under -ffast-math the NaN tests are compiled away, so an input whose
+     intermediate overflows to inf - inf (w.x E[x] and w.y E[y] of opposite signs, both near
+     PF_REAL_MAX) can give NaN in pf_smith_nu and its callers (docs/stability.md counts them).
 
    ACCURACY AND COST (measured; docs/smith.md has the tables, bench/bench_smith.c the timings)
      pf_g1_beckmann        float: one (5,5) rational, max rel. error 2.7e-7 (bound 1e-6);
@@ -590,13 +614,17 @@ PF_DEF pf_slope_stats pf_slope_stats_from_moments(pf_real ex, pf_real ey, pf_rea
     pf_real vx = pf_max(exx - ex * ex, PF_R(0.0));
     pf_real vy = pf_max(eyy - ey * ey, PF_R(0.0));
     pf_real c = exy - ex * ey;
-    pf_real cmax = PF_SQRT(vx * vy);
+    /* sqrt(vx) sqrt(vy), not sqrt(vx vy): the product underflows (vx vy subnormal or flushed
+       to 0 gave |c| > sigma_x sigma_y) and overflows for huge variances; one sqrt more */
+    pf_real cmax = PF_SQRT(vx) * PF_SQRT(vy);
     return pf_slope_stats_make(ex, ey, vx, vy, pf_clamp(c, -cmax, cmax));
 }
 
 /* Mean and deviation (mu, sigma) of the slopes along the azimuth of w
    (Dupuy et al. 2013 eqs. 14-15), with cos p = w.x/r, sin p = w.y/r, r = |(w.x, w.y)|.
-   At normal incidence (r = 0) the azimuth is undefined and p = 0 (the x axis) is used. */
+   At normal incidence (r = 0) the azimuth is undefined and p = 0 (the x axis) is used.
+   Finite while |E[x]|, |E[y]| and the (co)variances are below PF_REAL_MAX / 4; beyond, the
+   exact mean or variance along w may exceed PF_REAL_MAX and the result is +-inf. */
 PF_DEF pf_vec2 pf_slope_along(pf_vec3 w, pf_slope_stats s)
 {
     pf_real r = PF_SQRT(w.x * w.x + w.y * w.y);
@@ -621,7 +649,10 @@ PF_DEF pf_real pf_smith_nu(pf_vec3 w, pf_slope_stats s)
     pf_real num = w.z - w.x * s.mean_x - w.y * s.mean_y;
     pf_real var = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
     if (!(num > PF_R(0.0))) return PF_R(0.0);
-    var = pf_max(var, PF_R(0.0));
+    /* capped at PF_REAL_MAX/4 (nu then <= num / 1.3e19, G1 ~ 0 either way): an infinite
+       variance along w (huge variances or w) would meet gcc -ffast-math's float
+       num * rsqrt(2 var) expansion as inf * 0 = NaN */
+    var = pf_min(pf_max(var, PF_R(0.0)), PF_R(0.25) * PF_REAL_MAX);
     if (PF_R(2.0) * var <= num * num / (PF_NU_MAX * PF_NU_MAX)) return PF_NU_MAX;
     return num / PF_SQRT(PF_R(2.0) * var);
 }
@@ -633,9 +664,12 @@ PF_DEF pf_real pf_smith_nu_iso(pf_real cos_theta, pf_real sigma)
 {
     pf_real c = pf_clamp(cos_theta, PF_R(-1.0), PF_R(1.0));
     pf_real sin_theta = PF_SQRT(pf_max(PF_R(1.0) - c * c, PF_R(0.0)));
+    /* sigma sin_theta first: it cannot overflow (sin_theta <= 1), whereas sqrt(2) sigma did
+       for sigma near PF_REAL_MAX, and inf * (sin_theta = 0) made NaN */
+    pf_real d = sigma * sin_theta;
     if (!(c > PF_R(0.0))) return PF_R(0.0);
-    if (PF_SQRT2 * sigma * sin_theta <= c / PF_NU_MAX) return PF_NU_MAX;
-    return c / (PF_SQRT2 * sigma * sin_theta);
+    if (d <= c * (PF_INV_SQRT2 / PF_NU_MAX)) return PF_NU_MAX;
+    return (c * PF_INV_SQRT2) / d;
 }
 
 /* ---------------------------------------------------------------- Beckmann Lambda, exact
@@ -850,11 +884,16 @@ PF_DEF pf_real pf_g1_ggx_iso(pf_real cos_theta, pf_real alpha)
    Dupuy et al. 2013 eq. 13), written in terms of the two G1 = 1/(1 + Lambda):
        1/(1 + Lambda_o + Lambda_i) = G1o G1i / (G1o + G1i - G1o G1i),
    which stays finite when a Lambda is huge; 0 when either G1 is 0 (a direction below the
-   mean surface), never 0/0. The result lies in [0, min(G1o, G1i)]. */
+   mean surface), never 0/0. A G1 above 1 (impossible; any finite input is accepted) is read
+   as 1. The result lies in [0, min(G1o, G1i)]. */
 PF_DEF pf_real pf_smith_joint(pf_real g1_o, pf_real g1_i)
 {
-    if (!(g1_o > PF_R(0.0)) || !(g1_i > PF_R(0.0))) return PF_R(0.0);
-    return g1_o * g1_i / (g1_o + g1_i - g1_o * g1_i);
+    pf_real a = pf_min(PF_R(1.0), g1_o), b = pf_min(PF_R(1.0), g1_i); /* NaN stays NaN */
+    if (!(a > PF_R(0.0)) || !(b > PF_R(0.0))) return PF_R(0.0);
+    /* a (b / den), not a b / den: the denominator den = b + a (1 - b) >= b, so b / den <= 1
+       and the result <= a, even where a b is subnormal (a = 1.2e-33, b = 4.4e-8 lost the
+       product's low bits and came out 1.00013 a) */
+    return a * (b / (a + b - a * b));
 }
 
 /* The same moment from the two Lambdas; negative Lambdas (impossible, but produced by some
@@ -866,8 +905,12 @@ PF_DEF pf_real pf_smith_joint_lambda(pf_real lambda_o, pf_real lambda_i)
 }
 
 /* Separable (uncorrelated) masking-shadowing G1o G1i, for comparison: it double-counts
-   occlusion, always <= the joint form. */
-PF_DEF pf_real pf_smith_separable(pf_real g1_o, pf_real g1_i) { return g1_o * g1_i; }
+   occlusion, always <= the joint form. Each G1 is clamped to [0, 1] (NaN to 0) first, so the
+   product is in [0, 1] for every input (a product of two finite values can overflow). */
+PF_DEF pf_real pf_smith_separable(pf_real g1_o, pf_real g1_i)
+{
+    return pf_min(pf_max(g1_o, PF_R(0.0)), PF_R(1.0)) * pf_min(pf_max(g1_i, PF_R(0.0)), PF_R(1.0));
+}
 
 /* Joint Beckmann masking-shadowing from the two nus (pf_smith_nu of view and light). */
 PF_DEF pf_real pf_g2_beckmann(pf_real nu_o, pf_real nu_i)
@@ -1064,11 +1107,20 @@ PF_DEF pf_slope_moments pf_slope_moments_scale_height(pf_slope_moments m, pf_rea
 #else
 #  define PFI_BECKMANN_VAR_FLOOR PF_R(1.0e-15)
 #endif
+/* Largest variance they work with: its square (var_x var_y in the determinant) must stay
+   finite; var_x near PF_REAL_MAX made var_x var_y = inf and inf/inf = NaN. A larger variance
+   (a slope deviation above 3e7 (float) / 1e75 (double), where D and P22 are flat and below
+   1e-16 / 1e-151 everywhere) is read as this value. */
+#ifdef PF_DOUBLE
+#  define PFI_BECKMANN_VAR_CEIL PF_R(1.0e150)
+#else
+#  define PFI_BECKMANN_VAR_CEIL PF_R(1.0e15)
+#endif
 
 PF_DEF pf_slope_stats pfi_beckmann_floor(pf_slope_stats s)
 {
-    s.var_x = pf_max(s.var_x, PFI_BECKMANN_VAR_FLOOR);
-    s.var_y = pf_max(s.var_y, PFI_BECKMANN_VAR_FLOOR);
+    s.var_x = pf_min(pf_max(s.var_x, PFI_BECKMANN_VAR_FLOOR), PFI_BECKMANN_VAR_CEIL);
+    s.var_y = pf_min(pf_max(s.var_y, PFI_BECKMANN_VAR_FLOOR), PFI_BECKMANN_VAR_CEIL);
     return s;
 }
 
@@ -1117,7 +1169,9 @@ PF_DEF pf_real pf_beckmann_p22(pf_real x, pf_real y, pf_slope_stats s0)
    over m.z^2 and 1/cos^4 = (|m|^2/m.z^2)^2, so no square root or normalization is needed.
    m.z <= 0 (a micro-normal facing down, which a height field cannot have) gives 0. The factor
    |m|^2/m.z^2 is capped at 1e9 (m within 0.002 deg of the horizon), where the Gaussian factor
-   is already 0 unless the mean slope is near 3e4, so D stays finite. */
+   is already 0 unless the mean slope is near 3e4, so D stays finite. Finite and >= 0 for
+   every finite statistics and every m with m.z^2 finite (m.z below 1.8e19 in float, 1.3e154
+   in double; a longer m gives inf/inf = NaN: normalize it first). */
 PF_DEF pf_real pf_beckmann_d(pf_vec3 m, pf_slope_stats s0)
 {
     pf_slope_stats s = pfi_beckmann_floor(s0);
@@ -1505,8 +1559,9 @@ PF_DEF pf_real pfi_gg_hermite_weight(int n, int k)
 PF_DEF int pfi_gg_clamp_n(int n) { return n < 1 ? 1 : (n > PF_GG_MAX_N ? PF_GG_MAX_N : n); }
 
 /* Index of node j (0 .. n-1, ascending) in the stored non-negative half: |2j - n + 1| / 2
-   rounded down (0 is the centre node for odd n, the smallest positive one for even n). An
-   index outside 0 .. n-1 maps past the table, whose default is node 0 with weight 0. */
+   rounded down (0 is the centre node for odd n, the smallest positive one for even n).
+   Only for j in 0 .. n-1: its callers check the range first, so 2j cannot overflow an int
+   (it did for |j| >= 2^30, undefined behaviour that UBSan caught). */
 PF_DEF int pfi_gg_half_index(int n, int j)
 {
     int d = 2 * j - n + 1;
@@ -1514,12 +1569,18 @@ PF_DEF int pfi_gg_half_index(int n, int j)
 }
 
 /* pf_gg_node(set, n, j): node j (0 .. n-1, ascending) of the n-point set for a standard
-   normal (n clamped to [1, PF_GG_MAX_N]; j outside the range gives 0). */
+   normal. n is clamped to [1, PF_GG_MAX_N]; j outside 0 .. n-1 (for the clamped n) gives 0;
+   a node_set other than PF_GG_HERMITE and PF_GG_MATCHED reads as PF_GG_UNIFORM (so every int
+   is a valid set: pf_gg_node, pf_gg_weight and the grid agree on it). The range is tested
+   before the table index is formed: j = -1 used to fold onto the table's other half (the
+   n = 4 node 0.5196 for j = -1, n = 3). */
 PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 {
     int m = pfi_gg_clamp_n(n);
-    int k = pfi_gg_half_index(m, j);
+    int k;
     pf_real p;
+    if (j < 0 || j >= m) return PF_R(0.0);
+    k = pfi_gg_half_index(m, j);
     if (node_set == PF_GG_HERMITE) p = pfi_gg_hermite_node(m, k);
     else if (node_set == PF_GG_MATCHED) p = pfi_gg_matched_node(m, k);
     else p = pfi_gg_uniform_node(m, k);
@@ -1527,12 +1588,14 @@ PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 }
 
 /* pf_gg_weight(set, n, j): the normalized weight of node j (the n weights sum to 1); 0 for j
-   outside 0 .. n-1. The matched set shares the uniform set's weights. */
+   outside 0 .. n-1. n and node_set as pf_gg_node; the matched set shares the uniform set's
+   weights. */
 PF_DEF pf_real pf_gg_weight(int node_set, int n, int j)
 {
     int m = pfi_gg_clamp_n(n);
-    int k = pfi_gg_half_index(m, j);
+    int k;
     if (j < 0 || j >= m) return PF_R(0.0);
+    k = pfi_gg_half_index(m, j);
     if (node_set == PF_GG_HERMITE) return pfi_gg_hermite_weight(m, k);
     return pfi_gg_uniform_weight(m, k);
 }
@@ -1561,32 +1624,54 @@ PF_DEF pf_real pf_gg_uniform_lambda(int n)
 PF_DEF pf_real pf_gg_uniform_node_any(int n, pf_real lambda, int j)
 {
     if (n <= 1) return PF_R(0.0);
-    return lambda * PF_R(2 * j - n + 1) / PF_R(n - 1);
+    /* 2j - n + 1 in pf_real: as an int it overflows for |j| >= 2^30 */
+    return lambda * (PF_R(2.0) * PF_R(j) - PF_R(n - 1)) / PF_R(n - 1);
 }
 
-/* Weight of node j: exp(-p_j^2/2) / sum_k exp(-p_k^2/2) (1 for n <= 1, 0 outside 0 .. n-1). */
+/* exp(-(p_k^2 - pc^2)/2) for node k of the n-node grid of spacing h (p_k = h (2k - n + 1)/2,
+   n >= 2), relative to the central node pc = |p_(n/2)| (the nearest to 0), written as a
+   product, (|p_k| - pc)(|p_k| + pc), so that it keeps its accuracy. */
+PF_DEF pf_real pfi_gg_rel_weight(int n, pf_real h, int k, pf_real pc)
+{
+    pf_real a = PF_FABS(h * (PF_R(k) - PF_R(0.5) * PF_R(n - 1)));
+    return PF_EXP(PF_R(-0.5) * (a - pc) * (a + pc));
+}
+
+/* Weight of node j: exp(-p_j^2/2) / sum_k exp(-p_k^2/2) (1 for n <= 1, 0 outside 0 .. n-1).
+   Every exponential is taken relative to the central node pc (exp(-(p^2 - pc^2)/2)), so the
+   sum is >= 1: for a wide grid the plain exp(-p^2/2) of every node underflows (float: n = 2,
+   lambda = 16 gave 0/0 = NaN; from lambda = 13.9 under -ffast-math, which flushes
+   subnormals), whereas now the far weights underflow to 0 and the central ones stay. The
+   node spacing h = 2 lambda/(n - 1) is divided once, not per node. */
 PF_DEF pf_real pf_gg_uniform_weight_any(int n, pf_real lambda, int j)
 {
-    pf_real s = PF_R(0.0);
+    pf_real s = PF_R(0.0), h, pc;
     int k;
     if (j < 0 || j >= n) return PF_R(0.0);
     if (n <= 1) return PF_R(1.0);
-    for (k = 0; k < n; ++k) s += PF_EXP(PF_R(-0.5) * pf_sq(pf_gg_uniform_node_any(n, lambda, k)));
-    return PF_EXP(PF_R(-0.5) * pf_sq(pf_gg_uniform_node_any(n, lambda, j))) / s;
+    h = PF_R(2.0) * lambda / PF_R(n - 1);
+    pc = PF_FABS(h * (PF_R(n / 2) - PF_R(0.5) * PF_R(n - 1)));
+    for (k = 0; k < n; ++k) s += pfi_gg_rel_weight(n, h, k, pc);
+    return pfi_gg_rel_weight(n, h, j, pc) / s;
 }
 
-/* sum W_j p_j^2 of that grid; the matched grid's nodes are pf_gg_uniform_node_any / sqrt(it). */
+/* sum W_j p_j^2 of that grid; the matched grid's nodes are pf_gg_uniform_node_any / sqrt(it).
+   Weights relative to the central node, as pf_gg_uniform_weight_any (finite and exact for wide
+   grids too, where the plain sum underflowed and gave 0). */
 PF_DEF pf_real pf_gg_uniform_variance_any(int n, pf_real lambda)
 {
-    pf_real s = PF_R(0.0), m2 = PF_R(0.0);
+    pf_real s = PF_R(0.0), m2 = PF_R(0.0), h, pc;
     int k;
+    if (n <= 1) return PF_R(0.0);
+    h = PF_R(2.0) * lambda / PF_R(n - 1);
+    pc = PF_FABS(h * (PF_R(n / 2) - PF_R(0.5) * PF_R(n - 1)));
     for (k = 0; k < n; ++k) {
-        pf_real p = pf_gg_uniform_node_any(n, lambda, k);
-        pf_real e = PF_EXP(PF_R(-0.5) * p * p);
+        pf_real p = h * (PF_R(k) - PF_R(0.5) * PF_R(n - 1));
+        pf_real e = pfi_gg_rel_weight(n, h, k, pc);
         s += e;
         m2 += e * p * p;
     }
-    return s > PF_R(0.0) ? m2 / s : PF_R(0.0);
+    return m2 / s;
 }
 
 /* ---------------------------------------------------------------- the 2D grid (sec. 5.1) */
@@ -1694,7 +1779,7 @@ PF_DEF pf_real pf_gg_jacobian(pf_vec3 wn, pf_vec3 wo)
 PF_STRUCT_BEGIN(pf_gg_env_sample)
     pf_vec3 dir;         /* reflected direction w_i = 2 (w_n.w_o) w_n - w_o (eq. 18) */
     pf_real weight;      /* W <w_n,w_o>/(w_n.w_g) (w_nbar.w_g)/(w_nbar.w_o) / (1 + Lambda_o + Lambda_i) (eq. 22 without L and F) */
-    pf_real cos_d;       /* max(0, w_n.w_o) = w_n.w_i: the angle for the Fresnel term F */
+    pf_real cos_d;       /* w_n.w_o = w_n.w_i clamped to [0, 1]: the angle for the Fresnel term F */
     pf_real solid_angle; /* alpha = J * A: the sample's solid angle around dir, for the LOD */
 PF_STRUCT_END(pf_gg_env_sample)
 
@@ -1713,7 +1798,9 @@ PF_DEF pf_gg_env_sample pf_gg_env_sample_at(pf_gg_grid g, int i)
     pf_real smax = pf_max(g.sigma_x, g.sigma_y);
     e.dir = pf_vec3_sub(pf_vec3_scale(smp.normal, PF_R(2.0) * c), g.wo);
     e.weight = smp.weight * smp.proj * pf_smith_joint(g.g1_o, pf_g1_beckmann(pf_smith_nu(e.dir, g.stats)));
-    e.cos_d = pf_max(c, PF_R(0.0));
+    /* clamped to [0, 1]: w_n . w_o of two unit vectors rounds up to 1 + 2 ulp near normal
+       incidence (the sweep found 1.00000024); max first, so NaN gives 0 */
+    e.cos_d = pf_min(pf_max(c, PF_R(0.0)), PF_R(1.0));
     e.solid_angle = pf_gg_jacobian(smp.normal, g.wo) * smp.cell * smax * smax;
     return e;
 }
@@ -2025,8 +2112,14 @@ PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
      heights are standardized. pf_height_dist_rescale converts to world heights.
      Lambda is the SUM Lambda_o + Lambda_i for the visible-height functions (D_h depends on the
      sum only, eq. 15); negative and NaN Lambdas read as 0, anything above PF_LAMBDA_MAX as
-     PF_LAMBDA_MAX (a direction below the surface). Every function returns finite values for
-     finite inputs, and for Lambda = 0 and Lambda = PF_LAMBDA_MAX.
+     PF_LAMBDA_MAX (a direction below the surface). The visibility, visible-height and
+     Gaussian-filter functions return finite values for every finite input, and for Lambda = 0
+     and Lambda = PF_LAMBDA_MAX. The linear maps of heights and values (pf_height_attribute_mean,
+     pf_height_dist_rescale, _add_noise, pf_height_colour_dist, pf_transfer_end_moments,
+     pf_transfer_segment_moments, pf_transfer_slope_stats) are finite while their inputs, and
+     for the transfer moments the slope (g1 - g0)/(x1 - x0) of every piece, stay below
+     sqrt(PF_REAL_MAX)/4 (4.6e18 in float) in magnitude: beyond, a sum, a product or a square
+     (g^2, g'^2, sigma^2) overflows, as its exact value may.
      Colour maps are piecewise linear through knots (x[k], c[k]) with x non-decreasing, constant
      beyond the end knots (c[0] below x[0], c[n-1] above x[n-1]); two equal x make a jump.
      Filtering means the expectation E[C(X)], X ~ N(mean, sigma^2). sigma <= 0 (or NaN) means
@@ -2541,8 +2634,10 @@ PF_DEF pf_transfer_moments pfi_transfer_segment(pfi_gauss_knot ka, pfi_gauss_kno
         u2 = pf_min(pf_max(u2, PF_R(0.0)), u1);
     }
     per_w = m0 / w;
+    /* E[g^2] >= 0 clamped: its three terms cancel where g crosses 0 on the segment, and
+       rounding left -3.4e-21 (float) */
     return pf_transfer_moments_make(g0 * m0 + dgv * u1,
-                                    g0 * g0 * m0 + PF_R(2.0) * g0 * dgv * u1 + dgv * dgv * u2,
+                                    pf_max(g0 * g0 * m0 + PF_R(2.0) * g0 * dgv * u1 + dgv * dgv * u2, PF_R(0.0)),
                                     dgv * per_w,
                                     dgv * dgv / w * per_w);
 }
@@ -2965,12 +3060,18 @@ PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c)
     return c * z;
 }
 
-/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0 with w0 + w1 > 0, without overflow:
-   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m = max(l0, l1). */
+/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow:
+   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m the larger log among those of positive weight,
+   so the sum holds that term's weight times exp(0) = 1 and never underflows to 0: a zero
+   weight on the larger log (l0 = 1504, w0 = 0, l1 = 1277, w1 = 0.88 gave log(0) = -inf when m
+   was max(l0, l1)) now gives l1 + log(w1). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log
+   of an empty sum kept finite, as pf_esm_log_reduce3; a NaN log propagates. */
 PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
 {
-    pf_real m = pf_max(l0, l1);
-    return m + PF_LOG(w0 * PF_EXP(l0 - m) + w1 * PF_EXP(l1 - m));
+    pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
+    pf_real s = (w0 > PF_R(0.0) ? w0 * PF_EXP(l0 - m) : PF_R(0.0))
+              + (w1 > PF_R(0.0) ? w1 * PF_EXP(l1 - m) : PF_R(0.0));
+    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
 }
 
 /* a + b and w a, componentwise (the moments are linear). */
@@ -3319,14 +3420,28 @@ PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b
                                 s * a.neg1 + t * b.neg1, s * a.neg2 + t * b.neg2);
 }
 
+/* Midpoint (a + b)/2 of two values of the same sign, as a + (b - a)/2: |b - a| <= max(|a|, |b|),
+   so nothing overflows. */
+PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b)
+{
+    return a + PF_R(0.5) * (b - a);
+}
+
+/* The 2x2 box as midpoints of midpoints, not q a + q b + q c + q d: with one constant weight
+   q, -ffast-math (and GPU compilers, which reassociate freely) factor that sum into
+   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the
+   float sum (the sweep found 14 inf per 10^6 under gcc -ffast-math). A compiler does not
+   distribute the half over b - a, so the midpoint form stays finite in every build. Each
+   member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0), as the
+   midpoints need; error <= 2 ulp (tests/test_moments.c). Two operations more per member
+   than the weighted sum. */
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
                                                  pf_evsm_moments c, pf_evsm_moments d)
 {
-    pf_real q = PF_R(0.25);
-    return pf_evsm_moments_make(q * a.pos1 + q * b.pos1 + q * c.pos1 + q * d.pos1,
-                                q * a.pos2 + q * b.pos2 + q * c.pos2 + q * d.pos2,
-                                q * a.neg1 + q * b.neg1 + q * c.neg1 + q * d.neg1,
-                                q * a.neg2 + q * b.neg2 + q * c.neg2 + q * d.neg2);
+    return pf_evsm_moments_make(pfi_midpoint(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(c.pos1, d.pos1)),
+                                pfi_midpoint(pfi_midpoint(a.pos2, b.pos2), pfi_midpoint(c.pos2, d.pos2)),
+                                pfi_midpoint(pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(c.neg1, d.neg1)),
+                                pfi_midpoint(pfi_midpoint(a.neg2, b.neg2), pfi_midpoint(c.neg2, d.neg2)));
 }
 
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,

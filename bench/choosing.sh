@@ -47,7 +47,7 @@ else
                 if (!(c[1] in cfp) || c[2] + 0 >= cfp[c[1]]) { cfp[c[1]] = c[2] + 0; cns[c[1]] = c[3] + 0; cx[c[1]] = c[8] + 0 }
             }
             nreg = 5
-            rname[1] = "Gaussian, 256-4096 texels, views 0-60 deg"
+            rname[1] = "fine Gaussian (36-145 features per footprint), 1024-4096 texels, views 0-60 deg"
             rname[2] = "Gaussian, 256-4096 texels, views 0-85 deg"
             rname[3] = "Gaussian, 1-16 texels, views 0-60 deg"
             rname[4] = "non-Gaussian, 256-4096 texels, views 0-60 deg"
@@ -66,7 +66,7 @@ else
             local = (ref != "full")
             for (r = 1; r <= nreg; r++) {
                 inr = 0
-                if (r == 1) inr = local && gauss && fp >= 256 && view <= 60
+                if (r == 1) inr = local && kind == "gaussian_fine" && fp >= 1024 && view <= 60
                 if (r == 2) inr = local && gauss && fp >= 256
                 if (r == 3) inr = local && gauss && fp <= 16 && view <= 60
                 if (r == 4) inr = local && !gauss && fp >= 256 && view <= 60

@@ -471,13 +471,9 @@ PF_DEF pf_real pf_vec3_length(pf_vec3 a) { return PF_SQRT(pf_vec3_dot(a, a)); }
 PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
 {
     pf_real m = pf_max(pf_max(PF_FABS(a.x), PF_FABS(a.y)), PF_FABS(a.z));
-    pf_real s = PF_R(1.0);
-    pf_vec3 b;
     if (!(m > PF_R(0.0))) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
-    if (m < PFI_NORM_TINY) s = PFI_NORM_UP;
-    if (m > PFI_NORM_HUGE) s = PFI_NORM_DOWN;
-    b = pf_vec3_scale(a, s);
-    return pf_vec3_scale(b, PF_R(1.0) / pf_vec3_length(b));
+    if (m < PFI_NORM_TINY || m > PFI_NORM_HUGE) a = pf_vec3_scale(a, m < PFI_NORM_TINY ? PFI_NORM_UP : PFI_NORM_DOWN);
+    return pf_vec3_scale(a, PF_R(1.0) / pf_vec3_length(a));
 }
 
 #endif /* PF_CORE_H */

@@ -334,11 +334,12 @@ PF_DEF pf_real pf_gg_uniform_node_any(int n, pf_real lambda, int j)
     return lambda * (PF_R(2.0) * PF_R(j) - PF_R(n - 1)) / PF_R(n - 1);
 }
 
-/* exp(-(p^2 - pc^2)/2) for |p| >= pc >= 0: the Gaussian weight of node p relative to the
-   central node pc (the nearest to 0), written as a product so that it keeps its accuracy. */
-PF_DEF pf_real pfi_gg_rel_weight(pf_real p, pf_real pc)
+/* exp(-(p_k^2 - pc^2)/2) for node k of the n-node grid of spacing h (p_k = h (2k - n + 1)/2,
+   n >= 2), relative to the central node pc = |p_(n/2)| (the nearest to 0), written as a
+   product, (|p_k| - pc)(|p_k| + pc), so that it keeps its accuracy. */
+PF_DEF pf_real pfi_gg_rel_weight(int n, pf_real h, int k, pf_real pc)
 {
-    pf_real a = PF_FABS(p);
+    pf_real a = PF_FABS(h * (PF_R(k) - PF_R(0.5) * PF_R(n - 1)));
     return PF_EXP(PF_R(-0.5) * (a - pc) * (a + pc));
 }
 
@@ -346,16 +347,18 @@ PF_DEF pf_real pfi_gg_rel_weight(pf_real p, pf_real pc)
    Every exponential is taken relative to the central node pc (exp(-(p^2 - pc^2)/2)), so the
    sum is >= 1: for a wide grid the plain exp(-p^2/2) of every node underflows (float: n = 2,
    lambda = 16 gave 0/0 = NaN; from lambda = 13.9 under -ffast-math, which flushes
-   subnormals), whereas now the far weights underflow to 0 and the central ones stay. */
+   subnormals), whereas now the far weights underflow to 0 and the central ones stay. The
+   node spacing h = 2 lambda/(n - 1) is divided once, not per node. */
 PF_DEF pf_real pf_gg_uniform_weight_any(int n, pf_real lambda, int j)
 {
-    pf_real s = PF_R(0.0), pc;
+    pf_real s = PF_R(0.0), h, pc;
     int k;
     if (j < 0 || j >= n) return PF_R(0.0);
     if (n <= 1) return PF_R(1.0);
-    pc = PF_FABS(pf_gg_uniform_node_any(n, lambda, n / 2));
-    for (k = 0; k < n; ++k) s += pfi_gg_rel_weight(pf_gg_uniform_node_any(n, lambda, k), pc);
-    return pfi_gg_rel_weight(pf_gg_uniform_node_any(n, lambda, j), pc) / s;
+    h = PF_R(2.0) * lambda / PF_R(n - 1);
+    pc = PF_FABS(h * (PF_R(n / 2) - PF_R(0.5) * PF_R(n - 1)));
+    for (k = 0; k < n; ++k) s += pfi_gg_rel_weight(n, h, k, pc);
+    return pfi_gg_rel_weight(n, h, j, pc) / s;
 }
 
 /* sum W_j p_j^2 of that grid; the matched grid's nodes are pf_gg_uniform_node_any / sqrt(it).
@@ -363,17 +366,18 @@ PF_DEF pf_real pf_gg_uniform_weight_any(int n, pf_real lambda, int j)
    grids too, where the plain sum underflowed and gave 0). */
 PF_DEF pf_real pf_gg_uniform_variance_any(int n, pf_real lambda)
 {
-    pf_real s = PF_R(0.0), m2 = PF_R(0.0), pc;
+    pf_real s = PF_R(0.0), m2 = PF_R(0.0), h, pc;
     int k;
-    if (n < 1) return PF_R(0.0);
-    pc = PF_FABS(pf_gg_uniform_node_any(n, lambda, n / 2));
+    if (n <= 1) return PF_R(0.0);
+    h = PF_R(2.0) * lambda / PF_R(n - 1);
+    pc = PF_FABS(h * (PF_R(n / 2) - PF_R(0.5) * PF_R(n - 1)));
     for (k = 0; k < n; ++k) {
-        pf_real p = pf_gg_uniform_node_any(n, lambda, k);
-        pf_real e = pfi_gg_rel_weight(p, pc);
+        pf_real p = h * (PF_R(k) - PF_R(0.5) * PF_R(n - 1));
+        pf_real e = pfi_gg_rel_weight(n, h, k, pc);
         s += e;
         m2 += e * p * p;
     }
-    return s > PF_R(0.0) ? m2 / s : PF_R(0.0);
+    return m2 / s;
 }
 
 /* ---------------------------------------------------------------- the 2D grid (sec. 5.1) */

@@ -51,8 +51,14 @@
      heights are standardized. pf_height_dist_rescale converts to world heights.
      Lambda is the SUM Lambda_o + Lambda_i for the visible-height functions (D_h depends on the
      sum only, eq. 15); negative and NaN Lambdas read as 0, anything above PF_LAMBDA_MAX as
-     PF_LAMBDA_MAX (a direction below the surface). Every function returns finite values for
-     finite inputs, and for Lambda = 0 and Lambda = PF_LAMBDA_MAX.
+     PF_LAMBDA_MAX (a direction below the surface). The visibility, visible-height and
+     Gaussian-filter functions return finite values for every finite input, and for Lambda = 0
+     and Lambda = PF_LAMBDA_MAX. The linear maps of heights and values (pf_height_attribute_mean,
+     pf_height_dist_rescale, _add_noise, pf_height_colour_dist, pf_transfer_end_moments,
+     pf_transfer_segment_moments, pf_transfer_slope_stats) are finite while their inputs, and
+     for the transfer moments the slope (g1 - g0)/(x1 - x0) of every piece, stay below
+     sqrt(PF_REAL_MAX)/4 (4.6e18 in float) in magnitude: beyond, a sum, a product or a square
+     (g^2, g'^2, sigma^2) overflows, as its exact value may.
      Colour maps are piecewise linear through knots (x[k], c[k]) with x non-decreasing, constant
      beyond the end knots (c[0] below x[0], c[n-1] above x[n-1]); two equal x make a jump.
      Filtering means the expectation E[C(X)], X ~ N(mean, sigma^2). sigma <= 0 (or NaN) means

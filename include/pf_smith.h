@@ -39,7 +39,11 @@
      the macrosurface (w_g = +z) and need not be normalized for pf_smith_nu and the GGX
      functions. Lambda = +inf is returned as PF_LAMBDA_MAX (finite, so sums stay finite and
      -ffast-math builds stay defined); nu = +inf as PF_NU_MAX. Every function returns a finite
-     value for every finite input; NaN inputs give G1 = 0.
+     value for every finite input, except pf_slope_along, whose mean and variance along w are
+     sums that overflow where their exact value does (statistics near PF_REAL_MAX); NaN inputs
+     give G1 = 0. Under -ffast-math the NaN tests are compiled away, so an input whose
+     intermediate overflows to inf - inf (w.x E[x] and w.y E[y] of opposite signs, both near
+     PF_REAL_MAX) can give NaN in pf_smith_nu and its callers (docs/stability.md counts them).
 
    ACCURACY AND COST (measured; docs/smith.md has the tables, bench/bench_smith.c the timings)
      pf_g1_beckmann        float: one (5,5) rational, max rel. error 2.7e-7 (bound 1e-6);
@@ -105,7 +109,9 @@ PF_DEF pf_slope_stats pf_slope_stats_from_moments(pf_real ex, pf_real ey, pf_rea
 
 /* Mean and deviation (mu, sigma) of the slopes along the azimuth of w
    (Dupuy et al. 2013 eqs. 14-15), with cos p = w.x/r, sin p = w.y/r, r = |(w.x, w.y)|.
-   At normal incidence (r = 0) the azimuth is undefined and p = 0 (the x axis) is used. */
+   At normal incidence (r = 0) the azimuth is undefined and p = 0 (the x axis) is used.
+   Finite while |E[x]|, |E[y]| and the (co)variances are below PF_REAL_MAX / 4; beyond, the
+   exact mean or variance along w may exceed PF_REAL_MAX and the result is +-inf. */
 PF_DEF pf_vec2 pf_slope_along(pf_vec3 w, pf_slope_stats s)
 {
     pf_real r = PF_SQRT(w.x * w.x + w.y * w.y);

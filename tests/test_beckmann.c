@@ -13,6 +13,7 @@
    - the centered case against the textbook anisotropic Beckmann D and Smith G1 in long double.
    The same bodies run in float, double, C++ and under sanitizers; edge_* tests also run under
    -ffast-math. */
+#include <string.h>
 #include "pf_beckmann.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
@@ -966,6 +967,59 @@ static void edge_singular_covariance(void)
     }
 }
 
+/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
+static int bits_finite(pf_real x)
+{
+#ifdef PF_DOUBLE
+    unsigned long long u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+#else
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7F800000u) != 0x7F800000u;
+#endif
+}
+
+/* The sweep's findings (docs/stability.md, first sweep): a variance near PF_REAL_MAX made
+   var_x var_y = inf and P22, D = inf/inf = NaN; under -ffast-math a mean slope near PF_REAL_MAX
+   made the mesonormal NaN (pf_vec3_normalize's 1/m flushed to 0). Exact P22 input, then every
+   variance up to PF_REAL_MAX; below the cap (1e15 / 1e150) the value is the uncapped formula. */
+static void edge_beckmann_huge_variance(void)
+{
+    pf_slope_stats s = pf_slope_stats_make((pf_real)ldexp(15925248.0, -37), PF_R(-256.0), PF_REAL_MAX,
+                                           (pf_real)ldexp(12124160.0, -21), PF_R(0.0));
+    pf_real p = pf_beckmann_p22(PF_R(0.0), PF_R(-1048576.0), s);
+    pf_vec3 mn = pf_beckmann_mesonormal(pf_slope_stats_make(PF_R(256.0), PF_REAL_MAX, PF_R(0.15), PF_R(0.0), PF_R(0.0)));
+    int e, k, bad = 0;
+    PF_CHECK(bits_finite(p) && p >= PF_R(0.0), "p22 with var_x = MAX: %g", (double)p);
+    PF_CHECK(bits_finite(mn.x) && bits_finite(mn.y) && bits_finite(mn.z) && mn.y == PF_R(-1.0),
+             "mesonormal(256, MAX) = (%g %g %g)", (double)mn.x, (double)mn.y, (double)mn.z);
+    for (e = 0; e <= 38; e += 2)
+        for (k = 0; k < 4; ++k) {
+            pf_real v = (pf_real)pow(10.0, (double)e) * (pf_real)(1.0 + 0.3 * k);
+            pf_slope_stats t = pf_slope_stats_make(PF_R(0.1), PF_R(-0.2), v, k % 2 ? PF_R(0.3) : v, PF_R(0.0));
+            pf_vec3 m = pf_vec3_make(PF_R(-0.727436185), PF_R(-0.686175287), PF_R(0.2));
+            pf_real a = pf_beckmann_p22(PF_R(0.3), PF_R(1.0e3), t), d = pf_beckmann_d(m, t);
+            bad += !(bits_finite(a) && a >= PF_R(0.0) && bits_finite(d) && d >= PF_R(0.0));
+        }
+    bad += !(bits_finite(pf_beckmann_p22(PF_REAL_MAX, -PF_REAL_MAX, s)) && bits_finite(pf_beckmann_d(
+                 pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(1.0)), pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_REAL_MAX,
+                                                                                   PF_REAL_MAX, PF_REAL_MAX))));
+    PF_CHECK(bad == 0, "%d non-finite or negative P22 / D", bad);
+    {
+        /* a variance just below the cap is not changed: P22 at the mean = 1/(2 pi sqrt(det)) */
+#ifdef PF_DOUBLE
+        long double v = 1.0e149L;
+#else
+        long double v = 1.0e14L;
+#endif
+        pf_real got = pf_beckmann_p22(PF_R(0.0), PF_R(0.0), pf_slope_stats_make(PF_R(0.0), PF_R(0.0), (pf_real)v, PF_R(1.0), PF_R(0.0)));
+        long double want = 1.0L / (2.0L * PF_TEST_PI * sqrtl((long double)(pf_real)v));
+        PF_CHECK(pf_test_rel_error((long double)got, want) <= 8.0L * PF_TEST_EPS, "p22 peak %g vs %Lg", (double)got, want);
+    }
+}
+
 static void edge_fresnel(void)
 {
     int i;
@@ -995,5 +1049,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_sigma_to_zero);
     PF_TEST_RUN(edge_singular_covariance);
     PF_TEST_RUN(edge_fresnel);
+    PF_TEST_RUN(edge_beckmann_huge_variance);
     return PF_TEST_END();
 }

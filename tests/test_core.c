@@ -5,6 +5,7 @@
    Built as C99 float, C99 double (-DPF_DOUBLE), C++11, clang sanitizers and -ffast-math
    (edge_* tests only). The accuracy tests assert the bounds stated in pf_core.h and
    docs/core.md and record the measured maxima with pf_test_note. */
+#include <string.h>
 #include "pf_core.h"
 #include "pf_test.h"
 
@@ -414,6 +415,77 @@ static void edge_vec3_normalize(void)
 #endif
 }
 
+/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
+static int bits_finite(pf_real x)
+{
+#ifdef PF_DOUBLE
+    unsigned long long u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+#else
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7F800000u) != 0x7F800000u;
+#endif
+}
+
+/* The stability sweep's failing inputs (docs/stability.md, first sweep): a subnormal largest
+   component made 1/m overflow (NaN); under -ffast-math a component near PF_REAL_MAX made 1/m
+   subnormal, flushed to 0 (NaN). Then every binade of the type, components of mixed scale. */
+static void edge_vec3_normalize_extreme(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x7EC30006ULL);
+#ifdef PF_DOUBLE
+    pf_vec3 sub = pf_vec3_make((pf_real)ldexp(-5.0, -1072), PF_R(0.0), PF_R(0.0)); /* -0x0.0000000000014p-1022 */
+    pf_vec3 big = pf_vec3_make((pf_real)ldexp(-312.0, 40), (pf_real)ldexp(-7.0, 454), (pf_real)ldexp(1.0, 1023));
+    const int emin = -1074, emax = 1023;
+#else
+    pf_vec3 sub = pf_vec3_make((pf_real)ldexp(-313.0, -139), PF_R(0.0), PF_R(0.0)); /* -0x1.39p-131 */
+    pf_vec3 big = pf_vec3_make((pf_real)ldexp(-312.0, -22), (pf_real)ldexp(-7.0, 43), (pf_real)ldexp(1.0, 127));
+    const int emin = -149, emax = 127;
+#endif
+    long double worst = 0.0L;
+    int e, k, bad = 0;
+    pf_vec3 u = pf_vec3_normalize(sub);
+#ifndef __FAST_MATH__
+    PF_CHECK(u.x == PF_R(-1.0) && u.y == PF_R(0.0) && u.z == PF_R(0.0), "normalize(subnormal, 0, 0) = (%g %g %g)",
+             (double)u.x, (double)u.y, (double)u.z);
+#else
+    /* subnormal inputs may read as 0 (DAZ): then the zero vector's (0, 0, 1) */
+    PF_CHECK(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z), "normalize(subnormal, 0, 0) not finite");
+#endif
+    u = pf_vec3_normalize(big);
+    PF_CHECK(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z) && u.z == PF_R(1.0) && u.x <= PF_R(0.0) &&
+                 u.y < PF_R(0.0), "normalize(huge) = (%g %g %g)", (double)u.x, (double)u.y, (double)u.z);
+    for (e = emin; e <= emax; ++e) {
+        for (k = 0; k < 24; ++k) {
+            /* the largest component 2^e times [1/2, 1), the others up to 2^-30 smaller */
+            pf_real c[3];
+            int i, lead = k % 3;
+            pf_vec3 a;
+            long double l;
+            for (i = 0; i < 3; ++i) {
+                int drop = i == lead ? 0 : (int)(pf_test_rng_next(&r) % 31u);
+                double sign = (pf_test_rng_next(&r) & 1u) ? -1.0 : 1.0;
+                c[i] = (pf_real)(sign * ldexp(pf_test_uniform(&r, 0.5, 1.0), e - drop));
+            }
+            a = pf_vec3_make(c[0], c[1], c[2]);
+            u = pf_vec3_normalize(a);
+            if (!(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z))) { bad++; continue; }
+            l = ld_len3(u);
+            if (fabsl(l - 1.0L) > worst) worst = fabsl(l - 1.0L);
+#ifndef __FAST_MATH__
+            /* same direction: the leading component keeps its sign and dominates */
+            if (!((c[lead] > PF_R(0.0)) == ((lead == 0 ? u.x : (lead == 1 ? u.y : u.z)) > PF_R(0.0)))) bad++;
+#endif
+        }
+    }
+    pf_test_note("every binade 2^%d .. 2^%d: | |n| - 1 | <= %.2Lf eps, %d bad", emin, emax,
+                 worst / (long double)PF_REAL_EPSILON, bad);
+    PF_CHECK(bad == 0, "%d non-finite or flipped results", bad);
+    PF_CHECK(worst <= 4.0L * (long double)PF_REAL_EPSILON, "| |n| - 1 | = %Lg", worst);
+}
+
 #ifdef __cplusplus
 /* GLM as an independent implementation of the same vector operations. */
 #  ifdef PF_DOUBLE
@@ -482,6 +554,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_scalar_helpers);
     PF_TEST_RUN(test_vec_ops);
     PF_TEST_RUN(edge_vec3_normalize);
+    PF_TEST_RUN(edge_vec3_normalize_extreme);
 #ifdef __cplusplus
     PF_TEST_RUN(test_vec_vs_glm);
 #endif

@@ -8,6 +8,7 @@
    and against the exact irradiance of a directional light; the rough diffuse BRDF against
    Oren-Nayar's model. The same bodies run in float, double, C++ and under sanitizers; edge_*
    tests also run under -ffast-math. */
+#include <string.h>
 #include "pf_gaussgrid.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
@@ -821,6 +822,128 @@ static void edge_degenerate_inputs(void)
 }
 
 /* Node accessors outside their range, and the weights of every table sum to 1 in every build. */
+/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
+static int bits_finite(pf_real x)
+{
+#ifdef PF_DOUBLE
+    unsigned long long u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+#else
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7F800000u) != 0x7F800000u;
+#endif
+}
+
+/* The sweep's findings (docs/stability.md, first sweep): pf_gg_node(-1, 3, 9) returned the
+   n = 4 node 0.5196 (j = 9 folded onto the table's other half) though j outside the set gives
+   0; |j| >= 2^30 overflowed 2 j (UBSan, in the clang-san build). Every set id (unknown ones
+   read as uniform), every n, indices around and far outside the range. */
+static void edge_gg_index_outside(void)
+{
+    static const int far[] = { -2147483647 - 1, 2147483647, -1073741824, 1073741824, 1073741825, -1073741825,
+                               536870912, -3, -2, -1 };
+    int set, n, j, k, bad = 0;
+    PF_CHECK(pf_gg_node(-1, 3, 9) == PF_R(0.0), "pf_gg_node(-1, 3, 9) = %g", (double)pf_gg_node(-1, 3, 9));
+    for (set = -1; set <= 4; ++set)
+        for (n = -2; n <= 12; ++n) {
+            int m = n < 1 ? 1 : (n > PF_GG_MAX_N ? PF_GG_MAX_N : n);
+            int uni = set == PF_GG_HERMITE || set == PF_GG_MATCHED ? set : PF_GG_UNIFORM;
+            for (j = m; j < m + 16; ++j) bad += pf_gg_node(set, n, j) != PF_R(0.0) || pf_gg_weight(set, n, j) != PF_R(0.0);
+            for (k = 0; k < (int)(sizeof far / sizeof far[0]); ++k)
+                bad += pf_gg_node(set, n, far[k]) != PF_R(0.0) || pf_gg_weight(set, n, far[k]) != PF_R(0.0);
+            /* inside: an unknown set is the uniform one */
+            for (j = 0; j < m; ++j)
+                bad += pf_gg_node(set, n, j) != pf_gg_node(uni, n, j) || pf_gg_weight(set, n, j) != pf_gg_weight(uni, n, j);
+        }
+    {
+        pf_gg_grid g = pf_gg_grid_make(pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(0.8)),
+                                       pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.04), PF_R(0.09), PF_R(0.01)),
+                                       PF_GG_HERMITE, 3);
+        for (k = 0; k < (int)(sizeof far / sizeof far[0]); ++k) {
+            bad += pf_gg_sample_at(g, far[k]).weight != PF_R(0.0);
+            bad += pf_gg_env_sample_at(g, far[k]).weight != PF_R(0.0);
+        }
+    }
+    PF_CHECK(bad == 0, "%d nodes or weights outside the set not 0", bad);
+}
+
+/* The sweep's findings: pf_gg_uniform_weight_any(2, 16, 1) was 0/0 = NaN in float (every
+   exp(-p^2/2) underflows; from lambda = 13.94 under -ffast-math). Weights against a long
+   double evaluation of exp(-p_j^2/2) / sum_k exp(-p_k^2/2), for wide and ordinary grids. */
+static void edge_gg_uniform_weight_any_wide(void)
+{
+    static const double lambdas[] = { 0.0, 0.5, 1.8, 5.0, 13.9375, 16.0, 40.0, 100.0, 1.0e4 };
+    long double worst = 0.0L, worst_sum = 0.0L;
+    int n, j, li, bad = 0;
+    PF_CHECK(pf_gg_uniform_weight_any(2, PF_R(16.0), 1) == PF_R(0.5), "weight_any(2, 16, 1) = %g",
+             (double)pf_gg_uniform_weight_any(2, PF_R(16.0), 1));
+    for (li = 0; li < (int)(sizeof lambdas / sizeof lambdas[0]); ++li)
+        for (n = 1; n <= 64; ++n) {
+            pf_real lam = (pf_real)lambdas[li];
+            long double pc = fabsl((long double)pf_gg_uniform_node_any(n, lam, n / 2)), den = 0.0L, sum = 0.0L;
+            for (j = 0; j < n; ++j) {
+                long double p = fabsl((long double)pf_gg_uniform_node_any(n, lam, j));
+                den += expl(-0.5L * (p - pc) * (p + pc));
+            }
+            for (j = 0; j < n; ++j) {
+                long double p = fabsl((long double)pf_gg_uniform_node_any(n, lam, j));
+                long double want = expl(-0.5L * (p - pc) * (p + pc)) / den;
+                pf_real w = pf_gg_uniform_weight_any(n, lam, j);
+                if (!bits_finite(w) || !(w >= PF_R(0.0) && w <= PF_R(1.0))) { bad++; continue; }
+                if (fabsl((long double)w - want) > worst) worst = fabsl((long double)w - want);
+                sum += (long double)w;
+            }
+            if (fabsl(sum - 1.0L) > worst_sum) worst_sum = fabsl(sum - 1.0L);
+            bad += !bits_finite(pf_gg_uniform_variance_any(n, lam));
+        }
+    /* a wide grid's variance: both nodes at +-16 carry half the mass */
+    PF_CHECK(fabsl((long double)pf_gg_uniform_variance_any(2, PF_R(16.0)) - 256.0L) <= 256.0L * 4.0L * PF_TEST_EPS,
+             "variance_any(2, 16) = %g", (double)pf_gg_uniform_variance_any(2, PF_R(16.0)));
+    pf_test_note("lambda up to 1e4, n <= 64: |W - W_ref| <= %.2Lf eps, |sum - 1| <= %.2Lf eps",
+                 worst / PF_TEST_EPS, worst_sum / PF_TEST_EPS);
+    PF_CHECK(bad == 0, "%d weights non-finite or outside [0, 1]", bad);
+    PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "weight error %Lg", worst);
+    PF_CHECK(worst_sum <= 64.0L * PF_TEST_EPS, "sum error %Lg", worst_sum);
+}
+
+/* The sweep's finding: cos_d = w_n . w_o rounded to 1.00000024 near normal incidence (float,
+   grid of the exact input below, both orders of its view components); then views within 1e-3
+   of the normal with tiny slopes, where the dot product of two unit vectors rounds above 1. */
+static void edge_gg_env_cos_d_range(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0xC05D0001ULL);
+    pf_slope_stats st = pf_slope_stats_make((pf_real)ldexp(15302656.0, -136), (pf_real)ldexp(14385152.0, -35),
+                                            (pf_real)ldexp(9895936.0, -37), (pf_real)ldexp(13434880.0, -66),
+                                            (pf_real)ldexp(16338333.0, -52));
+    pf_real wx = (pf_real)ldexp(-10455199.0, -38), wy = (pf_real)ldexp(-11791077.0, -35);
+    pf_real wz = (pf_real)ldexp(16777215.0, -24);
+    pf_gg_grid g[2];
+    int i, k, bad = 0;
+    g[0] = pf_gg_grid_make(pf_vec3_make(wx, wy, wz), st, PF_GG_UNIFORM, 3);
+    g[1] = pf_gg_grid_make(pf_vec3_make(wy, wx, wz), st, PF_GG_UNIFORM, 3);
+    for (k = 0; k < 2; ++k)
+        for (i = -1; i <= 9; ++i) {
+            pf_gg_env_sample e = pf_gg_env_sample_at(g[k], i == -1 ? 2147483647 : i);
+            bad += !(e.cos_d >= PF_R(0.0) && e.cos_d <= PF_R(1.0));
+        }
+    PF_CHECK(bad == 0, "exact input: %d cos_d outside [0, 1]", bad);
+    for (k = 0; k < 20000; ++k) {
+        pf_vec3 wo = pf_vec3_normalize(pf_vec3_make((pf_real)pf_test_uniform(&r, -1e-3, 1e-3),
+                                                    (pf_real)pf_test_uniform(&r, -1e-3, 1e-3), PF_R(1.0)));
+        pf_real v = (pf_real)pf_test_log_uniform(&r, 1e-12, 1e-4);
+        pf_gg_grid gg = pf_gg_grid_make(wo, pf_slope_stats_make((pf_real)pf_test_uniform(&r, -1e-3, 1e-3),
+                                                                (pf_real)pf_test_uniform(&r, -1e-3, 1e-3), v, v, PF_R(0.0)),
+                                        (int)(k % 3), 1 + k % 9);
+        for (i = 0; i < pf_gg_grid_count(gg); ++i) {
+            pf_gg_env_sample e = pf_gg_env_sample_at(gg, i);
+            bad += !(e.cos_d >= PF_R(0.0) && e.cos_d <= PF_R(1.0));
+        }
+    }
+    PF_CHECK(bad == 0, "%d cos_d outside [0, 1]", bad);
+}
+
 static void edge_tables(void)
 {
     int set, n, j, bad = 0;
@@ -856,5 +979,8 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_sigma_zero);
     PF_TEST_RUN(edge_degenerate_inputs);
     PF_TEST_RUN(edge_tables);
+    PF_TEST_RUN(edge_gg_index_outside);
+    PF_TEST_RUN(edge_gg_uniform_weight_any_wide);
+    PF_TEST_RUN(edge_gg_env_cos_d_range);
     return PF_TEST_END();
 }

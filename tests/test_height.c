@@ -873,6 +873,47 @@ static void edge_visible_height_extremes(void)
     PF_CHECK(bad == 0, "%d bad (non-finite, out of range or non-monotone)", bad);
 }
 
+/* The sweep's findings (docs/stability.md, first sweep): E[g^2] of one segment came out
+   -3.4e-21 (float) / -5.8e-11 (double) where its three terms cancel (g crosses 0 far out in
+   the tail), and pf_transfer_slope_stats gave |cov| > sqrt(vx vy) when vx vy was subnormal.
+   Exact inputs, then random segments around a sign change of g. */
+static void edge_transfer_rounding(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x7A5F0001ULL);
+    pf_transfer_moments t;
+    pf_slope_stats st;
+    int i, bad = 0;
+#ifdef PF_DOUBLE
+    t = pf_transfer_segment_moments(PF_R(-1048576.0), PF_R(1024.0), PF_R(0.0), (pf_real)ldexp(-10190848.0, -40),
+                                    (pf_real)ldexp(12288000.0, -37), (pf_real)ldexp(11010048.0, -30));
+#else
+    t = pf_transfer_segment_moments(PF_R(-1048576.0), (pf_real)ldexp(14811136.0, -46), PF_R(0.0),
+                                    (pf_real)ldexp(15532032.0, -134), (pf_real)ldexp(-13863992.0, -26),
+                                    (pf_real)ldexp(12091392.0, -33));
+#endif
+    PF_CHECK(t.g2 >= PF_R(0.0) && t.dg2 >= PF_R(0.0), "E[g^2] = %g, E[g'^2] = %g", (double)t.g2, (double)t.dg2);
+    {
+        pf_real x0 = (pf_real)ldexp(11927552.0, -40);
+        t = pf_transfer_segment_moments(x0, (pf_real)ldexp(-15630336.0, -38), x0 + (pf_real)ldexp(8978432.0, -4),
+                                        (pf_real)ldexp(15073280.0, -118), (pf_real)ldexp(9764864.0, -26),
+                                        (pf_real)ldexp(10944512.0, -33));
+        st = pf_transfer_slope_stats(t, (pf_real)ldexp(13056685.0, -24), (pf_real)ldexp(9241060.0, -25),
+                                     (pf_real)ldexp(10305094.0, -24), (pf_real)ldexp(10373674.0, -27),
+                                     (pf_real)ldexp(14619493.0, -26));
+        PF_CHECK(st.var_x >= PF_R(0.0) && st.var_y >= PF_R(0.0) &&
+                     PF_FABS(st.cov_xy) <= PF_SQRT(st.var_x) * PF_SQRT(st.var_y),
+                 "slope stats (%g %g %g) not PSD", (double)st.var_x, (double)st.var_y, (double)st.cov_xy);
+    }
+    for (i = 0; i < 100000; ++i) {
+        pf_real x0 = (pf_real)pf_test_uniform(&r, -1e6, 1e6), w = (pf_real)pf_test_log_uniform(&r, 1e-3, 2e6);
+        pf_real g0 = (pf_real)pf_test_log_uniform(&r, 1e-30, 1e3), g1 = -(pf_real)pf_test_log_uniform(&r, 1e-30, 1e3);
+        pf_real m = (pf_real)pf_test_uniform(&r, -1.0, 1.0), sg = (pf_real)pf_test_log_uniform(&r, 1e-4, 10.0);
+        t = pf_transfer_segment_moments(x0, i % 2 ? g0 : g1, x0 + w, i % 2 ? g1 : g0, m, sg);
+        bad += !(t.g2 >= PF_R(0.0) && t.dg2 >= PF_R(0.0));
+    }
+    PF_CHECK(bad == 0, "%d negative second moments", bad);
+}
+
 static void edge_colormap_degenerate(void)
 {
     static const pf_real x[6] = { PF_R(-1.0), PF_R(0.0), PF_R(0.0), PF_R(0.5), PF_R(0.5000001), PF_R(2.0) };
@@ -925,5 +966,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_closed_forms_extremes);
     PF_TEST_RUN(edge_visible_height_extremes);
     PF_TEST_RUN(edge_colormap_degenerate);
+    PF_TEST_RUN(edge_transfer_rounding);
     return PF_TEST_END();
 }

@@ -13,6 +13,7 @@
    The same bodies run in float, double, C++ and under sanitizers (every buffer is allocated
    with its exact size, so AddressSanitizer sees any read out of bounds); edge_* tests also run
    under -ffast-math. */
+#include <string.h>
 #include "pf_moments.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
@@ -987,6 +988,127 @@ static void edge_bad_input(void)
     PF_CHECK(bad == 0, "%d failures", bad);
 }
 
+/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
+static int bits_finite(pf_real x)
+{
+#ifdef PF_DOUBLE
+    unsigned long long u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+#else
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7F800000u) != 0x7F800000u;
+#endif
+}
+
+/* log(w0 e^l0 + w1 e^l1) in long double, the max taken over the positive weights */
+static long double lse2_ref(long double l0, long double w0, long double l1, long double w1)
+{
+    long double m = w0 > 0.0L ? (w1 > 0.0L && l1 > l0 ? l1 : l0) : l1;
+    return m + logl((w0 > 0.0L ? w0 * expl(l0 - m) : 0.0L) + (w1 > 0.0L ? w1 * expl(l1 - m) : 0.0L));
+}
+
+/* The sweep's failing inputs (docs/stability.md, first sweep): the larger log has weight 0 and
+   the other term underflowed, so the old m = max(l0, l1) gave log(0) = -inf. Then random logs
+   up to 2^12 with weights 0, tiny and uniform against the long double log-sum-exp. */
+static void edge_esm_log_combine2_zero_weight(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0xE5C0B12EULL);
+#ifdef PF_DOUBLE
+    pf_real cc = PF_R(2792.0), z0 = (pf_real)ldexp(12684032.0, -25), z1 = (pf_real)ldexp(14403712.0, -27);
+    pf_real w1 = (pf_real)ldexp(10912748.0, -26);
+#else
+    pf_real cc = PF_R(4096.0), z0 = (pf_real)ldexp(12324178.0, -25), z1 = (pf_real)ldexp(10461216.0, -25);
+    pf_real w1 = (pf_real)ldexp(14829136.0, -24);
+#endif
+    pf_real l0 = cc * z0, l1 = cc * z1;
+    pf_real got = pf_esm_log_combine2(l0, PF_R(0.0), l1, w1);
+    long double ref = (long double)l1 + logl((long double)w1), worst = 0.0L;
+    int i, bad = 0;
+    PF_CHECK(bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref),
+             "combine2(%g, 0, %g, %g) = %g, want %Lg", (double)l0, (double)l1, (double)w1, (double)got, ref);
+    got = pf_esm_log_combine2(l1, w1, l0, PF_R(0.0)); /* the mirror image */
+    PF_CHECK(bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref), "mirrored: %g", (double)got);
+    PF_CHECK(pf_esm_log_combine2(l0, PF_R(0.0), l1, PF_R(0.0)) == -PF_REAL_MAX, "both weights 0");
+    for (i = 0; i < 200000; ++i) {
+        pf_real a = (pf_real)pf_test_uniform(&r, 0.0, 4096.0), b = (pf_real)pf_test_uniform(&r, 0.0, 4096.0);
+        unsigned k = (unsigned)(pf_test_rng_next(&r) % 8u);
+        pf_real wa = k == 0 ? PF_R(0.0) : (k == 1 ? PF_R(1.0e-30) : (pf_real)pf_test_uniform(&r, 0.0, 1.0));
+        pf_real wb = k == 2 ? PF_R(0.0) : (pf_real)pf_test_uniform(&r, 0.001, 1.0);
+        long double want = lse2_ref((long double)a, (long double)wa, (long double)b, (long double)wb), err;
+        got = pf_esm_log_combine2(a, wa, b, wb);
+        if (!bits_finite(got)) { bad++; continue; }
+        err = fabsl((long double)got - want) / (fabsl(want) + 1.0L);
+        if (err > worst) worst = err;
+    }
+    pf_test_note("random logs in [0, 4096], zero and tiny weights: error <= %.2Lf eps (|l| + 1), %d non-finite",
+                 worst / PF_TEST_EPS, bad);
+    PF_CHECK(bad == 0, "%d non-finite", bad);
+    PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "error %Lg", worst);
+}
+
+/* One EVSM texel of two depths mixed, as tests/fuzz/pf_calls.h builds them. */
+static pf_evsm_moments evsm_mix(pf_real cp, pf_real cn, pf_real z0, pf_real z1, pf_real t)
+{
+    pf_evsm_moments a = pf_evsm_moments_from_depth(z0, cp, cn), b = pf_evsm_moments_from_depth(z1, cp, cn);
+    pf_real s = PF_R(1.0) - t;
+    return pf_evsm_moments_make(s * a.pos1 + t * b.pos1, s * a.pos2 + t * b.pos2, s * a.neg1 + t * b.neg1,
+                                s * a.neg2 + t * b.neg2);
+}
+
+static long double mean4_err(pf_real got, pf_real a, pf_real b, pf_real c, pf_real d)
+{
+    long double want = ((long double)a + (long double)b + (long double)c + (long double)d) / 4.0L;
+    return want == 0.0L ? fabsl((long double)got) : fabsl((long double)got - want) / fabsl(want);
+}
+
+/* The sweep's failing input under float -ffast-math (docs/stability.md, first sweep): four
+   second moments near exp(88) whose sum overflows once -ffast-math factors 0.25 out of the
+   weighted sum. Then random texels with exponents in [40, 44] against the long double mean. */
+static void edge_evsm_reduce2x2_near_max(void)
+{
+    static const double k[20][2] = {
+        {11521491.0, -18}, {0.0, 0}, {15939140.0, -26}, {16776626.0, -24}, {15155754.0, -24},
+        {11450572.0, -18}, {15146231.0, -19}, {11301985.0, -24}, {8388608.0, -23}, {11064097.0, -24},
+        {10610996.0, -23}, {10770014.0, -18}, {9684608.0, -26}, {10557888.0, -28}, {8388608.0, -23},
+        {11534336.0, -18}, {0.0, 0}, {8388608.0, -23}, {16631109.0, -24}, {15842592.0, -29}};
+    pf_real v[20];
+    pf_evsm_moments t[4], m;
+    pf_test_rng r = pf_test_rng_seed(0xE75A2B2ULL);
+    long double worst = 0.0L;
+    int i, bad = 0;
+    for (i = 0; i < 20; ++i) v[i] = (pf_real)ldexp(k[i][0], (int)k[i][1]);
+    for (i = 0; i < 4; ++i) t[i] = evsm_mix(v[5 * i], v[5 * i + 1], v[5 * i + 2], v[5 * i + 3], v[5 * i + 4]);
+    m = pf_evsm_moments_reduce2x2(t[0], t[1], t[2], t[3]);
+    PF_CHECK(bits_finite(m.pos1) && bits_finite(m.pos2) && bits_finite(m.neg1) && bits_finite(m.neg2),
+             "reduce2x2 = (%g %g %g %g)", (double)m.pos1, (double)m.pos2, (double)m.neg1, (double)m.neg2);
+    PF_CHECK(mean4_err(m.pos2, t[0].pos2, t[1].pos2, t[2].pos2, t[3].pos2) <= 4.0L * PF_TEST_EPS, "pos2 %g",
+             (double)m.pos2);
+    for (i = 0; i < 100000; ++i) {
+        int j;
+        long double e;
+        for (j = 0; j < 4; ++j) {
+            pf_real cp = (pf_real)pf_test_uniform(&r, 40.0, 44.0), cn = (pf_real)pf_test_uniform(&r, 40.0, 44.0);
+            t[j] = evsm_mix(cp, cn, (pf_real)pf_test_uniform(&r, 0.9, 1.0), (pf_real)pf_test_uniform(&r, 0.0, 1.0),
+                            (pf_real)pf_test_uniform(&r, 0.0, 1.0));
+        }
+        m = pf_evsm_moments_reduce2x2(t[0], t[1], t[2], t[3]);
+        if (!(bits_finite(m.pos1) && bits_finite(m.pos2) && bits_finite(m.neg1) && bits_finite(m.neg2))) {
+            bad++;
+            continue;
+        }
+        e = mean4_err(m.pos1, t[0].pos1, t[1].pos1, t[2].pos1, t[3].pos1);
+        e = fmaxl(e, mean4_err(m.pos2, t[0].pos2, t[1].pos2, t[2].pos2, t[3].pos2));
+        e = fmaxl(e, mean4_err(m.neg1, t[0].neg1, t[1].neg1, t[2].neg1, t[3].neg1));
+        e = fmaxl(e, mean4_err(m.neg2, t[0].neg2, t[1].neg2, t[2].neg2, t[3].neg2));
+        if (e > worst) worst = e;
+    }
+    pf_test_note("texels near exp(88): relative error <= %.2Lf eps, %d non-finite", worst / PF_TEST_EPS, bad);
+    PF_CHECK(bad == 0, "%d non-finite", bad);
+    PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "error %Lg", worst);
+}
+
 static void edge_extreme_values(void)
 {
     int bad = 0, j, n;
@@ -1043,5 +1165,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_half_storage_variance);
     PF_TEST_RUN(edge_bad_input);
     PF_TEST_RUN(edge_extreme_values);
+    PF_TEST_RUN(edge_esm_log_combine2_zero_weight);
+    PF_TEST_RUN(edge_evsm_reduce2x2_near_max);
     return PF_TEST_END();
 }

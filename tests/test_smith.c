@@ -5,6 +5,7 @@
    over the whole slope plane or the hemisphere of micro-normals, with tests/pf_oracle.h in
    long double. The same bodies run in float, double, C++ and under sanitizers; edge_* tests
    also run under -ffast-math. */
+#include <string.h>
 #include "pf_smith.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
@@ -660,6 +661,97 @@ static void edge_slope_stats_from_moments(void)
     PF_CHECK(pf_g1_beckmann(nu) >= PF_R(0.0) && pf_g1_beckmann(nu) <= PF_R(1.0), "G1 in range");
 }
 
+/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
+static int bits_finite(pf_real x)
+{
+#ifdef PF_DOUBLE
+    unsigned long long u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
+#else
+    unsigned int u;
+    memcpy(&u, &x, sizeof u);
+    return (u & 0x7F800000u) != 0x7F800000u;
+#endif
+}
+
+/* The sweep's finding (docs/stability.md, first sweep): G1o G1i subnormal lost its low bits and
+   the joint term came out above min(G1o, G1i) (float 1.2e-33 vs 4.4e-8: 1.00013x). Exact
+   inputs, then pairs with log-uniform exponents over the whole range (subnormals included),
+   against the long double formula; G1 above 1 and any finite input stay finite and in range. */
+static void edge_smith_joint_tiny_and_wide(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x5317A11ULL);
+#ifdef PF_DOUBLE
+    pf_real a = (pf_real)ldexp(31.0, -565), b = (pf_real)ldexp(284.0, -519); /* 0x1.fp-561, 0x1.1cp-511 */
+    const double emin = -1074.0;
+#else
+    pf_real a = (pf_real)ldexp(409.0, -118), b = (pf_real)ldexp(382.0, -33); /* 0x1.99p-110, 0x1.7ep-25 */
+    const double emin = -149.0;
+#endif
+    pf_real j = pf_smith_joint(a, b);
+    long double worst = 0.0L;
+    int i, bad = 0;
+    PF_CHECK(j <= a && j > PF_R(0.0), "joint(%g, %g) = %g above G1o", (double)a, (double)b, (double)j);
+    for (i = 0; i < 200000; ++i) {
+        pf_real x = (pf_real)ldexp(1.0, (int)pf_test_uniform(&r, emin, 1.0)) * (pf_real)pf_test_uniform(&r, 0.5, 1.0);
+        pf_real y = (i % 4 == 0) ? PF_R(1.0) : (pf_real)ldexp(1.0, (int)pf_test_uniform(&r, emin, 1.0)) *
+                                                   (pf_real)pf_test_uniform(&r, 0.5, 1.0);
+        pf_real g = pf_smith_joint(x, y), m = pf_min(x, y);
+        long double lx = (long double)x, ly = (long double)y, want = lx * ly / (lx + ly - lx * ly);
+        if (!bits_finite(g) || g < PF_R(0.0) || (long double)g > (long double)m * (1.0L + 4.0L * PF_TEST_EPS)) bad++;
+        if (want >= 4.0L * (long double)PF_REAL_MIN && pf_test_rel_error((long double)g, want) > worst)
+            worst = pf_test_rel_error((long double)g, want);
+    }
+    pf_test_note("pairs down to the smallest subnormal: relative error <= %.2Lf eps where the result is normal, %d above min(G1o, G1i)",
+                 worst / PF_TEST_EPS, bad);
+    PF_CHECK(bad == 0, "%d results out of [0, min(G1o, G1i)]", bad);
+    PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "relative error %Lg", worst);
+    /* G1 above 1 read as 1; the separable product clamps to [0, 1] */
+    PF_CHECK(pf_smith_joint(PF_R(1.0), PF_REAL_MAX) == PF_R(1.0), "joint(1, MAX) = %g",
+             (double)pf_smith_joint(PF_R(1.0), PF_REAL_MAX));
+    PF_CHECK(pf_smith_joint(PF_R(2.0), PF_R(0.5)) == PF_R(0.5), "joint(2, 0.5)");
+    PF_CHECK(pf_smith_separable(-PF_REAL_MAX, PF_REAL_MAX) == PF_R(0.0), "separable(-MAX, MAX) = %g",
+             (double)pf_smith_separable(-PF_REAL_MAX, PF_REAL_MAX));
+    PF_CHECK(pf_smith_separable(PF_REAL_MAX, PF_REAL_MAX) == PF_R(1.0), "separable(MAX, MAX)");
+    PF_CHECK(pf_smith_separable(PF_R(0.5), PF_R(0.25)) == PF_R(0.125), "separable(0.5, 0.25)");
+}
+
+/* The sweep's findings: pf_smith_nu_iso(1, -PF_REAL_MAX) was NaN (sqrt(2) sigma overflowed, times
+   sin = 0); under float -ffast-math pf_smith_nu with a variance near PF_REAL_MAX gave NaN
+   (num * rsqrt(inf)); and stats with tiny variances whose product vx vy underflows gave
+   |cov| > sigma_x sigma_y in pf_slope_stats_from_moments. */
+static void edge_smith_huge_and_tiny_statistics(void)
+{
+    static const double cosines[] = { 1.0, 0.999, 0.5, 1e-7, 0.0, -0.5 };
+    pf_slope_stats st = pf_slope_stats_make(PF_R(-3.51667404e-05), PF_R(6.57513738e-07), PF_REAL_MAX,
+                                            PF_R(8.01492206e-12), PF_R(1.74792345e+13));
+    pf_real nu = pf_smith_nu(pf_vec3_make(PF_R(2043.82922), PF_R(7932.94531), PF_R(0.0)), st);
+    int i, k, e1, e2, bad = 0;
+    PF_CHECK(bits_finite(nu) && nu >= PF_R(0.0) && nu <= PF_NU_MAX, "nu with var_x = MAX: %g", (double)nu);
+    nu = pf_smith_nu(pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(0.8)),
+                     pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_REAL_MAX, PF_REAL_MAX, PF_R(0.0)));
+    PF_CHECK(bits_finite(nu) && nu >= PF_R(0.0) && nu < PF_R(1e-15), "nu with both variances MAX: %g", (double)nu);
+    for (i = 0; i < (int)(sizeof cosines / sizeof cosines[0]); ++i)
+        for (k = -1; k <= 1; k += 2) {
+            pf_real v = pf_smith_nu_iso((pf_real)cosines[i], (pf_real)k * PF_REAL_MAX);
+            bad += !(bits_finite(v) && v >= PF_R(0.0) && v <= PF_NU_MAX);
+        }
+    PF_CHECK(pf_smith_nu_iso(PF_R(1.0), -PF_REAL_MAX) == PF_NU_MAX, "nu_iso(1, -MAX)");
+    PF_CHECK(bad == 0, "%d nu_iso non-finite or out of range", bad);
+    /* variances 2^e1, 2^e2 down to where their product underflows; |r| just above 1 */
+    bad = 0;
+    for (e1 = -140; e1 <= 0; e1 += 3)
+        for (e2 = -140; e2 <= 0; e2 += 5)
+            for (k = -1; k <= 1; k += 2) {
+                pf_real vx = (pf_real)ldexp(1.3, e1), vy = (pf_real)ldexp(1.7, e2);
+                pf_real c = (pf_real)k * (pf_real)(sqrt((double)vx) * sqrt((double)vy) * (1.0 + 1.0 / 1024.0));
+                pf_slope_stats t = pf_slope_stats_from_moments(PF_R(0.0), PF_R(0.0), vx, vy, c);
+                bad += !(PF_FABS(t.cov_xy) <= PF_SQRT(t.var_x) * PF_SQRT(t.var_y));
+            }
+    PF_CHECK(bad == 0, "%d covariances beyond sigma_x sigma_y", bad);
+}
+
 static void edge_ggx(void)
 {
     int i;
@@ -702,5 +794,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_smith_nu);
     PF_TEST_RUN(edge_slope_stats_from_moments);
     PF_TEST_RUN(edge_ggx);
+    PF_TEST_RUN(edge_smith_joint_tiny_and_wide);
+    PF_TEST_RUN(edge_smith_huge_and_tiny_statistics);
     return PF_TEST_END();
 }

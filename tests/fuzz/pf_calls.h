@@ -53,7 +53,6 @@ typedef struct pfc_ctx {
     int wide_hit; /* this call drew an arbitrary finite value (range checks then skipped) */
     int skip; /* a derived input came out non-finite: the call does not count */
     int bad;  /* 1: non-finite output, 2: output out of its documented range */
-    int avoid_known; /* fuzzers: keep ints where no known UB is (|j| < 2^29, see pf_fuzz.h) */
     int have_lo;
     pfc_u32 lo; /* the unused half of the last 64-bit draw */
     int narg, nout;
@@ -485,9 +484,8 @@ static int pfc_int_any(pfc_ctx *c)
     pfc_u32 u = pfc_next(c);
     int v;
     if (c->raw) v = (int)(u & 0xFFu) - 128;
-    else if (PFC_R(u) == 0 && !c->avoid_known) v = (u & 1u) ? -2147483647 - 1 : 2147483647;
-    else if (PFC_R(u) == 1) v = (int)(0x100000u + (PFC_B(u) % (c->avoid_known ? 0x1FF00000u : 0x7FF00000u))) * ((u & 2u) ? -1 : 1);
-    else if (PFC_R(u) == 0 && c->avoid_known) v = (u & 1u) ? -(1 << 29) + 1 : (1 << 29) - 1;
+    else if (PFC_R(u) == 0) v = (u & 1u) ? -2147483647 - 1 : 2147483647;
+    else if (PFC_R(u) == 1) v = (int)(0x100000u + (PFC_B(u) % 0x7FF00000u)) * ((u & 2u) ? -1 : 1);
     else v = -3 + (int)(u % 16u);
     if (c->niarg < 8) c->iarg[c->niarg] = v;
     c->niarg++;
@@ -1463,11 +1461,11 @@ static const pfc_entry pfc_table[] = {
     PFC_E(core, pf_vec3_dot, 0, "directions scaled by 0, 1 or 2^+-40 (d: 2^+-300)", PFC_LINREG),
     PFC_E(core, pf_vec3_cross, 0, "directions scaled by 0, 1 or 2^+-40 (d: 2^+-300)", PFC_LINREG),
     PFC_E(core, pf_vec3_length, 0, "directions scaled by 0, 1 or 2^+-40 (d: 2^+-300)", "squares the components: overflows past |v| ~ 1.8e19 (f), underflows below ~1e-19"),
-    PFC_E(core, pf_vec3_normalize, 0, "components +-[0, PF_REAL_MAX]", "zero vector (or NaN) returns (0, 0, 1); scaled by the largest component first, so no overflow"),
+    PFC_E(core, pf_vec3_normalize, 0, "components +-[0, PF_REAL_MAX]", "zero vector (or NaN) returns (0, 0, 1); components outside [2^-50, 2^60] (f) / [2^-480, 2^500] (d) scaled by a power of two first: subnormal and huge vectors stay unit"),
     /* smith */
     PFC_E(smith, pf_slope_stats_make, 0, "means +-2^8, variances incl. 0 and slightly negative, |r| <= 1 + 2^-k", "constructor"),
-    PFC_E(smith, pf_slope_stats_from_moments, PFC_WIDE, "raw moments of the stats domain", "negative variance clamped to 0, |c| clamped to sigma_x sigma_y; cancellation E[x^2] - E[x]^2 for |mean| >> sigma"),
-    PFC_E(smith, pf_slope_along, PFC_WIDE, "any-length w (grazing, below, zero), stats", "normal incidence (r = 0): azimuth taken as the x axis; negative variance along w clamped to 0"),
+    PFC_E(smith, pf_slope_stats_from_moments, PFC_WIDE, "raw moments of the stats domain", "negative variance clamped to 0, |c| clamped to sqrt(vx) sqrt(vy) (no underflowing product); cancellation E[x^2] - E[x]^2 for |mean| >> sigma"),
+    PFC_E(smith, pf_slope_along, 0, "any-length w (grazing, below, zero), stats", "normal incidence (r = 0): azimuth taken as the x axis; negative variance along w clamped to 0; statistics beyond PF_REAL_MAX/4 can overflow the exact mean or variance (not all finite)"),
     PFC_E(smith, pf_smith_nu, PFC_WIDE, "any-length w (grazing, below, zero), stats", "0 on/below the mesosurface; PF_NU_MAX at normal incidence or zero deviation along w"),
     PFC_E(smith, pf_smith_nu_iso, PFC_WIDE, "cos in [-1, 1] (grazing, 0, below), sigma >= 0", "0 for cos <= 0; PF_NU_MAX for sigma = 0 or cos = 1"),
     PFC_E(smith, pf_lambda_beckmann, PFC_WIDE, "every finite nu", "PF_LAMBDA_MAX (1e30) for nu <= 0 or tiny nu; 0 past nu = 10.5 (f) / 27.5 (d)"),
@@ -1480,9 +1478,9 @@ static const pfc_entry pfc_table[] = {
     PFC_E(smith, pf_g1_ggx, PFC_WIDE, "any-length w, alpha >= 0", "0 for w.z <= 0; 2 w.z/u at extreme grazing (t > 1e18)"),
     PFC_E(smith, pf_lambda_ggx_iso, PFC_WIDE, "cos in [-1, 1], alpha >= 0", "as pf_lambda_ggx; cos clamped to 1"),
     PFC_E(smith, pf_g1_ggx_iso, PFC_WIDE, "cos in [-1, 1], alpha >= 0", "as pf_g1_ggx"),
-    PFC_E(smith, pf_smith_joint, PFC_WIDE, "G1s in [0, 1]", "0 when either G1 <= 0 (or NaN); never 0/0"),
+    PFC_E(smith, pf_smith_joint, PFC_WIDE, "G1s in [0, 1]", "0 when either G1 <= 0 (or NaN); G1 > 1 read as 1; a (b / den): <= min(G1o, G1i) even for subnormal products"),
     PFC_E(smith, pf_smith_joint_lambda, PFC_WIDE, "Lambdas in [0, 1e30] (also slightly negative, above 1e30)", "negative Lambda read as 0; two PF_LAMBDA_MAX give ~5e-31, not 0"),
-    PFC_E(smith, pf_smith_separable, PFC_WIDE, "G1s in [0, 1]", "product; double-counts occlusion (<= joint)"),
+    PFC_E(smith, pf_smith_separable, PFC_WIDE, "G1s in [0, 1]", "product of G1s clamped to [0, 1] (NaN to 0); double-counts occlusion (<= joint)"),
     PFC_E(smith, pf_g2_beckmann, PFC_WIDE, "every finite nu pair", "0 when either nu <= 0"),
     /* beckmann */
     PFC_E(beckmann, pf_slope_moments_make, 0, "raw moments of the stats domain", "constructor"),
@@ -1495,8 +1493,8 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_slope_stats_correlation, 0, "stats domain", "0 when a variance is 0; clamped to [-1, 1]"),
     PFC_E(beckmann, pf_slope_moments_deform, 0, "filtered moments, Jacobian entries +-2^8", PFC_LINREG),
     PFC_E(beckmann, pf_slope_moments_scale_height, 0, "filtered moments, eta +-2^8", "eta = 0 flattens (mirror + base roughness)"),
-    PFC_E(beckmann, pf_beckmann_p22, PFC_WIDE, "slopes +-2^20, stats incl. singular and indefinite covariances", "variance floored at 1e-15 (f) / 1e-140 (d), determinant at 4 eps vx vy: singular |r| = 1 gives a finite peak (<= 2.3e17 in f); exponent capped"),
-    PFC_E(beckmann, pf_beckmann_d, PFC_WIDE, "any-length m (grazing, below), stats incl. singular", "0 for m.z <= 0; 1/cos^4 capped at 1e9; as p22 for singular covariance"),
+    PFC_E(beckmann, pf_beckmann_p22, PFC_WIDE, "slopes +-2^20, stats incl. singular and indefinite covariances", "variance floored at 1e-15 (f) / 1e-140 (d) and capped at 1e15 / 1e150, determinant at 4 eps vx vy: singular |r| = 1 gives a finite peak (<= 2.3e17 in f); exponent capped"),
+    PFC_E(beckmann, pf_beckmann_d, 0, "any-length m (grazing, below), stats incl. singular", "0 for m.z <= 0; 1/cos^4 capped at 1e9; as p22 for singular covariance; m.z^2 must be finite (m.z < 1.8e19 (f)), so not all finite"),
     PFC_E(beckmann, pf_beckmann_mesonormal, PFC_WIDE, "stats domain", "normalized with the scaled pf_vec3_normalize: huge mean slopes stay unit"),
     PFC_E(beckmann, pf_beckmann_projected_area, 0, "unit w (grazing, below), stats", "clamped at 0 on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_lambda, PFC_WIDE, "any-length w, stats", "PF_LAMBDA_MAX on/below the mean plane"),
@@ -1517,7 +1515,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(moments, pf_evsm2_from_depth, 0, "z in [0, 1], c in [0, 44]", "p^2 = exp(2c) near FLT_MAX at c = 44"),
     PFC_E(moments, pf_evsm_moments_from_depth, 0, "z in [0, 1], c in [0, 44]", "as evsm2"),
     PFC_E(moments, pf_esm_log_from_depth, 0, "z in [0, 1], c in [0, 2^12]", "log space: finite for any c"),
-    PFC_E(moments, pf_esm_log_combine2, 0, "l = c z (c <= 2^12), weights in [0, 1] with w0 + w1 > 0", "log(0) = -inf when the weight of the larger log is 0 and the other term underflows (l1 - l0 < -87 (f) / -745 (d))"),
+    PFC_E(moments, pf_esm_log_combine2, 0, "l = c z (c <= 2^12), weights in [0, 1] with w0 + w1 > 0", "max taken over the logs of positive weight (a zero weight on the larger log no longer gives log(0)); both weights <= 0: -PF_REAL_MAX"),
     PFC_E(moments, pf_depth_moments2_add, 0, PFC_LIN, PFC_LINREG),
     PFC_E(moments, pf_depth_moments2_scale, 0, PFC_LIN, PFC_LINREG),
     PFC_E(moments, pf_depth_moments4_add, 0, PFC_LIN, PFC_LINREG),
@@ -1560,7 +1558,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(moments, pf_depth_moments4_accumulate, 0, PFC_LIN, PFC_LINREG),
     PFC_E(moments, pf_depth_moments4_bilinear, 0, PFC_LIN, PFC_LINREG),
     PFC_E(moments, pf_evsm_moments_lerp, 0, PFC_LIN " (E[p^2] up to exp(88))", "weights applied before summing: stays finite at c = 44"),
-    PFC_E(moments, pf_evsm_moments_reduce2x2, 0, PFC_LIN " (E[p^2] up to exp(88))", "weights applied before summing: stays finite at c = 44"),
+    PFC_E(moments, pf_evsm_moments_reduce2x2, 0, PFC_LIN " (E[p^2] up to exp(88))", "midpoints of midpoints, a + (b - a)/2: -ffast-math cannot factor them into a sum of four, so finite at c = 44 in every build"),
     PFC_E(moments, pf_evsm_moments_reduce3, 0, PFC_LIN " (E[p^2] up to exp(88))", "weights applied before summing: stays finite at c = 44"),
     PFC_E(moments, pf_evsm_moments_reduce3x3, 0, PFC_LIN " (E[p^2] up to exp(88))", "weights applied before summing: stays finite at c = 44"),
     PFC_E(moments, pf_evsm_moments_accumulate, 0, PFC_LIN " (E[p^2] up to exp(88))", "acc + w t: acc near exp(88) plus a texel overflows (normalize as you go)"),
@@ -1603,18 +1601,18 @@ static const pfc_entry pfc_table[] = {
     PFC_E(shadow, pf_shadow_msm_bounds, PFC_WIDE, "moments of 2 depths (+ rounding, all-zero), d, bias in [0, 1], depth_bias +-1/16", "singular Hankel matrix (point mass, two atoms, depths 0/1): pivots floored, roots clamped to 1e4, divisions clamped"),
     PFC_E(shadow, pf_shadow_msm, PFC_WIDE, "as msm_bounds", "as msm_bounds"),
     /* gaussgrid */
-    PFC_E(gaussgrid, pf_gg_node, 0, "set in [-1, 3], n in [-2, 12], every int j", "n clamped to [1, 9]; unknown set read as uniform; j outside [0, n) documented to give 0"),
+    PFC_E(gaussgrid, pf_gg_node, 0, "set in [-1, 3], n in [-2, 12], every int j", "n clamped to [1, 9]; unknown set read as uniform; j outside [0, n) gives 0 (range tested first: no int overflow)"),
     PFC_E(gaussgrid, pf_gg_weight, 0, "set, n as pf_gg_node, every int j", "0 outside [0, n)"),
     PFC_E(gaussgrid, pf_gg_node_variance, 0, "set in [-1, 3], n in [-2, 12]", "uniform N = 5 gives 0.866 (not 1)"),
     PFC_E(gaussgrid, pf_gg_uniform_lambda, 0, "every int n", "0 for n <= 1"),
     PFC_E(gaussgrid, pf_gg_uniform_node_any, 0, "n in [-2, 64], j in [-2, 66], lambda [0, 16]", "0 for n <= 1"),
-    PFC_E(gaussgrid, pf_gg_uniform_weight_any, PFC_SLOW, "n in [-2, 64], j in [-2, 66], lambda [0, 16]", "n exps per call; 0 outside [0, n), 1 for n <= 1; huge lambda: far weights underflow to 0"),
+    PFC_E(gaussgrid, pf_gg_uniform_weight_any, PFC_SLOW, "n in [-2, 64], j in [-2, 66], lambda [0, 16]", "n exps per call; 0 outside [0, n), 1 for n <= 1; exps relative to the central node: huge lambda leaves the central weights, far ones underflow to 0"),
     PFC_E(gaussgrid, pf_gg_uniform_variance_any, PFC_SLOW, "n in [-2, 64], lambda [0, 16]", "0 for n <= 0"),
     PFC_E(gaussgrid, pf_gg_grid_make, 0, "unit wo (grazing, below), stats incl. singular/negative variance, any set, n in [-1, 12]", "negative variance read as 0, |r| clamped to 1; inv_proj = 0 at/below the mesosurface"),
     PFC_E(gaussgrid, pf_gg_grid_count, 0, "grids as grid_make", "N^2 with N in [1, 9]"),
     PFC_E(gaussgrid, pf_gg_sample_at, 0, "grids, every int i", "index outside: weight 0"),
     PFC_E(gaussgrid, pf_gg_jacobian, 0, "unit wn, wo", "-"),
-    PFC_E(gaussgrid, pf_gg_env_sample_at, 0, "grids, every int i", "reflected direction below the mesosurface: weight exactly 0"),
+    PFC_E(gaussgrid, pf_gg_env_sample_at, 0, "grids, every int i", "reflected direction below the mesosurface: weight exactly 0; cos_d clamped to [0, 1]"),
     PFC_E(gaussgrid, pf_gg_env_lod, 0, "solid angle [0, 2^40], texel [2^-40, 2^4]", "0 when the sample is smaller than a texel"),
     PFC_E(gaussgrid, pf_sh9_make, 0, "coefficients +-2^10", "constructor"),
     PFC_E(gaussgrid, pf_sh9_constant, 0, "radiance +-2^40", "-"),
@@ -1633,24 +1631,24 @@ static const pfc_entry pfc_table[] = {
     PFC_E(height, pf_height_visibility, PFC_WIDE, "z +-2^12, Lambda [0, 1e30] (+ negative, above)", "Lambda clamped to [0, 1e30] (NaN -> 0); error ~ eps (1 + |log V| + Lambda z^2)"),
     PFC_E(height, pf_height_mean_visibility, PFC_WIDE, "Lambdas as above", "both at PF_LAMBDA_MAX: 1/2; range (0, 1]"),
     PFC_E(height, pf_height_joint_visibility, PFC_WIDE, "Lambdas as above", "range (0, 1]"),
-    PFC_E(height, pf_height_attribute_mean, PFC_WIDE, "a0, amplitude +-2^20, Lambdas", "finite for every Lambda"),
+    PFC_E(height, pf_height_attribute_mean, 0, "a0, amplitude +-2^20, Lambdas", "finite for every Lambda; a0, amplitude beyond sqrt(PF_REAL_MAX)/4 may overflow, as the exact value"),
     PFC_E(height, pf_height_dist_make, PFC_WIDE, "mean +-2^20, dev [0, 2^20]", "constructor"),
     PFC_E(height, pf_visible_height_published, PFC_WIDE, "Lambda sum as above", "published fit: mean off by up to 0.13 sigma_h"),
     PFC_E(height, pf_visible_height, PFC_WIDE, "Lambda sum as above", "fit: 9.5e-6 / 6.7e-5 relative up to PF_LAMBDA_MAX"),
     PFC_E(height, pf_visible_height_exact, PFC_WIDE | PFC_SLOW, "Lambda sum as above", "64-node quadrature (~1000x the fit); rounding-limited in float"),
-    PFC_E(height, pf_height_dist_rescale, PFC_WIDE, "dist, mean_h +-2^20, sigma_h [0, 2^20]", PFC_LINREG),
-    PFC_E(height, pf_height_dist_add_noise, PFC_WIDE, "dist, mu_r +-2^20, sigma_r [0, 2^20]", "variances added"),
-    PFC_E(height, pf_height_colour_dist, PFC_WIDE, "Lambdas, heights, noise as above", "as visible_height + rescale + add_noise"),
+    PFC_E(height, pf_height_dist_rescale, 0, "dist, mean_h +-2^20, sigma_h [0, 2^20]", PFC_LINREG),
+    PFC_E(height, pf_height_dist_add_noise, 0, "dist, mu_r +-2^20, sigma_r [0, 2^20]", "variances added: sigma^2 overflows past 1.8e19 (f)"),
+    PFC_E(height, pf_height_colour_dist, 0, "Lambdas, heights, noise as above", "as visible_height + rescale + add_noise"),
     PFC_E(height, pf_gauss_cdf, PFC_WIDE, "x, mean +-2^30, sigma (0, negative, tiny, huge)", "sigma <= 0: the step (1/2 at x = mean); standardized position clamped to +-40"),
     PFC_E(height, pf_gauss_step, PFC_WIDE, "as gauss_cdf", "as gauss_cdf"),
     PFC_E(height, pf_gauss_segment_weights, PFC_WIDE, "x0 <= x1 (jumps incl.), mean, sigma as above", "x1 <= x0 gives (0, 0); narrow segments (< sigma/8) by Taylor series"),
     PFC_E(height, pf_gauss_smoothstep, PFC_WIDE, "e0 <= e1, mean, sigma as above", "e1 <= e0: the step; narrow ramp (< sigma/3) by series; range [0, 1]"),
     PFC_E(height, pf_transfer_moments_make, PFC_WIDE, "moments +-2^20 / [0, 2^40]", "constructor"),
     PFC_E(height, pf_transfer_moments_add, PFC_WIDE, "segment moments", PFC_LINREG),
-    PFC_E(height, pf_transfer_end_moments, PFC_WIDE, "value +-2^40, mass [0, 1]", "v^2 overflows past 1.8e19 (f)"),
-    PFC_E(height, pf_transfer_segment_moments, PFC_WIDE, "knots x0 <= x1 +-2^20, g +-2^10, mean, sigma", "x1 <= x0 gives zeros; g'^2 = ((g1-g0)/(x1-x0))^2 huge for tiny segments"),
+    PFC_E(height, pf_transfer_end_moments, 0, "value +-2^40, mass [0, 1]", "v^2 overflows past 1.8e19 (f)"),
+    PFC_E(height, pf_transfer_segment_moments, 0, "knots x0 <= x1 +-2^20, g +-2^10, mean, sigma", "x1 <= x0 gives zeros; E[g^2] clamped at 0 (cancellation); g'^2 = ((g1-g0)/(x1-x0))^2 huge for tiny segments, overflows past 1.8e19 (f)"),
     PFC_E(height, pf_transfer_height, PFC_WIDE, "segment moments", "dev clamped at 0 (cancellation E[g^2] - E[g]^2)"),
-    PFC_E(height, pf_transfer_slope_stats, PFC_WIDE, "segment moments, filtered slope moments", "as pf_slope_stats_from_moments"),
+    PFC_E(height, pf_transfer_slope_stats, 0, "segment moments, filtered slope moments", "as pf_slope_stats_from_moments; products E[g'^2] E[x^2] overflow as their exact value"),
     PFC_E(height, pf_colormap_table_size, 0, "n_mean, n_sigma in [-2, 1290], channels [-1, 4]", "0 for sizes < 2; int overflow (UB) when the product exceeds 2^31 - 1 (outside the swept domain)"),
 };
 #define PFC_COUNT ((int)(sizeof pfc_table / sizeof pfc_table[0]))
