@@ -115,6 +115,10 @@ for page in report choosing; do
     for img in $(grep -o '](\([A-Za-z0-9_.-]*\)\.\(svg\|png\))' "$src" | sed 's/^](//; s/)$//' | sort -u); do
         cp "$out_dir/$img" "$docs/charts/$img"
     done
-    sed 's/](\([A-Za-z0-9_.-]*\.\(svg\|png\)\))/](charts\/\1)/g; s/`make docs` copies it to docs\/report.md with its charts./This copy in docs\/ was refreshed by `make docs`./' "$src" > "$docs/$page.md"
+    # choosing.md stands alone in docs/: its headings move up a level and its links into the
+    # report point at docs/report.md
+    promote=""
+    [ "$page" = choosing ] && promote='s/^##/#/; s/](#/](report.md#/g'
+    sed 's/](\([A-Za-z0-9_.-]*\.\(svg\|png\)\))/](charts\/\1)/g; s/`make docs` copies it to docs\/report.md with its charts./This copy in docs\/ was refreshed by `make docs`./'"${promote:+; $promote}" "$src" > "$docs/$page.md"
     echo "update_docs: wrote $docs/$page.md"
 done
