@@ -53,7 +53,7 @@
    100, 316%); background pixels are grey.
    What the error is made of, per footprint-size row:
      out-of-footprint occlusion: a second reference, "in-box", marches the same texels with
-       only the footprint box's own height field as occluder (visible_in_box); the rows
+       only the footprint box's own height field as occluder (pfm_visible_box); the rows
        report how far it is from the full reference, and the errors against it;
      the Gaussian-slope assumption: with no visibility at all, the NDF at the half vector of
        the shaded texels (the mean of their base lobes) against the Gaussian with the same
@@ -66,9 +66,7 @@
    slope FLAT_RMS_SLOPE): the three methods and the in-box reference must then match the
    reference to rounding (bound in main); the program fails otherwise. It checks the plumbing
    that the comparison relies on (frames, footprints, the recombination of the reference,
-   conventions of the two shaders). And visible_in_box with an unbounded box must give
-   pfm_visible's answer on 20000 seeded random (texel, direction) pairs (at most
-   MARCH_CHECK_BOUND disagreeing).
+   conventions of the two shaders).
 
    TIMES. The per-pixel geometry is computed first; then the brute-force reference and the
    filtered shading are timed over the same pixels on one core (filtered: best of several
@@ -125,7 +123,6 @@
 #define LOBE_CUTOFF     30.0    /* reference: texels whose base lobe at h is below exp(-30) of
                                    its peak (1e-13) are not marched (their term is taken as 0) */
 #define FLAT_RMS_SLOPE  1e-9    /* self-check: the map flattened to this RMS slope */
-#define MARCH_CHECK_BOUND 1e-3  /* in-box march vs pfm_visible: largest fraction of disagreements */
 
 static const double pic_pi = 3.14159265358979323846;
 
@@ -1111,84 +1108,6 @@ static int footprint_side(double fp)
 
 static int footprint_start(double t, int n) { return (int)floor(t - 0.5 * n + 0.5); }
 
-/* Visibility with the occluders restricted to a box: 1 if the node (x, y) (unwrapped texel
-   coordinates) sees w when only the height field over the box [bx0 - 1/2, bx0 + n - 1/2] x
-   [by0 - 1/2, by0 + n - 1/2] (the footprint's n x n texels, each its node's half-texel
-   neighbourhood) can occlude: the ray counts as free once it leaves the box or rises above
-   hmax. The march follows pfm_visible's rules (back-facing texels see nothing, the first half
-   texel is skipped, the bilinear surface along the ray is a quadratic per cell and is tested
-   exactly: tests/pf_microsurface.h), without its block acceleration; main checks that with an
-   unbounded box it reproduces pfm_visible. */
-static int visible_in_box(const pfm_surface *s, int x, int y, const double w[3], long bx0,
-                          long by0, long n)
-{
-    const int W = s->w, H = s->h;
-    const double *hp = s->height;
-    double sx, sy, rxy, dx, dy, rise, h0, top, t, tend, tdx, tdy, tnx, tny;
-    int ix, iy, stepx, stepy;
-    if (!(w[2] > 0.0)) return 0;
-    pfm_slope(s, x, y, &sx, &sy);
-    if (!(w[2] - sx * w[0] - sy * w[1] > 0.0)) return 0; /* back-facing: self-occluded */
-    rxy = sqrt(w[0] * w[0] + w[1] * w[1]);
-    h0 = hp[(size_t)wrap_index(y, H) * W + wrap_index(x, W)] / s->texel;
-    top = s->hmax / s->texel;
-    if (!(rxy > 0.0) || h0 >= top) return 1;
-    dx = w[0] / rxy;
-    dy = w[1] / rxy;
-    rise = w[2] / rxy;
-    /* where the ray leaves the box, or rises above every node */
-    tend = (top - h0) / rise;
-    if (dx > 1e-300) tend = fmin(tend, ((double)(bx0 + n) - 0.5 - (double)x) / dx);
-    if (dx < -1e-300) tend = fmin(tend, ((double)bx0 - 0.5 - (double)x) / dx);
-    if (dy > 1e-300) tend = fmin(tend, ((double)(by0 + n) - 0.5 - (double)y) / dy);
-    if (dy < -1e-300) tend = fmin(tend, ((double)by0 - 0.5 - (double)y) / dy);
-    stepx = dx > 0.0 ? 1 : -1;
-    stepy = dy > 0.0 ? 1 : -1;
-    ix = dx >= 0.0 ? x : x - 1;
-    iy = dy >= 0.0 ? y : y - 1;
-    tdx = fabs(dx) > 1e-300 ? 1.0 / fabs(dx) : 1e300;
-    tdy = fabs(dy) > 1e-300 ? 1.0 / fabs(dy) : 1e300;
-    if (!(fabs(dx) > 1e-300)) dx = 0.0;
-    if (!(fabs(dy) > 1e-300)) dy = 0.0;
-    tnx = tdx;
-    tny = tdy;
-    t = 0.0;
-    while (t < tend) {
-        double tout = tnx < tny ? tnx : tny, ta = t > 0.5 ? t : 0.5, tb = tout < tend ? tout : tend;
-        double len = tb - ta;
-        if (len > 0.0) {
-            int cx = wrap_index(ix, W), cy = wrap_index(iy, H);
-            int cx1 = cx + 1 == W ? 0 : cx + 1, cy1 = cy + 1 == H ? 0 : cy + 1;
-            double h00 = hp[(size_t)cy * W + cx] / s->texel,
-                   h10 = hp[(size_t)cy * W + cx1] / s->texel;
-            double h01 = hp[(size_t)cy1 * W + cx] / s->texel,
-                   h11 = hp[(size_t)cy1 * W + cx1] / s->texel;
-            double u = (double)x + dx * ta - (double)ix, v = (double)y + dy * ta - (double)iy;
-            double gx = h10 - h00, gy = h01 - h00, k = h11 - h10 - h01 + h00;
-            /* surface minus ray on [ta, tb]: f0 + b tau + c tau^2, tau = t - ta */
-            double f0 = h00 + gx * u + gy * v + k * u * v - (h0 + rise * ta);
-            double b = gx * dx + gy * dy + k * (u * dy + v * dx) - rise;
-            double c = k * dx * dy;
-            double f1 = f0 + len * (b + c * len);
-            double eps = 1e-12 * (1.0 + fabs(h0) + rise * ta);
-            if (f0 > eps || f1 > eps) return 0;
-            if (c < 0.0) {
-                double tv = -b / (2.0 * c);
-                if (tv > 0.0 && tv < len && f0 - b * b / (4.0 * c) > eps) return 0;
-            }
-        }
-        t = tout;
-        if (tnx < tny) {
-            tnx += tdx;
-            ix += stepx;
-        } else {
-            tny += tdy;
-            iy += stepy;
-        }
-    }
-    return 1;
-}
-
 typedef struct {
     double full;    /* the reference: occluders anywhere on the (periodic) surface */
     double inbox;   /* occluders inside the footprint box only */
@@ -1208,7 +1127,7 @@ typedef struct {
    the whole box when the box is shaded completely. Texels hidden from the viewer contribute
    0 to the numerator and their a_t to the denominator, so they are not marched toward the
    light. Second pass (the in-box variant): the texels occluded in the full march are marched
-   again with only the box's own height field as occluder (visible_in_box; a texel free in the
+   again with only the box's own height field as occluder (pfm_visible_box; a texel free in the
    full march is free in the box). */
 static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
 {
@@ -1286,13 +1205,14 @@ static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
     for (q = 0; q < k; ++q) {
         const ref_texel *e = &m->ref_scratch[q];
         int x = wrap_index(e->x, s->w), y = wrap_index(e->y, s->h);
+        int bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h);
         if (e->vo < 0) continue; /* not marched: negligible */
         if (e->vo && e->vi == 1) {
             num_box += e->term;
             continue;
         }
-        if (!e->vo && !visible_in_box(s, e->x, e->y, p->wo, x0, y0, n)) continue;
-        if (e->vi != 1 && !visible_in_box(s, e->x, e->y, p->wi, x0, y0, n)) continue;
+        if (!e->vo && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
+        if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
         num_box += pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
                        .spec * e->at;
     }
@@ -2191,39 +2111,6 @@ static double self_check(void)
     return worst;
 }
 
-/* The in-box march checked against pfm_visible (a check that can fail): with a box far larger
-   than any ray's path, visible_in_box must give pfm_visible's answer. Seeded random texels of
-   the corpus map and directions 3 to 80 degrees above the horizon; returns the fraction of
-   disagreements and sets *count to the number of pairs tried. */
-static double check_box_march(int *count)
-{
-    pfm_surface s;
-    unsigned long long seed = 0x9E3779B97F4A7C15ULL;
-    int i, bad = 0, n = 20000;
-    *count = 0;
-    if (pfm_surface_make(&s, MAP_SIZE, MAP_SIZE, 1.0, pfm_params_default(PFM_GAUSSIAN)) != 0)
-        return 1.0;
-    for (i = 0; i < n; ++i) {
-        double u[4], w[3], el, az;
-        int k, x, y;
-        for (k = 0; k < 4; ++k) {
-            seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
-            u[k] = (double)(seed >> 11) * (1.0 / 9007199254740992.0);
-        }
-        x = (int)(u[0] * MAP_SIZE);
-        y = (int)(u[1] * MAP_SIZE);
-        el = (3.0 + 77.0 * u[2]) * pic_pi / 180.0;
-        az = 2.0 * pic_pi * u[3];
-        v3_set(w, cos(az) * cos(el), sin(az) * cos(el), sin(el));
-        if (pfm_visible(&s, x, y, w) != visible_in_box(&s, x, y, w, x - 1000000L, y - 1000000L,
-                                                       2000001L))
-            ++bad;
-    }
-    pfm_surface_free(&s);
-    *count = n;
-    return (double)bad / n;
-}
-
 int main(int argc, char **argv)
 {
     const char *outdir = argc > 1 ? argv[1] : "bench/out";
@@ -2237,17 +2124,8 @@ int main(int argc, char **argv)
     double check_bound = sizeof(pf_real) == sizeof(float) ? 1e-4 : 1e-6, check;
     char path[1024];
     FILE *md;
-    double t_start = now_seconds(), march_mismatch, t_png = 0.0;
+    double t_start = now_seconds(), t_png = 0.0;
     long png_bytes[2] = {0, 0};
-    int march_pairs;
-    march_mismatch = check_box_march(&march_pairs);
-    printf("pictures: in-box march with an unbounded box against pfm_visible: %.2e of %d "
-           "pairs disagree (bound %.0e)\n", march_mismatch, march_pairs, MARCH_CHECK_BOUND);
-    if (!(march_mismatch <= MARCH_CHECK_BOUND)) {
-        fprintf(stderr, "pictures: FAILED in-box march check: %.3e > %.0e\n", march_mismatch,
-                MARCH_CHECK_BOUND);
-        return 1;
-    }
     check = self_check();
     printf("pictures: self-check on a flat map, max relative error %.2e (bound %.0e)\n", check,
            check_bound);
@@ -2314,12 +2192,11 @@ int main(int argc, char **argv)
     }
     fprintf(md, "Self-checks in the same run: with the map flattened (RMS slope %.0e) the three "
                 "methods and the in-box reference match the reference to %.1e (largest relative "
-                "error over lit pixels; bound %.0e); the in-box march given an unbounded box "
-                "agrees with `pfm_visible` on all but a fraction %.1e of %d random (texel, "
-                "direction) pairs. Library in %s; reference in double; times on one core%s. "
+                "error over lit pixels; bound %.0e); the in-box reference marches with "
+                "`pfm_visible_box` (tested in tests/test_microsurface.c). Library in %s; reference in double; times on one core%s. "
                 "PNG files (row filters and deflate written here, no zlib): %ld and %ld bytes, "
                 "%.0f ms to encode both; total run %.0f s.\n\n",
-            FLAT_RMS_SLOPE, check, check_bound, march_mismatch, march_pairs,
+            FLAT_RMS_SLOPE, check, check_bound,
             sizeof(pf_real) == sizeof(float) ? "float" : "double",
             quick ? " (BENCH_QUICK: half-size images)" : "", png_bytes[0], png_bytes[1],
             1e3 * t_png, now_seconds() - t_start);

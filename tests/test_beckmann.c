@@ -967,20 +967,6 @@ static void edge_singular_covariance(void)
     }
 }
 
-/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
-static int bits_finite(pf_real x)
-{
-#ifdef PF_DOUBLE
-    unsigned long long u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
-#else
-    unsigned int u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7F800000u) != 0x7F800000u;
-#endif
-}
-
 /* The sweep's findings (docs/stability.md, first sweep): a variance near PF_REAL_MAX made
    var_x var_y = inf and P22, D = inf/inf = NaN; under -ffast-math a mean slope near PF_REAL_MAX
    made the mesonormal NaN (pf_vec3_normalize's 1/m flushed to 0). Exact P22 input, then every
@@ -992,8 +978,8 @@ static void edge_beckmann_huge_variance(void)
     pf_real p = pf_beckmann_p22(PF_R(0.0), PF_R(-1048576.0), s);
     pf_vec3 mn = pf_beckmann_mesonormal(pf_slope_stats_make(PF_R(256.0), PF_REAL_MAX, PF_R(0.15), PF_R(0.0), PF_R(0.0)));
     int e, k, bad = 0;
-    PF_CHECK(bits_finite(p) && p >= PF_R(0.0), "p22 with var_x = MAX: %g", (double)p);
-    PF_CHECK(bits_finite(mn.x) && bits_finite(mn.y) && bits_finite(mn.z) && mn.y == PF_R(-1.0),
+    PF_CHECK(pf_test_bits_finite(p) && p >= PF_R(0.0), "p22 with var_x = MAX: %g", (double)p);
+    PF_CHECK(pf_test_bits_finite(mn.x) && pf_test_bits_finite(mn.y) && pf_test_bits_finite(mn.z) && mn.y == PF_R(-1.0),
              "mesonormal(256, MAX) = (%g %g %g)", (double)mn.x, (double)mn.y, (double)mn.z);
     for (e = 0; e <= 38; e += 2)
         for (k = 0; k < 4; ++k) {
@@ -1001,9 +987,9 @@ static void edge_beckmann_huge_variance(void)
             pf_slope_stats t = pf_slope_stats_make(PF_R(0.1), PF_R(-0.2), v, k % 2 ? PF_R(0.3) : v, PF_R(0.0));
             pf_vec3 m = pf_vec3_make(PF_R(-0.727436185), PF_R(-0.686175287), PF_R(0.2));
             pf_real a = pf_beckmann_p22(PF_R(0.3), PF_R(1.0e3), t), d = pf_beckmann_d(m, t);
-            bad += !(bits_finite(a) && a >= PF_R(0.0) && bits_finite(d) && d >= PF_R(0.0));
+            bad += !(pf_test_bits_finite(a) && a >= PF_R(0.0) && pf_test_bits_finite(d) && d >= PF_R(0.0));
         }
-    bad += !(bits_finite(pf_beckmann_p22(PF_REAL_MAX, -PF_REAL_MAX, s)) && bits_finite(pf_beckmann_d(
+    bad += !(pf_test_bits_finite(pf_beckmann_p22(PF_REAL_MAX, -PF_REAL_MAX, s)) && pf_test_bits_finite(pf_beckmann_d(
                  pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(1.0)), pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_REAL_MAX,
                                                                                    PF_REAL_MAX, PF_REAL_MAX))));
     PF_CHECK(bad == 0, "%d non-finite or negative P22 / D", bad);

@@ -415,20 +415,6 @@ static void edge_vec3_normalize(void)
 #endif
 }
 
-/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
-static int bits_finite(pf_real x)
-{
-#ifdef PF_DOUBLE
-    unsigned long long u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
-#else
-    unsigned int u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7F800000u) != 0x7F800000u;
-#endif
-}
-
 /* The stability sweep's failing inputs (docs/stability.md, first sweep): a subnormal largest
    component made 1/m overflow (NaN); under -ffast-math a component near PF_REAL_MAX made 1/m
    subnormal, flushed to 0 (NaN). Then every binade of the type, components of mixed scale. */
@@ -452,11 +438,11 @@ static void edge_vec3_normalize_extreme(void)
              (double)u.x, (double)u.y, (double)u.z);
 #else
     /* subnormal inputs may read as 0 (DAZ): then the zero vector's (0, 0, 1) */
-    PF_CHECK(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z), "normalize(subnormal, 0, 0) not finite");
+    PF_CHECK(pf_test_bits_finite(u.x) && pf_test_bits_finite(u.y) && pf_test_bits_finite(u.z), "normalize(subnormal, 0, 0) not finite");
 #endif
     u = pf_vec3_normalize(big);
     /* z within 4 eps of 1 (clang -ffast-math uses an approximate reciprocal square root) */
-    PF_CHECK(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z) && u.z >= PF_R(1.0) - PF_R(4.0) * PF_REAL_EPSILON &&
+    PF_CHECK(pf_test_bits_finite(u.x) && pf_test_bits_finite(u.y) && pf_test_bits_finite(u.z) && u.z >= PF_R(1.0) - PF_R(4.0) * PF_REAL_EPSILON &&
                  u.z <= PF_R(1.0) && u.x <= PF_R(0.0) && u.y < PF_R(0.0),
              "normalize(huge) = (%g %g %.9g)", (double)u.x, (double)u.y, (double)u.z);
     for (e = emin; e <= emax; ++e) {
@@ -473,7 +459,7 @@ static void edge_vec3_normalize_extreme(void)
             }
             a = pf_vec3_make(c[0], c[1], c[2]);
             u = pf_vec3_normalize(a);
-            if (!(bits_finite(u.x) && bits_finite(u.y) && bits_finite(u.z))) { bad++; continue; }
+            if (!(pf_test_bits_finite(u.x) && pf_test_bits_finite(u.y) && pf_test_bits_finite(u.z))) { bad++; continue; }
             l = ld_len3(u);
             if (fabsl(l - 1.0L) > worst) worst = fabsl(l - 1.0L);
 #ifndef __FAST_MATH__

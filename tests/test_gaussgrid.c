@@ -822,20 +822,6 @@ static void edge_degenerate_inputs(void)
 }
 
 /* Node accessors outside their range, and the weights of every table sum to 1 in every build. */
-/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
-static int bits_finite(pf_real x)
-{
-#ifdef PF_DOUBLE
-    unsigned long long u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
-#else
-    unsigned int u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7F800000u) != 0x7F800000u;
-#endif
-}
-
 /* The sweep's findings (docs/stability.md, first sweep): pf_gg_node(-1, 3, 9) returned the
    n = 4 node 0.5196 (j = 9 folded onto the table's other half) though j outside the set gives
    0; |j| >= 2^30 overflowed 2 j (UBSan, in the clang-san build). Every set id (unknown ones
@@ -891,12 +877,12 @@ static void edge_gg_uniform_weight_any_wide(void)
                 long double p = fabsl((long double)pf_gg_uniform_node_any(n, lam, j));
                 long double want = expl(-0.5L * (p - pc) * (p + pc)) / den;
                 pf_real w = pf_gg_uniform_weight_any(n, lam, j);
-                if (!bits_finite(w) || !(w >= PF_R(0.0) && w <= PF_R(1.0))) { bad++; continue; }
+                if (!pf_test_bits_finite(w) || !(w >= PF_R(0.0) && w <= PF_R(1.0))) { bad++; continue; }
                 if (fabsl((long double)w - want) > worst) worst = fabsl((long double)w - want);
                 sum += (long double)w;
             }
             if (fabsl(sum - 1.0L) > worst_sum) worst_sum = fabsl(sum - 1.0L);
-            bad += !bits_finite(pf_gg_uniform_variance_any(n, lam));
+            bad += !pf_test_bits_finite(pf_gg_uniform_variance_any(n, lam));
         }
     /* a wide grid's variance: both nodes at +-16 carry half the mass */
     PF_CHECK(fabsl((long double)pf_gg_uniform_variance_any(2, PF_R(16.0)) - 256.0L) <= 256.0L * 4.0L * PF_TEST_EPS,

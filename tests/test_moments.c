@@ -988,20 +988,6 @@ static void edge_bad_input(void)
     PF_CHECK(bad == 0, "%d failures", bad);
 }
 
-/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
-static int bits_finite(pf_real x)
-{
-#ifdef PF_DOUBLE
-    unsigned long long u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
-#else
-    unsigned int u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7F800000u) != 0x7F800000u;
-#endif
-}
-
 /* log(w0 e^l0 + w1 e^l1) in long double, the max taken over the positive weights */
 static long double lse2_ref(long double l0, long double w0, long double l1, long double w1)
 {
@@ -1026,10 +1012,10 @@ static void edge_esm_log_combine2_zero_weight(void)
     pf_real got = pf_esm_log_combine2(l0, PF_R(0.0), l1, w1);
     long double ref = (long double)l1 + logl((long double)w1), worst = 0.0L;
     int i, bad = 0;
-    PF_CHECK(bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref),
+    PF_CHECK(pf_test_bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref),
              "combine2(%g, 0, %g, %g) = %g, want %Lg", (double)l0, (double)l1, (double)w1, (double)got, ref);
     got = pf_esm_log_combine2(l1, w1, l0, PF_R(0.0)); /* the mirror image */
-    PF_CHECK(bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref), "mirrored: %g", (double)got);
+    PF_CHECK(pf_test_bits_finite(got) && fabsl((long double)got - ref) <= 4.0L * PF_TEST_EPS * fabsl(ref), "mirrored: %g", (double)got);
     PF_CHECK(pf_esm_log_combine2(l0, PF_R(0.0), l1, PF_R(0.0)) == -PF_REAL_MAX, "both weights 0");
     for (i = 0; i < 200000; ++i) {
         pf_real a = (pf_real)pf_test_uniform(&r, 0.0, 4096.0), b = (pf_real)pf_test_uniform(&r, 0.0, 4096.0);
@@ -1038,7 +1024,7 @@ static void edge_esm_log_combine2_zero_weight(void)
         pf_real wb = k == 2 ? PF_R(0.0) : (pf_real)pf_test_uniform(&r, 0.001, 1.0);
         long double want = lse2_ref((long double)a, (long double)wa, (long double)b, (long double)wb), err;
         got = pf_esm_log_combine2(a, wa, b, wb);
-        if (!bits_finite(got)) { bad++; continue; }
+        if (!pf_test_bits_finite(got)) { bad++; continue; }
         err = fabsl((long double)got - want) / (fabsl(want) + 1.0L);
         if (err > worst) worst = err;
     }
@@ -1081,7 +1067,7 @@ static void edge_evsm_reduce2x2_near_max(void)
     for (i = 0; i < 20; ++i) v[i] = (pf_real)ldexp(k[i][0], (int)k[i][1]);
     for (i = 0; i < 4; ++i) t[i] = evsm_mix(v[5 * i], v[5 * i + 1], v[5 * i + 2], v[5 * i + 3], v[5 * i + 4]);
     m = pf_evsm_moments_reduce2x2(t[0], t[1], t[2], t[3]);
-    PF_CHECK(bits_finite(m.pos1) && bits_finite(m.pos2) && bits_finite(m.neg1) && bits_finite(m.neg2),
+    PF_CHECK(pf_test_bits_finite(m.pos1) && pf_test_bits_finite(m.pos2) && pf_test_bits_finite(m.neg1) && pf_test_bits_finite(m.neg2),
              "reduce2x2 = (%g %g %g %g)", (double)m.pos1, (double)m.pos2, (double)m.neg1, (double)m.neg2);
     PF_CHECK(mean4_err(m.pos2, t[0].pos2, t[1].pos2, t[2].pos2, t[3].pos2) <= 4.0L * PF_TEST_EPS, "pos2 %g",
              (double)m.pos2);
@@ -1094,7 +1080,7 @@ static void edge_evsm_reduce2x2_near_max(void)
                             (pf_real)pf_test_uniform(&r, 0.0, 1.0));
         }
         m = pf_evsm_moments_reduce2x2(t[0], t[1], t[2], t[3]);
-        if (!(bits_finite(m.pos1) && bits_finite(m.pos2) && bits_finite(m.neg1) && bits_finite(m.neg2))) {
+        if (!(pf_test_bits_finite(m.pos1) && pf_test_bits_finite(m.pos2) && pf_test_bits_finite(m.neg1) && pf_test_bits_finite(m.neg2))) {
             bad++;
             continue;
         }

@@ -661,20 +661,6 @@ static void edge_slope_stats_from_moments(void)
     PF_CHECK(pf_g1_beckmann(nu) >= PF_R(0.0) && pf_g1_beckmann(nu) <= PF_R(1.0), "G1 in range");
 }
 
-/* finite, tested on the bits: -ffast-math folds isnan/isinf (pf_test_finite) to constants */
-static int bits_finite(pf_real x)
-{
-#ifdef PF_DOUBLE
-    unsigned long long u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7FF0000000000000ULL) != 0x7FF0000000000000ULL;
-#else
-    unsigned int u;
-    memcpy(&u, &x, sizeof u);
-    return (u & 0x7F800000u) != 0x7F800000u;
-#endif
-}
-
 /* The sweep's finding (docs/stability.md, first sweep): G1o G1i subnormal lost its low bits and
    the joint term came out above min(G1o, G1i) (float 1.2e-33 vs 4.4e-8: 1.00013x). Exact
    inputs, then pairs with log-uniform exponents over the whole range (subnormals included),
@@ -705,7 +691,7 @@ static void edge_smith_joint_tiny_and_wide(void)
                                                    (pf_real)pf_test_uniform(&r, 0.5, 1.0);
         pf_real g = pf_smith_joint(x, y), m = pf_min(x, y);
         long double lx = (long double)x, ly = (long double)y, want = lx * ly / (lx + ly - lx * ly);
-        if (!bits_finite(g) || g < PF_R(0.0) || (long double)g > (long double)m * (1.0L + 4.0L * PF_TEST_EPS)) bad++;
+        if (!pf_test_bits_finite(g) || g < PF_R(0.0) || (long double)g > (long double)m * (1.0L + 4.0L * PF_TEST_EPS)) bad++;
         if (want >= 4.0L * (long double)PF_REAL_MIN && pf_test_rel_error((long double)g, want) > worst)
             worst = pf_test_rel_error((long double)g, want);
     }
@@ -736,14 +722,14 @@ static void edge_smith_huge_and_tiny_statistics(void)
                                             PF_R(8.01492206e-12), PF_R(1.74792345e+13));
     pf_real nu = pf_smith_nu(pf_vec3_make(PF_R(2043.82922), PF_R(7932.94531), PF_R(0.0)), st);
     int i, k, e1, e2, bad = 0;
-    PF_CHECK(bits_finite(nu) && nu >= PF_R(0.0) && nu <= PF_NU_MAX, "nu with var_x = MAX: %g", (double)nu);
+    PF_CHECK(pf_test_bits_finite(nu) && nu >= PF_R(0.0) && nu <= PF_NU_MAX, "nu with var_x = MAX: %g", (double)nu);
     nu = pf_smith_nu(pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(0.8)),
                      pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_REAL_MAX, PF_REAL_MAX, PF_R(0.0)));
-    PF_CHECK(bits_finite(nu) && nu >= PF_R(0.0) && nu < PF_R(1e-15), "nu with both variances MAX: %g", (double)nu);
+    PF_CHECK(pf_test_bits_finite(nu) && nu >= PF_R(0.0) && nu < PF_R(1e-15), "nu with both variances MAX: %g", (double)nu);
     for (i = 0; i < (int)(sizeof cosines / sizeof cosines[0]); ++i)
         for (k = -1; k <= 1; k += 2) {
             pf_real v = pf_smith_nu_iso((pf_real)cosines[i], (pf_real)k * PF_REAL_MAX);
-            bad += !(bits_finite(v) && v >= PF_R(0.0) && v <= PF_NU_MAX);
+            bad += !(pf_test_bits_finite(v) && v >= PF_R(0.0) && v <= PF_NU_MAX);
         }
     PF_CHECK(pf_smith_nu_iso(PF_R(1.0), -PF_REAL_MAX) == PF_NU_MAX, "nu_iso(1, -MAX)");
     PF_CHECK(bad == 0, "%d nu_iso non-finite or out of range", bad);
