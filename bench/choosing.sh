@@ -112,6 +112,25 @@ else
         }' "$err"
 fi
 
+# cheapest CSV FAMILY COLUMN LABEL SKIP_BASELINE: one table row per error target, the cheapest
+# method of a module bench family (float build) whose error column (9 = max rel err, 17 = mean
+# abs err of bench/pf_bench.h's CSV) meets it, else the most accurate one. SKIP_BASELINE=1 when
+# the family's baseline is not a candidate (one PCF tap is not a filtered shadow test).
+cheapest() {
+    echo "| target | cheapest method that meets it |"
+    echo "|---|---|"
+    for t in 0.10 0.03 0.01 0.001; do
+        awk -F, -v t="$t" -v f="$2" -v c="$3" -v label="$4" -v skipbase="$5" '
+            NR > 1 && $1 == f && $3 == "float" && $c != "" && !(skipbase && $2 == $6) {
+                if ($c + 0 <= t + 0 && (best == "" || $4 + 0 < bc)) { best = $2; bc = $4 + 0; bx = $5; be = $c }
+                if (acc == "" || $c + 0 < ae) { acc = $2; ae = $c + 0 }
+                base = $6 }
+            END {
+                if (best != "") printf "| %g%% | `%s` (%s %s; %.1f ns, %.2fx `%s`) |\n", 100 * t, best, label, be, bc, bx, base
+                else printf "| %g%% | none (best: `%s`, %s) |\n", 100 * t, acc, ae }' "$1"
+    done
+}
+
 # Environment lighting: the Gauss-grid node sets against a quadrature of the LEADR model.
 g="$out/gaussgrid.csv"
 echo
@@ -124,17 +143,7 @@ if [ -f "$g" ]; then
     echo "real surfaces is the specular row above). Cost: ns per evaluation and ratio to the named"
     echo "baseline, float build."
     echo
-    echo "| target | cheapest method that meets it |"
-    echo "|---|---|"
-    for t in 0.10 0.03 0.01 0.001; do
-        awk -F, -v t="$t" 'NR > 1 && $1 == "specular_env" && $3 == "float" && $9 != "" {
-                if ($9 + 0 <= t + 0 && (best == "" || $4 + 0 < bc)) { best = $2; bc = $4 + 0; bx = $5; be = $9 }
-                if (acc == "" || $9 + 0 < ae) { acc = $2; ae = $9 + 0 }
-                base = $6 }
-            END {
-                if (best != "") printf "| %g%% | `%s` (max rel %s; %.1f ns, %.2fx `%s`) |\n", 100 * t, best, be, bc, bx, base
-                else printf "| %g%% | none (best: `%s`, %s) |\n", 100 * t, acc, ae }' "$g"
-    done
+    cheapest "$g" specular_env 9 "max rel" 0
 else
     echo "**Missing:** $g"
 fi
@@ -150,17 +159,7 @@ if [ -f "$s" ]; then
     echo "(a fraction in [0, 1], so 10% means 0.1). Cost: ns per lookup and ratio to one PCF tap,"
     echo "float build; memory per texel is in docs/shadow.md."
     echo
-    echo "| target | cheapest method that meets it |"
-    echo "|---|---|"
-    for t in 0.10 0.03 0.01 0.001; do
-        awk -F, -v t="$t" 'NR > 1 && $1 == "lookup" && $3 == "float" && $17 != "" && $2 != $6 {
-                if ($17 + 0 <= t + 0 && (best == "" || $4 + 0 < bc)) { best = $2; bc = $4 + 0; bx = $5; be = $17 }
-                if (acc == "" || $17 + 0 < ae) { acc = $2; ae = $17 + 0 }
-                base = $6 }
-            END {
-                if (best != "") printf "| %g%% | `%s` (mean abs %s; %.1f ns, %.2fx `%s`) |\n", 100 * t, best, be, bc, bx, base
-                else printf "| %g%% | none (best: `%s`, %s) |\n", 100 * t, acc, ae }' "$s"
-    done
+    cheapest "$s" lookup 17 "mean abs" 1
 else
     echo "**Missing:** $s"
 fi

@@ -1828,6 +1828,15 @@ static double bins_mean(const pic_result *r, const double *per_bin, int stride, 
 #define SMALL_BINS 4 /* bins 0-3: footprint sides under 16 texels */
 
 /* x as a percentage for "%.0f%%", without a "-0" for tiny negatives */
+/* First cell of a footprint-bin row: bin k holds sides in [2^k, 2^(k+1)) texels, the first
+   everything below 2 and the last everything from 2^k up. */
+static void print_bin_label(FILE *md, int k)
+{
+    if (k == 0) fprintf(md, "| < 2 |");
+    else if (k == PIC_BINS - 1) fprintf(md, "| >= %d |", 1 << k);
+    else fprintf(md, "| %d - %d |", 1 << k, 2 << k);
+}
+
 static double pct(double x)
 {
     double v = 100.0 * x;
@@ -1900,9 +1909,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
             sc->name);
     for (k = 0; k < PIC_BINS; ++k) {
         if (!r->bin_surface[k]) continue;
-        if (k == 0) fprintf(md, "| < 2 |");
-        else if (k == PIC_BINS - 1) fprintf(md, "| >= %d |", 1 << k);
-        else fprintf(md, "| %d - %d |", 1 << k, 2 << k);
+        print_bin_label(md, k);
         fprintf(md, " %d | %d |", r->bin_surface[k], r->bin_lit[k]);
         if (r->bin_lit[k] == 0) {
             fprintf(md, " - | - | - |\n"); /* nothing lit: no error, and the bias is 0/0 */
@@ -2031,9 +2038,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
             sc->name);
     for (k = 0; k < PIC_BINS; ++k) {
         if (!r->bin_lit_u[k]) continue;
-        if (k == 0) fprintf(md, "| < 2 |");
-        else if (k == PIC_BINS - 1) fprintf(md, "| >= %d |", 1 << k);
-        else fprintf(md, "| %d - %d |", 1 << k, 2 << k);
+        print_bin_label(md, k);
         fprintf(
             md, " %d | %.0f%%, %.2f | %.0f%% | %.0f%% | %.0f%% | %.0f%% |", r->bin_lit_u[k],
             pct(r->bin_err_in[k][M_REF]), r->bin_ratio[k][M_REF], pct(r->bin_err_in[k][M_BOX]),
