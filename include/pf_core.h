@@ -476,4 +476,91 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
     return pf_vec3_scale(a, PF_R(1.0) / pf_vec3_length(a));
 }
 
+/* ================================================================ CPU only: sizes and errors
+   The rules every function that takes a pointer follows (pf_moments.h pyramids and samplers,
+   pf_height.h colour-map arrays and tables, pf_gaussgrid.h's Gauss-Hermite generator). They
+   walk caller-owned buffers, so they are host code: linkage PF_CPU_DEF (static inline by
+   default, never __device__), compiled out under PF_GLSL.
+
+   Before it reads or writes anything, such a function checks every argument and returns
+     PF_OK        (0)  on success;
+     PF_ERR_ARG   (-1) for a NULL pointer it would use, an unknown enum value (border, kind), a
+                       size below its minimum, or a range that is empty, reversed or not finite;
+     PF_ERR_SIZE  (-2) for a size above its documented limit: a side above PF_MAX_SIDE, or a
+                       buffer of more than PF_MAX_REALS pf_reals;
+   and on an error it writes nothing. Functions that return a count (pf_mip_texel_count,
+   pf_colormap_table_size, pf_gg_hermite_generate) return 0 for every argument their builder
+   would reject; functions that return a value say which value they return. Sizes, offsets and
+   indices are computed in long long through the helpers below, so no documented size can
+   overflow; a caller's buffer must hold what the function's comment says, the one thing the
+   library cannot check. */
+#ifndef PF_GLSL
+#include <stdint.h> /* PTRDIFF_MAX */
+
+#ifndef PF_CPU_DEF
+#  define PF_CPU_DEF static inline
+#endif
+
+#define PF_OK 0
+#define PF_ERR_ARG (-1)
+#define PF_ERR_SIZE (-2)
+
+/* Largest side (texels along one axis, entries along one table axis) any CPU function takes:
+   2^24, far above any GPU texture (16384 or 32768), and small enough that side arithmetic in
+   int never overflows. */
+#ifndef PF_MAX_SIDE
+#  define PF_MAX_SIDE (1L << 24)
+#endif
+
+/* Largest buffer, in pf_reals, any CPU function reads or writes: 2^40 on 64-bit hosts (4 TiB of
+   floats), PTRDIFF_MAX / 8 where pointers are narrower, so that every offset fits a pointer
+   difference in float and double builds. */
+#ifndef PF_MAX_REALS
+#  if PTRDIFF_MAX / 8 > (1LL << 40)
+#    define PF_MAX_REALS (1LL << 40)
+#  else
+#    define PF_MAX_REALS ((long long)(PTRDIFF_MAX / 8))
+#  endif
+#endif
+
+/* a * b as a count of pf_reals, or -1 when a or b is negative or the product exceeds
+   PF_MAX_REALS (checked by division first: the product itself never overflows). */
+PF_CPU_DEF long long pf_size_mul(long long a, long long b)
+{
+    if (a < 0 || b < 0) return -1;
+    if (b != 0 && a > PF_MAX_REALS / b) return -1;
+    return a * b;
+}
+
+/* a * b * c the same way. */
+PF_CPU_DEF long long pf_size_mul3(long long a, long long b, long long c)
+{
+    long long ab = pf_size_mul(a, b);
+    return ab < 0 ? -1 : pf_size_mul(ab, c);
+}
+
+/* 1 when n is a valid side: 1 <= n <= PF_MAX_SIDE. */
+PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE; }
+
+/* i modulo n in [0, n) for any i and n >= 1 (a wrapped texel index), without the overflow of
+   ((i % n) + n) % n near the ends of the range. */
+PF_CPU_DEF long long pfi_wrap_index(long long i, long long n)
+{
+    long long r = i % n;
+    return r < 0 ? r + n : r;
+}
+
+/* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
+   pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
+   float-to-integer conversion, which is undefined behaviour in C. */
+PF_CPU_DEF long long pfi_floor_index(pf_real x, long long lo, long long hi)
+{
+    long long i;
+    if (!(x > (pf_real)lo)) return lo;
+    if (!(x < (pf_real)hi)) return hi;
+    i = (long long)PF_FLOOR(x);
+    return i < lo ? lo : (i > hi ? hi : i);
+}
+#endif /* !PF_GLSL */
+
 #endif /* PF_CORE_H */
