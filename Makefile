@@ -1,4 +1,7 @@
 # prefilter - Makefile (the primary build). Header-only: nothing to build for users.
+# Every job below starts with tests/deps.sh JOB: it installs the Debian packages that job needs
+# (as root or with password-less sudo) or stops at once with the apt-get line to run
+# (PF_NO_INSTALL=1: never install). The package list and the reason for each are in that script.
 #   make test         every test in every build (C99 float/double, C++11, clang sanitizers,
 #                     -ffast-math edge tests); ends with "N passed, N failed"
 #   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot)
@@ -20,7 +23,7 @@ TEST_SRC := $(wildcard tests/test_*.c)
 TESTS    := $(TEST_SRC:tests/%.c=%)
 
 # Test builds: name, compiler, flags. The fastmath builds run only the edge_ tests.
-CONFIGS := c99-float c99-double cxx11-float clang-san-float fastmath-float fastmath-double
+CONFIGS := c99-float c99-double cxx11-float clang-san-float clang-san-double fastmath-float fastmath-double
 TCC_c99-float        = $(CC)
 TFLAGS_c99-float     = $(WARN_C) -O2
 TCC_c99-double       = $(CC)
@@ -29,6 +32,8 @@ TCC_cxx11-float      = $(CXX) -x c++
 TFLAGS_cxx11-float   = $(WARN_CXX) -O2
 TCC_clang-san-float  = $(CLANG)
 TFLAGS_clang-san-float = $(WARN_C) -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+TCC_clang-san-double  = $(CLANG)
+TFLAGS_clang-san-double = $(TFLAGS_clang-san-float) -DPF_DOUBLE
 TCC_fastmath-float   = $(CC)
 TFLAGS_fastmath-float  = $(WARN_C) -O2 -ffast-math
 TCC_fastmath-double  = $(CC)
@@ -56,10 +61,14 @@ $(BUILD)/glm-double/%: tests/%.cpp $(HEADERS)
 	$(CXX) $(WARN_CXX) -O2 -DPF_DOUBLE -DPF_TEST_CONFIG='"glm-double"' $(INC) $< -o $@ -lm
 TEST_BINS += $(foreach c,$(GLM_CONFIGS),$(addprefix $(BUILD)/$(c)/,$(GLM_TESTS)))
 
-.PHONY: test test-build bench portability docs clean
+.PHONY: test test-build bench bench-run portability docs clean deps
 test-build: $(TEST_BINS)
 
-test: test-build
+# The dependency step first, alone, then the parallel build (a recursive make, so that -j never
+# starts a compile before the packages are there).
+test:
+	@sh tests/deps.sh test
+	@$(MAKE) --no-print-directory test-build
 	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS)" "$(GLM_CONFIGS)" "$(GLM_TESTS)"
 
 # ---------------------------------------------------------------- bench (the main job)
@@ -93,7 +102,8 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 # once in float (the library's default) and run once by bench/run.sh:
 #   bench/microsurface.c  ground truth: library answers against brute force on synthetic
 #                         microsurfaces, error tables and charts, cost against footprint size
-#   bench/pictures.c      brute force against the filtered formulas, side by side (PNG)
+#   bench/pictures.c      brute force against the filtered formulas, side by side (PNG drawn by
+#                         gnuplot, bench/pictures.gp: titled panels, numbered colour bars)
 # They include tests/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
 REPORT_PROGS := microsurface pictures
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
@@ -101,7 +111,10 @@ $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_FLAGS) -Itests $< -o $@ -lm
 
-bench: $(BENCH_BINS) $(REPORT_BINS)
+bench:
+	@sh tests/deps.sh bench
+	@$(MAKE) --no-print-directory bench-run
+bench-run: $(BENCH_BINS) $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/run.sh $(BUILD)/bench
 
 # The stability table (docs/stability.md): every public evaluator swept with seeded inputs from
@@ -111,6 +124,7 @@ bench: $(BENCH_BINS) $(REPORT_BINS)
 #   make fuzz FUZZ_SECONDS=5     each harness, float and double, 5 s (CI); longer by hand
 .PHONY: fuzz stability
 fuzz:
+	@sh tests/deps.sh fuzz
 	@FUZZ_SECONDS='$(or $(FUZZ_SECONDS),5)' CLANG='$(CLANG)' sh tests/fuzz/run.sh $(BUILD)
 stability:
 	@CC='$(CC)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/stability.sh $(BUILD)
@@ -130,15 +144,19 @@ docs: $(foreach t,$(DOC_TESTS),$(BUILD)/c99-float/test_$(t) $(BUILD)/c99-double/
 #                           float suite on ARM under qemu-arm, the consumer projects (docs/porting.md)
 #   make portability PF_PORT_ONLY="m4f-float amalgam"   only the named checks (prefix match)
 portability:
+	@sh tests/deps.sh portability
 	@PF_PORT_ONLY='$(PF_PORT_ONLY)' sh tests/portability/run.sh $(BUILD)
 
 # Only the compiler/flag matrix, the ARM run, the consumer projects (subsets of portability).
 .PHONY: matrix arm consumers amalgamate install uninstall
 matrix:
+	@sh tests/deps.sh portability
 	@PF_PORT_ONLY=mx- sh tests/portability/run.sh $(BUILD)
 arm:
+	@sh tests/deps.sh portability
 	@PF_PORT_ONLY=arm- sh tests/portability/run.sh $(BUILD)
 consumers:
+	@sh tests/deps.sh portability
 	@PF_PORT_ONLY=consumer- sh tests/portability/run.sh $(BUILD)
 
 # docs/porting.md's generated tables: the float-versus-double accuracy table from the C99 test
@@ -168,6 +186,10 @@ install:
 	chmod 644 '$(DESTDIR)$(PCDIR)/prefilter.pc'
 uninstall:
 	rm -f $(addprefix '$(DESTDIR)$(INCLUDEDIR)'/,$(PF_INSTALL_HEADERS)) '$(DESTDIR)$(PCDIR)/prefilter.pc'
+
+# Only the dependency step: make deps JOBS="test bench" (default: every job).
+deps:
+	@sh tests/deps.sh $(or $(JOBS),test bench portability fuzz)
 
 clean:
 	rm -rf $(BUILD)

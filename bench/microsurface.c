@@ -966,8 +966,11 @@ static void chart(const settings *S, const char *name, const char *title, const 
         snprintf(cmd, sizeof cmd,
                  "gnuplot -e \"datf='%s'; outf='%s'; ttl='%s'; xl='%s'; yl='%s'; logx=%d; ncol=%d; ymin=%g\" %s",
                  dat, svg, title, xlabel, ylabel, logx, ncol, ymin, S->gp);
-        if (system(cmd) == 0) charts_made++;
-        else fprintf(stderr, "microsurface: gnuplot failed for %s\n", name);
+        if (system(cmd) != 0) { /* a missing chart is a failed run, never a silent gap */
+            fprintf(stderr, "microsurface: gnuplot failed for %s\n", name);
+            exit(1);
+        }
+        charts_made++;
     }
     remove(dat);
 }
@@ -1377,8 +1380,9 @@ int main(int argc, char **argv)
         if (system(cmd) != 0) fprintf(stderr, "microsurface: cannot create %s\n", S.out);
     }
     if (S.charts && system("gnuplot --version > /dev/null 2>&1") != 0) {
-        fprintf(stderr, "microsurface: gnuplot not found, charts skipped\n");
-        S.charts = 0;
+        fprintf(stderr, "microsurface: gnuplot not found (make bench installs it; --no-charts to run "
+                        "without charts)\n");
+        return 1;
     }
     for (kind = 0; kind < NKIND; ++kind) {
         run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);

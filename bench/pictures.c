@@ -48,9 +48,8 @@
    times the 99th percentile of the reference over the surface pixels; "lit" pixels are the
    surface pixels whose reference is at least the floor. The fragment reports the mean and the
    95th percentile of e over lit pixels, and the same by footprint size with the bias
-   sum(method)/sum(reference). The heat maps show e on a log scale from 3% (black) to 316% (pale
-   yellow), clamped, with a colour bar at the lower left of each picture (ticks at 3, 10, 32,
-   100, 316%); background pixels are grey.
+   sum(method)/sum(reference). The heat maps show e on a log scale from 3.2% (black) to 316%
+   (pale yellow), clamped, each with its numbered colour bar; background pixels are grey.
    What the error is made of, per footprint-size row:
      out-of-footprint occlusion: a second reference, "in-box", marches the same texels with
        only the footprint box's own height field as occluder (pfm_visible_box); the rows
@@ -73,28 +72,22 @@
    passes; pyramid building timed separately, it is a one-off per map; the in-box variant is
    timed apart and not counted in the reference's time).
 
-   OUTPUT (directory argument, default bench/out): pic_plane.png, pic_sphere.png (3 x 2 panels:
-   reference | LEADR | naive, colour bar | LEADR error | naive error) and pictures.md (markdown
-   fragment, every number computed in this run). BENCH_QUICK=1 renders smaller images.
+   OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] (defaults bench/out, bench/pictures.gp; run
+   from the repository root). pic_plane.png, pic_sphere.png: 3 x 2 panels, reference | LEADR |
+   naive (radiance), footprint side | LEADR error | naive error, every panel titled (with its
+   time per pixel or its mean and 95th-percentile error from this run) and with its own
+   numbered colour bar; pictures.md, the markdown fragment of the report (every number computed
+   in this run). BENCH_QUICK=1 renders smaller images.
 
-   PNG. Written here without libpng or zlib: 8-bit indexed colour when the picture has at most
-   256 colours (the shaded panels use GREY_LEVELS greys, the heat maps HEAT_LEVELS colours, so
-   the pictures do), 8-bit RGB otherwise; the PNG row filters (None for every row, or per row
-   the filter of least sum of |signed bytes|, libpng's heuristic: both are compressed and the
-   smaller kept); one IDAT holding a zlib stream (RFC 1950) of deflate blocks (RFC 1951) made
-   here: LZ77 with hash chains (DEFL_MAX_CHAIN candidates, 32K window) and lazy matching, then
-   per block of DEFL_BLOCK_TOKENS symbols the cheaper of the fixed Huffman code and a dynamic
-   one (length-limited code lengths, run-length coded header). CRC-32 per chunk (PNG spec) and
-   Adler-32 of the image data (RFC 1950), both computed below. Every picture is checked before
-   it is written: its stream is decoded by a small inflater here (zlib_decompress: stored,
-   fixed and dynamic blocks, Adler-32), unfiltered and compared with the pixels byte for byte;
-   png_write fails otherwise. (Also checked outside: Python's zlib.decompress of the IDAT and
-   the unfiltered rows equal the pixels; the inflater decodes Python zlib's own streams.) */
+   PICTURES. Drawn by gnuplot, the bench's chart tool already, rather than libpng or
+   stb_image_write: it titles the panels and numbers the colour bars, which a pixel writer
+   cannot, and adds no library to link. This program writes the values (radiance, footprint,
+   error) as float32 planes and the titles; bench/pictures.gp maps them through the display
+   curve and the colour maps (write_picture). Without gnuplot the program stops at once. */
 #ifndef _POSIX_C_SOURCE
 #  define _POSIX_C_SOURCE 199309L
 #endif
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -113,13 +106,12 @@
 #define SPHERE_TILES    128     /* map repetitions around the sphere's equator */
 #define SPHERE_REF_MAX  128     /* sphere: the same (BENCH_QUICK: REF_MAX_SAMPLES) */
 #define REF_SCRATCH     (REF_MAX_SAMPLES > SPHERE_REF_MAX ? REF_MAX_SAMPLES : SPHERE_REF_MAX)
-#define ERR_LOG_MIN     (-1.5)  /* heat map: log10 of the error at black (3.2%) */
-#define ERR_LOG_MAX     0.5     /* ... and at full scale (316%) */
-#define PANEL_GAP       4
-#define GREY_LEVELS     176     /* shaded panels: grey levels (step 1.5/255 after gamma) */
-#define HEAT_LEVELS     64      /* heat maps: colours over the two decades (3.2% ratio apart)
-                                   with the greys and the few flat colours the picture fits a
-                                   256-colour palette, a third of the bytes of RGB */
+#define ERR_LOG_MIN     (-1.5)  /* error maps: log10 of the error at the bottom of the colour
+                                   scale (3.2%; smaller errors are drawn at 3.2%) */
+#define ERR_LOG_MAX     0.5     /* ... and at its top (316%; larger ones drawn at 316%) */
+#define FP_SHOWN_MIN    0.25    /* footprint map: colour scale from 1/4 texel to the map size */
+#define WHITE_EXPOSURE  5.0     /* shaded panels: the colour bar ends at L = this / exposure,
+                                   where the display curve 1 - exp(-exposure L) reaches 0.993 */
 #define LOBE_CUTOFF     30.0    /* reference: texels whose base lobe at h is below exp(-30) of
                                    its peak (1e-13) are not marched (their term is taken as 0) */
 #define FLAT_RMS_SLOPE  1e-9    /* self-check: the map flattened to this RMS slope */
@@ -153,848 +145,6 @@ static double now_seconds(void)
 }
 
 static int wrap_index(int i, int n) { return ((i % n) + n) % n; }
-
-/* ---------------------------------------------------------------- PNG writer */
-/* The image data go through the PNG row filters and a deflate compressor written here (no
-   zlib, no libpng): LZ77 with hash chains and lazy matching, then, per block, the cheaper of
-   the fixed and a dynamic Huffman code (RFC 1951), inside a zlib stream (RFC 1950). */
-
-/* CRC-32 of the PNG specification (ISO 3309 polynomial, reflected: 0xEDB88320), bytewise. */
-static uint32_t png_crc_update(uint32_t crc, const unsigned char *p, size_t n)
-{
-    static uint32_t table[256];
-    static int ready = 0;
-    size_t i;
-    if (!ready) {
-        uint32_t k, c;
-        int b;
-        for (k = 0; k < 256; ++k) {
-            c = k;
-            for (b = 0; b < 8; ++b) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            table[k] = c;
-        }
-        ready = 1;
-    }
-    for (i = 0; i < n; ++i) crc = table[(crc ^ p[i]) & 0xFFu] ^ (crc >> 8);
-    return crc;
-}
-
-static void put_be32(unsigned char *p, uint32_t v)
-{
-    p[0] = (unsigned char)(v >> 24);
-    p[1] = (unsigned char)(v >> 16);
-    p[2] = (unsigned char)(v >> 8);
-    p[3] = (unsigned char)v;
-}
-
-static int png_chunk(FILE *f, const char *type, const unsigned char *data, size_t n)
-{
-    unsigned char head[8], tail[4];
-    uint32_t crc;
-    put_be32(head, (uint32_t)n);
-    memcpy(head + 4, type, 4);
-    crc = png_crc_update(0xFFFFFFFFu, head + 4, 4);
-    crc = png_crc_update(crc, data, n) ^ 0xFFFFFFFFu;
-    put_be32(tail, crc);
-    return fwrite(head, 1, 8, f) == 8 && (n == 0 || fwrite(data, 1, n, f) == n) &&
-           fwrite(tail, 1, 4, f) == 4;
-}
-
-/* ---- deflate (RFC 1951) */
-#define DEFL_WINDOW       32768 /* the largest back-reference distance */
-#define DEFL_HASH_BITS    15    /* hash of the next three bytes */
-#define DEFL_MAX_MATCH    258
-#define DEFL_MAX_CHAIN    96    /* earlier positions with the same hash tried per search */
-#define DEFL_NICE_MATCH   96    /* a match this long is taken without searching further */
-#define DEFL_BLOCK_TOKENS 49152 /* symbols per block (each block gets codes fitted to it) */
-
-/* length symbols 257..285 and distance symbols 0..29: base value and extra bits (sec. 3.2.5) */
-static const unsigned short defl_len_base[29] = {3,  4,  5,  6,  7,  8,  9,  10,  11,  13,
-                                                 15, 17, 19, 23, 27, 31, 35, 43,  51,  59,
-                                                 67, 83, 99, 115, 131, 163, 195, 227, 258};
-static const unsigned char defl_len_extra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
-                                                 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-static const unsigned short defl_dist_base[30] = {
-    1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
-    193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
-static const unsigned char defl_dist_extra[30] = {0, 0, 0,  0,  1,  1,  2,  2,  3,  3,
-                                                  4, 4, 5,  5,  6,  6,  7,  7,  8,  8,
-                                                  9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
-/* the order in which a dynamic block header lists the code-length code's lengths */
-static const unsigned char defl_cl_order[19] = {16, 17, 18, 0, 8,  7, 9,  6, 10, 5,
-                                                11, 4,  12, 3, 13, 2, 14, 1, 15};
-
-typedef struct {
-    unsigned short litlen; /* a literal byte (dist == 0) or a match length 3..258 */
-    unsigned short dist;   /* match distance 1..32768 (as dist - 1 + 1, fits 16 bits) */
-} defl_token;
-
-/* Bits are packed least significant first (sec. 3.1.1). */
-typedef struct {
-    unsigned char *buf;
-    size_t pos, cap;
-    uint32_t acc;
-    int n, overflow;
-} defl_bits;
-
-static void bits_put(defl_bits *b, uint32_t v, int n) /* n <= 16 */
-{
-    b->acc |= v << b->n;
-    b->n += n;
-    while (b->n >= 8) {
-        if (b->pos < b->cap) b->buf[b->pos++] = (unsigned char)(b->acc & 0xFFu);
-        else b->overflow = 1;
-        b->acc >>= 8;
-        b->n -= 8;
-    }
-}
-
-static void bits_flush(defl_bits *b)
-{
-    if (b->n > 0) bits_put(b, 0, 8 - b->n);
-}
-
-static int defl_len_symbol(int len) /* index into defl_len_base: symbol 257 + index */
-{
-    int k = 28;
-    while (defl_len_base[k] > len) --k;
-    return k;
-}
-
-static int defl_dist_symbol(int dist)
-{
-    int k = 29;
-    while (defl_dist_base[k] > dist) --k;
-    return k;
-}
-
-/* Huffman code lengths for freq[0..n-1] (n <= 288; 0 = unused symbol, at least two used),
-   none longer than limit. The tree is built by the two-queue method on the sorted weights;
-   if it is deeper than the limit, the weights are flattened (halved, rounded up, so no used
-   symbol drops out) and the tree rebuilt: the weights tend to equal ones, whose tree is
-   balanced (depth 9 for 288 symbols), so this ends. */
-static void huff_lengths(const uint32_t *freq, int n, int limit, unsigned char *len)
-{
-    uint32_t w[2 * 288];
-    int sym[288], parent[2 * 288], depth[2 * 288], m = 0, i, j, k, deepest;
-    for (i = 0; i < n; ++i) {
-        len[i] = 0;
-        if (freq[i] > 0) {
-            w[m] = freq[i];
-            sym[m++] = i;
-        }
-    }
-    for (i = 1; i < m; ++i) { /* sort the leaves by weight (insertion sort: n <= 288) */
-        uint32_t wv = w[i];
-        int sv = sym[i];
-        for (j = i - 1; j >= 0 && w[j] > wv; --j) {
-            w[j + 1] = w[j];
-            sym[j + 1] = sym[j];
-        }
-        w[j + 1] = wv;
-        sym[j + 1] = sv;
-    }
-    for (;;) {
-        int leaf = 0, node = m;
-        /* internal nodes m .. 2m - 2 are created in order of nondecreasing weight; halving
-           the sorted leaf weights below keeps them sorted */
-        for (k = m; k < 2 * m - 1; ++k) {
-            int pick[2], p;
-            for (p = 0; p < 2; ++p) {
-                if (leaf < m && (node >= k || w[leaf] <= w[node])) pick[p] = leaf++;
-                else pick[p] = node++;
-            }
-            w[k] = w[pick[0]] + w[pick[1]];
-            parent[pick[0]] = parent[pick[1]] = k;
-        }
-        depth[2 * m - 2] = 0;
-        deepest = 0;
-        for (k = 2 * m - 3; k >= 0; --k) {
-            depth[k] = depth[parent[k]] + 1;
-            if (k < m && depth[k] > deepest) deepest = depth[k];
-        }
-        if (deepest <= limit) break;
-        for (i = 0; i < m; ++i) w[i] = (w[i] + 1) / 2;
-    }
-    for (i = 0; i < m; ++i) len[sym[i]] = (unsigned char)depth[i];
-}
-
-/* Canonical codes from the lengths (sec. 3.2.2), bit-reversed: the bit writer sends least
-   significant bits first, Huffman codes go most significant bit first. */
-static void huff_codes(const unsigned char *len, int n, unsigned short *code)
-{
-    int count[16], next[16], b, i;
-    for (b = 0; b < 16; ++b) count[b] = 0;
-    for (i = 0; i < n; ++i) count[len[i]]++;
-    count[0] = 0;
-    next[0] = 0;
-    for (b = 1; b < 16; ++b) next[b] = (next[b - 1] + count[b - 1]) << 1;
-    for (i = 0; i < n; ++i) {
-        int c, r = 0;
-        if (!len[i]) {
-            code[i] = 0;
-            continue;
-        }
-        c = next[len[i]]++;
-        for (b = 0; b < len[i]; ++b) r |= ((c >> b) & 1) << (len[i] - 1 - b);
-        code[i] = (unsigned short)r;
-    }
-}
-
-/* Make sure at least two symbols of a code are used (a one-symbol code would be incomplete,
-   which inflaters accept only in special cases): unused ones get weight 1, costing nothing
-   in the data. */
-static void huff_at_least_two(uint32_t *freq, int n)
-{
-    int used = 0, i;
-    for (i = 0; i < n; ++i) used += freq[i] > 0;
-    for (i = 0; i < n && used < 2; ++i)
-        if (!freq[i]) {
-            freq[i] = 1;
-            ++used;
-        }
-}
-
-/* One block of tokens with the cheaper of the fixed and a dynamic code (sec. 3.2.6, 3.2.7). */
-static void defl_block(defl_bits *b, const defl_token *tok, size_t nt, int final)
-{
-    uint32_t lf[286], df[30], cf[19];
-    unsigned char ll[288], dl[30], cl[19], all[286 + 30], rle_sym[286 + 30], rle_extra[286 + 30];
-    unsigned short lc[288], dc[30], cc[19];
-    int hlit = 286, hdist = 30, hclen = 19, nall, nrle = 0, i, k, dynamic;
-    size_t t;
-    long long cost_fixed = 3, cost_dyn = 3 + 14;
-    memset(lf, 0, sizeof lf);
-    memset(df, 0, sizeof df);
-    memset(cf, 0, sizeof cf);
-    for (t = 0; t < nt; ++t) {
-        if (tok[t].dist == 0) lf[tok[t].litlen]++;
-        else {
-            lf[257 + defl_len_symbol(tok[t].litlen)]++;
-            df[defl_dist_symbol(tok[t].dist)]++;
-        }
-    }
-    lf[256] = 1; /* end of block */
-    /* the fixed code: literals 0-143 8 bits, 144-255 9, 256-279 7, 280-287 8; distances 5 */
-    for (i = 0; i < 288; ++i)
-        ll[i] = (unsigned char)(i < 144 ? 8 : (i < 256 ? 9 : (i < 280 ? 7 : 8)));
-    for (i = 0; i < 30; ++i) dl[i] = 5;
-    for (i = 0; i < 286; ++i) {
-        cost_fixed += (long long)lf[i] * ll[i];
-        if (i >= 257) cost_fixed += (long long)lf[i] * defl_len_extra[i - 257];
-    }
-    for (i = 0; i < 30; ++i) cost_fixed += (long long)df[i] * (5 + defl_dist_extra[i]);
-    /* the dynamic code */
-    huff_at_least_two(lf, 286);
-    huff_at_least_two(df, 30);
-    huff_lengths(lf, 286, 15, ll);
-    huff_lengths(df, 30, 15, dl);
-    while (hlit > 257 && ll[hlit - 1] == 0) --hlit;
-    while (hdist > 1 && dl[hdist - 1] == 0) --hdist;
-    memcpy(all, ll, (size_t)hlit);
-    memcpy(all + hlit, dl, (size_t)hdist);
-    nall = hlit + hdist;
-    /* run-length code of the code lengths: 16 = repeat the previous length 3-6 times,
-       17 = 3-10 zeros, 18 = 11-138 zeros */
-    for (i = 0; i < nall;) {
-        int run = 1, r;
-        while (i + run < nall && all[i + run] == all[i]) ++run;
-        if (all[i] == 0) {
-            while (run >= 11) {
-                r = run < 138 ? run : 138;
-                rle_sym[nrle] = 18;
-                rle_extra[nrle++] = (unsigned char)(r - 11);
-                run -= r;
-                i += r;
-            }
-            if (run >= 3) {
-                rle_sym[nrle] = 17;
-                rle_extra[nrle++] = (unsigned char)(run - 3);
-                i += run;
-                run = 0;
-            }
-        } else {
-            rle_sym[nrle] = all[i];
-            rle_extra[nrle++] = 0;
-            --run;
-            ++i;
-            while (run >= 3) {
-                r = run < 6 ? run : 6;
-                rle_sym[nrle] = 16;
-                rle_extra[nrle++] = (unsigned char)(r - 3);
-                run -= r;
-                i += r;
-            }
-        }
-        for (; run > 0; --run, ++i) {
-            rle_sym[nrle] = all[i];
-            rle_extra[nrle++] = 0;
-        }
-    }
-    for (k = 0; k < nrle; ++k) cf[rle_sym[k]]++;
-    huff_at_least_two(cf, 19);
-    huff_lengths(cf, 19, 7, cl);
-    while (hclen > 4 && cl[defl_cl_order[hclen - 1]] == 0) --hclen;
-    cost_dyn += 3LL * hclen;
-    for (k = 0; k < nrle; ++k)
-        cost_dyn += cl[rle_sym[k]] +
-                    (rle_sym[k] == 16 ? 2 : (rle_sym[k] == 17 ? 3 : (rle_sym[k] == 18 ? 7 : 0)));
-    for (i = 0; i < 286; ++i) {
-        if (!lf[i]) continue;
-        cost_dyn += (long long)lf[i] * ll[i];
-        if (i >= 257) cost_dyn += (long long)lf[i] * defl_len_extra[i - 257];
-    }
-    for (i = 0; i < 30; ++i) cost_dyn += (long long)df[i] * (dl[i] + defl_dist_extra[i]);
-    /* the weights added by huff_at_least_two are 1 for unused symbols: they inflate the cost
-       estimate by at most a few bits, which does not matter for the choice */
-    dynamic = cost_dyn < cost_fixed;
-    bits_put(b, (uint32_t)(final ? 1 : 0), 1);
-    bits_put(b, dynamic ? 2u : 1u, 2);
-    if (dynamic) {
-        huff_codes(cl, 19, cc);
-        bits_put(b, (uint32_t)(hlit - 257), 5);
-        bits_put(b, (uint32_t)(hdist - 1), 5);
-        bits_put(b, (uint32_t)(hclen - 4), 4);
-        for (k = 0; k < hclen; ++k) bits_put(b, cl[defl_cl_order[k]], 3);
-        for (k = 0; k < nrle; ++k) {
-            bits_put(b, cc[rle_sym[k]], cl[rle_sym[k]]);
-            if (rle_sym[k] == 16) bits_put(b, rle_extra[k], 2);
-            else if (rle_sym[k] == 17) bits_put(b, rle_extra[k], 3);
-            else if (rle_sym[k] == 18) bits_put(b, rle_extra[k], 7);
-        }
-    } else {
-        for (i = 0; i < 288; ++i)
-            ll[i] = (unsigned char)(i < 144 ? 8 : (i < 256 ? 9 : (i < 280 ? 7 : 8)));
-        for (i = 0; i < 30; ++i) dl[i] = 5;
-    }
-    huff_codes(ll, dynamic ? 286 : 288, lc);
-    huff_codes(dl, 30, dc);
-    for (t = 0; t < nt; ++t) {
-        int s = tok[t].litlen;
-        if (tok[t].dist == 0) {
-            bits_put(b, lc[s], ll[s]);
-        } else {
-            int ls = defl_len_symbol(s), ds = defl_dist_symbol(tok[t].dist);
-            bits_put(b, lc[257 + ls], ll[257 + ls]);
-            if (defl_len_extra[ls])
-                bits_put(b, (uint32_t)(s - defl_len_base[ls]), defl_len_extra[ls]);
-            bits_put(b, dc[ds], dl[ds]);
-            if (defl_dist_extra[ds])
-                bits_put(b, (uint32_t)(tok[t].dist - defl_dist_base[ds]), defl_dist_extra[ds]);
-        }
-    }
-    bits_put(b, lc[256], ll[256]);
-}
-
-static uint32_t defl_hash(const unsigned char *p)
-{
-    return (((uint32_t)p[0] << 10) ^ ((uint32_t)p[1] << 5) ^ (uint32_t)p[2]) &
-           ((1u << DEFL_HASH_BITS) - 1u);
-}
-
-/* Longest earlier match for position i (at most DEFL_MAX_CHAIN candidates, distance below
-   DEFL_WINDOW); returns its length (0 if under 3) and its distance in *dist. */
-static int defl_longest(const unsigned char *d, size_t n, size_t i, const long *head,
-                        const long *prev, int *dist)
-{
-    long cand = head[defl_hash(d + i)], lim = (long)i - (DEFL_WINDOW - 1);
-    int best = 0, chain = DEFL_MAX_CHAIN;
-    int maxlen = n - i < DEFL_MAX_MATCH ? (int)(n - i) : DEFL_MAX_MATCH;
-    while (cand >= 0 && cand >= lim && chain-- > 0) {
-        const unsigned char *a = d + cand, *c = d + i;
-        if (a[best] == c[best] && a[0] == c[0] && a[1] == c[1]) {
-            int l = 2;
-            while (l < maxlen && a[l] == c[l]) ++l;
-            if (l > best) {
-                best = l;
-                *dist = (int)((long)i - cand);
-                if (l >= DEFL_NICE_MATCH || l == maxlen) break;
-            }
-        }
-        {
-            long next = prev[cand & (DEFL_WINDOW - 1)];
-            if (next >= cand) break; /* a slot reused by a newer position: end of chain */
-            cand = next;
-        }
-    }
-    return best >= 3 ? best : 0;
-}
-
-/* zlib stream (RFC 1950) of d[0..n-1] into a new buffer; *out_n its size. NULL on failure. */
-static unsigned char *zlib_compress(const unsigned char *d, size_t n, size_t *out_n)
-{
-    long *head = (long *)malloc(sizeof(long) << DEFL_HASH_BITS);
-    long *prev = (long *)malloc(sizeof(long) * DEFL_WINDOW);
-    defl_token *tok = (defl_token *)malloc(sizeof(defl_token) * DEFL_BLOCK_TOKENS);
-    defl_bits b;
-    size_t i = 0, nt = 0, k;
-    uint32_t a1 = 1, a2 = 0;
-    memset(&b, 0, sizeof b);
-    b.cap = n + n / 8 + 1024; /* stored-size bound plus the block headers, generously */
-    b.buf = (unsigned char *)malloc(b.cap);
-    if (!head || !prev || !tok || !b.buf) {
-        free(head);
-        free(prev);
-        free(tok);
-        free(b.buf);
-        return NULL;
-    }
-    for (k = 0; k < ((size_t)1 << DEFL_HASH_BITS); ++k) head[k] = -1;
-    /* zlib header: CM = 8 (deflate), CINFO = 7 (32K window), FLEVEL = 2; CMF FLG is a
-       multiple of 31, no preset dictionary */
-    bits_put(&b, 0x78, 8);
-    bits_put(&b, 0x9C, 8);
-    while (i < n) {
-        int len = 0, dist = 0;
-        if (i + 3 <= n) {
-            len = defl_longest(d, n, i, head, prev, &dist);
-            /* lazy matching: a literal now if the next position starts a longer match */
-            if (len >= 3 && len < DEFL_NICE_MATCH && i + 4 <= n) {
-                int dist2 = 0, len2;
-                uint32_t h = defl_hash(d + i);
-                prev[i & (DEFL_WINDOW - 1)] = head[h];
-                head[h] = (long)i;
-                len2 = defl_longest(d, n, i + 1, head, prev, &dist2);
-                if (len2 > len) len = 0;
-            } else {
-                uint32_t h = defl_hash(d + i);
-                prev[i & (DEFL_WINDOW - 1)] = head[h];
-                head[h] = (long)i;
-            }
-        }
-        if (len >= 3) {
-            tok[nt].litlen = (unsigned short)len;
-            tok[nt++].dist = (unsigned short)dist;
-            for (k = i + 1; k < i + (size_t)len; ++k)
-                if (k + 3 <= n) {
-                    uint32_t h = defl_hash(d + k);
-                    prev[k & (DEFL_WINDOW - 1)] = head[h];
-                    head[h] = (long)k;
-                }
-            i += (size_t)len;
-        } else {
-            tok[nt].litlen = d[i];
-            tok[nt++].dist = 0;
-            ++i;
-        }
-        if (nt == DEFL_BLOCK_TOKENS) {
-            defl_block(&b, tok, nt, i == n);
-            nt = 0;
-        }
-    }
-    if (nt > 0 || n == 0) defl_block(&b, tok, nt, 1);
-    bits_flush(&b);
-    for (k = 0; k < n; ++k) { /* Adler-32 (RFC 1950 sec. 8.2), modulo 65521 */
-        a1 = (a1 + d[k]) % 65521u;
-        a2 = (a2 + a1) % 65521u;
-    }
-    bits_put(&b, (a2 >> 8) & 0xFFu, 8); /* big-endian, byte aligned */
-    bits_put(&b, a2 & 0xFFu, 8);
-    bits_put(&b, (a1 >> 8) & 0xFFu, 8);
-    bits_put(&b, a1 & 0xFFu, 8);
-    free(head);
-    free(prev);
-    free(tok);
-    if (b.overflow) {
-        free(b.buf);
-        return NULL;
-    }
-    *out_n = b.pos;
-    return b.buf;
-}
-
-/* PNG filter types 0-4 (None, Sub, Up, Average, Paeth) of one row; bpp bytes per pixel. */
-static unsigned char png_paeth(int a, int b, int c)
-{
-    int p = a + b - c, pa = abs(p - a), pb = abs(p - b), pc = abs(p - c);
-    return (unsigned char)(pa <= pb && pa <= pc ? a : (pb <= pc ? b : c));
-}
-
-static void png_filter_row(int type, const unsigned char *row, const unsigned char *up,
-                           size_t n, int bpp, unsigned char *out)
-{
-    size_t i;
-    for (i = 0; i < n; ++i) {
-        int a = i >= (size_t)bpp ? row[i - bpp] : 0, b = up ? up[i] : 0;
-        int c = (up && i >= (size_t)bpp) ? up[i - bpp] : 0, pred;
-        switch (type) {
-        case 1: pred = a; break;
-        case 2: pred = b; break;
-        case 3: pred = (a + b) / 2; break;
-        case 4: pred = png_paeth(a, b, c); break;
-        default: pred = 0; break;
-        }
-        out[i] = (unsigned char)((row[i] - pred) & 0xFF);
-    }
-}
-
-/* The filtered image data: a filter type byte, then the filtered row. adaptive = 0: filter
-   None everywhere; 1: each row gets the filter with the smallest sum of |filtered byte| taken
-   as signed (libpng's default heuristic). */
-/* ---- a deflate decoder (RFC 1951) and the PNG unfiltering, used only to check every picture
-   written: the zlib stream is decoded, unfiltered and compared with the pixels byte for byte
-   before the file is written (png_write fails otherwise). */
-typedef struct {
-    const unsigned char *p;
-    size_t n, pos;
-    uint32_t acc;
-    int nb, err;
-} infl_in;
-
-static int infl_bits(infl_in *s, int n) /* n <= 16, least significant bit first */
-{
-    int v;
-    while (s->nb < n) {
-        if (s->pos >= s->n) {
-            s->err = 1;
-            return 0;
-        }
-        s->acc |= (uint32_t)s->p[s->pos++] << s->nb;
-        s->nb += 8;
-    }
-    v = (int)(s->acc & ((1u << n) - 1u));
-    s->acc >>= n;
-    s->nb -= n;
-    return v;
-}
-
-/* canonical code: number of codes per length, symbols in code order */
-typedef struct {
-    short count[16];
-    short symbol[288];
-} infl_code;
-
-static int infl_build(infl_code *c, const unsigned char *len, int n) /* 0 ok */
-{
-    short offset[16];
-    int i, left = 1;
-    for (i = 0; i < 16; ++i) c->count[i] = 0;
-    for (i = 0; i < n; ++i) c->count[len[i]]++;
-    for (i = 1; i < 16; ++i) { /* no length may be over-subscribed */
-        left = 2 * left - c->count[i];
-        if (left < 0) return 1;
-    }
-    offset[1] = 0;
-    for (i = 1; i < 15; ++i) offset[i + 1] = (short)(offset[i] + c->count[i]);
-    for (i = 0; i < n; ++i)
-        if (len[i]) c->symbol[offset[len[i]]++] = (short)i;
-    return 0;
-}
-
-/* one symbol: codes of length l are consecutive integers starting at first, read one bit at
-   a time most significant first */
-static int infl_symbol(infl_in *s, const infl_code *c)
-{
-    int code = 0, first = 0, index = 0, l;
-    for (l = 1; l < 16; ++l) {
-        code |= infl_bits(s, 1);
-        if (code - first < c->count[l]) return c->symbol[index + code - first];
-        index += c->count[l];
-        first = (first + c->count[l]) << 1;
-        code <<= 1;
-    }
-    s->err = 1;
-    return -1;
-}
-
-/* zlib stream z[0..zn-1] into out (capacity cap); returns the decoded size, or -1 on any
-   error (header, codes, distances, overflow, Adler-32). */
-static long zlib_decompress(const unsigned char *z, size_t zn, unsigned char *out, size_t cap)
-{
-    infl_in s;
-    size_t o = 0, k;
-    int final = 0;
-    uint32_t a1 = 1, a2 = 0, want;
-    memset(&s, 0, sizeof s);
-    s.p = z;
-    s.n = zn;
-    if (zn < 6 || (z[0] & 0x0F) != 8 || ((unsigned)z[0] * 256u + z[1]) % 31u != 0 || (z[1] & 0x20))
-        return -1;
-    s.pos = 2;
-    while (!final && !s.err) {
-        int type;
-        final = infl_bits(&s, 1);
-        type = infl_bits(&s, 2);
-        if (type == 0) { /* stored */
-            unsigned len, nlen;
-            s.acc = 0;
-            s.nb = 0;
-            if (s.pos + 4 > s.n) return -1;
-            len = z[s.pos] | (unsigned)z[s.pos + 1] << 8;
-            nlen = z[s.pos + 2] | (unsigned)z[s.pos + 3] << 8;
-            s.pos += 4;
-            if ((len ^ 0xFFFFu) != nlen || s.pos + len > s.n || o + len > cap) return -1;
-            memcpy(out + o, z + s.pos, len);
-            s.pos += len;
-            o += len;
-        } else if (type == 1 || type == 2) {
-            unsigned char len[320];
-            infl_code lit, dist;
-            int hlit = 288, hdist = 30, i;
-            if (type == 1) { /* the fixed code */
-                for (i = 0; i < 288; ++i)
-                    len[i] = (unsigned char)(i < 144 ? 8 : (i < 256 ? 9 : (i < 280 ? 7 : 8)));
-                for (i = 0; i < 30; ++i) len[288 + i] = 5;
-            } else { /* a dynamic code: the code-length code, then the run-length coded lengths */
-                unsigned char cl[19];
-                infl_code clc;
-                int hclen;
-                hlit = infl_bits(&s, 5) + 257;
-                hdist = infl_bits(&s, 5) + 1;
-                hclen = infl_bits(&s, 4) + 4;
-                if (hlit > 286 || hdist > 30) return -1;
-                memset(cl, 0, sizeof cl);
-                for (i = 0; i < hclen; ++i) cl[defl_cl_order[i]] = (unsigned char)infl_bits(&s, 3);
-                if (infl_build(&clc, cl, 19)) return -1;
-                for (i = 0; i < hlit + hdist;) {
-                    int sym = infl_symbol(&s, &clc), rep = 0, val = 0;
-                    if (s.err) return -1;
-                    if (sym < 16) {
-                        len[i++] = (unsigned char)sym;
-                        continue;
-                    }
-                    if (sym == 16) {
-                        if (i == 0) return -1;
-                        val = len[i - 1];
-                        rep = 3 + infl_bits(&s, 2);
-                    } else if (sym == 17) {
-                        rep = 3 + infl_bits(&s, 3);
-                    } else {
-                        rep = 11 + infl_bits(&s, 7);
-                    }
-                    if (i + rep > hlit + hdist) return -1;
-                    while (rep-- > 0) len[i++] = (unsigned char)val;
-                }
-                memmove(len + 288, len + hlit, (size_t)hdist);
-            }
-            if (infl_build(&lit, len, hlit) || infl_build(&dist, len + 288, hdist)) return -1;
-            for (;;) {
-                int sym = infl_symbol(&s, &lit);
-                if (s.err) return -1;
-                if (sym < 256) {
-                    if (o >= cap) return -1;
-                    out[o++] = (unsigned char)sym;
-                } else if (sym == 256) {
-                    break;
-                } else {
-                    int l, d, ds;
-                    sym -= 257;
-                    if (sym >= 29) return -1;
-                    l = defl_len_base[sym] + infl_bits(&s, defl_len_extra[sym]);
-                    ds = infl_symbol(&s, &dist);
-                    if (s.err || ds < 0 || ds >= 30) return -1;
-                    d = defl_dist_base[ds] + infl_bits(&s, defl_dist_extra[ds]);
-                    if ((size_t)d > o || o + (size_t)l > cap) return -1;
-                    for (; l > 0; --l, ++o) out[o] = out[o - (size_t)d];
-                }
-            }
-        } else {
-            return -1;
-        }
-    }
-    if (s.err) return -1;
-    /* the Adler-32 trailer starts at the next byte boundary */
-    if (s.pos + 4 > s.n) return -1;
-    want = (uint32_t)z[s.pos] << 24 | (uint32_t)z[s.pos + 1] << 16 | (uint32_t)z[s.pos + 2] << 8 |
-           (uint32_t)z[s.pos + 3];
-    for (k = 0; k < o; ++k) {
-        a1 = (a1 + out[k]) % 65521u;
-        a2 = (a2 + a1) % 65521u;
-    }
-    return ((a2 << 16) | a1) == want ? (long)o : -1;
-}
-
-/* 0 if the filtered rows raw (w x h pixels of bpp bytes, a type byte per row) unfilter to pix. */
-static int png_unfilter_check(unsigned char *raw, const unsigned char *pix, int w, int h, int bpp)
-{
-    size_t row = (size_t)w * bpp, i;
-    int y;
-    for (y = 0; y < h; ++y) {
-        unsigned char *cur = raw + (size_t)y * (row + 1) + 1;
-        const unsigned char *up = y ? cur - (row + 1) : NULL;
-        int type = cur[-1];
-        if (type > 4) return 1;
-        for (i = 0; i < row; ++i) { /* in place: left and upper bytes are already unfiltered */
-            int a = i >= (size_t)bpp ? cur[i - bpp] : 0, b = up ? up[i] : 0;
-            int c = (up && i >= (size_t)bpp) ? up[i - bpp] : 0, pred;
-            switch (type) {
-            case 1: pred = a; break;
-            case 2: pred = b; break;
-            case 3: pred = (a + b) / 2; break;
-            case 4: pred = png_paeth(a, b, c); break;
-            default: pred = 0; break;
-            }
-            cur[i] = (unsigned char)((cur[i] + pred) & 0xFF);
-        }
-        if (memcmp(cur, pix + (size_t)y * row, row) != 0) return 1;
-    }
-    return 0;
-}
-
-/* The filtered image data of pix (w x h pixels of bpp bytes): per row a filter type byte, then
-   the filtered row. adaptive = 0: filter None everywhere; 1: each row gets the filter with the
-   smallest sum of |filtered byte| taken as signed (libpng's default heuristic). */
-static void png_filter_image(const unsigned char *pix, int w, int h, int bpp, int adaptive,
-                             unsigned char *raw, unsigned char *trial)
-{
-    size_t row = (size_t)w * bpp;
-    int y;
-    for (y = 0; y < h; ++y) {
-        const unsigned char *cur = pix + (size_t)y * row, *up = y ? cur - row : NULL;
-        unsigned char *dst = raw + (size_t)y * (row + 1);
-        long best = -1;
-        int type;
-        for (type = 0; type < (adaptive ? 5 : 1); ++type) {
-            long sum = 0;
-            size_t i;
-            png_filter_row(type, cur, up, row, bpp, trial);
-            for (i = 0; i < row; ++i) sum += trial[i] < 128 ? trial[i] : 256 - trial[i];
-            if (best < 0 || sum < best) {
-                best = sum;
-                dst[0] = (unsigned char)type;
-                memcpy(dst + 1, trial, row);
-            }
-        }
-    }
-}
-
-/* The distinct colours of rgb (n pixels) if there are at most 256: palette (3 bytes each,
-   sorted by R + G + B so that neighbouring indices look alike), index image; returns the
-   palette size, or 0 if there are more colours (or no memory). */
-static int png_palette(const unsigned char *rgb, size_t n, unsigned char *pal,
-                       unsigned char *idx)
-{
-    enum { SLOTS = 4096 };
-    long *key = (long *)malloc(sizeof(long) * SLOTS);
-    int *slot_index = (int *)malloc(sizeof(int) * SLOTS), count = 0, i, j, order[256];
-    int rank[256];
-    size_t p;
-    if (!key || !slot_index) {
-        free(key);
-        free(slot_index);
-        return 0;
-    }
-    for (i = 0; i < SLOTS; ++i) key[i] = -1;
-    for (p = 0; p < n && count >= 0; ++p) { /* pass 1: collect the colours */
-        long c = ((long)rgb[3 * p] << 16) | ((long)rgb[3 * p + 1] << 8) | (long)rgb[3 * p + 2];
-        unsigned h = (unsigned)((c * 2654435761UL) >> 8) % SLOTS;
-        while (key[h] >= 0 && key[h] != c) h = (h + 1) % SLOTS;
-        if (key[h] < 0) {
-            if (count == 256) {
-                count = -1;
-                break;
-            }
-            key[h] = c;
-            slot_index[h] = count;
-            pal[3 * count] = rgb[3 * p];
-            pal[3 * count + 1] = rgb[3 * p + 1];
-            pal[3 * count + 2] = rgb[3 * p + 2];
-            ++count;
-        }
-    }
-    if (count > 0) {
-        unsigned char sorted[768];
-        for (i = 0; i < count; ++i) order[i] = i;
-        for (i = 1; i < count; ++i) { /* insertion sort by R + G + B, then by value */
-            int v = order[i];
-            long kv = 1000000L * (pal[3 * v] + pal[3 * v + 1] + pal[3 * v + 2]) +
-                      ((long)pal[3 * v] << 16) + ((long)pal[3 * v + 1] << 8) + pal[3 * v + 2];
-            for (j = i - 1; j >= 0; --j) {
-                int u = order[j];
-                long ku = 1000000L * (pal[3 * u] + pal[3 * u + 1] + pal[3 * u + 2]) +
-                          ((long)pal[3 * u] << 16) + ((long)pal[3 * u + 1] << 8) + pal[3 * u + 2];
-                if (ku <= kv) break;
-                order[j + 1] = u;
-            }
-            order[j + 1] = v;
-        }
-        for (i = 0; i < count; ++i) {
-            rank[order[i]] = i;
-            memcpy(sorted + 3 * i, pal + 3 * order[i], 3);
-        }
-        memcpy(pal, sorted, 3 * (size_t)count);
-        for (p = 0; p < n; ++p) { /* pass 2: the index image */
-            long c = ((long)rgb[3 * p] << 16) | ((long)rgb[3 * p + 1] << 8) | (long)rgb[3 * p + 2];
-            unsigned h = (unsigned)((c * 2654435761UL) >> 8) % SLOTS;
-            while (key[h] != c) h = (h + 1) % SLOTS;
-            idx[p] = (unsigned char)rank[slot_index[h]];
-        }
-    }
-    free(key);
-    free(slot_index);
-    return count > 0 ? count : 0;
-}
-
-/* rgb: w * h * 3 bytes, row-major, top row first. Written as an indexed-colour PNG when the
-   image has at most 256 colours (one byte per pixel instead of three), as RGB otherwise;
-   compressed twice, with the adaptive row filters and with none (the flat panels and heat
-   maps here often compress better unfiltered), and the smaller stream written. Returns 0 on
-   success; *bytes the file size. */
-static int png_write(const char *path, const unsigned char *rgb, int w, int h, long *bytes)
-{
-    static const unsigned char signature[8] = {137, 80, 78, 71, 13, 10, 26, 10};
-    size_t npix = (size_t)w * (size_t)h, z_n = 0, t_n = 0, row, raw_n;
-    unsigned char ihdr[13], pal[768], *idx = (unsigned char *)malloc(npix ? npix : 1);
-    unsigned char *raw, *trial, *z = NULL, *t;
-    const unsigned char *pix = rgb;
-    FILE *f;
-    int adaptive, ok, ncol = idx ? png_palette(rgb, npix, pal, idx) : 0, bpp = 3;
-    if (ncol > 0) {
-        pix = idx;
-        bpp = 1;
-    }
-    row = (size_t)w * bpp;
-    raw_n = (row + 1) * (size_t)h;
-    raw = (unsigned char *)malloc(raw_n);
-    trial = (unsigned char *)malloc(row ? row : 1);
-    if (!raw || !trial) {
-        free(idx);
-        free(raw);
-        free(trial);
-        return 1;
-    }
-    for (adaptive = 0; adaptive < 2; ++adaptive) {
-        png_filter_image(pix, w, h, bpp, adaptive, raw, trial);
-        t = zlib_compress(raw, raw_n, &t_n);
-        if (t && (!z || t_n < z_n)) {
-            free(z);
-            z = t;
-            z_n = t_n;
-        } else {
-            free(t);
-        }
-    }
-    /* round trip: decode, unfilter and compare with the pixels (and the palette's colours) */
-    ok = z && zlib_decompress(z, z_n, raw, raw_n) == (long)raw_n &&
-         png_unfilter_check(raw, pix, w, h, bpp) == 0;
-    if (ok && ncol) {
-        size_t q;
-        for (q = 0; q < npix && ok; ++q) ok = memcmp(pal + 3 * (size_t)idx[q], rgb + 3 * q, 3) == 0;
-    }
-    free(idx);
-    free(raw);
-    free(trial);
-    if (!ok) {
-        fprintf(stderr, "pictures: PNG encoder round trip failed for %s\n", path);
-        free(z);
-        return 1;
-    }
-    put_be32(ihdr, (uint32_t)w);
-    put_be32(ihdr + 4, (uint32_t)h);
-    ihdr[8] = 8;                             /* bit depth */
-    ihdr[9] = (unsigned char)(ncol ? 3 : 2); /* colour type: indexed, or RGB */
-    ihdr[10] = 0;                            /* deflate */
-    ihdr[11] = 0;                            /* adaptive filtering: a filter type byte per row */
-    ihdr[12] = 0;                            /* no interlace */
-    f = fopen(path, "wb");
-    ok = f && fwrite(signature, 1, 8, f) == 8 && png_chunk(f, "IHDR", ihdr, 13) &&
-         (!ncol || png_chunk(f, "PLTE", pal, 3 * (size_t)ncol)) &&
-         png_chunk(f, "IDAT", z, z_n) && png_chunk(f, "IEND", NULL, 0);
-    if (f && fclose(f) != 0) ok = 0;
-    free(z);
-    if (bytes) *bytes = (long)(8 + 25 + (ncol ? 12 + 3 * ncol : 0) + 12 + z_n + 12);
-    return ok ? 0 : 1;
-}
 
 /* ---------------------------------------------------------------- the shared inputs */
 typedef struct {
@@ -1459,51 +609,6 @@ static void scene_sphere(pic_scene *sc, pic_maps *m, int w, int h)
         }
 }
 
-/* ---------------------------------------------------------------- images */
-static unsigned char to_byte(double v)
-{
-    v = v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
-    return (unsigned char)floor(255.0 * v + 0.5);
-}
-
-/* Fixed exposure e per scene (the same for every panel), a soft shoulder 1 - exp(-e L) instead
-   of a hard clip (highlights keep their shape), then gamma 2.2. */
-static void tone(double L, double exposure, unsigned char out[3])
-{
-    double v = pow(1.0 - exp(-exposure * (L > 0.0 ? L : 0.0)), 1.0 / 2.2);
-    v = floor(v * (GREY_LEVELS - 1) + 0.5) / (GREY_LEVELS - 1);
-    out[0] = out[1] = out[2] = to_byte(v);
-}
-
-/* An approximation of the "inferno" colour map: black - purple - red - orange - pale yellow. */
-static void heat_colour(double t, unsigned char out[3])
-{
-    static const double stops[6][3] = {{0, 0, 4},       {66, 10, 104},  {147, 38, 103},
-                                       {221, 81, 58},   {252, 165, 10}, {252, 255, 164}};
-    int i, k;
-    double f;
-    t = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
-    t = floor(t * (HEAT_LEVELS - 1) + 0.5) / (HEAT_LEVELS - 1);
-    i = (int)floor(t * 5.0);
-    if (i > 4) i = 4;
-    f = t * 5.0 - i;
-    for (k = 0; k < 3; ++k)
-        out[k] = to_byte(((1.0 - f) * stops[i][k] + f * stops[i + 1][k]) / 255.0);
-}
-
-static double err_to_unit(double e)
-{
-    double l = log10(e > 1e-12 ? e : 1e-12);
-    return (l - ERR_LOG_MIN) / (ERR_LOG_MAX - ERR_LOG_MIN);
-}
-
-static void blit(unsigned char *dst, int dw, int x0, int y0, const unsigned char *src, int w, int h)
-{
-    int y;
-    for (y = 0; y < h; ++y)
-        memcpy(dst + 3 * ((size_t)(y0 + y) * dw + x0), src + 3 * (size_t)y * w, 3 * (size_t)w);
-}
-
 /* ---------------------------------------------------------------- statistics */
 static int cmp_double(const void *a, const void *b)
 {
@@ -1748,65 +853,107 @@ static void result_free(pic_result *r)
     free(r->ndf_g);
 }
 
-/* 3 x 2 panels: reference | LEADR | naive ; colour bar | LEADR error | naive error. */
-static int write_picture(const pic_scene *sc, const pic_result *r, const char *path,
-                         long *bytes)
+/* ---------------------------------------------------------------- the picture (gnuplot) */
+/* gnuplot draws the picture from the values themselves, not from colours made here:
+   DIR/pic_NAME.bin holds six float32 planes of w x h pixels (native byte order, bottom row
+   first as gnuplot's binary arrays go): the radiance of the reference, LEADR and naive; the
+   footprint side in texels; the relative error of LEADR and of naive in percent, clamped to
+   the colour scale; NaN where the pixel misses the surface. DIR/pic_NAME.gpv sets the
+   script's variables (sizes, exposure, colour ranges, and titles carrying this run's numbers);
+   bench/pictures.gp (gp) lays out the 3 x 2 panels with a title and a numbered colour bar on
+   each. Both files are removed once gnuplot has written the PNG. Returns 0 on success. */
+static int write_picture(const pic_scene *sc, const pic_result *r, const char *outdir,
+                         const char *png, const char *gp)
 {
-    int w = sc->w, h = sc->h, W = 3 * w + 4 * PANEL_GAP, H = 2 * h + 3 * PANEL_GAP, i, k, y;
-    unsigned char *img = (unsigned char *)malloc((size_t)W * H * 3);
-    unsigned char *panel = (unsigned char *)malloc((size_t)w * h * 3);
-    unsigned char bg[3];
-    int methods[3] = {M_REF, M_LEADR, M_NAIVE}, rc;
-    memset(img, 255, (size_t)W * H * 3);
-    for (k = 0; k < 3; ++k) bg[k] = to_byte(pow(sc->bg[k], 1.0 / 2.2));
-    for (k = 0; k < 3; ++k) { /* images */
-        for (i = 0; i < w * h; ++i) {
-            if (sc->px[i].hit) tone(r->val[methods[k]][i], sc->exposure, panel + 3 * i);
-            else memcpy(panel + 3 * i, bg, 3);
-        }
-        blit(img, W, PANEL_GAP + k * (w + PANEL_GAP), PANEL_GAP, panel, w, h);
+    int w = sc->w, h = sc->h, n = w * h, x, y, k, rc;
+    static const int methods[3] = {M_REF, M_LEADR, M_NAIVE};
+    double e_lo = pow(10.0, ERR_LOG_MIN), e_hi = pow(10.0, ERR_LOG_MAX);
+    double us_ref = 1e6 * r->seconds[M_REF] / r->n_surface;
+    char bin[1024], gpv[1024], cmd[4096];
+    float *plane = (float *)malloc(sizeof(float) * (size_t)n);
+    FILE *f;
+    snprintf(bin, sizeof bin, "%s/pic_%s.bin", outdir, sc->name);
+    snprintf(gpv, sizeof gpv, "%s/pic_%s.gpv", outdir, sc->name);
+    f = fopen(bin, "wb");
+    if (!f || !plane) {
+        if (f) fclose(f);
+        free(plane);
+        return 1;
     }
-    for (k = 1; k < 3; ++k) { /* error maps */
-        for (i = 0; i < w * h; ++i) {
-            double ref = r->val[M_REF][i], e;
-            if (!sc->px[i].hit) {
-                panel[3 * i] = panel[3 * i + 1] = panel[3 * i + 2] = 96;
-                continue;
+    for (k = 0; k < 6; ++k) {
+        for (y = 0; y < h; ++y)
+            for (x = 0; x < w; ++x) {
+                int i_img = y * w + x; /* image row y from the top; the file's row h - 1 - y */
+                double v = 0.0;
+                if (!sc->px[i_img].hit) v = (double)NAN;
+                else if (k < 3) v = r->val[methods[k]][i_img];
+                else if (k == 3) v = sc->px[i_img].fp;
+                else {
+                    double ref = r->val[M_REF][i_img];
+                    v = fabs(r->val[methods[k - 3]][i_img] - ref) / (ref > r->floor ? ref : r->floor);
+                    v = 100.0 * (v < e_lo ? e_lo : (v > e_hi ? e_hi : v));
+                }
+                if (k == 3 && v < FP_SHOWN_MIN) v = FP_SHOWN_MIN;
+                plane[(size_t)(h - 1 - y) * w + x] = (float)v;
             }
-            e = fabs(r->val[methods[k]][i] - ref) / (ref > r->floor ? ref : r->floor);
-            heat_colour(err_to_unit(e), panel + 3 * i);
-        }
-        blit(img, W, PANEL_GAP + k * (w + PANEL_GAP), 2 * PANEL_GAP + h, panel, w, h);
+        if (fwrite(plane, sizeof(float), (size_t)n, f) != (size_t)n) break;
     }
-    /* colour bar: a vertical strip, bottom = 3%, top = 316%, black ticks at each half decade */
-    {
-        int bw = w / 8 > 8 ? w / 8 : 8, bx = PANEL_GAP + (w - bw) / 2, by = 2 * PANEL_GAP + h;
-        int top = by + h / 10, bot = by + h - h / 10, x;
-        static const double ticks[5] = {0.0316, 0.1, 0.316, 1.0, 3.16};
-        for (y = top; y <= bot; ++y) {
-            unsigned char c[3];
-            heat_colour((double)(bot - y) / (double)(bot - top), c);
-            for (x = bx; x < bx + bw; ++x) memcpy(img + 3 * ((size_t)y * W + x), c, 3);
-        }
-        for (k = 0; k < 5; ++k) {
-            int ty = bot - (int)floor(err_to_unit(ticks[k]) * (bot - top) + 0.5);
-            int len = (k % 2 == 0) ? bw / 2 + 4 : bw / 4 + 2;
-            for (x = bx + bw; x < bx + bw + len && x < W; ++x)
-                memset(img + 3 * ((size_t)ty * W + x), 0, 3);
-            for (x = bx - len; x < bx; ++x)
-                if (x >= 0) memset(img + 3 * ((size_t)ty * W + x), 0, 3);
-        }
+    free(plane);
+    if (fclose(f) != 0 || k < 6) return 1;
+    f = fopen(gpv, "w");
+    if (!f) return 1;
+    /* gnuplot strings in double quotes: \n is a line break */
+    fprintf(f, "# written by bench/pictures.c for %s\n", gp);
+    fprintf(f, "datf = \"%s\"\noutf = \"%s/%s\"\nw = %d\nh = %d\n", bin, outdir, png, w, h);
+    fprintf(f, "expo = %.6g\nlmax = %.6g\n", sc->exposure, WHITE_EXPOSURE / sc->exposure);
+    fprintf(f, "bg = \"#%02x%02x%02x\"\n", (unsigned)floor(255.0 * pow(sc->bg[0], 1.0 / 2.2) + 0.5),
+            (unsigned)floor(255.0 * pow(sc->bg[1], 1.0 / 2.2) + 0.5),
+            (unsigned)floor(255.0 * pow(sc->bg[2], 1.0 / 2.2) + 0.5));
+    fprintf(f, "errlo = %.6g\nerrhi = %.6g\nfplo = %.6g\nfphi = %.6g\n", 100.0 * e_lo,
+            100.0 * e_hi, FP_SHOWN_MIN, (double)MAP_SIZE);
+    if (strcmp(sc->name, "plane") == 0)
+        fprintf(f, "ttl = \"Rough specular plane toward the horizon, brute force against the "
+                   "filtered formulas\\n%dx%d Gaussian height map tiled, light %.0f degrees "
+                   "above the horizon, %dx%d pixels\"\n",
+                MAP_SIZE, MAP_SIZE, PLANE_LIGHT_ELEV, w, h);
+    else
+        fprintf(f, "ttl = \"Sphere in LEADR's domain, brute force against the filtered "
+                   "formulas\\n%dx%d Gaussian height map tiled %d times around the equator, "
+                   "%dx%d pixels\"\n",
+                MAP_SIZE, MAP_SIZE, SPHERE_TILES, w, h);
+    fprintf(f, "t0 = \"reference (brute force)\\n%.0f us per pixel\"\n", us_ref);
+    for (k = 1; k < 3; ++k)
+        fprintf(f, "t%d = \"%s\\n%.0f ns per pixel (%.0fx faster)\"\n", k,
+                k == 1 ? "LEADR (trilinear moments)" : "naive mip-mapped normal",
+                1e9 * r->seconds[methods[k]] / r->n_surface,
+                r->seconds[M_REF] / r->seconds[methods[k]]);
+    fprintf(f, "t3 = \"footprint side (texels)\\nmedian %.1f, max %.0f\"\n", r->fp_med, r->fp_max);
+    for (k = 1; k < 3; ++k)
+        fprintf(f, "t%d = \"%s: relative error\\nmean %.0f%%, 95th percentile %.0f%%\"\n",
+                k + 3, k == 1 ? "LEADR" : "naive", 100.0 * r->err[methods[k]].mean,
+                100.0 * r->err[methods[k]].p95);
+    fprintf(f, "note = \"Top: reflected radiance L per unit light radiance, one exposure for "
+               "the three (display 1 - exp(-%.2f L), gamma 2.2).\\nBottom: the footprint side "
+               "of each pixel in texels; the relative error |method - reference| / "
+               "max(reference, %.0f%% of its 99th percentile),\\nlog scale, clamped at %.1f%% and "
+               "%.0f%%. Grey: no surface. Titles: time per pixel on one core; mean and 95th "
+               "percentile of the error over the lit pixels.\"\n",
+            sc->exposure, 100.0 * LIT_FRACTION, 100.0 * e_lo, 100.0 * e_hi);
+    if (fclose(f) != 0) return 1;
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' '%s'", gpv, gp);
+    rc = system(cmd);
+    if (rc != 0) {
+        fprintf(stderr, "pictures: `%s` failed (exit %d); its inputs are kept\n", cmd, rc);
+        return 1;
     }
-    rc = png_write(path, img, W, H, bytes);
-    free(img);
-    free(panel);
-    return rc;
+    remove(bin);
+    remove(gpv);
+    return 0;
 }
 
 /* ---------------------------------------------------------------- main */
 static const char *const err_scale_text =
-    "relative error, log scale: 3% at the bottom (black) to 316% at the top (pale yellow), "
-    "ticks at 3, 10, 32, 100, 316%";
+    "relative error, log scale from 3.2% (black) to 316% (pale yellow), clamped at both ends";
 
 /* Mean of a per-bin quantity over bins b0 .. b1 - 1, weighted by the counts of pixels lit in
    either reference (noise = 1: rms, weighted by the counts of subsampled lit pixels). */
@@ -1851,7 +998,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
     double box_s, box_l, in_s, in_l, oof_s, oof_l, tri_s, tri_l, trin_s, trin_l, noise_l;
     double ndf_s, ndf_l;
     int k, lit_s = 0, lit_l = 0, n_noisy = 0;
-    fprintf(md, "![%s: reference, LEADR, naive; colour bar, LEADR error, naive error](%s)\n\n",
+    fprintf(md, "![%s: reference, LEADR, naive; footprint size, LEADR error, naive error](%s)\n\n",
             sc->name, png);
     if (strcmp(sc->name, "plane") == 0)
         fprintf(md,
@@ -1883,7 +1030,9 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
             "over %d subsampled to %dx%d evenly spaced texels; %.0f texels shaded per pixel on "
             "average). Base lobe deviation %.2f, no Fresnel. Top: reference, LEADR, naive "
             "mip-mapped normal (same fixed exposure %.2f, display 1 - exp(-exposure L), gamma "
-            "2.2). Bottom: colour bar (%s), error of LEADR, error of naive.\n\n",
+            "2.2; the colour bar gives the radiance). Bottom: the footprint side in texels (log scale), "
+            "the error of LEADR and of naive (%s). Every panel carries its title and colour "
+            "bar.\n\n",
             sc->w, sc->h, r->n_surface, r->n_lit, 100.0 * LIT_FRACTION, r->fp_min, r->fp_med,
             r->fp_p95, r->fp_max, r->n_subsampled, sc->ref_max, sc->ref_max, sc->ref_max,
             r->samples_per_pixel, BASE_SIGMA, sc->exposure, err_scale_text);
@@ -2116,9 +1265,18 @@ static double self_check(void)
     return worst;
 }
 
+static long file_size(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long n = -1;
+    if (f && fseek(f, 0, SEEK_END) == 0) n = ftell(f);
+    if (f) fclose(f);
+    return n;
+}
+
 int main(int argc, char **argv)
 {
-    const char *outdir = argc > 1 ? argv[1] : "bench/out";
+    const char *outdir = "bench/out", *gp = "bench/pictures.gp";
     const char *q = getenv("BENCH_QUICK");
     int quick = q && *q && strcmp(q, "0") != 0 && strcmp(q, "no") != 0 && strcmp(q, "NO") != 0;
     int div = quick ? 2 : 1, s;
@@ -2131,6 +1289,25 @@ int main(int argc, char **argv)
     FILE *md;
     double t_start = now_seconds(), t_png = 0.0;
     long png_bytes[2] = {0, 0};
+    FILE *gpf;
+    for (s = 1; s < argc; ++s) {
+        if (!strcmp(argv[s], "--gp") && s + 1 < argc) gp = argv[++s];
+        else if (argv[s][0] != '-') outdir = argv[s];
+        else {
+            fprintf(stderr, "usage: %s [OUT_DIR] [--gp bench/pictures.gp]\n", argv[0]);
+            return 2;
+        }
+    }
+    /* gnuplot draws the pictures: without it there is nothing to show, so stop before the
+       minutes of rendering (tests/deps.sh installs it) */
+    gpf = fopen(gp, "r");
+    if (!gpf || system("gnuplot --version > /dev/null 2>&1") != 0) {
+        fprintf(stderr, "pictures: %s; gnuplot draws the pictures (Debian: apt-get install "
+                        "gnuplot-nox)\n", gpf ? "gnuplot not found" : "cannot read the script");
+        if (gpf) fclose(gpf);
+        return 1;
+    }
+    fclose(gpf);
     check = self_check();
     printf("pictures: self-check on a flat map, max relative error %.2e (bound %.0e)\n", check,
            check_bound);
@@ -2178,12 +1355,13 @@ int main(int argc, char **argv)
         snprintf(path, sizeof path, "%s/%s", outdir, png);
         {
             double t0 = now_seconds();
-            if (write_picture(&sc, &r, path, &png_bytes[s]) != 0) {
+            if (write_picture(&sc, &r, outdir, png, gp) != 0) {
                 fprintf(stderr, "pictures: cannot write %s\n", path);
                 return 1;
             }
             t_png += now_seconds() - t0;
-            printf("  %s: %ld bytes, written in %.0f ms\n", path, png_bytes[s],
+            png_bytes[s] = file_size(path);
+            printf("  %s: %ld bytes, drawn by gnuplot in %.0f ms\n", path, png_bytes[s],
                    1e3 * (now_seconds() - t0));
         }
         if (s == 0)
@@ -2199,8 +1377,8 @@ int main(int argc, char **argv)
                 "methods and the in-box reference match the reference to %.1e (largest relative "
                 "error over lit pixels; bound %.0e); the in-box reference marches with "
                 "`pfm_visible_box` (tested in tests/test_microsurface.c). Library in %s; reference in double; times on one core%s. "
-                "PNG files (row filters and deflate written here, no zlib): %ld and %ld bytes, "
-                "%.0f ms to encode both; total run %.0f s.\n\n",
+                "Pictures drawn by gnuplot (bench/pictures.gp) from the values: %ld and %ld "
+                "bytes, %.0f ms for both; total run %.0f s.\n\n",
             FLAT_RMS_SLOPE, check, check_bound,
             sizeof(pf_real) == sizeof(float) ? "float" : "double",
             quick ? " (BENCH_QUICK: half-size images)" : "", png_bytes[0], png_bytes[1],

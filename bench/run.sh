@@ -2,12 +2,17 @@
 # bench/run.sh - run every bench binary (float and double), then write bench/out/:
 #   <module>.csv            one row per method and build (columns: see bench/pf_bench.h)
 #   <module>.notes          inputs, grids, references, A/A checks (family<TAB>note)
-#   <module>_<family>.svg   error versus cost, one chart per family (needs gnuplot)
+#   <module>_<family>.svg   error versus cost, one chart per family (gnuplot; make bench installs
+#                           it through tests/deps.sh: no chart is ever skipped)
 #   summary.md              compiler, flags, CPU, date, then markdown tables per family
 # Called by `make bench` from the repository root:  sh bench/run.sh BUILD_DIR
 # Environment: CC and BENCH_FLAGS (recorded in the summary), CALLGRIND=0/1 (instruction counts;
 # default: on in a full run when valgrind is installed), BENCH_QUICK=1 (CI smoke run).
 set -e
+
+# The charts are the main job's point: without gnuplot, stop now rather than after minutes.
+command -v gnuplot >/dev/null 2>&1 ||
+    { echo "bench: gnuplot not found; run make bench (it installs it) or: sudo apt-get install -y gnuplot-nox" >&2; exit 1; }
 
 dir=${1:-build/bench}
 out=bench/out
@@ -107,36 +112,31 @@ fi
 echo "bench: stability done ($(($(date +%s) - t0)) s)"
 
 # ---------------------------------------------------------------- charts
-have_gp=0
-if command -v gnuplot >/dev/null 2>&1; then have_gp=1; fi
 charts=""
-if [ $have_gp = 1 ]; then
-    for m in $modules; do
-        for fam in $(awk -F, 'NR > 1 && !seen[$1]++ { print $1 }' "$out/$m.csv"); do
-            dat="$out/${m}_$fam.dat"
-            # ns, error (floored at 1e-20 so an exact 0 stays on a log axis), label, build
-            # (1 float, 2 double), label slot: how many earlier points of the same build sit
-            # (nearly) on this one, so that the chart staggers their labels
-            # max rel error, or mean abs error for fraction-valued families (max_rel_err empty)
-            awk -F, -v f="$fam" 'NR > 1 && $1 == f && ($9 != "" || $17 != "") {
-                e = ($9 != "" ? $9 : $17) + 0; if (e < 1e-20) e = 1e-20
-                bd = ($3 == "float") ? 1 : 2
-                lx = log($4 + 1e-9) / log(10); ly = log(e) / log(10); k = 0
-                for (j = 0; j < n; ++j)
-                    if (pb[j] == bd && (px[j] - lx) ^ 2 < 0.01 && (py[j] - ly) ^ 2 < 0.09) ++k
-                px[n] = lx; py[n] = ly; pb[n] = bd; ++n
-                printf "%s\t%.6g\t%s\t%d\t%d\n", $4, e, $2, bd, k }' "$out/$m.csv" > "$dat"
-            if [ -s "$dat" ]; then
-                svg="$out/${m}_$fam.svg"
-                gnuplot -e "fam='$m / $fam'; datf='$dat'; outf='$svg'" bench/chart.gp
-                charts="$charts ${m}_$fam.svg"
-            fi
-            rm -f "$dat"
-        done
+for m in $modules; do
+    for fam in $(awk -F, 'NR > 1 && !seen[$1]++ { print $1 }' "$out/$m.csv"); do
+        dat="$out/${m}_$fam.dat"
+        # ns, error (floored at 1e-20 so an exact 0 stays on a log axis), label, build
+        # (1 float, 2 double), label slot: how many earlier points of the same build sit
+        # (nearly) on this one, so that the chart staggers their labels
+        # max rel error, or mean abs error for fraction-valued families (max_rel_err empty)
+        awk -F, -v f="$fam" 'NR > 1 && $1 == f && ($9 != "" || $17 != "") {
+            e = ($9 != "" ? $9 : $17) + 0; if (e < 1e-20) e = 1e-20
+            bd = ($3 == "float") ? 1 : 2
+            lx = log($4 + 1e-9) / log(10); ly = log(e) / log(10); k = 0
+            for (j = 0; j < n; ++j)
+                if (pb[j] == bd && (px[j] - lx) ^ 2 < 0.01 && (py[j] - ly) ^ 2 < 0.09) ++k
+            px[n] = lx; py[n] = ly; pb[n] = bd; ++n
+            printf "%s\t%.6g\t%s\t%d\t%d\n", $4, e, $2, bd, k }' "$out/$m.csv" > "$dat"
+        if [ -s "$dat" ]; then
+            svg="$out/${m}_$fam.svg"
+            gnuplot -e "fam='$m / $fam'; datf='$dat'; outf='$svg'" bench/chart.gp ||
+                { echo "bench: gnuplot failed on $svg" >&2; exit 1; }
+            charts="$charts ${m}_$fam.svg"
+        fi
+        rm -f "$dat"
     done
-else
-    echo "bench: gnuplot not installed; charts skipped (CSV and summary still written)"
-fi
+done
 
 # ---------------------------------------------------------------- summary.md
 sum="$out/summary.md"
