@@ -16,6 +16,11 @@
      PF_GLSL          compile as GLSL 4.50 (see docs/porting.md): structs through
                       PF_STRUCT_BEGIN/END, no typedef, casts through PF_R, built-in math.
      PF_NO_MATH_H     do not include <math.h> (when every PF_ math macro is user-provided).
+     PF_CPU_DEF       linkage of the CPU-only functions that take pointers (default static
+                      inline, never __device__).
+     PF_MAX_SIDE      largest side those functions accept (default 2^24).
+     PF_MAX_REALS     largest buffer, in pf_reals, they read or write (default 2^40; narrower
+                      on 32-bit hosts). See "CPU only: sizes and errors" at the end.
 
    USAGE
      #include "pf_core.h"
@@ -29,6 +34,7 @@
      pf_vec2_make  pf_vec2_dot
      pf_vec3_make  pf_vec3_add  pf_vec3_sub  pf_vec3_scale  pf_vec3_dot  pf_vec3_cross
      pf_vec3_length  pf_vec3_normalize
+     CPU only: PF_OK PF_ERR_ARG PF_ERR_SIZE, pf_size_mul pf_size_mul3 pf_size_side_ok
 
    CONVENTIONS
      Public names pf_, private pfi_ (not pf__: GLSL and C++ reserve every identifier that

@@ -526,6 +526,76 @@ static void test_vec_vs_glm(void)
 }
 #endif
 
+
+/* The CPU-only size helpers (pf_core.h, "sizes and errors") against exact arithmetic: products
+   formed in long double (64-bit mantissa on x86; exact for the magnitudes compared here, which
+   are checked against a 2^40-ish limit) and an unsigned 128-bit-free reference for the wrap. */
+static void edge_size_helpers(void)
+{
+    static const long long v[] = {-1, 0, 1, 2, 3, 5, 65537, (1LL << 20), (1LL << 24), (1LL << 30),
+                                  2147483647LL, (1LL << 40), (1LL << 40) + 1, 9223372036854775807LL};
+    const int nv = (int)(sizeof v / sizeof v[0]);
+    int i, j, k, bad = 0;
+    for (i = 0; i < nv; ++i)
+        for (j = 0; j < nv; ++j) {
+            long long a = v[i], b = v[j], got = pf_size_mul(a, b);
+            long double exact = (long double)a * (long double)b;
+            long long want = (a < 0 || b < 0 || exact > (long double)PF_MAX_REALS) ? -1 : a * b;
+            if (got != want) {
+                if (bad++ < 4) printf("    pf_size_mul(%lld, %lld) = %lld, want %lld\n", a, b, got, want);
+            }
+            for (k = 0; k < nv; ++k) {
+                long long c = v[k], g3 = pf_size_mul3(a, b, c);
+                long double e3 = exact * (long double)c;
+                long long w3 = (a < 0 || b < 0 || c < 0 || exact > (long double)PF_MAX_REALS ||
+                                e3 > (long double)PF_MAX_REALS) ? -1 : a * b * c;
+                if (g3 != w3 && bad++ < 4)
+                    printf("    pf_size_mul3(%lld, %lld, %lld) = %lld, want %lld\n", a, b, c, g3, w3);
+            }
+        }
+    PF_CHECK(bad == 0, "%d wrong checked products", bad);
+    /* the issue 19 table size: 65537^2 fits 64 bits and the limit, 2 x 2 x 2^30 too */
+    PF_CHECK(pf_size_mul3(65537, 65537, 1) == 4295098369LL, "65537^2 -> %lld", pf_size_mul3(65537, 65537, 1));
+    PF_CHECK(pf_size_mul3(1LL << 24, 1LL << 24, 5) == -1, "2^24 x 2^24 x 5 must exceed PF_MAX_REALS");
+    PF_CHECK(pf_size_side_ok(1) && pf_size_side_ok(PF_MAX_SIDE) && !pf_size_side_ok(0) &&
+                 !pf_size_side_ok(PF_MAX_SIDE + 1) && !pf_size_side_ok(-5),
+             "side limits");
+    /* wrap: every i against the slow definition, near the ends of the range too */
+    {
+        static const long long n_list[] = {1, 2, 3, 7, (1LL << 24), 2147483647LL};
+        static const long long i_list[] = {-9223372036854775807LL - 1, -2147483648LL, -7, -1, 0, 1, 6, 7,
+                                           2147483647LL, 9223372036854775807LL};
+        int a, b;
+        bad = 0;
+        for (a = 0; a < 6; ++a)
+            for (b = 0; b < 10; ++b) {
+                long long n = n_list[a], x = i_list[b], r = pfi_wrap_index(x, n);
+                /* r must be in [0, n) and congruent to x: (x - r) divisible by n, computed in
+                   long double only for the divisibility of exact small remainders */
+                long long back = x % n;
+                if (back < 0) back += n;
+                if (r < 0 || r >= n || r != back) bad++;
+            }
+        PF_CHECK(bad == 0, "%d wrong wrapped indices", bad);
+    }
+    /* floor to a clamped index: huge values never reach the conversion; NaN and infinities
+       neither (not under -ffast-math, which lets the compiler assume they never occur) */
+    PF_CHECK(pfi_floor_index(PF_REAL_MAX, 0, 2147483647LL) == 2147483647LL &&
+                 pfi_floor_index(-PF_REAL_MAX, -3, 9) == -3 && pfi_floor_index(PF_R(2.5), 0, 9) == 2 &&
+                 pfi_floor_index(PF_R(-0.5), -3, 9) == -1 && pfi_floor_index(PF_R(8.99), 0, 9) == 8 &&
+                 pfi_floor_index(PF_R(1.0e6), 0, 1LL << 24) == 1000000,
+             "pfi_floor_index finite values");
+#ifndef __FAST_MATH__
+    {
+        volatile pf_real zero = PF_R(0.0);
+        pf_real nan = zero / zero, inf = PF_R(1.0) / zero;
+        PF_CHECK(pfi_floor_index(nan, 0, 9) == 0 && pfi_floor_index(inf, 0, 9) == 9 &&
+                     pfi_floor_index(-inf, 0, 9) == 0,
+                 "pfi_floor_index NaN and infinities");
+    }
+#endif
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -543,6 +613,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_vec_ops);
     PF_TEST_RUN(edge_vec3_normalize);
     PF_TEST_RUN(edge_vec3_normalize_extreme);
+    PF_TEST_RUN(edge_size_helpers);
 #ifdef __cplusplus
     PF_TEST_RUN(test_vec_vs_glm);
 #endif
