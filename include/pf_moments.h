@@ -92,7 +92,7 @@
      sizes are odd, 3x2 on an odd edge).
      Sampling follows the GPU convention: texel i of an n-texel level has its centre at
      u = (i + 0.5)/n; PF_BORDER_WRAP repeats, PF_BORDER_CLAMP clamps to the edge texel; a
-     trilinear lod is clamped to [0, levels - 1].
+     trilinear lod is clamped to [0, levels - 1] (NaN: 0).
      Height maps. Texel (i, j) of a w x h height map sits at x = (i + 0.5) dx, y = (j + 0.5) dy
      (row j + 1 is +y). The slope is height_scale * grad h (Dupuy et al. 2013 sec. 4.2, height
      scaling), from the central difference (h[i+1] - h[i-1]) / (2 dx): second order, error
@@ -104,10 +104,19 @@
      the largest float (EVSM's second moment exp(2c) at c = 44 is 1.6e38) stays finite.
      NaN texels propagate: a NaN texel makes NaN every texel that averages it with a nonzero
      weight (its ancestors in the pyramid, a sample whose footprint covers it) and nothing else;
-     texels with zero weight are never read, so nothing is read out of bounds. Zero-size maps
-     (w < 1 or h < 1), null pointers and channel counts < 1 make the CPU functions do nothing
-     (the counts return 0). Indices are int within a row and long long for offsets; a map
-     needs w C < 2^30.
+     texels with zero weight are never read, so nothing is read out of bounds. A pyramid's
+     weights are rounded, so a level or sample of texels near +-PF_REAL_MAX that overflows is
+     clamped to the range of its texels (finite; not under -ffast-math, which folds the test).
+     Limits and errors (the CPU functions; pf_core.h, "sizes and errors"). Every builder and
+     sampler returns PF_OK, or, having written nothing: PF_ERR_ARG for a NULL pointer, w, h,
+     channels or n below 1 (n below 0), a border other than PF_BORDER_CLAMP / _WRAP, an unknown
+     PF_DEPTH_* kind or an infinite weight; PF_ERR_SIZE for w or h above PF_MAX_SIDE (2^24) or
+     a buffer (pyramid, map, texels) above PF_MAX_REALS pf_reals (2^40 on 64-bit hosts).
+     pf_mip_texel_count returns 0 for every size the builders reject; typed samplers return
+     zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX. Offsets and indices
+     are long long, so no accepted size overflows. Coordinates: CLAMP clamps any u (infinities
+     too) to the edge, NaN is 0; WRAP takes u - floor(u) in pf_real (exact: every |u| >= 2^23
+     in float is an integer and wraps to 0), infinities and NaN are 0.
 
    ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
    timings). Reductions and sampling are sums of a few products: the moments of a reduction
@@ -164,65 +173,26 @@ PF_STRUCT_END(pf_evsm_moments)
 #define PF_EVSM_EXP_MAX_F16 PF_R(5.54)
 
 PF_DEF pf_depth_moments2 pf_depth_moments2_make(pf_real m1, pf_real m2)
-{
-    pf_depth_moments2 m;
-    m.m1 = m1;
-    m.m2 = m2;
-    return m;
-}
-
+{ pf_depth_moments2 m; m.m1 = m1; m.m2 = m2; return m; }
 PF_DEF pf_depth_moments4 pf_depth_moments4_make(pf_real m1, pf_real m2, pf_real m3, pf_real m4)
-{
-    pf_depth_moments4 m;
-    m.m1 = m1;
-    m.m2 = m2;
-    m.m3 = m3;
-    m.m4 = m4;
-    return m;
-}
-
+{ pf_depth_moments4 m; m.m1 = m1; m.m2 = m2; m.m3 = m3; m.m4 = m4; return m; }
 PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real neg1, pf_real neg2)
-{
-    pf_evsm_moments m;
-    m.pos1 = pos1;
-    m.pos2 = pos2;
-    m.neg1 = neg1;
-    m.neg2 = neg2;
-    return m;
-}
-
+{ pf_evsm_moments m; m.pos1 = pos1; m.pos2 = pos2; m.neg1 = neg1; m.neg2 = neg2; return m; }
 /* VSM texel: (z, z^2). */
 PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
-{
-    return pf_depth_moments2_make(z, z * z);
-}
-
+{ return pf_depth_moments2_make(z, z * z); }
 /* MSM texel: (z, z^2, z^3, z^4). */
 PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
-{
-    pf_real z2 = z * z;
-    return pf_depth_moments4_make(z, z2, z2 * z, z2 * z2);
-}
-
+{ pf_real z2 = z * z; return pf_depth_moments4_make(z, z2, z2 * z, z2 * z2); }
 /* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
    c <= PF_EVSM_EXP_MAX_F32 (or _F16 for 16-bit storage) so the squares stay finite. */
 PF_DEF pf_real pf_evsm_warp_pos(pf_real z, pf_real c)
-{
-    return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0)));
-}
-
+{ return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0))); }
 PF_DEF pf_real pf_evsm_warp_neg(pf_real z, pf_real c)
-{
-    return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0)));
-}
-
+{ return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0))); }
 /* EVSM-2 texel: moments of the positive warp only. */
 PF_DEF pf_depth_moments2 pf_evsm2_from_depth(pf_real z, pf_real c_pos)
-{
-    pf_real p = pf_evsm_warp_pos(z, c_pos);
-    return pf_depth_moments2_make(p, p * p);
-}
-
+{ pf_real p = pf_evsm_warp_pos(z, c_pos); return pf_depth_moments2_make(p, p * p); }
 /* EVSM-4 texel: moments of both warps. */
 PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_real c_neg)
 {
@@ -233,11 +203,7 @@ PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_r
 
 /* ESM texel in log space: log(exp(c z)) = c z. A pyramid of these is reduced with
    log-sum-exp (below), so E[exp(c z)] is never formed and cannot overflow for any c. */
-PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c)
-{
-    return c * z;
-}
-
+PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c) { return c * z; }
 /* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow:
    m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m the larger log among those of positive weight,
    so the sum holds that term's weight times exp(0) = 1 and never underflows to 0: a zero
@@ -254,34 +220,17 @@ PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w
 
 /* a + b and w a, componentwise (the moments are linear). */
 PF_DEF pf_depth_moments2 pf_depth_moments2_add(pf_depth_moments2 a, pf_depth_moments2 b)
-{
-    return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2);
-}
-
+{ return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2); }
 PF_DEF pf_depth_moments2 pf_depth_moments2_scale(pf_depth_moments2 a, pf_real w)
-{
-    return pf_depth_moments2_make(w * a.m1, w * a.m2);
-}
-
+{ return pf_depth_moments2_make(w * a.m1, w * a.m2); }
 PF_DEF pf_depth_moments4 pf_depth_moments4_add(pf_depth_moments4 a, pf_depth_moments4 b)
-{
-    return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4);
-}
-
+{ return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4); }
 PF_DEF pf_depth_moments4 pf_depth_moments4_scale(pf_depth_moments4 a, pf_real w)
-{
-    return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4);
-}
-
+{ return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4); }
 PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
-{
-    return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2);
-}
-
+{ return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2); }
 PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
-{
-    return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2);
-}
+{ return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
 
 /* ---------------------------------------------------------------- scalar-map moments
    E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After
@@ -295,42 +244,21 @@ PF_STRUCT_BEGIN(pf_scalar_moments)
 PF_STRUCT_END(pf_scalar_moments)
 
 PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
-{
-    pf_scalar_moments m;
-    m.m1 = m1;
-    m.m2 = m2;
-    return m;
-}
-
+{ pf_scalar_moments m; m.m1 = m1; m.m2 = m2; return m; }
 /* One texel: (f, f^2). */
 PF_DEF pf_scalar_moments pf_scalar_moments_from_value(pf_real f)
-{
-    return pf_scalar_moments_make(f, f * f);
-}
-
+{ return pf_scalar_moments_make(f, f * f); }
 PF_DEF pf_scalar_moments pf_scalar_moments_add(pf_scalar_moments a, pf_scalar_moments b)
-{
-    return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2);
-}
-
+{ return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2); }
 PF_DEF pf_scalar_moments pf_scalar_moments_scale(pf_scalar_moments a, pf_real w)
-{
-    return pf_scalar_moments_make(w * a.m1, w * a.m2);
-}
-
+{ return pf_scalar_moments_make(w * a.m1, w * a.m2); }
 PF_DEF pf_real pf_scalar_moments_mean(pf_scalar_moments m) { return m.m1; }
-
 /* Variance E[f^2] - E[f]^2, clamped at 0: rounding in the filtered moments (and 16-bit
    storage) can make it slightly negative where the map is flat. NaN gives 0. */
 PF_DEF pf_real pf_scalar_moments_variance(pf_scalar_moments m)
-{
-    return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0));
-}
-
+{ return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0)); }
 PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
-{
-    return PF_SQRT(pf_scalar_moments_variance(m));
-}
+{ return PF_SQRT(pf_scalar_moments_variance(m)); }
 
 /* ---------------------------------------------------------------- average normals
    A texel of a normal map is a unit normal; the pyramid averages them without renormalizing,
@@ -339,25 +267,15 @@ PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
 
 /* The texel of a normal n: n normalized (the zero vector gives (0, 0, 1), see
    pf_vec3_normalize). */
-PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n)
-{
-    return pf_vec3_normalize(n);
-}
-
+PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n) { return pf_vec3_normalize(n); }
 /* The texel of a slope (x, y): the unit normal (-x, -y, 1)/sqrt(1 + x^2 + y^2)
    (Dupuy et al. 2013 sec. 4.1 slope convention). */
 PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
-{
-    return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0)));
-}
+{ return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0))); }
 
 /* ---------------------------------------------------------------- mip geometry */
 /* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
-PF_DEF int pf_mip_next_size(int n)
-{
-    return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0);
-}
-
+PF_DEF int pf_mip_next_size(int n) { return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0); }
 /* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
    texels is reduced to pf_mip_next_size(n_src) (see CONVENTIONS, odd sizes):
      n_src even        (1/2, 1/2, 0)
@@ -381,230 +299,111 @@ PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
    For every linear moment type T: the 2x2 box of an even mip level, the 3-texel and 9-texel
    weighted sums of odd levels (weights from pf_mip_weights3; reduce3x3 applies wx along rows
    and wy across them: t<col><row>), N texels by accumulation (acc + w t, then scale by
-   1/sum(w)), and the lerp / bilinear interpolation of a sampler. Weights are applied to each
-   texel before summing (see CONVENTIONS). */
+   1/sum(w)), and the lerp / bilinear interpolation of a sampler. Each operation is written
+   once, below, from the type's own _add and _scale (V: pf_vec3 for the average normals), and
+   every typed function is that body: so a fix lands once and every type computes exactly the
+   same sums in the same order. Weights are applied to each texel before summing (w a + w b,
+   see CONVENTIONS): a + w b is V_add(a, V_scale(b, w)), never V_scale(V_add(a, b), w). The
+   bodies are macros (GLSL has no generics; its preprocessor pastes ## like C's). */
+#define PFI_MOM_LERP(V) { return V##_add(V##_scale(a, PF_R(1.0) - t), V##_scale(b, t)); }
+#define PFI_MOM_REDUCE2X2(V)                                                                   \
+    { return V##_add(V##_add(V##_add(V##_scale(a, PF_R(0.25)), V##_scale(b, PF_R(0.25))),       \
+                             V##_scale(c, PF_R(0.25))), V##_scale(d, PF_R(0.25))); }
+#define PFI_MOM_REDUCE3(V) { return V##_add(V##_add(V##_scale(a, w.x), V##_scale(b, w.y)), V##_scale(c, w.z)); }
+#define PFI_MOM_REDUCE3X3(F)                                                                   \
+    { return F##_reduce3(F##_reduce3(t00, t10, t20, wx), F##_reduce3(t01, t11, t21, wx),       \
+                         F##_reduce3(t02, t12, t22, wx), wy); }
+#define PFI_MOM_ACCUMULATE(V) { return V##_add(acc, V##_scale(t, w)); }
+#define PFI_MOM_BILINEAR(F) { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
 
 /* ---- pf_slope_moments: five slope moments (pf_beckmann.h) */
 PF_DEF pf_slope_moments pf_slope_moments_lerp(pf_slope_moments a, pf_slope_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_slope_moments_make(s * a.ex + t * b.ex, s * a.ey + t * b.ey, s * a.exx + t * b.exx,
-                                 s * a.eyy + t * b.eyy, s * a.exy + t * b.exy);
-}
-
+PFI_MOM_LERP(pf_slope_moments)
 PF_DEF pf_slope_moments pf_slope_moments_reduce2x2(pf_slope_moments a, pf_slope_moments b,
                                                    pf_slope_moments c, pf_slope_moments d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_slope_moments_make(q * a.ex + q * b.ex + q * c.ex + q * d.ex,
-                                 q * a.ey + q * b.ey + q * c.ey + q * d.ey,
-                                 q * a.exx + q * b.exx + q * c.exx + q * d.exx,
-                                 q * a.eyy + q * b.eyy + q * c.eyy + q * d.eyy,
-                                 q * a.exy + q * b.exy + q * c.exy + q * d.exy);
-}
-
+PFI_MOM_REDUCE2X2(pf_slope_moments)
 PF_DEF pf_slope_moments pf_slope_moments_reduce3(pf_slope_moments a, pf_slope_moments b,
                                                  pf_slope_moments c, pf_vec3 w)
-{
-    return pf_slope_moments_make(w.x * a.ex + w.y * b.ex + w.z * c.ex,
-                                 w.x * a.ey + w.y * b.ey + w.z * c.ey,
-                                 w.x * a.exx + w.y * b.exx + w.z * c.exx,
-                                 w.x * a.eyy + w.y * b.eyy + w.z * c.eyy,
-                                 w.x * a.exy + w.y * b.exy + w.z * c.exy);
-}
-
+PFI_MOM_REDUCE3(pf_slope_moments)
 PF_DEF pf_slope_moments pf_slope_moments_reduce3x3(pf_slope_moments t00, pf_slope_moments t10,
-                                                   pf_slope_moments t20, pf_slope_moments t01,
-                                                   pf_slope_moments t11, pf_slope_moments t21,
-                                                   pf_slope_moments t02, pf_slope_moments t12,
-                                                   pf_slope_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_slope_moments r0 = pf_slope_moments_reduce3(t00, t10, t20, wx);
-    pf_slope_moments r1 = pf_slope_moments_reduce3(t01, t11, t21, wx);
-    pf_slope_moments r2 = pf_slope_moments_reduce3(t02, t12, t22, wx);
-    return pf_slope_moments_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_slope_moments pf_slope_moments_accumulate(pf_slope_moments acc, pf_slope_moments t,
-                                                    pf_real w)
-{
-    return pf_slope_moments_make(acc.ex + w * t.ex, acc.ey + w * t.ey, acc.exx + w * t.exx,
-                                 acc.eyy + w * t.eyy, acc.exy + w * t.exy);
-}
-
+    pf_slope_moments t20, pf_slope_moments t01, pf_slope_moments t11, pf_slope_moments t21,
+    pf_slope_moments t02, pf_slope_moments t12, pf_slope_moments t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_slope_moments)
+PF_DEF pf_slope_moments pf_slope_moments_accumulate(pf_slope_moments acc, pf_slope_moments t, pf_real w)
+PFI_MOM_ACCUMULATE(pf_slope_moments)
 PF_DEF pf_slope_moments pf_slope_moments_bilinear(pf_slope_moments t00, pf_slope_moments t10,
-                                                  pf_slope_moments t01, pf_slope_moments t11,
-                                                  pf_real fx, pf_real fy)
-{
-    return pf_slope_moments_lerp(pf_slope_moments_lerp(t00, t10, fx),
-                                 pf_slope_moments_lerp(t01, t11, fx), fy);
-}
+    pf_slope_moments t01, pf_slope_moments t11, pf_real fx, pf_real fy)
+PFI_MOM_BILINEAR(pf_slope_moments)
 
 /* ---- pf_scalar_moments: scalar-map moments */
 PF_DEF pf_scalar_moments pf_scalar_moments_lerp(pf_scalar_moments a, pf_scalar_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_scalar_moments_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
-}
-
+PFI_MOM_LERP(pf_scalar_moments)
 PF_DEF pf_scalar_moments pf_scalar_moments_reduce2x2(pf_scalar_moments a, pf_scalar_moments b,
                                                      pf_scalar_moments c, pf_scalar_moments d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_scalar_moments_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
-}
-
+PFI_MOM_REDUCE2X2(pf_scalar_moments)
 PF_DEF pf_scalar_moments pf_scalar_moments_reduce3(pf_scalar_moments a, pf_scalar_moments b,
                                                    pf_scalar_moments c, pf_vec3 w)
-{
-    return pf_scalar_moments_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
-}
-
+PFI_MOM_REDUCE3(pf_scalar_moments)
 PF_DEF pf_scalar_moments pf_scalar_moments_reduce3x3(pf_scalar_moments t00, pf_scalar_moments t10,
-                                                     pf_scalar_moments t20, pf_scalar_moments t01,
-                                                     pf_scalar_moments t11, pf_scalar_moments t21,
-                                                     pf_scalar_moments t02, pf_scalar_moments t12,
-                                                     pf_scalar_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_scalar_moments r0 = pf_scalar_moments_reduce3(t00, t10, t20, wx);
-    pf_scalar_moments r1 = pf_scalar_moments_reduce3(t01, t11, t21, wx);
-    pf_scalar_moments r2 = pf_scalar_moments_reduce3(t02, t12, t22, wx);
-    return pf_scalar_moments_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_accumulate(pf_scalar_moments acc, pf_scalar_moments t,
-                                                      pf_real w)
-{
-    return pf_scalar_moments_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
-}
-
+    pf_scalar_moments t20, pf_scalar_moments t01, pf_scalar_moments t11, pf_scalar_moments t21,
+    pf_scalar_moments t02, pf_scalar_moments t12, pf_scalar_moments t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_scalar_moments)
+PF_DEF pf_scalar_moments pf_scalar_moments_accumulate(pf_scalar_moments acc, pf_scalar_moments t, pf_real w)
+PFI_MOM_ACCUMULATE(pf_scalar_moments)
 PF_DEF pf_scalar_moments pf_scalar_moments_bilinear(pf_scalar_moments t00, pf_scalar_moments t10,
-                                                    pf_scalar_moments t01, pf_scalar_moments t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_scalar_moments_lerp(pf_scalar_moments_lerp(t00, t10, fx),
-                                  pf_scalar_moments_lerp(t01, t11, fx), fy);
-}
+    pf_scalar_moments t01, pf_scalar_moments t11, pf_real fx, pf_real fy)
+PFI_MOM_BILINEAR(pf_scalar_moments)
 
 /* ---- pf_depth_moments2: VSM / EVSM-2 moments */
 PF_DEF pf_depth_moments2 pf_depth_moments2_lerp(pf_depth_moments2 a, pf_depth_moments2 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_depth_moments2_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
-}
-
+PFI_MOM_LERP(pf_depth_moments2)
 PF_DEF pf_depth_moments2 pf_depth_moments2_reduce2x2(pf_depth_moments2 a, pf_depth_moments2 b,
                                                      pf_depth_moments2 c, pf_depth_moments2 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_depth_moments2_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
-}
-
+PFI_MOM_REDUCE2X2(pf_depth_moments2)
 PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3(pf_depth_moments2 a, pf_depth_moments2 b,
                                                    pf_depth_moments2 c, pf_vec3 w)
-{
-    return pf_depth_moments2_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
-}
-
+PFI_MOM_REDUCE3(pf_depth_moments2)
 PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3x3(pf_depth_moments2 t00, pf_depth_moments2 t10,
-                                                     pf_depth_moments2 t20, pf_depth_moments2 t01,
-                                                     pf_depth_moments2 t11, pf_depth_moments2 t21,
-                                                     pf_depth_moments2 t02, pf_depth_moments2 t12,
-                                                     pf_depth_moments2 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_depth_moments2 r0 = pf_depth_moments2_reduce3(t00, t10, t20, wx);
-    pf_depth_moments2 r1 = pf_depth_moments2_reduce3(t01, t11, t21, wx);
-    pf_depth_moments2 r2 = pf_depth_moments2_reduce3(t02, t12, t22, wx);
-    return pf_depth_moments2_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_accumulate(pf_depth_moments2 acc, pf_depth_moments2 t,
-                                                      pf_real w)
-{
-    return pf_depth_moments2_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
-}
-
+    pf_depth_moments2 t20, pf_depth_moments2 t01, pf_depth_moments2 t11, pf_depth_moments2 t21,
+    pf_depth_moments2 t02, pf_depth_moments2 t12, pf_depth_moments2 t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_depth_moments2)
+PF_DEF pf_depth_moments2 pf_depth_moments2_accumulate(pf_depth_moments2 acc, pf_depth_moments2 t, pf_real w)
+PFI_MOM_ACCUMULATE(pf_depth_moments2)
 PF_DEF pf_depth_moments2 pf_depth_moments2_bilinear(pf_depth_moments2 t00, pf_depth_moments2 t10,
-                                                    pf_depth_moments2 t01, pf_depth_moments2 t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_depth_moments2_lerp(pf_depth_moments2_lerp(t00, t10, fx),
-                                  pf_depth_moments2_lerp(t01, t11, fx), fy);
-}
+    pf_depth_moments2 t01, pf_depth_moments2 t11, pf_real fx, pf_real fy)
+PFI_MOM_BILINEAR(pf_depth_moments2)
 
 /* ---- pf_depth_moments4: MSM power moments */
 PF_DEF pf_depth_moments4 pf_depth_moments4_lerp(pf_depth_moments4 a, pf_depth_moments4 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_depth_moments4_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2, s * a.m3 + t * b.m3,
-                                  s * a.m4 + t * b.m4);
-}
-
+PFI_MOM_LERP(pf_depth_moments4)
 PF_DEF pf_depth_moments4 pf_depth_moments4_reduce2x2(pf_depth_moments4 a, pf_depth_moments4 b,
                                                      pf_depth_moments4 c, pf_depth_moments4 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_depth_moments4_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2,
-                                  q * a.m3 + q * b.m3 + q * c.m3 + q * d.m3,
-                                  q * a.m4 + q * b.m4 + q * c.m4 + q * d.m4);
-}
-
+PFI_MOM_REDUCE2X2(pf_depth_moments4)
 PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3(pf_depth_moments4 a, pf_depth_moments4 b,
                                                    pf_depth_moments4 c, pf_vec3 w)
-{
-    return pf_depth_moments4_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2,
-                                  w.x * a.m3 + w.y * b.m3 + w.z * c.m3,
-                                  w.x * a.m4 + w.y * b.m4 + w.z * c.m4);
-}
-
+PFI_MOM_REDUCE3(pf_depth_moments4)
 PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3x3(pf_depth_moments4 t00, pf_depth_moments4 t10,
-                                                     pf_depth_moments4 t20, pf_depth_moments4 t01,
-                                                     pf_depth_moments4 t11, pf_depth_moments4 t21,
-                                                     pf_depth_moments4 t02, pf_depth_moments4 t12,
-                                                     pf_depth_moments4 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_depth_moments4 r0 = pf_depth_moments4_reduce3(t00, t10, t20, wx);
-    pf_depth_moments4 r1 = pf_depth_moments4_reduce3(t01, t11, t21, wx);
-    pf_depth_moments4 r2 = pf_depth_moments4_reduce3(t02, t12, t22, wx);
-    return pf_depth_moments4_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_accumulate(pf_depth_moments4 acc, pf_depth_moments4 t,
-                                                      pf_real w)
-{
-    return pf_depth_moments4_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2, acc.m3 + w * t.m3,
-                                  acc.m4 + w * t.m4);
-}
-
+    pf_depth_moments4 t20, pf_depth_moments4 t01, pf_depth_moments4 t11, pf_depth_moments4 t21,
+    pf_depth_moments4 t02, pf_depth_moments4 t12, pf_depth_moments4 t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_depth_moments4)
+PF_DEF pf_depth_moments4 pf_depth_moments4_accumulate(pf_depth_moments4 acc, pf_depth_moments4 t, pf_real w)
+PFI_MOM_ACCUMULATE(pf_depth_moments4)
 PF_DEF pf_depth_moments4 pf_depth_moments4_bilinear(pf_depth_moments4 t00, pf_depth_moments4 t10,
-                                                    pf_depth_moments4 t01, pf_depth_moments4 t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_depth_moments4_lerp(pf_depth_moments4_lerp(t00, t10, fx),
-                                  pf_depth_moments4_lerp(t01, t11, fx), fy);
-}
+    pf_depth_moments4 t01, pf_depth_moments4 t11, pf_real fx, pf_real fy)
+PFI_MOM_BILINEAR(pf_depth_moments4)
 
 /* ---- pf_evsm_moments: EVSM-4 moments */
-PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_evsm_moments_make(s * a.pos1 + t * b.pos1, s * a.pos2 + t * b.pos2,
-                                s * a.neg1 + t * b.neg1, s * a.neg2 + t * b.neg2);
-}
-
 /* Midpoint (a + b)/2 of two values of the same sign, as a + (b - a)/2: |b - a| <= max(|a|, |b|),
    so nothing overflows. */
-PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b)
+PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b) { return a + PF_R(0.5) * (b - a); }
+PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_moments b)
 {
-    return a + PF_R(0.5) * (b - a);
+    return pf_evsm_moments_make(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(a.pos2, b.pos2),
+                                pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(a.neg2, b.neg2));
 }
 
+PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b, pf_real t)
+PFI_MOM_LERP(pf_evsm_moments)
 /* The 2x2 box as midpoints of midpoints, not q a + q b + q c + q d: with one constant weight
    q, -ffast-math (and GPU compilers, which reassociate freely) factor that sum into
    q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the
@@ -616,90 +415,36 @@ PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b)
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
                                                  pf_evsm_moments c, pf_evsm_moments d)
 {
-    return pf_evsm_moments_make(pfi_midpoint(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(c.pos1, d.pos1)),
-                                pfi_midpoint(pfi_midpoint(a.pos2, b.pos2), pfi_midpoint(c.pos2, d.pos2)),
-                                pfi_midpoint(pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(c.neg1, d.neg1)),
-                                pfi_midpoint(pfi_midpoint(a.neg2, b.neg2), pfi_midpoint(c.neg2, d.neg2)));
+    return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d));
 }
-
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,
                                                pf_evsm_moments c, pf_vec3 w)
-{
-    return pf_evsm_moments_make(w.x * a.pos1 + w.y * b.pos1 + w.z * c.pos1,
-                                w.x * a.pos2 + w.y * b.pos2 + w.z * c.pos2,
-                                w.x * a.neg1 + w.y * b.neg1 + w.z * c.neg1,
-                                w.x * a.neg2 + w.y * b.neg2 + w.z * c.neg2);
-}
-
+PFI_MOM_REDUCE3(pf_evsm_moments)
 PF_DEF pf_evsm_moments pf_evsm_moments_reduce3x3(pf_evsm_moments t00, pf_evsm_moments t10,
-                                                 pf_evsm_moments t20, pf_evsm_moments t01,
-                                                 pf_evsm_moments t11, pf_evsm_moments t21,
-                                                 pf_evsm_moments t02, pf_evsm_moments t12,
-                                                 pf_evsm_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_evsm_moments r0 = pf_evsm_moments_reduce3(t00, t10, t20, wx);
-    pf_evsm_moments r1 = pf_evsm_moments_reduce3(t01, t11, t21, wx);
-    pf_evsm_moments r2 = pf_evsm_moments_reduce3(t02, t12, t22, wx);
-    return pf_evsm_moments_reduce3(r0, r1, r2, wy);
-}
-
+    pf_evsm_moments t20, pf_evsm_moments t01, pf_evsm_moments t11, pf_evsm_moments t21,
+    pf_evsm_moments t02, pf_evsm_moments t12, pf_evsm_moments t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_evsm_moments)
 PF_DEF pf_evsm_moments pf_evsm_moments_accumulate(pf_evsm_moments acc, pf_evsm_moments t, pf_real w)
-{
-    return pf_evsm_moments_make(acc.pos1 + w * t.pos1, acc.pos2 + w * t.pos2, acc.neg1 + w * t.neg1,
-                                acc.neg2 + w * t.neg2);
-}
-
+PFI_MOM_ACCUMULATE(pf_evsm_moments)
 PF_DEF pf_evsm_moments pf_evsm_moments_bilinear(pf_evsm_moments t00, pf_evsm_moments t10,
-                                                pf_evsm_moments t01, pf_evsm_moments t11,
-                                                pf_real fx, pf_real fy)
-{
-    return pf_evsm_moments_lerp(pf_evsm_moments_lerp(t00, t10, fx),
-                                pf_evsm_moments_lerp(t01, t11, fx), fy);
-}
+    pf_evsm_moments t01, pf_evsm_moments t11, pf_real fx, pf_real fy)
+PFI_MOM_BILINEAR(pf_evsm_moments)
 
-/* ---- pf_vec3: unnormalized average normals (Toksvig) */
+/* ---- pf_vec3: unnormalized average normals (Toksvig); linear algebra from pf_core.h */
 PF_DEF pf_vec3 pf_normal_avg_lerp(pf_vec3 a, pf_vec3 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_vec3_make(s * a.x + t * b.x, s * a.y + t * b.y, s * a.z + t * b.z);
-}
-
+PFI_MOM_LERP(pf_vec3)
 PF_DEF pf_vec3 pf_normal_avg_reduce2x2(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_vec3_make(q * a.x + q * b.x + q * c.x + q * d.x,
-                        q * a.y + q * b.y + q * c.y + q * d.y,
-                        q * a.z + q * b.z + q * c.z + q * d.z);
-}
-
+PFI_MOM_REDUCE2X2(pf_vec3)
 PF_DEF pf_vec3 pf_normal_avg_reduce3(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 w)
-{
-    return pf_vec3_make(w.x * a.x + w.y * b.x + w.z * c.x,
-                        w.x * a.y + w.y * b.y + w.z * c.y,
-                        w.x * a.z + w.y * b.z + w.z * c.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_reduce3x3(pf_vec3 t00, pf_vec3 t10, pf_vec3 t20, pf_vec3 t01,
-                                       pf_vec3 t11, pf_vec3 t21, pf_vec3 t02, pf_vec3 t12,
-                                       pf_vec3 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_vec3 r0 = pf_normal_avg_reduce3(t00, t10, t20, wx);
-    pf_vec3 r1 = pf_normal_avg_reduce3(t01, t11, t21, wx);
-    pf_vec3 r2 = pf_normal_avg_reduce3(t02, t12, t22, wx);
-    return pf_normal_avg_reduce3(r0, r1, r2, wy);
-}
-
+PFI_MOM_REDUCE3(pf_vec3)
+PF_DEF pf_vec3 pf_normal_avg_reduce3x3(pf_vec3 t00, pf_vec3 t10, pf_vec3 t20, pf_vec3 t01, pf_vec3 t11,
+    pf_vec3 t21, pf_vec3 t02, pf_vec3 t12, pf_vec3 t22, pf_vec3 wx, pf_vec3 wy)
+PFI_MOM_REDUCE3X3(pf_normal_avg)
 PF_DEF pf_vec3 pf_normal_avg_accumulate(pf_vec3 acc, pf_vec3 t, pf_real w)
-{
-    return pf_vec3_make(acc.x + w * t.x, acc.y + w * t.y, acc.z + w * t.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_vec3 t11,
-                                      pf_real fx, pf_real fy)
-{
-    return pf_normal_avg_lerp(pf_normal_avg_lerp(t00, t10, fx),
-                              pf_normal_avg_lerp(t01, t11, fx), fy);
-}
+PFI_MOM_ACCUMULATE(pf_vec3)
+PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_vec3 t11, pf_real fx,
+                                      pf_real fy)
+PFI_MOM_BILINEAR(pf_normal_avg)
 
 /* ---------------------------------------------------------------- ESM in log space
    An ESM texel stores l = c z (pf_esm_log_from_depth) instead of exp(c z). A reduction
@@ -715,11 +460,7 @@ PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_
 #define PFI_LSE_ARG_MIN PF_R(-80.0)
 
 /* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
-PF_DEF pf_real pfi_lse_arg(pf_real d)
-{
-    return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d;
-}
-
+PF_DEF pf_real pfi_lse_arg(pf_real d) { return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d; }
 /* log of the mean of exp(l) over 4 texels (the 2x2 box). */
 PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
 {
@@ -779,24 +520,14 @@ PF_STRUCT_BEGIN(pf_esm_log_sum)
 PF_STRUCT_END(pf_esm_log_sum)
 
 PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
-{
-    pf_esm_log_sum a;
-    a.lmax = lmax;
-    a.sum = sum;
-    a.weight = weight;
-    return a;
-}
-
+{ pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
 /* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
    in the portability generator). */
 #define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
 
 /* The sum of one texel l of weight w > 0 (a start without the empty state). */
 PF_DEF pf_esm_log_sum pf_esm_log_sum_first(pf_real l, pf_real w)
-{
-    return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY;
-}
-
+{ return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY; }
 /* Adds texel l with weight w (w <= 0 or NaN: skipped). When l is a new maximum the running
    sum is rescaled by exp(old max - l) <= 1, so nothing grows beyond sum(w). */
 PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
@@ -823,17 +554,11 @@ PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
    Central difference (second order, error (d^2/6) h''' + O(d^4)) and the one-sided
    second-order difference used on a clamped border; d is the texel spacing. */
 PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
-{
-    return (h_plus - h_minus) / (PF_R(2.0) * spacing);
-}
-
+{ return (h_plus - h_minus) / (PF_R(2.0) * spacing); }
 /* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''). For
    the far border pass the texels in reverse order and negate. */
 PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
-{
-    return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing);
-}
-
+{ return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing); }
 /* Slope moments of an interior texel of a height map from its four neighbours (left, right,
    below, above) by central differences: slope = height_scale * (dh/dx, dh/dy)
    (Dupuy et al. 2013 sec. 4.2; height scaling multiplies slopes by the scale and the
@@ -849,15 +574,13 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 
 /* ================================================================ CPU only
    Everything below walks caller-owned buffers (pointers, loops over a whole map). It is C/C++
-   host code: linkage PF_CPU_DEF (static inline by default, never __device__), compiled out
-   under PF_GLSL. Nothing allocates: the caller provides every buffer. */
+   host code: linkage PF_CPU_DEF (pf_core.h: static inline by default, never __device__),
+   compiled out under PF_GLSL. Nothing allocates: the caller provides every buffer. Arguments
+   follow pf_core.h's "sizes and errors" rules; the limits of each function are in CONVENTIONS
+   (Limits and errors) and in its comment. */
 #ifndef PF_GLSL
 
-#ifndef PF_CPU_DEF
-#  define PF_CPU_DEF static inline
-#endif
-
-/* Border handling of the height-map stencils and of sampling. */
+/* Border handling of the height-map stencils and of sampling (any other value: PF_ERR_ARG). */
 #define PF_BORDER_CLAMP 0
 #define PF_BORDER_WRAP 1
 
@@ -895,7 +618,8 @@ PF_CPU_DEF int pf_mip_level_size(int n, int level)
 }
 
 /* Where level `level` starts, in texels from the start of the pyramid (multiply by the
-   channel count for pf_reals). level >= pf_mip_level_count gives the total. */
+   channel count for pf_reals). level >= pf_mip_level_count gives the total. Any int w, h:
+   the sum stays below 2^63. */
 PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
 {
     long long off = 0;
@@ -908,12 +632,21 @@ PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
     return off;
 }
 
-/* Texels of the whole pyramid of a w x h base (all levels, one buffer); 0 for an empty map.
-   The buffer holds pf_mip_texel_count(w, h) * channels pf_reals. */
-PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
+/* PF_OK when p is not NULL and a w x h pyramid of `channels` channels is within the limits:
+   PF_ERR_ARG for NULL, w, h or channels < 1; PF_ERR_SIZE for a side above PF_MAX_SIDE or more
+   than PF_MAX_REALS pf_reals. */
+PF_CPU_DEF int pfi_mip_check(const void *p, int w, int h, int channels)
 {
-    return pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS);
+    if (!p || w < 1 || h < 1 || channels < 1) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
+    return pf_size_mul(pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS), channels) < 0 ? PF_ERR_SIZE : PF_OK;
 }
+
+/* Texels of the whole pyramid of a w x h base (all levels, one buffer); the buffer holds
+   pf_mip_texel_count(w, h) * channels pf_reals. 0 for every size the builders reject: w or
+   h < 1 or > PF_MAX_SIDE, or more than PF_MAX_REALS texels. */
+PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
+{ return pfi_mip_check(&w, w, h, 1) == PF_OK ? pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS) : 0; }
 
 /* ---------------------------------------------------------------- level reduction (private)
    The pyramid is reduced as a cascade over rows: as soon as the source rows a destination
@@ -932,14 +665,14 @@ typedef struct pfi_mip_cascade {
     long long off[PF_MIP_MAX_LEVELS]; /* in pf_reals */
 } pfi_mip_cascade;
 
-/* Returns 0 (and builds nothing) for an empty map, a null buffer or channels < 1. */
+/* pfi_mip_check's code; on PF_OK c is ready. */
 PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int h, int channels,
                                     int log_space)
 {
-    int l;
+    int l, rc = pfi_mip_check(pyr, w, h, channels);
     long long off = 0;
+    if (rc != PF_OK) return rc;
     c->levels = pf_mip_level_count(w, h);
-    if (c->levels == 0 || !pyr || channels < 1) return 0;
     c->pyr = pyr;
     c->channels = channels;
     c->log_space = log_space;
@@ -952,14 +685,15 @@ PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int
         w = pf_mip_next_size(w);
         h = pf_mip_next_size(h);
     }
-    return 1;
+    return PF_OK;
 }
 
 /* The 2x2 box with a compile-time channel count (the common case: both sizes even). */
 PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
 {
     const pf_real q = PF_R(0.25);
-    int i, k;
+    long long i;
+    int k;
     for (i = 0; i < dw; ++i) {
         const pf_real *a0 = a + 2 * i * nc, *b0 = b + 2 * i * nc;
         pf_real *d = dst + i * nc;
@@ -968,9 +702,20 @@ PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b
 }
 
 /* Number of source texels with a nonzero weight along an axis of n_src texels. */
-PF_CPU_DEF int pfi_mip_taps(int n_src)
+PF_CPU_DEF int pfi_mip_taps(int n_src) { return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2); }
+/* A weighted mean s of n taps (tap[t][k], positive weights) that overflowed: the rounded
+   weights may sum to a little more than 1, so taps near +-PF_REAL_MAX can give +-inf; the mean
+   lies between the smallest and the largest tap, so s is clamped there (NaN stays NaN). Only
+   called when s is not finite. */
+PF_CPU_DEF pf_real pfi_taps_clamp(pf_real s, const pf_real *const *tap, int n, long long k)
 {
-    return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2);
+    pf_real lo = tap[0][k], hi = tap[0][k];
+    int t;
+    for (t = 1; t < n; ++t) {
+        lo = pf_min(lo, tap[t][k]);
+        hi = pf_max(hi, tap[t][k]);
+    }
+    return pf_clamp(s, lo, hi);
 }
 
 /* Reduces row j of level l + 1 from level l. */
@@ -982,11 +727,12 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
     const pf_real *rows[3];
     pf_real wy[3];
     pf_vec3 v = pf_mip_weights3(j, sh);
-    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, i, k, a;
+    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, a, k;
+    long long i;
     wy[0] = v.x;
     wy[1] = v.y;
     wy[2] = v.z;
-    for (b = 0; b < ny; ++b) rows[b] = src + (long long)(2 * j + b) * sw * nc;
+    for (b = 0; b < ny; ++b) rows[b] = src + (2LL * j + b) * sw * nc;
     if (!c->log_space && nx == 2 && ny == 2) {
         switch (nc) { /* constant channel counts let the compiler unroll and vectorize */
         case 1: pfi_mip_box_row(dst, rows[0], rows[1], dw, 1); return;
@@ -1009,7 +755,7 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
         pf_real wx[3], wt[9];
         const pf_real *tap[9];
         int nt = 0;
-        v = pf_mip_weights3(i, sw);
+        v = pf_mip_weights3((int)i, sw);
         wx[0] = v.x;
         wx[1] = v.y;
         wx[2] = v.z;
@@ -1024,6 +770,7 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
             int t;
             if (!c->log_space) {
                 for (t = 0; t < nt; ++t) s += wt[t] * tap[t][k];
+                if (!(s >= -PF_REAL_MAX && s <= PF_REAL_MAX)) s = pfi_taps_clamp(s, tap, nt, k);
                 dst[i * nc + k] = s;
             } else {
                 pf_real m = -PF_REAL_MAX;
@@ -1051,28 +798,27 @@ PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
     }
 }
 
-/* ---------------------------------------------------------------- building */
-/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
-   pf_reals, at the start of pyr) the caller has filled; pyr holds pf_mip_texel_count(w, h)
-   * channels pf_reals. Works for every linear moment type (the channel count says which). */
-PF_CPU_DEF void pf_mip_build(pf_real *pyr, int w, int h, int channels)
+/* ---------------------------------------------------------------- building
+   Every builder returns PF_OK, or PF_ERR_ARG / PF_ERR_SIZE (CONVENTIONS) having written
+   nothing. pyr always holds pf_mip_texel_count(w, h) * channels pf_reals. */
+PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
 {
     pfi_mip_cascade c;
-    int r;
-    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 0)) return;
+    int r, rc = pfi_mip_cascade_init(&c, pyr, w, h, channels, log_space);
+    if (rc != PF_OK) return rc;
     for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+    return PF_OK;
 }
 
+/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
+   pf_reals, at the start of pyr) the caller has filled. Works for every linear moment type
+   (the channel count says which). */
+PF_CPU_DEF int pf_mip_build(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 0); }
 /* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
    holds log of the mean of exp over its footprint). */
-PF_CPU_DEF void pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
-{
-    pfi_mip_cascade c;
-    int r;
-    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 1)) return;
-    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
-}
-
+PF_CPU_DEF int pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 1); }
 /* Row r of the slope-moment map of a height map (5 channels), see CONVENTIONS. */
 PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
                               pf_real height_scale, int border, pf_real *out)
@@ -1085,8 +831,8 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
     int i;
     if (h >= 2) {
         if (border == PF_BORDER_WRAP || (r > 0 && r < h - 1)) {
-            r0 = heights + (long long)((r + h - 1) % h) * w;
-            r1 = heights + (long long)((r + 1) % h) * w;
+            r0 = heights + pfi_wrap_index((long long)r - 1, h) * w;
+            r1 = heights + pfi_wrap_index((long long)r + 1, h) * w;
             c0 = -ky;
             c1 = ky;
         } else if (h == 2) { /* (h1 - h0) / dy at both rows */
@@ -1128,7 +874,7 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
         if (w == 1) {
             sx = PF_R(0.0);
         } else if (border == PF_BORDER_WRAP) {
-            sx = kx * (row[(i + 1) % w] - row[(i + w - 1) % w]);
+            sx = kx * (row[pfi_wrap_index((long long)i + 1, w)] - row[pfi_wrap_index((long long)i - 1, w)]);
         } else if (w == 2) {
             sx = PF_R(2.0) * kx * (row[1] - row[0]);
         } else if (i == 0) {
@@ -1147,31 +893,38 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
 /* Level 0 only: the slope moments (5 interleaved channels, pf_slope_moments order) of every
    texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major.
    dx, dy: texel spacing; height_scale multiplies the heights; border: PF_BORDER_WRAP or
-   PF_BORDER_CLAMP (see CONVENTIONS for the stencils). */
-PF_CPU_DEF void pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                                  pf_real dy, pf_real height_scale, int border,
-                                                  pf_real *out)
+   PF_BORDER_CLAMP (see CONVENTIONS for the stencils). PF_ERR_ARG: NULL, w or h < 1, another
+   border; PF_ERR_SIZE: a side above PF_MAX_SIDE or w h 5 > PF_MAX_REALS. */
+PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                                 pf_real dy, pf_real height_scale, int border,
+                                                 pf_real *out)
 {
     int r;
-    if (!heights || !out || w < 1 || h < 1) return;
+    if (!heights || !out || w < 1 || h < 1 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))
+        return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 5) < 0) return PF_ERR_SIZE;
     for (r = 0; r < h; ++r)
         pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
+    return PF_OK;
 }
 
 /* The whole 5-moment pyramid of a height map in one pass: level 0 as
    pf_slope_moments_map_from_heights, every level above reduced as the rows arrive.
-   pyr: pf_mip_texel_count(w, h) * 5 pf_reals. */
-PF_CPU_DEF void pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                              pf_real dy, pf_real height_scale, int border,
-                                              pf_real *pyr)
+   pyr: pf_mip_texel_count(w, h) * 5 pf_reals. Errors as pf_mip_build, and PF_ERR_ARG for a
+   NULL heights or another border. */
+PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                             pf_real dy, pf_real height_scale, int border,
+                                             pf_real *pyr)
 {
     pfi_mip_cascade c;
-    int r;
-    if (!heights || !pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) return;
+    int r, rc;
+    if (!heights || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
         pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
         pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
 
 /* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
@@ -1187,151 +940,140 @@ PF_CPU_DEF int pf_depth_moment_channels(int kind)
     }
 }
 
+/* Stores a texel's members in order. */
+PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] = m.m2; }
+PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
+PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
 /* The pyramid of a depth map (w h depths in [0, 1], row-major) for one PF_DEPTH_* kind:
    c_pos is the EVSM positive exponent and the ESM exponent, c_neg the EVSM negative one
    (ignored by the others). PF_DEPTH_ESM_LOG stores c_pos z and reduces in log space.
-   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. */
-PF_CPU_DEF void pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
-                                             pf_real c_pos, pf_real c_neg, pf_real *pyr)
+   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. Errors as
+   pf_mip_build, and PF_ERR_ARG for a NULL depths or an unknown kind. */
+PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
+                                            pf_real c_pos, pf_real c_neg, pf_real *pyr)
 {
     pfi_mip_cascade c;
-    int nc = pf_depth_moment_channels(kind), r, i;
-    if (!depths || nc == 0 || !pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG))
-        return;
+    int nc = pf_depth_moment_channels(kind), r, i, rc;
+    if (!depths || nc == 0) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
         const pf_real *z = depths + (long long)r * w;
         pf_real *o = pyr + (long long)r * w * nc;
-        switch (kind) {
-        case PF_DEPTH_VSM:
-            for (i = 0; i < w; ++i) {
-                o[2 * i] = z[i];
-                o[2 * i + 1] = z[i] * z[i];
-            }
-            break;
-        case PF_DEPTH_EVSM2:
-            for (i = 0; i < w; ++i) {
-                pf_depth_moments2 m = pf_evsm2_from_depth(z[i], c_pos);
-                o[2 * i] = m.m1;
-                o[2 * i + 1] = m.m2;
-            }
-            break;
+        switch (kind) { /* outside the loops, so each loop vectorizes */
+        case PF_DEPTH_VSM: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_depth_moments2_from_depth(z[i])); break;
+        case PF_DEPTH_EVSM2: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_evsm2_from_depth(z[i], c_pos)); break;
         case PF_DEPTH_EVSM4:
-            for (i = 0; i < w; ++i) {
-                pf_evsm_moments m = pf_evsm_moments_from_depth(z[i], c_pos, c_neg);
-                o[4 * i] = m.pos1;
-                o[4 * i + 1] = m.pos2;
-                o[4 * i + 2] = m.neg1;
-                o[4 * i + 3] = m.neg2;
-            }
+            for (i = 0; i < w; ++i) pfi_put_evsm(o + 4 * i, pf_evsm_moments_from_depth(z[i], c_pos, c_neg));
             break;
-        case PF_DEPTH_MSM:
-            for (i = 0; i < w; ++i) {
-                pf_real z2 = z[i] * z[i];
-                o[4 * i] = z[i];
-                o[4 * i + 1] = z2;
-                o[4 * i + 2] = z2 * z[i];
-                o[4 * i + 3] = z2 * z2;
-            }
-            break;
-        default: /* PF_DEPTH_ESM_LOG */
-            for (i = 0; i < w; ++i) o[i] = c_pos * z[i];
-            break;
+        case PF_DEPTH_MSM: for (i = 0; i < w; ++i) pfi_put_d4(o + 4 * i, pf_depth_moments4_from_depth(z[i])); break;
+        default: for (i = 0; i < w; ++i) o[i] = pf_esm_log_from_depth(z[i], c_pos); break;
         }
         pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
 
-/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values. */
-PF_CPU_DEF void pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int r, i;
-    if (!values || !pfi_mip_cascade_init(&c, pyr, w, h, 2, 0)) return;
-    for (r = 0; r < h; ++r) {
-        const pf_real *f = values + (long long)r * w;
-        pf_real *o = pyr + (long long)r * w * 2;
-        for (i = 0; i < w; ++i) {
-            o[2 * i] = f[i];
-            o[2 * i + 1] = f[i] * f[i];
-        }
-        pfi_mip_push_row(&c, 0, r);
-    }
-}
-
+/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values: the same
+   texels as PF_DEPTH_VSM's (z, z^2), so the same builder. Errors as pf_mip_build, and
+   PF_ERR_ARG for a NULL values. */
+PF_CPU_DEF int pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
+{ return pf_depth_pyramid_from_depths(values, w, h, PF_DEPTH_VSM, PF_R(0.0), PF_R(0.0), pyr); }
 /* The pyramid of average normals (3 channels) of a normal map (w h normals, 3 interleaved
-   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). */
-PF_CPU_DEF void pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
+   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). Errors
+   as pf_mip_build, and PF_ERR_ARG for a NULL normals. */
+PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
 {
     pfi_mip_cascade c;
-    int r, i;
-    if (!normals || !pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) return;
+    int r, i, rc;
+    if (!normals) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
         const pf_real *n = normals + (long long)r * w * 3;
         pf_real *o = pyr + (long long)r * w * 3;
         for (i = 0; i < w; ++i) {
-            const pf_real *t = n + 3 * i;
-            pf_vec3 u = pf_normal_avg_from_normal(pf_vec3_make(t[0], t[1], t[2]));
+            pf_vec3 u = pf_normal_avg_from_normal(pf_vec3_make(n[3 * i], n[3 * i + 1], n[3 * i + 2]));
             o[3 * i] = u.x;
             o[3 * i + 1] = u.y;
             o[3 * i + 2] = u.z;
         }
         pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
 
 /* ---------------------------------------------------------------- N texels */
-/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n texels of `channels` pf_reals. Texels
-   with w_i <= 0 (or NaN) are skipped, not read. No positive weight: out is zeroed. */
-PF_CPU_DEF void pf_moments_weighted_mean(const pf_real *texels, int channels,
-                                         const pf_real *weights, int n, pf_real *out)
+/* The largest positive weight of n (0 if none; NaN weights are skipped; +inf is returned). */
+PF_CPU_DEF pf_real pfi_max_weight(const pf_real *weights, int n)
 {
-    pf_real wsum = PF_R(0.0);
-    int i, k;
-    if (!texels || !weights || !out || channels < 1) return;
-    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    pf_real m = PF_R(0.0);
+    int i;
     for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0)) wsum += weights[i];
-    if (!(wsum > PF_R(0.0))) return;
+        if (weights[i] > m) m = weights[i];
+    return m;
+}
+
+/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
+   (texels: n C pf_reals, weights: n, out: C). Texels with w_i <= 0 (or NaN) are skipped, not
+   read. The weights are divided by the largest one first, so any finite weights work (two
+   weights of PF_REAL_MAX give the plain mean). No positive weight (n = 0 too): out is zeroed,
+   PF_OK. PF_ERR_ARG: a NULL, channels < 1, n < 0, an infinite weight; PF_ERR_SIZE: n C >
+   PF_MAX_REALS. */
+PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
+                                        int n, pf_real *out)
+{
+    pf_real wsum = PF_R(0.0), wmax;
+    int i, k;
+    if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
+    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
+    wmax = pfi_max_weight(weights, n);
+    if (!(wmax <= PF_REAL_MAX)) return PF_ERR_ARG;
+    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    if (!(wmax > PF_R(0.0))) return PF_OK;
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0)) wsum += weights[i] / wmax; /* in [1, n] */
     for (i = 0; i < n; ++i) {
-        pf_real w = weights[i] / wsum;
+        pf_real w = weights[i] / wmax / wsum;
         if (!(weights[i] > PF_R(0.0))) continue;
         for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
     }
+    return PF_OK;
 }
 
-/* log of the weighted mean of exp(l_i) (ESM, log space); -PF_REAL_MAX if no weight is
-   positive. */
+/* log of the weighted mean of exp(l_i) (ESM, log space) over n texels, weights divided by the
+   largest first as above. -PF_REAL_MAX if no weight is positive, and for bad arguments (a
+   NULL, n < 0, an infinite weight). */
 PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
 {
     pf_esm_log_sum a = PF_ESM_LOG_SUM_EMPTY;
+    pf_real wmax;
     int i;
-    if (!logs || !weights) return -PF_REAL_MAX;
-    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i]);
+    if (!logs || !weights || n < 0) return -PF_REAL_MAX;
+    wmax = pfi_max_weight(weights, n);
+    if (!(wmax > PF_R(0.0) && wmax <= PF_REAL_MAX)) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i] / wmax);
     return pf_esm_log_sum_mean(a);
 }
 
 /* ---------------------------------------------------------------- sampling */
 /* Texel indices and the fraction for coordinate u on an axis of n texels (GPU convention:
-   centre of texel i at (i + 0.5)/n). NaN and infinite u are treated as 0; huge u lose
-   precision but never index out of bounds. */
-PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, int *i0, int *i1, pf_real *f)
+   centre of texel i at (i + 0.5)/n). CLAMP: u clamped to [0, 1] (infinities too), NaN is 0.
+   WRAP: u - floor(u), computed in pf_real (exact: for |u| >= 2^23 in float, 2^52 in double, u
+   is an integer and wraps to 0); NaN and infinities are 0. Indices in long long, in [0, n). */
+PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long long *i1, pf_real *f)
 {
-    pf_real x, fl;
-    int i;
-    if (!(u > -PF_R(1.0e6) && u < PF_R(1.0e6))) u = PF_R(0.0);
-    if (border == PF_BORDER_WRAP) u = u - PF_FLOOR(u);
-    else u = pf_clamp(u, PF_R(0.0), PF_R(1.0));
-    x = u * PF_R(n) - PF_R(0.5);
-    fl = PF_FLOOR(x);
-    *f = x - fl;
-    i = (int)fl;
+    pf_real x;
+    long long i;
+    if (border == PF_BORDER_WRAP) u = (u - u == PF_R(0.0)) ? u - PF_FLOOR(u) : PF_R(0.0);
+    else u = (u == u) ? pf_clamp(u, PF_R(0.0), PF_R(1.0)) : PF_R(0.0);
+    x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
+    i = pfi_floor_index(x, -1, n - 1);
+    *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
     if (border == PF_BORDER_WRAP) {
-        i = ((i % n) + n) % n;
-        *i0 = i;
-        *i1 = (i + 1) % n;
+        *i0 = pfi_wrap_index(i, n);
+        *i1 = pfi_wrap_index(i + 1, n);
     } else {
-        *i0 = i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
-        *i1 = i + 1 < 0 ? 0 : (i + 1 > n - 1 ? n - 1 : i + 1);
+        *i0 = i < 0 ? 0 : i;
+        *i1 = i + 1 > n - 1 ? n - 1 : i + 1;
     }
 }
 
@@ -1346,15 +1088,14 @@ PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(int w, int h, int channels, int leve
 {
     pfi_mip_bilerp b;
     int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level);
-    int x0, x1, y0, y1;
+    long long x0, x1, y0, y1, base = pf_mip_level_offset(w, h, level) * channels;
     pf_real fx, fy;
-    long long base = pf_mip_level_offset(w, h, level) * channels;
     pfi_mip_axis(u, lw, border, &x0, &x1, &fx);
     pfi_mip_axis(v, lh, border, &y0, &y1, &fy);
-    b.t[0] = base + ((long long)y0 * lw + x0) * channels;
-    b.t[1] = base + ((long long)y0 * lw + x1) * channels;
-    b.t[2] = base + ((long long)y1 * lw + x0) * channels;
-    b.t[3] = base + ((long long)y1 * lw + x1) * channels;
+    b.t[0] = base + (y0 * lw + x0) * channels;
+    b.t[1] = base + (y0 * lw + x1) * channels;
+    b.t[2] = base + (y1 * lw + x0) * channels;
+    b.t[3] = base + (y1 * lw + x1) * channels;
     b.w[0] = (PF_R(1.0) - fx) * (PF_R(1.0) - fy);
     b.w[1] = fx * (PF_R(1.0) - fy);
     b.w[2] = (PF_R(1.0) - fx) * fy;
@@ -1366,11 +1107,14 @@ PF_CPU_DEF pf_real pfi_mip_bilerp_channel(const pf_real *pyr, const pfi_mip_bile
                                           int log_space)
 {
     pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
-    int t;
+    const pf_real *tap[4];
+    int t, n = 0;
+    for (t = 0; t < 4; ++t)
+        if (b->w[t] > PF_R(0.0)) tap[n++] = pyr + b->t[t];
     if (!log_space) {
         for (t = 0; t < 4; ++t)
             if (b->w[t] > PF_R(0.0)) s += b->w[t] * pyr[b->t[t] + k];
-        return s;
+        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
     }
     for (t = 0; t < 4; ++t)
         if (b->w[t] > PF_R(0.0) && pyr[b->t[t] + k] > m) m = pyr[b->t[t] + k];
@@ -1379,13 +1123,17 @@ PF_CPU_DEF pf_real pfi_mip_bilerp_channel(const pf_real *pyr, const pfi_mip_bile
     return m + PF_LOG(s);
 }
 
-PF_CPU_DEF void pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
-                               pf_real u, pf_real v, int border, int log_space, pf_real *out)
+/* The shared sampler: PF_OK, or PF_ERR_ARG (NULL pyr or out, channels < 1, w or h < 1, an
+   unknown border) / PF_ERR_SIZE (as pf_mip_build) with out untouched. */
+PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                              pf_real u, pf_real v, int border, int log_space, pf_real *out)
 {
-    int nl = pf_mip_level_count(w, h), l0, k;
+    int nl, l0, k, rc = pfi_mip_check(pyr, w, h, channels);
     pf_real fl;
     pfi_mip_bilerp b0, b1;
-    if (!pyr || !out || nl == 0 || channels < 1) return;
+    if (rc == PF_OK && (!out || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))) rc = PF_ERR_ARG;
+    if (rc != PF_OK) return rc;
+    nl = pf_mip_level_count(w, h);
     if (!(lod > PF_R(0.0))) lod = PF_R(0.0); /* NaN too */
     if (lod > PF_R(nl - 1)) lod = PF_R(nl - 1);
     l0 = (int)PF_FLOOR(lod);
@@ -1393,100 +1141,58 @@ PF_CPU_DEF void pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, p
     b0 = pfi_mip_bilerp_at(w, h, channels, l0, u, v, border);
     if (!(fl > PF_R(0.0)) || l0 + 1 >= nl) {
         for (k = 0; k < channels; ++k) out[k] = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
-        return;
+        return PF_OK;
     }
     b1 = pfi_mip_bilerp_at(w, h, channels, l0 + 1, u, v, border);
     for (k = 0; k < channels; ++k) {
         pf_real a = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
-        pf_real c = pfi_mip_bilerp_channel(pyr, &b1, k, log_space);
-        out[k] = log_space ? pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl)
-                           : (PF_R(1.0) - fl) * a + fl * c;
+        pf_real c = pfi_mip_bilerp_channel(pyr, &b1, k, log_space), s;
+        if (log_space) {
+            out[k] = pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl);
+            continue;
+        }
+        s = (PF_R(1.0) - fl) * a + fl * c;
+        out[k] = s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c));
     }
+    return PF_OK;
 }
 
 /* Bilinear sample of level `level` (clamped to the pyramid) at (u, v): `channels` pf_reals
-   into out. */
-PF_CPU_DEF void pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
-                                       pf_real u, pf_real v, int border, pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out);
-}
-
+   into out. Returns PF_OK, or PF_ERR_ARG / PF_ERR_SIZE with out untouched (pfi_mip_sample). */
+PF_CPU_DEF int pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
+                                      pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out); }
 /* Trilinear sample: bilinear at floor(lod) and floor(lod) + 1, blended by the fraction. */
-PF_CPU_DEF void pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels,
-                                        pf_real lod, pf_real u, pf_real v, int border,
-                                        pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out);
-}
-
+PF_CPU_DEF int pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                                       pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out); }
 /* The same for log-space (ESM) pyramids: the weights apply to exp of the texels. */
-PF_CPU_DEF void pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels,
-                                           int level, pf_real u, pf_real v, int border,
+PF_CPU_DEF int pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels, int level,
+                                          pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out); }
+PF_CPU_DEF int pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels,
+                                           pf_real lod, pf_real u, pf_real v, int border,
                                            pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out);
-}
+{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out); }
+/* Typed trilinear samples (an integer lod is a bilinear sample of that level), one stamp per
+   type: pf_slope_moments_sample, pf_scalar_moments_sample, pf_depth_moments2_sample,
+   pf_depth_moments4_sample, pf_evsm_moments_sample, pf_normal_avg_sample (T F(pyr, w, h, lod,
+   u, v, border)). Bad arguments (those pf_mip_sample_trilinear rejects) return all zeros. */
+#define PFI_TYPED_SAMPLE(T, F, NC, MAKE)                                                       \
+    PF_CPU_DEF T F(const pf_real *pyr, int w, int h, pf_real lod, pf_real u, pf_real v, int border) \
+    {                                                                                          \
+        pf_real t[5] = {0, 0, 0, 0, 0};                                                        \
+        pfi_mip_sample(pyr, w, h, NC, lod, u, v, border, 0, t);                                \
+        return MAKE;                                                                           \
+    }
+PFI_TYPED_SAMPLE(pf_slope_moments, pf_slope_moments_sample, 5, pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]))
+PFI_TYPED_SAMPLE(pf_scalar_moments, pf_scalar_moments_sample, 2, pf_scalar_moments_make(t[0], t[1]))
+PFI_TYPED_SAMPLE(pf_depth_moments2, pf_depth_moments2_sample, 2, pf_depth_moments2_make(t[0], t[1]))
+PFI_TYPED_SAMPLE(pf_depth_moments4, pf_depth_moments4_sample, 4, pf_depth_moments4_make(t[0], t[1], t[2], t[3]))
+PFI_TYPED_SAMPLE(pf_evsm_moments, pf_evsm_moments_sample, 4, pf_evsm_moments_make(t[0], t[1], t[2], t[3]))
+PFI_TYPED_SAMPLE(pf_vec3, pf_normal_avg_sample, 3, pf_vec3_make(t[0], t[1], t[2]))
 
-PF_CPU_DEF void pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels,
-                                            pf_real lod, pf_real u, pf_real v, int border,
-                                            pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out);
-}
-
-/* Typed trilinear samples (an integer lod is a bilinear sample of that level). */
-PF_CPU_DEF pf_slope_moments pf_slope_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
-                                                    pf_real u, pf_real v, int border)
-{
-    pf_real t[5] = {0, 0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 5, lod, u, v, border, 0, t);
-    return pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]);
-}
-
-PF_CPU_DEF pf_scalar_moments pf_scalar_moments_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[2] = {0, 0};
-    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
-    return pf_scalar_moments_make(t[0], t[1]);
-}
-
-PF_CPU_DEF pf_depth_moments2 pf_depth_moments2_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[2] = {0, 0};
-    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
-    return pf_depth_moments2_make(t[0], t[1]);
-}
-
-PF_CPU_DEF pf_depth_moments4 pf_depth_moments4_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[4] = {0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
-    return pf_depth_moments4_make(t[0], t[1], t[2], t[3]);
-}
-
-PF_CPU_DEF pf_evsm_moments pf_evsm_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
-                                                  pf_real u, pf_real v, int border)
-{
-    pf_real t[4] = {0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
-    return pf_evsm_moments_make(t[0], t[1], t[2], t[3]);
-}
-
-PF_CPU_DEF pf_vec3 pf_normal_avg_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
-                                        pf_real v, int border)
-{
-    pf_real t[3] = {0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 3, lod, u, v, border, 0, t);
-    return pf_vec3_make(t[0], t[1], t[2]);
-}
-
+/* The ESM log sample; bad arguments return -PF_REAL_MAX (the log of an empty sum). */
 PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
                                      pf_real v, int border)
 {

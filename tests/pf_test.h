@@ -216,4 +216,57 @@ PF_TEST_FN double pf_test_log_uniform(pf_test_rng *r, double a, double b)
     return exp(pf_test_uniform(r, log(a), log(b)));
 }
 
+/* ------------------------------------------------------------------ guarded mappings
+   pf_test_guarded_alloc(bytes): `bytes` of zeroed, readable and writable memory that ends
+   exactly where a PROT_NONE guard page begins (and with a guard page before its first page),
+   so a read or write past either end faults at once, in every build (not only under ASan).
+   The mapping is MAP_NORESERVE: untouched pages cost no memory, so a test can map the
+   documented size of a huge buffer (a 17 GB table) and touch a few entries. The pointer is
+   aligned as bytes is (a multiple of 8 bytes gives 8-byte alignment). Returns NULL where this
+   is unsupported (not __unix__, or <sys/mman.h> without MAP_ANONYMOUS and MAP_NORESERVE:
+   define _DEFAULT_SOURCE before the first #include under -std=c99) or when the mapping fails;
+   the caller then skips (and says so in a note). Free with pf_test_guarded_free(p, bytes). */
+#if defined(__unix__)
+#  include <sys/mman.h>
+#  include <unistd.h>
+#endif
+
+PF_TEST_FN void *pf_test_guarded_alloc(size_t bytes)
+{
+#if defined(__unix__) && defined(MAP_ANONYMOUS) && defined(MAP_NORESERVE)
+    long ps = sysconf(_SC_PAGESIZE);
+    size_t page = ps > 0 ? (size_t)ps : 4096u, body, total;
+    unsigned char *base;
+    void *m;
+    if (bytes == 0 || bytes > ((size_t)-1) / 2 - 2 * page) return NULL;
+    body = (bytes + page - 1) / page * page;
+    total = body + 2 * page;
+    m = mmap(NULL, total, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+    if (m == MAP_FAILED) return NULL;
+    base = (unsigned char *)m;
+    if (mprotect(base, page, PROT_NONE) != 0 || mprotect(base + page + body, page, PROT_NONE) != 0) {
+        munmap(m, total);
+        return NULL;
+    }
+    return base + page + (body - bytes);
+#else
+    (void)bytes;
+    return NULL;
+#endif
+}
+
+PF_TEST_FN void pf_test_guarded_free(void *p, size_t bytes)
+{
+#if defined(__unix__) && defined(MAP_ANONYMOUS) && defined(MAP_NORESERVE)
+    long ps = sysconf(_SC_PAGESIZE);
+    size_t page = ps > 0 ? (size_t)ps : 4096u, body;
+    if (!p) return;
+    body = (bytes + page - 1) / page * page;
+    munmap((unsigned char *)p - (body - bytes) - page, body + 2 * page);
+#else
+    (void)p;
+    (void)bytes;
+#endif
+}
+
 #endif /* PF_TEST_H */

@@ -12,7 +12,14 @@
      top against the gradient moments integrated over the domain (tests/pf_oracle.h).
    The same bodies run in float, double, C++ and under sanitizers (every buffer is allocated
    with its exact size, so AddressSanitizer sees any read out of bounds); edge_* tests also run
-   under -ffast-math. */
+   under -ffast-math. Issue 19 (memory safety of the pointer-taking functions): every
+   reproducer is a test below (edge_issue19_*, test_issue19_*); huge accepted sizes use guarded,
+   mostly untouched mappings (pf_test_guarded_alloc), so an out-of-bounds read faults. */
+/* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */
+#if defined(__unix__) && !defined(_DEFAULT_SOURCE)
+#  define _DEFAULT_SOURCE 1
+#endif
+#include <limits.h>
 #include <string.h>
 #include "pf_moments.h"
 #include "pf_oracle.h"
@@ -1134,6 +1141,290 @@ static void edge_extreme_values(void)
     PF_CHECK(bad == 0, "%d failures", bad);
 }
 
+/* ------------------------------------------------------------------ issue 19: memory safety */
+#define CANARY PF_R(-12345.0)
+#define NCAN 64
+static void canary_fill(pf_real *b) { int i; for (i = 0; i < NCAN; ++i) b[i] = CANARY; }
+static int canary_intact(const pf_real *b) { int i; for (i = 0; i < NCAN; ++i) if (b[i] != CANARY) return 0; return 1; }
+
+/* One call: its code must be `want` and the canary output untouched. */
+#define EXPECT(call, want)                                                                     \
+    do {                                                                                       \
+        int rc_;                                                                               \
+        canary_fill(o);                                                                        \
+        rc_ = (call);                                                                          \
+        if (rc_ != (want) || !canary_intact(o)) {                                              \
+            bad++;                                                                             \
+            printf("    %s: %d (want %d)%s\n", #call, rc_, (want), canary_intact(o) ? "" : ", wrote"); \
+        }                                                                                      \
+    } while (0)
+
+/* NULL pointers, unknown border values and depth kinds, sizes and counts below the minimum:
+   PF_ERR_ARG and nothing written; the counts return 0; the typed samplers return zeros (ESM:
+   -PF_REAL_MAX). */
+static void edge_issue19_bad_arguments(void)
+{
+    pf_real in[NCAN], o[NCAN], wt[4] = {1, 1, 1, 1};
+    const pf_real one = PF_R(1.0), half = PF_R(0.5);
+    int bad = 0, i;
+    for (i = 0; i < NCAN; ++i) in[i] = PF_R(0.25) * (pf_real)(i % 5);
+    EXPECT(pf_mip_build(NULL, 2, 2, 1), PF_ERR_ARG);
+    EXPECT(pf_mip_build(o, 0, 2, 1), PF_ERR_ARG);
+    EXPECT(pf_mip_build(o, 2, -1, 1), PF_ERR_ARG);
+    EXPECT(pf_mip_build(o, 2, 2, 0), PF_ERR_ARG);
+    EXPECT(pf_mip_build_log(NULL, 2, 2, 1), PF_ERR_ARG);
+    EXPECT(pf_mip_build_log(o, 2, 2, -3), PF_ERR_ARG);
+    EXPECT(pf_slope_moments_map_from_heights(NULL, 2, 2, one, one, one, PF_BORDER_WRAP, o), PF_ERR_ARG);
+    EXPECT(pf_slope_moments_map_from_heights(in, 2, 2, one, one, one, PF_BORDER_WRAP, NULL), PF_ERR_ARG);
+    EXPECT(pf_slope_moments_map_from_heights(in, 2, 2, one, one, one, 2, o), PF_ERR_ARG);
+    EXPECT(pf_slope_moments_map_from_heights(in, 2, 2, one, one, one, -1, o), PF_ERR_ARG);
+    EXPECT(pf_slope_moments_map_from_heights(in, 0, 2, one, one, one, PF_BORDER_CLAMP, o), PF_ERR_ARG);
+    EXPECT(pf_slope_pyramid_from_heights(NULL, 2, 2, one, one, one, PF_BORDER_WRAP, o), PF_ERR_ARG);
+    EXPECT(pf_slope_pyramid_from_heights(in, 2, 2, one, one, one, PF_BORDER_WRAP, NULL), PF_ERR_ARG);
+    EXPECT(pf_slope_pyramid_from_heights(in, 2, 2, one, one, one, 7, o), PF_ERR_ARG);
+    EXPECT(pf_slope_pyramid_from_heights(in, 2, 0, one, one, one, PF_BORDER_CLAMP, o), PF_ERR_ARG);
+    EXPECT(pf_depth_pyramid_from_depths(NULL, 2, 2, PF_DEPTH_VSM, one, one, o), PF_ERR_ARG);
+    EXPECT(pf_depth_pyramid_from_depths(in, 2, 2, PF_DEPTH_VSM, one, one, NULL), PF_ERR_ARG);
+    EXPECT(pf_depth_pyramid_from_depths(in, 2, 2, 99, one, one, o), PF_ERR_ARG);
+    EXPECT(pf_depth_pyramid_from_depths(in, 2, 2, -1, one, one, o), PF_ERR_ARG);
+    EXPECT(pf_scalar_pyramid_from_values(NULL, 2, 2, o), PF_ERR_ARG);
+    EXPECT(pf_scalar_pyramid_from_values(in, 2, 2, NULL), PF_ERR_ARG);
+    EXPECT(pf_normal_pyramid_from_normals(NULL, 2, 2, o), PF_ERR_ARG);
+    EXPECT(pf_normal_pyramid_from_normals(in, -2, 2, o), PF_ERR_ARG);
+    EXPECT(pf_moments_weighted_mean(NULL, 1, wt, 4, o), PF_ERR_ARG);
+    EXPECT(pf_moments_weighted_mean(in, 1, NULL, 4, o), PF_ERR_ARG);
+    EXPECT(pf_moments_weighted_mean(in, 0, wt, 4, o), PF_ERR_ARG);
+    EXPECT(pf_moments_weighted_mean(in, 1, wt, -1, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_bilinear(NULL, 2, 2, 1, 0, half, half, PF_BORDER_WRAP, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_bilinear(in, 2, 2, 1, 0, half, half, 2, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_bilinear(in, 2, 2, 0, 0, half, half, PF_BORDER_CLAMP, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_trilinear(in, 0, 0, 1, half, half, half, PF_BORDER_WRAP, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_trilinear(in, 2, 2, 1, half, half, half, -1, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_bilinear_log(in, 2, 2, 1, 0, half, half, 3, o), PF_ERR_ARG);
+    EXPECT(pf_mip_sample_trilinear_log(NULL, 2, 2, 1, half, half, half, PF_BORDER_WRAP, o), PF_ERR_ARG);
+    bad += pf_mip_sample_bilinear(in, 2, 2, 1, 0, half, half, PF_BORDER_WRAP, NULL) != PF_ERR_ARG;
+    bad += pf_mip_texel_count(0, 3) != 0 || pf_mip_texel_count(3, -1) != 0;
+    { /* typed samplers: zeros (ESM: -PF_REAL_MAX) */
+        pf_slope_moments m = pf_slope_moments_sample(in, 2, 2, half, half, half, 5);
+        pf_vec3 nrm = pf_normal_avg_sample(NULL, 2, 2, half, half, half, PF_BORDER_WRAP);
+        pf_evsm_moments e = pf_evsm_moments_sample(in, 0, 2, half, half, half, PF_BORDER_WRAP);
+        bad += !(m.ex == 0 && m.ey == 0 && m.exx == 0 && m.eyy == 0 && m.exy == 0);
+        bad += !(nrm.x == 0 && nrm.y == 0 && nrm.z == 0) || !(e.pos1 == 0 && e.neg2 == 0);
+        bad += pf_scalar_moments_sample(in, 2, 2, half, half, half, 9).m2 != 0;
+        bad += pf_depth_moments2_sample(in, 2, 2, half, half, half, -4).m1 != 0;
+        bad += pf_depth_moments4_sample(in, 2, 2, half, half, half, 2).m4 != 0;
+        bad += pf_esm_log_sample(in, 2, 2, half, half, half, 2) != -PF_REAL_MAX;
+        bad += pf_esm_log_sample(NULL, 2, 2, half, half, half, PF_BORDER_CLAMP) != -PF_REAL_MAX;
+    }
+    bad += pf_esm_log_weighted_mean(NULL, wt, 4) != -PF_REAL_MAX || pf_esm_log_weighted_mean(in, NULL, 4) != -PF_REAL_MAX;
+    bad += pf_esm_log_weighted_mean(in, wt, -1) != -PF_REAL_MAX;
+    /* valid calls still return PF_OK */
+    bad += pf_mip_sample_bilinear(in, 2, 2, 1, 0, half, half, PF_BORDER_WRAP, o) != PF_OK;
+    bad += pf_moments_weighted_mean(in, 2, wt, 0, o) != PF_OK || o[0] != 0 || o[1] != 0;
+    PF_CHECK(bad == 0, "%d failures", bad);
+}
+
+/* Sizes above the limits: PF_ERR_SIZE, found before anything is read or written (the
+   buffers here are tiny canaries; a function that used them would write past them, which
+   ASan reports). Reproducers 2 (h = INT_MAX in the slope-map walkers), 3 and 4 (INT_MAX
+   axes in the samplers) now stop here; their largest accepted sizes are exercised in
+   test_issue19_largest_sizes_guarded. */
+static void edge_issue19_huge_sizes_rejected(void)
+{
+    pf_real in[NCAN], o[NCAN], wt[4] = {1, 1, 1, 1};
+    const pf_real one = PF_R(1.0), half = PF_R(0.5);
+    const int big = (int)PF_MAX_SIDE + 1, side = (int)PF_MAX_SIDE;
+    int bad = 0, border, i;
+    for (i = 0; i < NCAN; ++i) in[i] = PF_R(0.5);
+    for (border = 0; border < 2; ++border) {
+        EXPECT(pf_slope_moments_map_from_heights(in, 1, INT_MAX, one, one, one, border, o), PF_ERR_SIZE);
+        EXPECT(pf_slope_moments_map_from_heights(in, INT_MAX, 1, one, one, one, border, o), PF_ERR_SIZE);
+        EXPECT(pf_slope_pyramid_from_heights(in, 1, INT_MAX, one, one, one, border, o), PF_ERR_SIZE);
+        EXPECT(pf_slope_pyramid_from_heights(in, big, 1, one, one, one, border, o), PF_ERR_SIZE);
+        EXPECT(pf_mip_sample_bilinear(in, 1, INT_MAX, 1, 0, half, half, border, o), PF_ERR_SIZE);
+        EXPECT(pf_mip_sample_bilinear(in, 1, INT_MAX, 1, 0, half, one, border, o), PF_ERR_SIZE);
+        EXPECT(pf_mip_sample_trilinear(in, INT_MAX, INT_MAX, 1, half, half, half, border, o), PF_ERR_SIZE);
+        EXPECT(pf_mip_sample_trilinear_log(in, big, 1, 1, half, half, half, border, o), PF_ERR_SIZE);
+        EXPECT(pf_mip_sample_bilinear_log(in, 1, big, 1, 0, half, half, border, o), PF_ERR_SIZE);
+        bad += pf_slope_moments_sample(in, 1, INT_MAX, half, half, half, border).ex != 0;
+        bad += pf_esm_log_sample(in, big, big, half, half, half, border) != -PF_REAL_MAX;
+    }
+    EXPECT(pf_mip_build(o, big, 1, 1), PF_ERR_SIZE);
+    EXPECT(pf_mip_build(o, 1, big, 1), PF_ERR_SIZE);
+    EXPECT(pf_mip_build(o, side, side, 1), PF_ERR_SIZE);     /* sides fine, > PF_MAX_REALS reals */
+    EXPECT(pf_mip_build(o, 1 << 20, 1 << 20, 1), PF_ERR_SIZE);
+    EXPECT(pf_mip_build(o, 1 << 19, 1 << 19, INT_MAX), PF_ERR_SIZE);
+    EXPECT(pf_mip_build(o, 1 << 12, 1 << 12, 1 << 20), PF_ERR_SIZE); /* 2^44 reals */
+    EXPECT(pf_mip_build_log(o, INT_MAX, INT_MAX, 1), PF_ERR_SIZE);
+    EXPECT(pf_depth_pyramid_from_depths(in, side, side, PF_DEPTH_MSM, one, one, o), PF_ERR_SIZE);
+    EXPECT(pf_depth_pyramid_from_depths(in, INT_MAX, 1, PF_DEPTH_ESM_LOG, one, one, o), PF_ERR_SIZE);
+    EXPECT(pf_scalar_pyramid_from_values(in, 1, INT_MAX, o), PF_ERR_SIZE);
+    EXPECT(pf_normal_pyramid_from_normals(in, big, big, o), PF_ERR_SIZE);
+    EXPECT(pf_moments_weighted_mean(in, INT_MAX, wt, INT_MAX, o), PF_ERR_SIZE);
+    bad += pf_mip_texel_count(big, 1) != 0 || pf_mip_texel_count(INT_MAX, INT_MAX) != 0;
+    bad += pf_mip_texel_count(side, side) != 0 || pf_mip_texel_count(1 << 20, 1 << 20) != 0;
+    bad += pf_mip_texel_count(side, 1) != 2LL * side - 1 || pf_mip_texel_count(1 << 19, 1 << 19) <= 0;
+    PF_CHECK(bad == 0, "%d failures", bad);
+}
+
+/* The largest accepted sizes, in guarded mappings of exactly the documented size (a read
+   past either end faults): samplers read a handful of texels, so a 1 x 2^24 pyramid, a
+   2^24 x 1 one and a 2^19 x 2^19 one (1.5 TB of address space in float, mostly never
+   touched) cost nothing. Reproducer 4 at the largest accepted height: v = 1 under CLAMP
+   reads row h - 1 (the float build used to overflow the float-to-int conversion and read row
+   0); reproducer 3: WRAP at the first texel blends it with the last one. Then a build at
+   the largest side (w = 2^24, h = 1) and the slope-map walker's wrapped rows (reproducer 2)
+   on a guarded 1 x 2^16 map. */
+static void test_issue19_largest_sizes_guarded(void)
+{
+    static const int dims[3][2] = {{1, (int)PF_MAX_SIDE}, {(int)PF_MAX_SIDE, 1}, {1 << 19, 1 << 19}};
+    int bad = 0, d, mapped = 0;
+    for (d = 0; d < 3; ++d) {
+        int w = dims[d][0], h = dims[d][1], border;
+        long long n = pf_mip_texel_count(w, h), last = (long long)(h - 1) * w + (w - 1);
+        size_t bytes = (size_t)n * sizeof(pf_real);
+        pf_real *pyr = n > 0 ? (pf_real *)pf_test_guarded_alloc(bytes) : NULL, o[2];
+        const pf_real one = PF_R(1.0), zero = PF_R(0.0);
+        if (!pyr) {
+            pf_test_note("%d x %d: mapping of %.3g bytes unavailable, skipped", w, h, (double)bytes);
+            continue;
+        }
+        ++mapped;
+        pyr[0] = PF_R(10.0);
+        pyr[last] = PF_R(40.0); /* the opposite corner of level 0 */
+        pyr[n - 1] = PF_R(7.0); /* the 1 x 1 top, the mapping's last pf_real */
+        for (border = 0; border < 2; ++border) {
+            /* the corner texel's centre and its far corner (1, 1) */
+            pf_real u0 = PF_R(0.5) / (pf_real)w, v0 = PF_R(0.5) / (pf_real)h;
+            bad += pf_mip_sample_bilinear(pyr, w, h, 1, 0, u0, v0, border, o) != PF_OK || o[0] != PF_R(10.0);
+            bad += pf_mip_sample_bilinear(pyr, w, h, 1, 99, u0, v0, border, o) != PF_OK || o[0] != PF_R(7.0);
+            bad += pf_mip_sample_trilinear(pyr, w, h, 1, PF_R(1e30), one, one, border, o) != PF_OK || o[0] != PF_R(7.0);
+            bad += pf_mip_sample_trilinear(pyr, w, h, 1, PF_R(0.5), one, one, border, o) != PF_OK || !pf_test_finite(o[0]);
+            bad += pf_mip_sample_trilinear_log(pyr, w, h, 1, PF_R(0.5), zero, one, border, o) != PF_OK || !pf_test_finite(o[0]);
+        }
+        /* CLAMP at (1, 1), at coordinates beyond it and at +inf: the last texel */
+        bad += pf_mip_sample_bilinear(pyr, w, h, 1, 0, one, one, PF_BORDER_CLAMP, o) != PF_OK || o[0] != PF_R(40.0);
+        bad += pf_mip_sample_bilinear(pyr, w, h, 1, 0, PF_R(3e7), PF_R(1e30), PF_BORDER_CLAMP, o) != PF_OK || o[0] != PF_R(40.0);
+        bad += pf_mip_sample_bilinear(pyr, w, h, 1, 0, (pf_real)INFINITY, (pf_real)INFINITY, PF_BORDER_CLAMP, o) != PF_OK || o[0] != PF_R(40.0);
+        /* WRAP at (0, 0): the four corner texels, a quarter each (a 1-texel axis has weight 1) */
+        bad += pf_mip_sample_bilinear(pyr, w, h, 1, 0, zero, zero, PF_BORDER_WRAP, o) != PF_OK;
+        bad += fabsl((long double)o[0] - ((w == 1 || h == 1) ? 25.0L : 12.5L)) > 1e-5L;
+        pf_test_guarded_free(pyr, bytes);
+    }
+    { /* pf_mip_build at the largest side: level 0 untouched zeros except two texels */
+        const int w = (int)PF_MAX_SIDE;
+        long long n = pf_mip_texel_count(w, 1);
+        size_t bytes = (size_t)n * sizeof(pf_real);
+        pf_real *pyr = (pf_real *)pf_test_guarded_alloc(bytes);
+        if (pyr) {
+            pyr[0] = (pf_real)w;
+            pyr[w - 1] = (pf_real)w;
+            bad += pf_mip_build(pyr, w, 1, 1) != PF_OK;
+            bad += fabsl((long double)pyr[n - 1] - 2.0L) > 1e-5L; /* the mean, 2w / w */
+            pf_test_guarded_free(pyr, bytes);
+        } else pf_test_note("build 2^24 x 1 skipped (no mapping)");
+    }
+    { /* reproducer 2 at an accepted size: the wrapped neighbours of rows 0 and h - 1 */
+        const int h = 1 << 16;
+        pf_real *hm = (pf_real *)pf_test_guarded_alloc((size_t)h * sizeof(pf_real));
+        pf_real *out = (pf_real *)pf_test_guarded_alloc((size_t)h * 5 * sizeof(pf_real));
+        if (hm && out) {
+            int r;
+            for (r = 0; r < h; ++r) hm[r] = (pf_real)(r % 7);
+            bad += pf_slope_moments_map_from_heights(hm, 1, h, PF_R(1.0), PF_R(0.5), PF_R(1.0), PF_BORDER_WRAP, out) != PF_OK;
+            bad += out[1] != (hm[1] - hm[h - 1]) / PF_R(1.0) || out[(h - 1) * 5 + 1] != (hm[0] - hm[h - 2]) / PF_R(1.0);
+            bad += out[0] != PF_R(0.0);
+        } else pf_test_note("slope map skipped (no mapping)");
+        if (hm) pf_test_guarded_free(hm, (size_t)h * sizeof(pf_real));
+        if (out) pf_test_guarded_free(out, (size_t)h * 5 * sizeof(pf_real));
+    }
+    pf_test_note("%d of 3 huge pyramids mapped and sampled", mapped);
+    PF_CHECK(bad == 0, "%d failures", bad);
+}
+
+/* Finding 6: CLAMP treated |u| >= 1e6 as u = 0 (u = 2e6 gave the left edge of the ramp
+   {10, 20, 30, 40}, u = 999999 the right one). Now every u beyond the edge clamps to it,
+   infinities too; NaN is 0. WRAP keeps u - floor(u) in pf_real: huge u wrap exactly (an
+   integer u, every u >= 2^24 in float, is 0), infinities and NaN are 0. */
+static void test_issue19_huge_coordinates(void)
+{
+    pf_real ramp[7 * 2], o[2];
+    int bad = 0, i;
+    for (i = 0; i < 4; ++i) {
+        ramp[2 * i] = PF_R(10.0) * (pf_real)(i + 1);
+        ramp[2 * i + 1] = ramp[2 * i] * ramp[2 * i];
+    }
+    pf_mip_build(ramp, 4, 1, 2);
+#define AT(u, border) (pf_mip_sample_bilinear(ramp, 4, 1, 2, 0, (pf_real)(u), PF_R(0.5), border, o) == PF_OK ? o[0] : PF_R(-1.0))
+    bad += AT(2e6, PF_BORDER_CLAMP) != PF_R(40.0);
+    bad += AT(999999.0, PF_BORDER_CLAMP) != PF_R(40.0);
+    bad += AT(1e30, PF_BORDER_CLAMP) != PF_R(40.0) || AT(INFINITY, PF_BORDER_CLAMP) != PF_R(40.0);
+    bad += AT(-2e6, PF_BORDER_CLAMP) != PF_R(10.0) || AT(-INFINITY, PF_BORDER_CLAMP) != PF_R(10.0);
+    bad += AT(NAN, PF_BORDER_CLAMP) != PF_R(10.0);
+    bad += AT(2000000.375, PF_BORDER_WRAP) != PF_R(20.0); /* = u 0.375: texel 1's centre */
+    bad += AT(-2000000.625, PF_BORDER_WRAP) != PF_R(20.0);
+    bad += AT(1e30, PF_BORDER_WRAP) != PF_R(25.0) || AT(INFINITY, PF_BORDER_WRAP) != PF_R(25.0); /* u = 0 */
+    bad += AT(NAN, PF_BORDER_WRAP) != PF_R(25.0);
+    bad += pf_scalar_moments_sample(ramp, 4, 1, PF_R(0.0), PF_R(5e6), PF_R(0.5), PF_BORDER_CLAMP).m1 != PF_R(40.0);
+#undef AT
+    PF_CHECK(bad == 0, "%d failures", bad);
+}
+
+/* Finding 7: weights {MAX, MAX} summed to inf, so the normalized weights were 0 (mean 0) and
+   the ESM log-sum-exp NaN. Weights are now divided by the largest first. An infinite weight
+   is a bad argument (PF_ERR_ARG, -PF_REAL_MAX). */
+static void test_issue19_weighted_mean_huge_weights(void)
+{
+    pf_real t[4] = {1, 1, 0, 3}, w2[2] = {PF_REAL_MAX, PF_REAL_MAX}, w3[2] = {PF_REAL_MAX, PF_REAL_MAX / PF_R(2.0)};
+    pf_real winf[2] = {PF_R(1.0), (pf_real)INFINITY}, o[NCAN];
+    pf_real l = pf_esm_log_weighted_mean(t, w2, 2);
+    int bad = 0;
+    bad += pf_moments_weighted_mean(t, 1, w2, 2, o) != PF_OK || o[0] != PF_R(1.0);
+    bad += pf_moments_weighted_mean(t, 2, w2, 2, o) != PF_OK || fabsl((long double)o[0] - 0.5L) > 4.0L * PF_TEST_EPS || fabsl((long double)o[1] - 2.0L) > 8.0L * PF_TEST_EPS;
+    bad += pf_moments_weighted_mean(t + 2, 1, w3, 2, o) != PF_OK || fabsl((long double)o[0] - 1.0L) > 4.0L * PF_TEST_EPS;
+    bad += !(fabsl((long double)l - 1.0L) <= 4.0L * PF_TEST_EPS);
+    l = pf_esm_log_weighted_mean(t + 2, w3, 2); /* log((2 + e^3) / 3) */
+    bad += !(fabsl((long double)l - logl((2.0L + expl(3.0L)) / 3.0L)) <= 8.0L * PF_TEST_EPS);
+    canary_fill(o);
+    bad += pf_moments_weighted_mean(t, 1, winf, 2, o) != PF_ERR_ARG || !canary_intact(o);
+    bad += pf_esm_log_weighted_mean(t, winf, 2) != -PF_REAL_MAX;
+    PF_CHECK(bad == 0, "%d failures (ESM log mean %g)", bad, (double)pf_esm_log_weighted_mean(t, w2, 2));
+}
+
+/* Finding 9: a level of -PF_REAL_MAX everywhere reduced to -inf at odd sizes (3x3: the nine
+   rounded weights 1/9 sum to a little more than 1). Every level of such pyramids is now
+   finite and equal to the value to a few ulps, and so are their bilinear and trilinear
+   samples. */
+static void test_issue19_build_near_max_finite(void)
+{
+    static const int dims[][2] = {{3, 3}, {3, 1}, {1, 3}, {5, 5}, {7, 3}, {9, 9}, {6, 5}, {2, 3}};
+    int bad = 0, d, sgn;
+    long double worst = 0.0L;
+    for (d = 0; d < 8; ++d)
+        for (sgn = -1; sgn <= 1; sgn += 2) {
+            int w = dims[d][0], h = dims[d][1], k, border;
+            long long n = pf_mip_texel_count(w, h), i;
+            pf_real *pyr = alloc_real(n * 2), v = (pf_real)sgn * PF_REAL_MAX, o[2];
+            for (i = 0; i < (long long)w * h * 2; ++i) pyr[i] = v;
+            bad += pf_mip_build(pyr, w, h, 2) != PF_OK;
+            for (i = 0; i < n * 2; ++i) {
+                long double e = fabsl((long double)pyr[i] - (long double)v) / (long double)PF_REAL_MAX;
+                bad += !pf_test_finite(pyr[i]);
+                if (e > worst) worst = e;
+            }
+            for (border = 0; border < 2; ++border)
+                for (k = 0; k < 8; ++k) {
+                    pf_real u = PF_R(0.13) * (pf_real)k, lod = PF_R(0.37) * (pf_real)k;
+                    bad += pf_mip_sample_trilinear(pyr, w, h, 2, lod, u, PF_R(1.0) - u, border, o) != PF_OK;
+                    bad += !pf_test_finite(o[0]) || !pf_test_finite(o[1]);
+                }
+            free(pyr);
+        }
+    pf_test_note("all +-PF_REAL_MAX levels: relative error <= %.2Lf eps", worst / PF_TEST_EPS);
+    PF_CHECK(bad == 0, "%d non-finite or failed", bad);
+    PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "%Lg eps", worst / PF_TEST_EPS);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1153,5 +1444,11 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_extreme_values);
     PF_TEST_RUN(edge_esm_log_combine2_zero_weight);
     PF_TEST_RUN(edge_evsm_reduce2x2_near_max);
+    PF_TEST_RUN(edge_issue19_bad_arguments);
+    PF_TEST_RUN(edge_issue19_huge_sizes_rejected);
+    PF_TEST_RUN(test_issue19_largest_sizes_guarded);
+    PF_TEST_RUN(test_issue19_huge_coordinates);
+    PF_TEST_RUN(test_issue19_weighted_mean_huge_weights);
+    PF_TEST_RUN(test_issue19_build_near_max_finite);
     return PF_TEST_END();
 }
