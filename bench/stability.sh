@@ -10,6 +10,8 @@
 #   BENCH_QUICK=1        10^5 inputs per evaluator and build instead of 10^8 (CI)
 #   STABILITY_N=N        inputs per evaluator and build (overrides both)
 #   STABILITY_SLOW_DIV=k entries flagged slow get N/k inputs (default 1)
+#   STABILITY_BUFFERS_N=N calls per pointer-taking function and build (tests/fuzz/pf_buffers.h;
+#                        default 1000, 500 with BENCH_QUICK=1: a few seconds per build)
 #   STABILITY_JOBS=j     builds run at once (default 2)
 #   CC                   compiler (default gcc, as the Makefile's fast-math test builds)
 #   STABILITY_STRICT=1   exit 1 on any finding (default: findings are reported in the fragment

@@ -64,8 +64,11 @@
      below the mesosurface gets weight exactly 0. Out-of-range N is clamped to
      [1, PF_GG_MAX_N]; an unknown set reads as PF_GG_UNIFORM; an index outside the grid gives
      a sample of weight 0. sigma = 0 collapses every sample onto the mean slope; |r| = 1 is
-     fine. No allocation, no I/O, no globals; every PF_DEF function is pointer-free except the
-     CPU-only generator.
+     fine. No allocation, no I/O, no globals; every PF_DEF function is pointer-free. The one
+     pointer-taking function, the CPU-only pf_gg_hermite_generate (linkage PF_CPU_DEF, host
+     code, compiled out under PF_GLSL), follows pf_core.h's "CPU only: sizes and errors": it
+     checks n (1 .. PF_GG_GENERATE_MAX = 64) and both pointers before touching anything and
+     returns its count, n, or 0 with both arrays untouched.
 
    ACCURACY AND COST (measured: docs/gaussgrid.md, tests/test_gaussgrid.c, bench/bench_gaussgrid.c)
      The grid's error is the quadrature error of the node set on the integrand (kinks where a
@@ -688,14 +691,16 @@ PF_DEF pf_real pf_gg_diffuse_directional(pf_gg_grid g, pf_vec3 wi)
     return acc * v * PF_INV_PI;
 }
 
-/* ---------------------------------------------------------------- CPU only: Gauss-Hermite for any N */
+/* ---------------------------------------------------------------- CPU only: Gauss-Hermite for any N
+   Host code under pf_core.h's "CPU only: sizes and errors" rules: linkage PF_CPU_DEF (static
+   inline by default, never __device__), compiled out under PF_GLSL. */
 #ifndef PF_GLSL
 #define PF_GG_GENERATE_MAX 64 /* largest N of pf_gg_hermite_generate */
 
 /* Sturm count: how many eigenvalues of the Jacobi matrix of He_n (zero diagonal, off-diagonal
    sqrt(1), ..., sqrt(n-1); its eigenvalues are the zeros of He_n, Golub & Welsch 1969) lie
    below x, from the signs of the pivots of LDL^T of (J - x I). */
-PF_DEF int pfi_gg_sturm_count(int n, pf_real x)
+PF_CPU_DEF int pfi_gg_sturm_count(int n, pf_real x)
 {
     pf_real d = -x;
     int i, c = 0;
@@ -710,7 +715,7 @@ PF_DEF int pfi_gg_sturm_count(int n, pf_real x)
 
 /* Orthonormal Hermite polynomial P_{n-1}(x) = He_{n-1}(x)/sqrt((n-1)!) by its recurrence
    P_k = (x P_{k-1} - sqrt(k-1) P_{k-2}) / sqrt(k); the Gauss weight is 1/(n P_{n-1}(x)^2). */
-PF_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
+PF_CPU_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
 {
     pf_real p0 = PF_R(1.0), p1 = x, p2;
     int k;
@@ -725,13 +730,16 @@ PF_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
 
 /* pf_gg_hermite_generate(n, nodes, weights): the n-point Gauss-Hermite rule of a standard
    normal (probabilists' weight exp(-x^2/2), weights normalized to sum 1), nodes ascending and
-   exactly symmetric, written to the caller's arrays of n entries. 1 <= n <= PF_GG_GENERATE_MAX;
-   returns n, or 0 (arrays untouched) outside that range or for NULL arrays.
+   exactly symmetric, written to the caller's arrays of n entries (nodes and weights each hold
+   n reals: at most 64, so no size arithmetic can overflow). It returns a count, as pf_core.h's
+   policy has counts do: n on success; 0, with both arrays untouched (nothing read or
+   written), for every argument it rejects: n < 1 or n > PF_GG_GENERATE_MAX (64; INT_MIN and
+   INT_MAX included) or a NULL nodes or weights. It never returns PF_ERR_* codes.
    Method: each zero of He_n by bisection on the Sturm count of the Jacobi matrix (no
    initial guesses needed, every root bracketed), weights 1/(n P_{n-1}^2) formed as
    (1/(sqrt(n) P_{n-1}))^2 so that large n cannot overflow (far weights underflow to 0, where
    the true weight is below the smallest pf_real anyway). Cost ~ n^2 x 100 operations. */
-PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
+PF_CPU_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
 {
     int i, it;
     pf_real bound, s = PF_R(0.0);

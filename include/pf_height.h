@@ -40,7 +40,8 @@
      transfer function pf_transfer_moments_make, pf_transfer_moments_add,
                        pf_transfer_segment_moments, pf_transfer_end_moments,
                        pf_transfer_height, pf_transfer_slope_stats (eqs. 19-28)
-     CPU only (#ifndef PF_GLSL: they walk caller-owned arrays; no allocation, no I/O)
+     CPU only (#ifndef PF_GLSL, linkage PF_CPU_DEF: they walk caller-owned arrays; no
+     allocation, no I/O)
                        pf_colormap_filter, pf_height_colormap_filter, pf_transfer_moments_filter,
                        pf_colormap_table_size, pf_colormap_table_build, pf_colormap_table_lookup
 
@@ -64,6 +65,19 @@
      Filtering means the expectation E[C(X)], X ~ N(mean, sigma^2). sigma <= 0 (or NaN) means
      no filtering: the map's own value (at a jump, the mean of the two sides). Colour channels
      are independent: the weights of pf_gauss_segment_weights serve all channels.
+     CPU-only functions (pf_core.h, "CPU only: sizes and errors"). Every argument is checked
+     before anything is read or written. pf_colormap_filter, pf_height_colormap_filter,
+     pf_colormap_table_build and pf_colormap_table_lookup return PF_OK (0), PF_ERR_ARG (-1) for
+     a NULL pointer, n < 1 knots, channels < 1, table sides < 2 or a table range that is empty,
+     reversed or not finite (its bounds, width or sample step), PF_ERR_SIZE (-2) for a table
+     side above PF_MAX_SIDE (2^24), a table above PF_MAX_REALS reals or n * channels above
+     PF_MAX_REALS; on an error they write nothing (*t included). pf_colormap_table_size returns
+     the table's reals as a long long, 0 for every size the builder rejects.
+     pf_transfer_moments_filter returns zeros for NULL arrays or n < 1. Offsets are long long;
+     the one thing the code cannot check is that a buffer holds what the comment says: x and c
+     (or g) n and n * channels reals, out channels, a table pf_colormap_table_size reals. A NaN
+     mean makes every knot read as standing at the mean: out = (c[0] + c[n-1]) / 2 (finite,
+     meaningless); NaN sigma means no filtering (as sigma <= 0).
 
    ACCURACY AND COST (measured: docs/height.md, tests/test_height.c, bench/bench_height.c)
      pf_height_visibility      relative error ~ eps (1 + |log V| + Lambda z^2), the conditioning
@@ -71,8 +85,11 @@
      pf_visible_height         ours: (4,5) rationals in s = sqrt(log(1+Lambda)); fit error of
                                mu_d 9.5e-6, sigma_d 6.7e-5 (relative) over every Lambda >= 0;
                                one log, one sqrt, two divisions.
-     pf_visible_height_published  Heitz et al. 2014 eqs. 16-17: mu_d off by up to ~0.13 sigma_h
-                               (20% at Lambda = 1), sigma_d by a few %.
+     pf_visible_height_published  Heitz et al. 2014 eqs. 16-17, valid for 0 <= Lambda <= 1900:
+                               mu_d off by up to 0.131 sigma_h (at Lambda = 0.56; 20% at
+                               Lambda = 1), sigma_d by up to 5.3% (at Lambda = 26). Beyond
+                               1900 both errors grow without bound (mu_d +0.35 sigma_h at 1e4,
+                               +2.6 at 1e9, +16 at 1e30): use pf_visible_height there.
      pf_visible_height_exact   64-node sinh-mapped trapezoidal rule: mu_d ~1e-9, sigma_d ~5e-8
                                relative in double (rounding-limited in float); ~1000x the fit.
      colour filters            closed form, absolute error a few eps per knot within ~5 sigma.
@@ -256,8 +273,15 @@ PF_DEF pf_height_dist pf_height_dist_make(pf_real mean, pf_real dev)
 
 /* The published fits (Heitz et al. 2014 eqs. 16-17; the mean also in Heitz & Neyret 2011
    sec. 4.4): mu_d = 0.39 log(1 + 4.75 L), sigma_d = 1 / (1 + 0.26 log(1 + 1.13 L)). Kept to
-   reproduce the paper; measured errors in docs/height.md (the mean's slope at L = 0 is
-   1.85, twice the true 0.90). lambda is the sum Lambda_o + Lambda_i. */
+   reproduce the paper; lambda is the sum Lambda_o + Lambda_i. Valid range 0 <= L <= 1900,
+   where (measured against quadrature of eq. 15, tests/test_height.c, float and double alike)
+   |mu_d error| <= 0.131 sigma_h (max at L = 0.56, +0.131; -0.122 at L = 42; the mean's slope
+   at L = 0 is 1.85, twice the true 0.90) and |sigma_d error| <= 5.33% relative (max at
+   L = 26). Beyond L = 1900 the fit's 0.39 log L outgrows the true sqrt(2 log L): the mu_d
+   error rises monotonically (+0.35 sigma_h at L = 1e4, +1.13 at 1e6, +2.60 at 1e9, +16.0 at
+   1e30, where it returns (27.55, 0.0527) for the true (11.51, 0.110)) and the sigma_d error
+   falls monotonically (-4.0% at 1e4, past -5.33% from L = 1.9e4, -23% at 1e9, -52% at 1e30).
+   Every L still gives finite values (L is clamped to [0, PF_LAMBDA_MAX], NaN -> 0). */
 PF_DEF pf_height_dist pf_visible_height_published(pf_real lambda)
 {
     pf_real l = pfi_lambda_clamp(lambda);
@@ -614,19 +638,43 @@ PF_DEF pf_slope_stats pf_transfer_slope_stats(pf_transfer_moments m, pf_real ex,
 /* ---------------------------------------------------------------- CPU only: arrays
    These walk caller-owned arrays (pointers), so they are not part of the shader subset; a
    shader loops over pf_gauss_segment_weights / pf_transfer_segment_moments instead. No
-   allocation, no I/O. Knots: x[0..n-1] non-decreasing; values c[k * channels + ch]. */
+   allocation, no I/O. Knots: x[0..n-1] non-decreasing; values c[k * channels + ch].
+   Linkage PF_CPU_DEF (host code, never __device__); the rules are pf_core.h's "CPU only:
+   sizes and errors": every argument is checked before anything is read or written; PF_OK on
+   success, PF_ERR_ARG (-1) for a NULL pointer, a size below its minimum or a range that is
+   empty, reversed or not finite, PF_ERR_SIZE (-2) for a size above its limit, and nothing
+   written on an error. Offsets are computed in long long. */
 #ifndef PF_GLSL
 
-/* E[C(X)] for the piecewise-linear colour map (x, c) with n >= 1 knots and `channels` values
-   per knot, X ~ N(mean, sigma^2): out[0..channels-1]. One erfc and one exp per knot (each
-   knot's tails are shared by its two pieces). n <= 0 or channels <= 0 writes nothing. */
-PF_DEF void pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
-                               pf_real mean, pf_real sigma, pf_real *out)
+/* The checks shared by the array functions: knots n >= 1 and channels >= 1 (PF_ERR_ARG below),
+   n * channels <= PF_MAX_REALS (the values array; PF_ERR_SIZE above). */
+PF_CPU_DEF int pfi_colormap_check(int n, int channels)
+{
+    if (n < 1 || channels < 1) return PF_ERR_ARG;
+    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
+    return PF_OK;
+}
+
+/* E[C(X)] for the piecewise-linear colour map (x, c) with n >= 1 knots and `channels` >= 1
+   values per knot, X ~ N(mean, sigma^2): out[0..channels-1]. One erfc and one exp per knot
+   (each knot's tails are shared by its two pieces).
+   Buffers: x holds n reals, c holds n * channels, out receives channels.
+   Returns PF_OK; PF_ERR_ARG (nothing written) for x, c or out NULL, n < 1 or channels < 1;
+   PF_ERR_SIZE (nothing written) for n * channels > PF_MAX_REALS.
+   sigma <= 0 or NaN: the unfiltered map at mean (at a jump, the mean of its two sides).
+   mean NaN: every knot reads as standing at the mean (as in pf_gauss_cdf and
+   pf_gauss_segment_weights, which a shader loop would call), so out = (c[0] + c[n-1]) / 2 per
+   channel, for every sigma: finite, and meaningless; check means upstream. */
+PF_CPU_DEF int pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
+                                  pf_real mean, pf_real sigma, pf_real *out)
 {
     pfi_gauss_knot ka, kb;
     pf_real below, above;
-    int k, ch;
-    if (n <= 0 || channels <= 0) return;
+    const pf_real *ck;
+    int k, ch, rc;
+    if (!x || !c || !out) return PF_ERR_ARG;
+    rc = pfi_colormap_check(n, channels);
+    if (rc != PF_OK) return rc;
     ka = pfi_gauss_knot_at(x[0], mean, sigma);
     below = ka.lower;
     for (ch = 0; ch < channels; ch++) out[ch] = c[ch] * below;
@@ -634,39 +682,49 @@ PF_DEF void pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int ch
         pf_vec2 w;
         kb = pfi_gauss_knot_at(x[k + 1], mean, sigma);
         w = pfi_segment_weights(ka, kb, x[k], x[k + 1], mean, sigma);
-        for (ch = 0; ch < channels; ch++)
-            out[ch] += w.x * c[k * channels + ch] + w.y * c[(k + 1) * channels + ch];
+        ck = c + (long long)k * channels; /* knot k; knot k + 1 is ck + channels */
+        for (ch = 0; ch < channels; ch++) out[ch] += w.x * ck[ch] + w.y * ck[(long long)channels + ch];
         ka = kb;
     }
     above = ka.upper;
-    for (ch = 0; ch < channels; ch++) out[ch] += c[(n - 1) * channels + ch] * above;
+    ck = c + (long long)(n - 1) * channels;
+    for (ch = 0; ch < channels; ch++) out[ch] += ck[ch] * above;
+    return PF_OK;
 }
 
 /* Height-correlated colour, Heitz et al. 2014 eq. 13: C_h = Vbar <C, D_h>, with D_h our
    Gaussian fit for Lambda_o + Lambda_i in heights (mean_h, sigma_h), perturbed by noise
    (mu_r, sigma_r; 0, 0 for none), and Vbar = pf_height_mean_visibility (eq. 12). out gets
-   `channels` values. (Without the Vbar factor: pf_colormap_filter with pf_height_colour_dist.) */
-PF_DEF void pf_height_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
-                                      pf_real lambda_o, pf_real lambda_i, pf_real mean_h,
-                                      pf_real sigma_h, pf_real mu_r, pf_real sigma_r, pf_real *out)
+   `channels` values. (Without the Vbar factor: pf_colormap_filter with pf_height_colour_dist.)
+   Buffers, sizes and return codes as pf_colormap_filter (nothing written on an error).
+   NaN Lambdas read as 0; a NaN in mean_h, sigma_h or mu_r makes the filtering mean NaN:
+   out = Vbar (c[0] + c[n-1]) / 2 as in pf_colormap_filter. */
+PF_CPU_DEF int pf_height_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
+                                         pf_real lambda_o, pf_real lambda_i, pf_real mean_h,
+                                         pf_real sigma_h, pf_real mu_r, pf_real sigma_r, pf_real *out)
 {
     pf_height_dist d = pf_height_colour_dist(lambda_o, lambda_i, mean_h, sigma_h, mu_r, sigma_r);
     pf_real v = pf_height_mean_visibility(lambda_o, lambda_i);
-    int ch;
-    if (n <= 0 || channels <= 0) return;
-    pf_colormap_filter(x, c, n, channels, d.mean, d.dev, out);
+    int ch, rc = pf_colormap_filter(x, c, n, channels, d.mean, d.dev, out);
+    if (rc != PF_OK) return rc;
     for (ch = 0; ch < channels; ch++) out[ch] *= v;
+    return PF_OK;
 }
 
-/* The four moments of the piecewise-linear transfer function (x, g), n >= 1 knots, for
-   f ~ N(mean, sigma^2). n <= 0 gives zeros. */
-PF_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf_real *g, int n,
-                                                      pf_real mean, pf_real sigma)
+/* The four moments of the piecewise-linear transfer function (x, g), n >= 1 knots (x and g
+   hold n reals each), for f ~ N(mean, sigma^2). It returns the moments by value, so bad
+   arguments - x or g NULL, n < 1 - give zeros (0, 0, 0, 0) and read nothing (a valid map can
+   give zeros too, g = 0 everywhere: check the arguments if the difference matters). Every
+   n >= 1 that fits an int is within PF_MAX_REALS. sigma <= 0 or NaN: no filtering. mean NaN:
+   every knot at the mean (as pf_colormap_filter): g = (g[0] + g[n-1]) / 2,
+   g2 = (g[0]^2 + g[n-1]^2) / 2, dg = dg2 = 0. */
+PF_CPU_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf_real *g, int n,
+                                                          pf_real mean, pf_real sigma)
 {
     pf_transfer_moments m = pf_transfer_moments_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
     pfi_gauss_knot ka, kb;
     int k;
-    if (n <= 0) return m;
+    if (!x || !g || n < 1) return m;
     ka = pfi_gauss_knot_at(x[0], mean, sigma);
     m = pf_transfer_end_moments(g[0], ka.lower);
     for (k = 0; k + 1 < n; k++) {
@@ -684,31 +742,69 @@ PF_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf
    (i: mean, j: sigma; row-major, ready for a 2D texture upload). On the GPU the lookup is a
    bilinear texture fetch; pf_colormap_table_lookup is the same bilinear interpolation on the
    CPU (the reference for its error). Choose [mean_min, mean_max] to cover the knots plus a few
-   sigma_max: lookups clamp to the table's range. */
+   sigma_max: lookups clamp to the table's range.
+   Limits (checked by the builder and again by every lookup): 2 <= n_mean, n_sigma <=
+   PF_MAX_SIDE (2^24), channels >= 1, n_mean * n_sigma * channels <= PF_MAX_REALS;
+   mean_min < mean_max and 0 < sigma_max, every bound, the widths mean_max - mean_min and
+   sigma_max, and the sample steps width / (n - 1) finite and > 0. The size fields stay int:
+   every side is at most 2^24 and channels is an int argument; only offsets need more than 31
+   bits (up to PF_MAX_REALS), and they are computed in long long, never stored. */
 typedef struct pf_colormap_table {
     pf_real *data;
     int n_mean, n_sigma, channels;
     pf_real mean_min, mean_max, sigma_max;
 } pf_colormap_table;
 
-/* Reals needed by a table (0 for sizes < 2 or channels < 1). */
-PF_DEF int pf_colormap_table_size(int n_mean, int n_sigma, int channels)
+/* Reals needed by a table: n_mean * n_sigma * channels as a long long (65537 x 65537 x 1 is
+   4295098369), or 0 for any size the builder rejects: n_mean or n_sigma < 2 or > PF_MAX_SIDE,
+   channels < 1, or a product above PF_MAX_REALS. */
+PF_CPU_DEF long long pf_colormap_table_size(int n_mean, int n_sigma, int channels)
 {
+    long long total;
     if (n_mean < 2 || n_sigma < 2 || channels < 1) return 0;
-    return n_mean * n_sigma * channels;
+    if (!pf_size_side_ok(n_mean) || !pf_size_side_ok(n_sigma)) return 0;
+    total = pf_size_mul3(n_mean, n_sigma, channels);
+    return total < 0 ? 0 : total;
 }
 
-/* Fills buffer (pf_colormap_table_size reals) with the filtered map and describes it in *t.
-   Returns 0 on success, -1 on bad sizes or ranges (nothing written). One pf_colormap_filter
-   per entry. */
-PF_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_mean, int n_sigma,
-                                   pf_real mean_min, pf_real mean_max, pf_real sigma_max,
-                                   const pf_real *x, const pf_real *c, int n, int channels)
+/* 1 when x is finite (not NaN, not +-inf), by comparison only (no isfinite: C99 and C++11
+   spell it differently, and MCU libms may lack it). -ffinite-math-only (part of -ffast-math)
+   lets the compiler assume it is 1. */
+PF_CPU_DEF int pfi_height_finite(pf_real x) { return x >= -PF_REAL_MAX && x <= PF_REAL_MAX; }
+
+/* Every check of a table's description (see pf_colormap_table): PF_OK, PF_ERR_ARG or
+   PF_ERR_SIZE. */
+PF_CPU_DEF int pfi_colormap_table_check(int n_mean, int n_sigma, int channels, pf_real mean_min,
+                                        pf_real mean_max, pf_real sigma_max)
 {
-    int i, j;
-    if (pf_colormap_table_size(n_mean, n_sigma, channels) == 0 || n < 1 || !(mean_max > mean_min) ||
-        !(sigma_max > PF_R(0.0)))
-        return -1;
+    pf_real wm = mean_max - mean_min;
+    if (n_mean < 2 || n_sigma < 2 || channels < 1) return PF_ERR_ARG;
+    if (pf_colormap_table_size(n_mean, n_sigma, channels) == 0) return PF_ERR_SIZE;
+    if (!pfi_height_finite(mean_min) || !pfi_height_finite(mean_max) || !pfi_height_finite(wm) || !(wm > PF_R(0.0)) ||
+        !(wm / (pf_real)(n_mean - 1) > PF_R(0.0)))
+        return PF_ERR_ARG;
+    if (!pfi_height_finite(sigma_max) || !(sigma_max / (pf_real)(n_sigma - 1) > PF_R(0.0))) return PF_ERR_ARG;
+    return PF_OK;
+}
+
+/* Fills buffer (pf_colormap_table_size(n_mean, n_sigma, channels) reals) with the filtered
+   map (x, c), n knots, and describes it in *t. One pf_colormap_filter per entry; the sample
+   means are mean_min + (mean_max - mean_min) (i / (n_mean - 1)), which cannot overflow.
+   Returns PF_OK; PF_ERR_ARG (nothing written, *t untouched) for t, buffer, x or c NULL,
+   n < 1, n_mean or n_sigma < 2, channels < 1, or a bad range (see pf_colormap_table:
+   mean_min = -inf, sigma_max = inf, NaN bounds, [-3e38, 3e38] in float whose width
+   overflows, mean_max <= mean_min, sigma_max <= 0); PF_ERR_SIZE (nothing written) for a side
+   above PF_MAX_SIDE, a table above PF_MAX_REALS reals, or n * channels > PF_MAX_REALS. */
+PF_CPU_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_mean, int n_sigma,
+                                       pf_real mean_min, pf_real mean_max, pf_real sigma_max,
+                                       const pf_real *x, const pf_real *c, int n, int channels)
+{
+    int i, j, rc;
+    pf_real wm = mean_max - mean_min;
+    if (!t || !buffer || !x || !c) return PF_ERR_ARG;
+    rc = pfi_colormap_table_check(n_mean, n_sigma, channels, mean_min, mean_max, sigma_max);
+    if (rc == PF_OK) rc = pfi_colormap_check(n, channels);
+    if (rc != PF_OK) return rc;
     t->data = buffer;
     t->n_mean = n_mean;
     t->n_sigma = n_sigma;
@@ -717,41 +813,51 @@ PF_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_
     t->mean_max = mean_max;
     t->sigma_max = sigma_max;
     for (j = 0; j < n_sigma; j++) {
-        pf_real sg = sigma_max * (pf_real)j / (pf_real)(n_sigma - 1);
+        pf_real sg = sigma_max * ((pf_real)j / (pf_real)(n_sigma - 1));
+        pf_real *row = buffer + (long long)j * n_mean * channels;
         for (i = 0; i < n_mean; i++) {
-            pf_real mu = mean_min + (mean_max - mean_min) * (pf_real)i / (pf_real)(n_mean - 1);
-            pf_colormap_filter(x, c, n, channels, mu, sg, buffer + (j * n_mean + i) * channels);
+            pf_real mu = mean_min + wm * ((pf_real)i / (pf_real)(n_mean - 1));
+            pf_colormap_filter(x, c, n, channels, mu, sg, row + (long long)i * channels);
         }
     }
-    return 0;
+    return PF_OK;
 }
 
 /* Bilinear lookup of a built table at (mean, sigma), clamped to the table's range (NaN reads
-   as the range's low end); writes t->channels values to out. */
-PF_DEF void pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, pf_real sigma, pf_real *out)
+   as the range's low end); writes t->channels values to out. The four entries read are inside
+   the table for every mean and sigma (indices clamped before any conversion, offsets in
+   long long). Returns PF_OK; PF_ERR_ARG (nothing written) for t, t->data or out NULL or a
+   description that pf_colormap_table_build would reject as PF_ERR_ARG; PF_ERR_SIZE for one it
+   would reject as PF_ERR_SIZE (a table it could not have built). */
+PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, pf_real sigma, pf_real *out)
 {
-    pf_real u = (mean - t->mean_min) / (t->mean_max - t->mean_min) * (pf_real)(t->n_mean - 1);
-    pf_real v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
-    pf_real fu, fv;
-    int i, j, ch, cs = t->channels;
+    pf_real u, v, fu, fv;
+    long long i, j, stride;
+    int ch, cs, rc;
     const pf_real *p00, *p10, *p01, *p11;
-    u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1));
+    if (!t || !t->data || !out) return PF_ERR_ARG;
+    rc = pfi_colormap_table_check(t->n_mean, t->n_sigma, t->channels, t->mean_min, t->mean_max, t->sigma_max);
+    if (rc != PF_OK) return rc;
+    cs = t->channels;
+    u = (mean - t->mean_min) / (t->mean_max - t->mean_min) * (pf_real)(t->n_mean - 1);
+    v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
+    u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1)); /* NaN -> 0 */
     v = pf_min(pf_max(v, PF_R(0.0)), (pf_real)(t->n_sigma - 1));
-    i = (int)u;
-    j = (int)v;
-    if (i > t->n_mean - 2) i = t->n_mean - 2;
-    if (j > t->n_sigma - 2) j = t->n_sigma - 2;
+    i = pfi_floor_index(u, 0, t->n_mean - 2);
+    j = pfi_floor_index(v, 0, t->n_sigma - 2);
     fu = u - (pf_real)i;
     fv = v - (pf_real)j;
-    p00 = t->data + (j * t->n_mean + i) * cs;
+    stride = (long long)t->n_mean * cs;
+    p00 = t->data + j * stride + i * cs;
     p10 = p00 + cs;
-    p01 = p00 + t->n_mean * cs;
+    p01 = p00 + stride;
     p11 = p01 + cs;
     for (ch = 0; ch < cs; ch++) {
         pf_real lo = p00[ch] + fu * (p10[ch] - p00[ch]);
         pf_real hi = p01[ch] + fu * (p11[ch] - p01[ch]);
         out[ch] = lo + fv * (hi - lo);
     }
+    return PF_OK;
 }
 
 #endif /* !PF_GLSL */

@@ -688,7 +688,19 @@ PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int
     return PF_OK;
 }
 
-/* The 2x2 box with a compile-time channel count (the common case: both sizes even). */
+/* The 2x2 box with a compile-time channel count (the common case: both sizes even).
+   Under -ffast-math the compiler factors q a + q b + q c + q d into q (a + b + c + d), which
+   overflows for texels above PF_REAL_MAX / 4 (an EVSM-4 pyramid at the largest float exponent
+   holds 1.65e38); there each pair is averaged as a midpoint instead: a + (b - a)/2 when a and b
+   have one sign (|b - a| <= max(|a|, |b|)), (a + b)/2 when they have opposite signs (|a + b|
+   <= max(|a|, |b|)), which no reassociation turns into an overflowing sum. Plain builds keep
+   the four products (IEEE order, no overflow, and the fastest loop). */
+#ifdef __FAST_MATH__
+PF_CPU_DEF pf_real pfi_mip_mid(pf_real a, pf_real b)
+{
+    return (a >= PF_R(0.0)) == (b >= PF_R(0.0)) ? a + PF_R(0.5) * (b - a) : PF_R(0.5) * (a + b);
+}
+#endif
 PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
 {
     const pf_real q = PF_R(0.25);
@@ -697,7 +709,13 @@ PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b
     for (i = 0; i < dw; ++i) {
         const pf_real *a0 = a + 2 * i * nc, *b0 = b + 2 * i * nc;
         pf_real *d = dst + i * nc;
+#ifdef __FAST_MATH__
+        (void)q;
+        for (k = 0; k < nc; ++k)
+            d[k] = pfi_mip_mid(pfi_mip_mid(a0[k], a0[nc + k]), pfi_mip_mid(b0[k], b0[nc + k]));
+#else
         for (k = 0; k < nc; ++k) d[k] = q * a0[k] + q * a0[nc + k] + q * b0[k] + q * b0[nc + k];
+#endif
     }
 }
 
@@ -1012,16 +1030,25 @@ PF_CPU_DEF pf_real pfi_max_weight(const pf_real *weights, int n)
     return m;
 }
 
+/* The divisor that brings the weights to at most 2^32: wmax 2^-32 (exact) for wmax > 1, else
+   wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math turns
+   w / wmax into w * (1/wmax) with subnormals flushed to 0 (every weight became 0); the
+   reciprocal of this divisor is >= 2^-96, normal in float and double. */
+PF_CPU_DEF pf_real pfi_weight_divisor(pf_real wmax)
+{
+    return wmax > PF_R(1.0) ? wmax * PF_R(2.3283064365386963e-10) : wmax; /* 2^-32 */
+}
+
 /* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
    (texels: n C pf_reals, weights: n, out: C). Texels with w_i <= 0 (or NaN) are skipped, not
-   read. The weights are divided by the largest one first, so any finite weights work (two
-   weights of PF_REAL_MAX give the plain mean). No positive weight (n = 0 too): out is zeroed,
+   read. The weights are divided by the largest one (times 2^-32) first, so any finite weights
+   work, under -ffast-math too (two weights of PF_REAL_MAX give the plain mean). No positive weight (n = 0 too): out is zeroed,
    PF_OK. PF_ERR_ARG: a NULL, channels < 1, n < 0, an infinite weight; PF_ERR_SIZE: n C >
    PF_MAX_REALS. */
 PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
                                         int n, pf_real *out)
 {
-    pf_real wsum = PF_R(0.0), wmax;
+    pf_real wsum = PF_R(0.0), wmax, d;
     int i, k;
     if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
     if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
@@ -1029,10 +1056,14 @@ PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, con
     if (!(wmax <= PF_REAL_MAX)) return PF_ERR_ARG;
     for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
     if (!(wmax > PF_R(0.0))) return PF_OK;
+    d = pfi_weight_divisor(wmax);
     for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0)) wsum += weights[i] / wmax; /* in [1, n] */
+        if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
     for (i = 0; i < n; ++i) {
-        pf_real w = weights[i] / wmax / wsum;
+        /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
+           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
+        volatile pf_real wd = weights[i] / d;
+        pf_real w = wd / wsum;
         if (!(weights[i] > PF_R(0.0))) continue;
         for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
     }
@@ -1050,6 +1081,7 @@ PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *
     if (!logs || !weights || n < 0) return -PF_REAL_MAX;
     wmax = pfi_max_weight(weights, n);
     if (!(wmax > PF_R(0.0) && wmax <= PF_REAL_MAX)) return -PF_REAL_MAX;
+    wmax = pfi_weight_divisor(wmax);
     for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i] / wmax);
     return pf_esm_log_sum_mean(a);
 }

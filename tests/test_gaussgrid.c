@@ -8,6 +8,11 @@
    and against the exact irradiance of a directional light; the rough diffuse BRDF against
    Oren-Nayar's model. The same bodies run in float, double, C++ and under sanitizers; edge_*
    tests also run under -ffast-math. */
+/* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */
+#if defined(__unix__) && !defined(_DEFAULT_SOURCE)
+#  define _DEFAULT_SOURCE 1
+#endif
+#include <limits.h>
 #include <string.h>
 #include "pf_gaussgrid.h"
 #include "pf_oracle.h"
@@ -949,11 +954,49 @@ static void edge_tables(void)
     PF_CHECK(bad == 0, "%d bad table reads", bad);
 }
 
+/* pf_gg_hermite_generate under pf_core.h's CPU rules (issue 19): a count, n or 0; on 0 both
+   arrays untouched (canaries), for every rejected n (0, negative, INT_MIN, 65, INT_MAX) and for
+   NULL arrays; on success exactly n entries written: arrays of exactly n reals in guarded
+   mappings (a write past the end faults) for every n = 1 .. 64. */
+static void test_hermite_generate_contract(void)
+{
+    static const int bad_n[] = { 0, -1, INT_MIN, PF_GG_GENERATE_MAX + 1, INT_MAX };
+    pf_real nodes[PF_GG_GENERATE_MAX + 1], weights[PF_GG_GENERATE_MAX + 1];
+    const pf_real canary = PF_R(-777.0);
+    size_t k;
+    int i, n, bad = 0, guarded = 0;
+    for (i = 0; i <= PF_GG_GENERATE_MAX; i++) nodes[i] = weights[i] = canary;
+    for (k = 0; k < sizeof bad_n / sizeof bad_n[0]; k++) bad += pf_gg_hermite_generate(bad_n[k], nodes, weights) != 0;
+    bad += pf_gg_hermite_generate(5, NULL, weights) != 0;
+    bad += pf_gg_hermite_generate(5, nodes, NULL) != 0;
+    bad += pf_gg_hermite_generate(5, NULL, NULL) != 0;
+    for (i = 0; i <= PF_GG_GENERATE_MAX; i++) bad += !(nodes[i] == canary && weights[i] == canary);
+    PF_CHECK(bad == 0, "%d rejections returned non-zero or wrote", bad);
+    bad = pf_gg_hermite_generate(PF_GG_GENERATE_MAX, nodes, weights) != PF_GG_GENERATE_MAX;
+    bad += !(nodes[PF_GG_GENERATE_MAX] == canary && weights[PF_GG_GENERATE_MAX] == canary);
+    PF_CHECK(bad == 0, "n = 64 returned the wrong count or wrote past 64 entries");
+    bad = 0; /* far weights underflow to 0 in float (documented) */
+    for (n = 1; n <= PF_GG_GENERATE_MAX; n++) {
+        size_t bytes = (size_t)n * sizeof(pf_real);
+        pf_real *gn = (pf_real *)pf_test_guarded_alloc(bytes), *gw = (pf_real *)pf_test_guarded_alloc(bytes);
+        if (gn && gw) {
+            guarded++;
+            bad += pf_gg_hermite_generate(n, gn, gw) != n;
+            bad += !(gn[0] == -gn[n - 1] && gw[0] == gw[n - 1] && gw[0] >= PF_R(0.0) && gn[0] <= PF_R(0.0) && gw[(n - 1) / 2] > PF_R(0.0));
+        }
+        pf_test_guarded_free(gn, bytes);
+        pf_test_guarded_free(gw, bytes);
+    }
+    PF_CHECK(bad == 0, "%d bad generated rules in exact-size arrays", bad);
+    pf_test_note("rejections leave arrays untouched; n = 1..64 in exact-size guarded arrays: %d of 64 run", guarded);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
     PF_TEST_RUN(test_node_moments);
     PF_TEST_RUN(test_generators);
+    PF_TEST_RUN(test_hermite_generate_contract);
     PF_TEST_RUN(test_node_convergence);
     PF_TEST_RUN(test_warp_moments);
     PF_TEST_RUN(test_diffuse_directional_quadrature);

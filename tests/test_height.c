@@ -8,6 +8,11 @@
    C(v) N(v) over v; the transfer-function moments against Monte Carlo with a fixed seed. The
    same bodies run in float, double, C++ and under sanitizers; edge_* tests also run under
    -ffast-math. */
+/* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */
+#if defined(__unix__) && !defined(_DEFAULT_SOURCE)
+#  define _DEFAULT_SOURCE 1
+#endif
+#include <limits.h>
 #include "pf_height.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
@@ -407,6 +412,56 @@ static void test_visible_height_slope_at_zero(void)
     PF_CHECK(pub > 1.9L * truth, "published %Lg truth %Lg", pub, truth);
 }
 
+/* The published fit's documented range (issue 14): over 0 <= L <= 1900, |mu_d error| <= 0.131
+   sigma_h and |sigma_d error| <= 5.33% (measured 0.1309 at L = 0.564 and 5.32% at L = 25.8, the
+   same in float and double); beyond, both errors grow monotonically (mu_d up, sigma_d down)
+   and reach the values the header quotes. Dense grid: 40 points per decade of L. */
+static void test_visible_height_published_range(void)
+{
+    pf_test_max mu = pf_test_max_init(), sd = pf_test_max_init();
+    long double prev_mu = -1.0L, prev_sd = 1.0L, at1e4[2] = { 0.0L, 0.0L }, at1e9[2] = { 0.0L, 0.0L };
+    long double at1e30[2] = { 0.0L, 0.0L }, first_mu_out = 0.0L, first_sd_out = 0.0L;
+    int i, bad = 0, nonmono = 0, n = 0;
+    for (i = -1; i <= 40 * 36; i++) { /* L = 0, then 10^-6 .. 10^30 */
+        long double lt = i < 0 ? 0.0L : powl(10.0L, -6.0L + (long double)i / 40.0L);
+        pf_real l = (pf_real)lt;
+        long double ll = (long double)l;
+        dh_ref r = visible_height_ref(ll);
+        pf_height_dist p = pf_visible_height_published(l);
+        long double em = (long double)p.mean - r.mean, es = ((long double)p.dev - r.dev) / r.dev;
+        if (!r.ok) bad++;
+        if (ll <= 1900.0L) {
+            pf_test_max_update(&mu, fabsl(em), ll);
+            pf_test_max_update(&sd, fabsl(es), ll);
+            n++;
+        } else {
+            if (em < prev_mu || es > prev_sd) nonmono++;
+            prev_mu = em;
+            prev_sd = es;
+            if (first_mu_out == 0.0L && em > 0.131L) first_mu_out = ll;
+            if (first_sd_out == 0.0L && -es > 0.0533L) first_sd_out = ll;
+        }
+        if (i == 400) { at1e4[0] = em; at1e4[1] = es; }
+        if (i == 600) { at1e9[0] = em; at1e9[1] = es; }
+        if (i == 40 * 36) { at1e30[0] = em; at1e30[1] = es; }
+    }
+    pf_test_note("published, %d L in [0,1900]: |mu_d err| max %.4Lf sigma_h at L=%.3Lg, |sigma_d err| max %.4Lf at "
+                 "L=%.3Lg; beyond: mu err > 0.131 from L=%.4Lg, sigma err < -5.33%% from L=%.4Lg; at 1e4 (%+.3Lf, %+.4Lf), "
+                 "1e9 (%+.3Lf, %+.4Lf), 1e30 (%+.3Lf, %+.4Lf)",
+                 n, mu.err, mu.at, sd.err, sd.at, first_mu_out, first_sd_out, at1e4[0], at1e4[1], at1e9[0], at1e9[1],
+                 at1e30[0], at1e30[1]);
+    PF_CHECK(bad == 0, "%d oracle failures", bad);
+    PF_CHECK(mu.err <= 0.131L && mu.err >= 0.130L, "mu_d error %Lg at %Lg (documented 0.131)", mu.err, mu.at);
+    PF_CHECK(sd.err <= 0.0533L && sd.err >= 0.053L, "sigma_d error %Lg at %Lg (documented 5.33%%)", sd.err, sd.at);
+    PF_CHECK(nonmono == 0, "%d non-monotone errors beyond L = 1900", nonmono);
+    PF_CHECK(first_mu_out > 1900.0L && first_mu_out < 2000.0L, "mu_d error passes 0.131 at %Lg", first_mu_out);
+    PF_CHECK(first_sd_out > 1.8e4L && first_sd_out < 2.0e4L, "sigma_d error passes -5.33%% at %Lg", first_sd_out);
+    PF_CHECK(fabsl(at1e4[0] - 0.348L) < 0.005L && fabsl(at1e4[1] + 0.0405L) < 0.001L, "at 1e4: %Lg %Lg", at1e4[0], at1e4[1]);
+    PF_CHECK(fabsl(at1e9[0] - 2.602L) < 0.005L && fabsl(at1e9[1] + 0.2293L) < 0.001L, "at 1e9: %Lg %Lg", at1e9[0], at1e9[1]);
+    PF_CHECK(fabsl(at1e30[0] - 16.03L) < 0.01L && fabsl(at1e30[1] + 0.5213L) < 0.001L, "at 1e30: %Lg %Lg", at1e30[0],
+             at1e30[1]);
+}
+
 /* E[max of n standard normals] from its own definition, the CDF integral
    E[M] = integral_0^inf (1 - Phi^n) dz - integral_-inf^0 Phi^n dz. */
 typedef struct maxn_ctx {
@@ -575,7 +630,7 @@ static void test_table_vs_closed_form(void)
     PF_CHECK(pf_colormap_table_size(1, TN, 3) == 0, "size of a degenerate table");
     rc = pf_colormap_table_build(&t, table_buf, TN, TN, PF_R(-4.0), PF_R(4.0), PF_R(1.5), x, c, 5, 3);
     PF_CHECK(rc == 0, "build failed");
-    PF_CHECK(pf_colormap_table_build(&t, table_buf, TN, TN, PF_R(1.0), PF_R(1.0), PF_R(1.5), x, c, 5, 3) == -1,
+    PF_CHECK(pf_colormap_table_build(&t, table_buf, TN, TN, PF_R(1.0), PF_R(1.0), PF_R(1.5), x, c, 5, 3) == PF_ERR_ARG,
              "empty mean range accepted");
     rc = pf_colormap_table_build(&t, table_buf, TN, TN, PF_R(-4.0), PF_R(4.0), PF_R(1.5), x, c, 5, 3);
     for (i = 0; i < 20000; i++) {
@@ -682,8 +737,11 @@ static void test_noise_perturbed_heights(void)
     for (trial = 0; trial < 6; trial++) {
         plmap m = random_map(&rng, 0, 0.01);
         pf_real x[MAXK] = { PF_R(0.0) }, c[MAXK] = { PF_R(0.0) }, out[1] = { PF_R(0.0) };
-        pf_height_dist d = pf_height_dist_make((pf_real)pf_test_uniform(&rng, -1.0, 1.0),
-                                               (pf_real)pf_test_uniform(&rng, 0.1, 1.0));
+        /* drawn in sequence (two draws in one argument list are unsequenced: gcc and clang
+           drew them in opposite orders and tested different maps); this is gcc's old order */
+        pf_real d_dev = (pf_real)pf_test_uniform(&rng, 0.1, 1.0);
+        pf_real d_mean = (pf_real)pf_test_uniform(&rng, -1.0, 1.0);
+        pf_height_dist d = pf_height_dist_make(d_mean, d_dev);
         pf_real mu_r = (pf_real)pf_test_uniform(&rng, -0.5, 0.5), sd_r = (pf_real)pf_test_uniform(&rng, 0.05, 0.8);
         pf_height_dist dn = pf_height_dist_add_noise(d, mu_r, sd_r);
         noise_ctx nc;
@@ -800,6 +858,376 @@ static void test_transfer_moments_monte_carlo(void)
     PF_CHECK(mc.err <= 5.0L, "MC %Lg (moment %Lg)", mc.err, mc.at);
     PF_CHECK(qd.err <= 1.0L, "quadrature %Lg (moment %Lg)", qd.err, qd.at);
     PF_CHECK(slope.err <= 1.0L, "slope stats %Lg (item %Lg)", slope.err, slope.at);
+}
+
+/* ------------------------------------------------------------------ memory safety (issue 19)
+   The pointer-taking functions under pf_core.h's "CPU only: sizes and errors": every reproducer
+   of issue 19 for pf_height.h, NULL and size rejections with canaries ("nothing written"), and
+   the long long offsets at the far end of huge tables through guarded mappings
+   (pf_test_guarded_alloc: a fault, not a silent read, on any access past the end). */
+
+#define CANARY PF_R(-12345.0)
+
+static int canaries_intact(const pf_real *a, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        if (!(a[i] == CANARY)) return 0;
+    return 1;
+}
+
+static void fill_canary(pf_real *a, int n)
+{
+    int i;
+    for (i = 0; i < n; i++) a[i] = CANARY;
+}
+
+/* A table description filled with a byte pattern: "nothing written" means it is unchanged. */
+static void table_canary(pf_colormap_table *t) { memset(t, 0xA5, sizeof *t); }
+
+static int table_untouched(const pf_colormap_table *t)
+{
+    pf_colormap_table r;
+    table_canary(&r);
+    return memcmp(&r, t, sizeof r) == 0;
+}
+
+/* Reproducer 1 (sizes): the size is a long long, 0 for every size the builder rejects. */
+static void test_mem_table_size(void)
+{
+    const long long side = (long long)PF_MAX_SIDE;
+    PF_CHECK(PF_MAX_REALS < 4295098369LL || pf_colormap_table_size(65537, 65537, 1) == 4295098369LL,
+             "size(65537, 65537, 1) = %lld", pf_colormap_table_size(65537, 65537, 1));
+    PF_CHECK(PF_MAX_REALS < (1LL << 32) || pf_colormap_table_size(2, 2, 1 << 30) == (1LL << 32),
+             "size(2, 2, 2^30) = %lld", pf_colormap_table_size(2, 2, 1 << 30));
+    PF_CHECK(pf_colormap_table_size(2, 2, INT_MAX) == 4LL * INT_MAX, "size(2, 2, INT_MAX) = %lld",
+             pf_colormap_table_size(2, 2, INT_MAX));
+    PF_CHECK(pf_colormap_table_size((int)side, 2, 1) == 2 * side, "largest side rejected");
+    PF_CHECK(pf_colormap_table_size((int)side + 1, 2, 1) == 0 && pf_colormap_table_size(2, (int)side + 1, 1) == 0,
+             "side above PF_MAX_SIDE accepted");
+    PF_CHECK(pf_colormap_table_size(INT_MAX, INT_MAX, INT_MAX) == 0, "INT_MAX^3 accepted");
+    PF_CHECK(pf_colormap_table_size((int)side, (int)side, 1) == 0, "2^48 reals accepted (PF_MAX_REALS %lld)",
+             (long long)PF_MAX_REALS);
+    if (PF_MAX_REALS == (1LL << 40)) {
+        PF_CHECK(pf_colormap_table_size((int)side, 1 << 16, 1) == (1LL << 40), "exactly PF_MAX_REALS rejected");
+        PF_CHECK(pf_colormap_table_size((int)side, (1 << 16) + 1, 1) == 0, "PF_MAX_REALS + 2^24 accepted");
+        PF_CHECK(pf_colormap_table_size(2, 2, INT_MAX) > 0 && pf_colormap_table_size(1 << 12, 1 << 12, 1 << 16) == (1LL << 40),
+                 "channels product");
+    }
+    PF_CHECK(pf_colormap_table_size(1, 5, 1) == 0 && pf_colormap_table_size(5, 1, 1) == 0 &&
+                 pf_colormap_table_size(5, 5, 0) == 0 && pf_colormap_table_size(-5, -5, 1) == 0 &&
+                 pf_colormap_table_size(INT_MIN, 2, 1) == 0 && pf_colormap_table_size(2, 2, INT_MIN) == 0,
+             "degenerate sizes accepted");
+}
+
+/* Reproducer 1 (lookup): a 65537 x 65537 table (17 GB in float, 34 GB in double) as a guarded,
+   mostly untouched mapping of exactly the documented size; lookups at its far corner read the
+   last four entries (with int offsets, j * n_mean overflowed and read far outside). */
+static void test_mem_table_far_corner(void)
+{
+    const int side = 65537;
+    long long reals = pf_colormap_table_size(side, side, 1);
+    size_t bytes = (size_t)reals * sizeof(pf_real);
+    pf_real *data, out[2] = { PF_R(0.0), PF_R(0.0) };
+    pf_colormap_table t;
+    int rc;
+    if (reals == 0 || (unsigned long long)reals > ((size_t)-1) / sizeof(pf_real)) {
+        pf_test_note("skipped: table above PF_MAX_REALS here");
+        return;
+    }
+    data = (pf_real *)pf_test_guarded_alloc(bytes);
+    if (!data) {
+        pf_test_note("skipped: no guarded mapping of %zu bytes here", bytes);
+        return;
+    }
+    /* the four corner entries: (i, j) = (n-2, n-2), (n-1, n-2), (n-2, n-1), (n-1, n-1) */
+    data[(long long)(side - 2) * side + (side - 2)] = PF_R(1.0);
+    data[(long long)(side - 2) * side + (side - 1)] = PF_R(2.0);
+    data[(long long)(side - 1) * side + (side - 2)] = PF_R(3.0);
+    data[(long long)(side - 1) * side + (side - 1)] = PF_R(4.0);
+    data[0] = PF_R(7.0);
+    t.data = data;
+    t.n_mean = side;
+    t.n_sigma = side;
+    t.channels = 1;
+    t.mean_min = PF_R(0.0);
+    t.mean_max = PF_R(65536.0); /* one unit per step: the lookup position is the index */
+    t.sigma_max = PF_R(65536.0);
+    out[1] = CANARY;
+    rc = pf_colormap_table_lookup(&t, PF_R(65536.0), PF_R(65536.0), out);
+    PF_CHECK(rc == PF_OK && out[0] == PF_R(4.0) && out[1] == CANARY, "far corner: rc %d, %g", rc, (double)out[0]);
+    rc = pf_colormap_table_lookup(&t, PF_R(65535.5), PF_R(65535.5), out);
+    PF_CHECK(rc == PF_OK && out[0] == PF_R(2.5), "last cell centre: rc %d, %g (want 2.5)", rc, (double)out[0]);
+    rc = pf_colormap_table_lookup(&t, PF_R(1e30), (pf_real)INFINITY, out);
+    PF_CHECK(rc == PF_OK && out[0] == PF_R(4.0), "clamped far: %g", (double)out[0]);
+    rc = pf_colormap_table_lookup(&t, (pf_real)-INFINITY, PF_R(-1e30), out);
+    PF_CHECK(rc == PF_OK && out[0] == PF_R(7.0), "clamped near: %g", (double)out[0]);
+    rc = pf_colormap_table_lookup(&t, (pf_real)NAN, (pf_real)NAN, out);
+    PF_CHECK(rc == PF_OK && out[0] == PF_R(7.0), "NaN reads the low end: %g", (double)out[0]);
+    pf_test_note("65537 x 65537 table (%lld reals) mapped, 4 corner entries read", reals);
+    pf_test_guarded_free(data, bytes);
+}
+
+/* The builder's offsets at the largest size that stays fast under ASan: a 2049 x 1025 table
+   written into a guarded mapping of exactly its size (any write past it faults), checked
+   against pf_colormap_filter at its first and last entries. */
+static void test_mem_table_build_guarded(void)
+{
+    static const pf_real x[2] = { PF_R(-1.0), PF_R(1.0) };
+    static const pf_real c[4] = { PF_R(0.0), PF_R(1.0), PF_R(1.0), PF_R(0.5) };
+    const int nm = 2049, ns = 1025, ch = 2;
+    long long reals = pf_colormap_table_size(nm, ns, ch);
+    size_t bytes = (size_t)reals * sizeof(pf_real);
+    pf_real *data = (pf_real *)pf_test_guarded_alloc(bytes), a[2] = { PF_R(0.0), PF_R(0.0) }, b[2] = { PF_R(0.0), PF_R(0.0) };
+    pf_colormap_table t;
+    int rc;
+    if (!data) {
+        pf_test_note("skipped: no guarded mapping");
+        return;
+    }
+    rc = pf_colormap_table_build(&t, data, nm, ns, PF_R(-3.0), PF_R(3.0), PF_R(2.0), x, c, 2, ch);
+    PF_CHECK(rc == PF_OK, "build rc %d", rc);
+    pf_colormap_filter(x, c, 2, ch, PF_R(3.0), PF_R(2.0), b);
+    PF_CHECK(data[reals - 2] == b[0] && data[reals - 1] == b[1], "last entry (%g %g) vs (%g %g)", (double)data[reals - 2],
+             (double)data[reals - 1], (double)b[0], (double)b[1]);
+    pf_colormap_filter(x, c, 2, ch, PF_R(-3.0), PF_R(0.0), b);
+    PF_CHECK(data[0] == b[0] && data[1] == b[1], "first entry");
+    rc = pf_colormap_table_lookup(&t, PF_R(3.0), PF_R(2.0), a);
+    PF_CHECK(rc == PF_OK && a[0] == data[reals - 2] && a[1] == data[reals - 1], "lookup at the far corner");
+    pf_test_note("%d x %d x %d table built into a guarded mapping of %lld reals", nm, ns, ch, reals);
+    pf_test_guarded_free(data, bytes);
+}
+
+/* NULL pointers and sizes out of range: the error code, and nothing written. */
+static void test_mem_null_and_sizes(void)
+{
+    static const pf_real x[3] = { PF_R(-1.0), PF_R(0.0), PF_R(1.0) };
+    static const pf_real c[6] = { PF_R(0.0), PF_R(1.0), PF_R(0.5), PF_R(0.5), PF_R(1.0), PF_R(0.0) };
+    pf_real out[4], buf[64];
+    pf_colormap_table t, good;
+    pf_transfer_moments m;
+    int bad = 0;
+    fill_canary(out, 4);
+    fill_canary(buf, 64);
+    /* pf_colormap_filter, pf_height_colormap_filter */
+    bad += pf_colormap_filter(NULL, c, 3, 2, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, NULL, 3, 2, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, c, 3, 2, PF_R(0.0), PF_R(1.0), NULL) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, c, 0, 2, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, c, INT_MIN, 2, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, c, 3, 0, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_colormap_filter(x, c, 3, -1, PF_R(0.0), PF_R(1.0), out) != PF_ERR_ARG;
+    bad += pf_height_colormap_filter(NULL, c, 3, 2, 1, 1, 0, 1, 0, 0, out) != PF_ERR_ARG;
+    bad += pf_height_colormap_filter(x, NULL, 3, 2, 1, 1, 0, 1, 0, 0, out) != PF_ERR_ARG;
+    bad += pf_height_colormap_filter(x, c, 3, 2, 1, 1, 0, 1, 0, 0, NULL) != PF_ERR_ARG;
+    bad += pf_height_colormap_filter(x, c, 0, 2, 1, 1, 0, 1, 0, 0, out) != PF_ERR_ARG;
+    bad += pf_height_colormap_filter(x, c, 3, 0, 1, 1, 0, 1, 0, 0, out) != PF_ERR_ARG;
+    PF_CHECK(bad == 0 && canaries_intact(out, 4), "%d wrong codes, or out written", bad);
+    /* pf_transfer_moments_filter: zeros */
+    m = pf_transfer_moments_filter(NULL, c, 3, PF_R(0.0), PF_R(1.0));
+    bad += !(m.g == 0 && m.g2 == 0 && m.dg == 0 && m.dg2 == 0);
+    m = pf_transfer_moments_filter(x, NULL, 3, PF_R(0.0), PF_R(1.0));
+    bad += !(m.g == 0 && m.g2 == 0 && m.dg == 0 && m.dg2 == 0);
+    m = pf_transfer_moments_filter(x, c, 0, PF_R(0.0), PF_R(1.0));
+    bad += !(m.g == 0 && m.g2 == 0 && m.dg == 0 && m.dg2 == 0);
+    m = pf_transfer_moments_filter(x, c, INT_MIN, PF_R(0.0), PF_R(1.0));
+    bad += !(m.g == 0 && m.g2 == 0 && m.dg == 0 && m.dg2 == 0);
+    PF_CHECK(bad == 0, "transfer moments of bad arguments not zero");
+    /* pf_colormap_table_build */
+    table_canary(&t);
+    bad += pf_colormap_table_build(NULL, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, NULL, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), NULL, c, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, NULL, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 0, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 1, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 4, INT_MIN, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_ERR_ARG;
+    bad += pf_colormap_table_build(&t, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 0) != PF_ERR_ARG;
+    /* sizes above the limits: PF_ERR_SIZE, checked before the (small) buffer is touched */
+    bad += pf_colormap_table_build(&t, buf, (int)PF_MAX_SIDE + 1, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) !=
+           PF_ERR_SIZE;
+    bad += pf_colormap_table_build(&t, buf, INT_MAX, INT_MAX, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_ERR_SIZE;
+    bad += pf_colormap_table_build(&t, buf, (int)PF_MAX_SIDE, (int)PF_MAX_SIDE, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c,
+                                   3, 1) != PF_ERR_SIZE;
+    bad += pf_colormap_table_build(&t, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, INT_MAX, INT_MAX / 16) !=
+           PF_ERR_SIZE;
+    PF_CHECK(bad == 0 && table_untouched(&t) && canaries_intact(buf, 64), "build: %d wrong codes, or something written",
+             bad);
+    /* pf_colormap_table_lookup: NULLs and descriptions the builder would reject */
+    bad += pf_colormap_table_build(&good, buf, 4, 4, PF_R(-1.0), PF_R(1.0), PF_R(1.0), x, c, 3, 2) != PF_OK;
+    fill_canary(out, 4);
+    bad += pf_colormap_table_lookup(NULL, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    bad += pf_colormap_table_lookup(&good, PF_R(0.0), PF_R(0.5), NULL) != PF_ERR_ARG;
+    t = good;
+    t.data = NULL;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    memset(&t, 0, sizeof t);
+    t.data = buf;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG; /* zeroed description */
+    t = good;
+    t.n_mean = 1;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    t = good;
+    t.channels = 0;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    t = good;
+    t.mean_max = (pf_real)NAN;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    t = good;
+    t.sigma_max = PF_R(0.0);
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_ARG;
+    t = good;
+    t.n_sigma = INT_MAX;
+    bad += pf_colormap_table_lookup(&t, PF_R(0.0), PF_R(0.5), out) != PF_ERR_SIZE;
+    PF_CHECK(bad == 0 && canaries_intact(out, 4), "lookup: %d wrong codes, or out written", bad);
+}
+
+/* Reproducer 5: pf_colormap_filter(x, c, 3, 1 << 30, 0, 1, out) indexed c with int
+   k * channels, which overflows. The offsets are long long now; n * channels above
+   PF_MAX_REALS is rejected before anything is read. Running the reproducer itself reads
+   3 x 2^30 values and writes 2^30: PF_TEST_HUGE=1 in the environment runs it on guarded
+   mappings, by hand only (measured here: float passed in 370 s at 16.8 GB resident - the
+   kernel backed the read-only pages too; double needs more than the 23 GB this machine has
+   and was OOM-killed). By default the same layout runs with 2^22 channels. */
+static void test_mem_filter_channels(void)
+{
+    static const pf_real x[3] = { PF_R(-1.0), PF_R(0.0), PF_R(1.0) };
+    pf_real small_c[4], out[4];
+    const char *huge = getenv("PF_TEST_HUGE");
+    int channels = (huge && huge[0] == '1') ? 1 << 30 : 1 << 22, rc;
+    long long nc = 3LL * channels;
+    size_t cbytes = (size_t)nc * sizeof(pf_real), obytes = (size_t)channels * sizeof(pf_real);
+    pf_real *c, *o;
+    long double w0, w2;
+    fill_canary(small_c, 4);
+    fill_canary(out, 4);
+    /* above PF_MAX_REALS: rejected without reading c (a 4-entry array: ASan would see a read) */
+    rc = pf_colormap_filter(x, small_c, 1 << 20, 1 << 21, PF_R(0.0), PF_R(1.0), out);
+    PF_CHECK(rc == (PF_MAX_REALS < (1LL << 41) ? PF_ERR_SIZE : rc), "2^41 reals: rc %d", rc);
+    rc = pf_colormap_filter(x, small_c, INT_MAX, INT_MAX, PF_R(0.0), PF_R(1.0), out);
+    PF_CHECK(rc == PF_ERR_SIZE && canaries_intact(out, 4), "INT_MAX^2 reals: rc %d, or out written", rc);
+    rc = pf_height_colormap_filter(x, small_c, INT_MAX, INT_MAX, 1, 1, 0, 1, 0, 0, out);
+    PF_CHECK(rc == PF_ERR_SIZE && canaries_intact(out, 4), "height filter INT_MAX^2 reals: rc %d", rc);
+    if ((unsigned long long)nc > ((size_t)-1) / sizeof(pf_real) || nc > PF_MAX_REALS) return;
+    c = (pf_real *)pf_test_guarded_alloc(cbytes);
+    o = (pf_real *)pf_test_guarded_alloc(obytes);
+    if (!c || !o) {
+        pf_test_note("skipped the guarded run: no mapping");
+        pf_test_guarded_free(c, cbytes);
+        pf_test_guarded_free(o, obytes);
+        return;
+    }
+    /* knot values: channel 0 and the last channel set, everything else 0 (untouched pages) */
+    c[0] = PF_R(1.0);
+    c[2LL * channels] = PF_R(3.0);
+    c[(long long)channels - 1] = PF_R(5.0);
+    c[nc - 1] = PF_R(7.0);
+    rc = pf_colormap_filter(x, c, 3, channels, PF_R(0.0), PF_R(1.0), o);
+    /* E[C(X)] for the map 1 -> 0 -> 3 on x = -1, 0, 1: the weights of knots 0 and 2 */
+    {
+        pf_real one[3] = { PF_R(1.0), PF_R(0.0), PF_R(0.0) }, three[3] = { PF_R(0.0), PF_R(0.0), PF_R(1.0) }, r;
+        pf_colormap_filter(x, one, 3, 1, PF_R(0.0), PF_R(1.0), &r);
+        w0 = (long double)r;
+        pf_colormap_filter(x, three, 3, 1, PF_R(0.0), PF_R(1.0), &r);
+        w2 = (long double)r;
+    }
+    PF_CHECK(rc == PF_OK, "rc %d", rc);
+    PF_CHECK(fabsl((long double)o[0] - (w0 + 3.0L * w2)) <= 8.0L * PF_TEST_EPS &&
+                 fabsl((long double)o[channels - 1] - (5.0L * w0 + 7.0L * w2)) <= 32.0L * PF_TEST_EPS &&
+                 o[channels / 2] == PF_R(0.0),
+             "channel 0 %g, last %g", (double)o[0], (double)o[channels - 1]);
+    pf_test_note("3 knots x %d channels (%lld reals) on guarded mappings%s", channels, nc,
+                 channels == 1 << 30 ? " (the reproducer itself)" : "; PF_TEST_HUGE=1 for 2^30");
+    pf_test_guarded_free(c, cbytes);
+    pf_test_guarded_free(o, obytes);
+}
+
+/* Reproducer 8: ranges whose bounds, width or step are not finite are PF_ERR_ARG, nothing
+   written; a wide range whose width is finite builds finite sample means. */
+static void test_mem_table_ranges(void)
+{
+    static const pf_real x[2] = { PF_R(-1.0), PF_R(1.0) };
+    static const pf_real c[2] = { PF_R(0.25), PF_R(0.75) };
+    const pf_real inf = (pf_real)INFINITY, nan = (pf_real)NAN, big = PF_REAL_MAX;
+    const pf_real tiny = PF_REAL_MIN * PF_REAL_EPSILON; /* smallest subnormal */
+    const pf_real bad_ranges[][3] = {
+        { -inf, PF_R(1.0), PF_R(1.0) }, { PF_R(-1.0), inf, PF_R(1.0) },    { -inf, inf, PF_R(1.0) },
+        { PF_R(-1.0), PF_R(1.0), inf }, { nan, PF_R(1.0), PF_R(1.0) },     { PF_R(-1.0), nan, PF_R(1.0) },
+        { PF_R(-1.0), PF_R(1.0), nan }, { -big, big, PF_R(1.0) },          { PF_R(1.0), PF_R(-1.0), PF_R(1.0) },
+        { PF_R(1.0), PF_R(1.0), PF_R(1.0) }, { PF_R(-1.0), PF_R(1.0), PF_R(0.0) }, { PF_R(-1.0), PF_R(1.0), PF_R(-1.0) },
+        { PF_R(0.0), tiny, PF_R(1.0) }, /* step tiny / 4 underflows to 0 */
+        { PF_R(-1.0), PF_R(1.0), tiny }, { PF_R(0.0), tiny, PF_R(1.0) }
+    };
+    pf_real buf[5 * 5], out[2] = { PF_R(0.0), PF_R(0.0) };
+    pf_colormap_table t;
+    size_t k;
+    int bad = 0, rc, i;
+    fill_canary(buf, 25);
+    for (k = 0; k < sizeof bad_ranges / sizeof bad_ranges[0]; k++) {
+        table_canary(&t);
+        rc = pf_colormap_table_build(&t, buf, 5, 5, bad_ranges[k][0], bad_ranges[k][1], bad_ranges[k][2], x, c, 2, 1);
+        if (rc != PF_ERR_ARG || !table_untouched(&t)) {
+            bad++;
+            printf("    range %d: [%g, %g], sigma_max %g: rc %d\n", (int)k, (double)bad_ranges[k][0],
+                   (double)bad_ranges[k][1], (double)bad_ranges[k][2], rc);
+        }
+    }
+    PF_CHECK(bad == 0 && canaries_intact(buf, 25), "%d bad ranges accepted, or the buffer written", bad);
+    /* the issue's [-3e38, 3e38]: its width overflows float (PF_ERR_ARG), fits double */
+    table_canary(&t);
+    rc = pf_colormap_table_build(&t, buf, 5, 5, (pf_real)-3e38, (pf_real)3e38, PF_R(1.0), x, c, 2, 1);
+#ifdef PF_DOUBLE
+    PF_CHECK(rc == PF_OK && buf[0] == PF_R(0.25) && buf[4] == PF_R(0.75), "double [-3e38, 3e38]: rc %d", rc);
+#else
+    PF_CHECK(rc == PF_ERR_ARG && table_untouched(&t) && canaries_intact(buf, 25), "float [-3e38, 3e38]: rc %d", rc);
+#endif
+    /* a wide range with a finite width: every sample mean finite (width * i / (n - 1) used to
+       overflow before the division), the entries the map's ends and middle */
+    {
+        pf_real lo = -big / PF_R(2.5), hi = big / PF_R(2.5);
+        rc = pf_colormap_table_build(&t, buf, 5, 5, lo, hi, PF_R(1.0), x, c, 2, 1);
+        for (i = 0; i < 25; i++) bad += !pf_test_finite(buf[i]);
+        PF_CHECK(rc == PF_OK && bad == 0 && buf[0] == PF_R(0.25) && buf[4] == PF_R(0.75) && buf[2] == PF_R(0.5) &&
+                     buf[24] == PF_R(0.75),
+                 "wide range: rc %d, entries %g %g %g", rc, (double)buf[0], (double)buf[2], (double)buf[4]);
+        rc = pf_colormap_table_lookup(&t, hi, PF_R(0.5), out);
+        PF_CHECK(rc == PF_OK && out[0] == PF_R(0.75), "lookup of the wide table %g", (double)out[0]);
+        rc = pf_colormap_table_lookup(&t, -big, PF_R(0.5), out); /* mean - mean_min finite, u < 0 */
+        PF_CHECK(rc == PF_OK && out[0] == PF_R(0.25), "lookup below the wide table %g", (double)out[0]);
+    }
+}
+
+/* NaN means and deviations: what the header documents. */
+static void test_mem_nan_inputs(void)
+{
+    static const pf_real x[3] = { PF_R(-1.0), PF_R(0.0), PF_R(1.0) };
+    static const pf_real c[6] = { PF_R(0.2), PF_R(1.0), PF_R(0.9), PF_R(0.0), PF_R(0.4), PF_R(0.6) };
+    const pf_real nan = (pf_real)NAN;
+    static const pf_real sigmas[] = { PF_R(0.0), PF_R(1e-6), PF_R(0.5), PF_R(1e6) };
+    pf_real out[2] = { PF_R(0.0), PF_R(0.0) }, ref[2] = { PF_R(0.0), PF_R(0.0) };
+    pf_transfer_moments m;
+    size_t i;
+    int bad = 0;
+    for (i = 0; i < sizeof sigmas / sizeof sigmas[0]; i++) {
+        bad += pf_colormap_filter(x, c, 3, 2, nan, sigmas[i], out) != PF_OK;
+        bad += !(PF_FABS(out[0] - PF_R(0.3)) <= PF_R(1e-6) && PF_FABS(out[1] - PF_R(0.8)) <= PF_R(1e-6));
+        m = pf_transfer_moments_filter(x, c, 3, nan, sigmas[i]); /* g = 0.2, 1.0, 0.9 at x */
+        bad += !(PF_FABS(m.g - PF_R(0.55)) <= PF_R(1e-6) && PF_FABS(m.g2 - PF_R(0.425)) <= PF_R(1e-6) && m.dg == 0 &&
+                 m.dg2 == 0);
+    }
+    PF_CHECK(bad == 0, "NaN mean: %d results differ from (c[0] + c[n-1]) / 2", bad);
+    /* NaN sigma: no filtering (the map at the mean), as sigma = 0 */
+    pf_colormap_filter(x, c, 3, 2, PF_R(0.5), PF_R(0.0), ref);
+    pf_colormap_filter(x, c, 3, 2, PF_R(0.5), nan, out);
+    PF_CHECK(out[0] == ref[0] && out[1] == ref[1] && PF_FABS(ref[0] - PF_R(0.65)) < PF_R(1e-6), "NaN sigma: %g vs %g",
+             (double)out[0], (double)ref[0]);
+    /* the height filter: NaN Lambda reads as 0, NaN mean_h gives Vbar (c[0] + c[n-1]) / 2, Vbar = 2/5 */
+    pf_height_colormap_filter(x, c, 3, 2, nan, nan, PF_R(0.1), PF_R(0.5), PF_R(0.0), PF_R(0.0), out);
+    pf_height_colormap_filter(x, c, 3, 2, PF_R(0.0), PF_R(0.0), PF_R(0.1), PF_R(0.5), PF_R(0.0), PF_R(0.0), ref);
+    PF_CHECK(out[0] == ref[0] && out[1] == ref[1], "NaN Lambdas");
+    pf_height_colormap_filter(x, c, 3, 2, PF_R(1.0), PF_R(3.0), nan, PF_R(0.5), PF_R(0.0), PF_R(0.0), out);
+    PF_CHECK(PF_FABS(out[0] - PF_R(0.4) * PF_R(0.3)) <= PF_R(1e-6) && PF_FABS(out[1] - PF_R(0.4) * PF_R(0.8)) <= PF_R(1e-6),
+             "NaN mean_h: %g %g", (double)out[0], (double)out[1]);
 }
 
 /* ------------------------------------------------------------------ edge cases (also -ffast-math) */
@@ -962,6 +1390,14 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_height_colour_eq13);
     PF_TEST_RUN(test_noise_perturbed_heights);
     PF_TEST_RUN(test_transfer_moments_monte_carlo);
+    PF_TEST_RUN(test_visible_height_published_range);
+    PF_TEST_RUN(test_mem_table_size);
+    PF_TEST_RUN(test_mem_table_far_corner);
+    PF_TEST_RUN(test_mem_table_build_guarded);
+    PF_TEST_RUN(test_mem_null_and_sizes);
+    PF_TEST_RUN(test_mem_filter_channels);
+    PF_TEST_RUN(test_mem_table_ranges);
+    PF_TEST_RUN(test_mem_nan_inputs);
     PF_TEST_RUN(edge_visibility_extremes);
     PF_TEST_RUN(edge_closed_forms_extremes);
     PF_TEST_RUN(edge_visible_height_extremes);

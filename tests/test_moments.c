@@ -1425,6 +1425,49 @@ static void test_issue19_build_near_max_finite(void)
     PF_CHECK(worst <= 4.0L * PF_TEST_EPS, "%Lg eps", worst / PF_TEST_EPS);
 }
 
+/* Finding 7 in every build, -ffast-math included (there the compiler turns w / wmax into
+   w * (1/wmax), subnormal and flushed to 0 in float, and folds two divisions into one whose
+   divisor overflows): weights at PF_REAL_MAX, alone and mixed with ordinary ones, give the
+   plain mean to a few ulps. */
+static void edge_issue19_weighted_mean_huge_weights(void)
+{
+    pf_real t[8] = {1, 1, 1, 1, 1, 1, 1, 1}, w2[2] = {PF_REAL_MAX, PF_REAL_MAX}, o[1];
+    pf_real w8[8] = {PF_R(1e-30), PF_REAL_MAX, PF_R(0.615), PF_R(0.896), PF_R(0.621), PF_R(0.198),
+                     PF_REAL_MAX, PF_R(0.92)};
+    pf_real tt[3] = {2, 4, 100}, wt[3] = {PF_R(1e-30), PF_R(3e-30), PF_R(0.0)};
+    int bad = 0;
+    bad += pf_moments_weighted_mean(t, 1, w2, 2, o) != PF_OK || !(PF_FABS(o[0] - PF_R(1.0)) <= PF_R(4.0) * PF_REAL_EPSILON);
+    bad += pf_moments_weighted_mean(t, 1, w8, 8, o) != PF_OK || !(PF_FABS(o[0] - PF_R(1.0)) <= PF_R(8.0) * PF_REAL_EPSILON);
+    bad += pf_moments_weighted_mean(tt, 1, wt, 3, o) != PF_OK || !(PF_FABS(o[0] - PF_R(3.5)) <= PF_R(16.0) * PF_REAL_EPSILON);
+    bad += !(PF_FABS(pf_esm_log_weighted_mean(t, w2, 2) - PF_R(1.0)) <= PF_R(4.0) * PF_REAL_EPSILON);
+    bad += !(PF_FABS(pf_esm_log_weighted_mean(t, w8, 8) - PF_R(1.0)) <= PF_R(8.0) * PF_REAL_EPSILON);
+    PF_CHECK(bad == 0, "%d failures", bad);
+}
+
+/* Even-size box levels under every build, -ffast-math included (which factors the four
+   products into one overflowing sum): texels of +-PF_REAL_MAX mixed at random, and an EVSM-4
+   depth pyramid at the largest float exponent (second moments 1.65e38), stay finite and within
+   their level 0 range. */
+static void edge_issue19_box_near_max_finite(void)
+{
+    int w = 24, h = 36, bad = 0;
+    long long n = pf_mip_texel_count(w, h), i;
+    pf_real *pyr = alloc_real(n * 4), *z = alloc_real((long long)w * h);
+    unsigned s = 12345u;
+    for (i = 0; i < (long long)w * h; ++i) {
+        s = s * 1103515245u + 12345u;
+        pyr[i] = ((s >> 16) & 1u) ? PF_REAL_MAX : -PF_REAL_MAX;
+        z[i] = PF_R(1.0);
+    }
+    bad += pf_mip_build(pyr, w, h, 1) != PF_OK;
+    for (i = 0; i < n; ++i) bad += !(pyr[i] <= PF_REAL_MAX && pyr[i] >= -PF_REAL_MAX);
+    bad += pf_depth_pyramid_from_depths(z, w, h, PF_DEPTH_EVSM4, PF_EVSM_EXP_MAX_F32, PF_EVSM_EXP_MAX_F32, pyr) != PF_OK;
+    for (i = 0; i < n * 4; ++i) bad += !(pyr[i] <= PF_REAL_MAX && pyr[i] >= -PF_REAL_MAX);
+    free(pyr);
+    free(z);
+    PF_CHECK(bad == 0, "%d non-finite texels or failed builds", bad);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1449,6 +1492,8 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_issue19_largest_sizes_guarded);
     PF_TEST_RUN(test_issue19_huge_coordinates);
     PF_TEST_RUN(test_issue19_weighted_mean_huge_weights);
+    PF_TEST_RUN(edge_issue19_weighted_mean_huge_weights);
+    PF_TEST_RUN(edge_issue19_box_near_max_finite);
     PF_TEST_RUN(test_issue19_build_near_max_finite);
     return PF_TEST_END();
 }

@@ -1,13 +1,16 @@
 #!/bin/sh
-# tests/fuzz/coverage.sh - every public evaluator has an entry in tests/fuzz/pf_calls.h.
+# tests/fuzz/coverage.sh - every public function has an entry in tests/fuzz/pf_calls.h (the
+# evaluators) or tests/fuzz/pf_buffers.h (the pointer-taking CPU-only functions).
 #
 # usage: sh tests/fuzz/coverage.sh        (from anywhere; exits 1 on a gap, 2 on a tool error)
 #
-# The public functions are what tests/portability/gen.awk calls (every `PF_DEF <type> pf_name(`
-# of include/pf_*.h, the portability generator's own definition), plus the pointer-taking
-# C-only ones it skips. Each must appear in pf_calls.h either as an entry
-# `PFC_E(<module>, pf_name, ...)` under the module of the header that defines it (pf_<module>.h)
-# or in pfc_skipped[]. Entries naming a function that no longer exists fail too. Used by
+# The public evaluators are what tests/portability/gen.awk calls (every `PF_DEF <type> pf_name(`
+# of include/pf_*.h, the portability generator's own definition); each must appear in
+# pf_calls.h as an entry `PFC_E(<module>, pf_name, ...)` under the module of the header that
+# defines it (pf_<module>.h). The public CPU-only functions are every `PF_CPU_DEF <type>
+# pf_name(` of include/pf_*.h (and the typed samplers stamped by PFI_TYPED_SAMPLE); each must be
+# named in a driver row `{ "pf_a pf_b ...", "<module>", ...` of pfb_table in pf_buffers.h.
+# Entries naming a function that no longer exists (or under another module) fail too. Used by
 # tests/fuzz/run.sh and bench/stability.sh, so a new function cannot escape the stability
 # table or the fuzzers silently.
 set -u
@@ -24,20 +27,27 @@ for h in include/pf_*.h; do
     awk -v mode=c -v targets="$b" -v includes="" -f tests/portability/gen.awk include/pf_*.h > "$TMP/gen" || {
         echo "coverage: gen.awk failed on $b" >&2; exit 2; }
     sed -n 's/.*PFP_FN(\(pf_[A-Za-z0-9_]*\)).*/\1/p' "$TMP/gen" | sed "s/^/$m /" >> "$TMP/public"
-    sed -n 's/^\/\* [^ ]* \(pf_[A-Za-z0-9_]*\): C-only.*/\1/p' "$TMP/gen" | sed "s/^/$m /" >> "$TMP/skipped_public"
 done
-touch "$TMP/skipped_public"
 sort -u "$TMP/public" > "$TMP/public.s"
-cut -d' ' -f2 "$TMP/skipped_public" | sort -u > "$TMP/skipped_public.s"
 
 F=tests/fuzz/pf_calls.h
 sed -n 's/^ *PFC_E(\([a-z0-9_]*\), *\(pf_[A-Za-z0-9_]*\),.*/\1 \2/p' "$F" | sort -u > "$TMP/entries.s"
-# pfc_skipped[]: the quoted names between its braces
-awk '/pfc_skipped\[\] = \{/ {on = 1; next} on && /^\};/ {on = 0} on' "$F" |
-    sed -n 's/^ *"\(pf_[A-Za-z0-9_]*\)".*/\1/p' | sort -u > "$TMP/skipped.s"
+
+# CPU-only public functions, and the rows of pfb_table
+: > "$TMP/cpu"
+for h in include/pf_*.h; do
+    m=$(basename "$h" .h); m=${m#pf_}
+    { sed -n 's/^PF_CPU_DEF [^(]*[ *]\(pf_[A-Za-z0-9_]*\)(.*/\1/p' "$h"
+      sed -n 's/^PFI_TYPED_SAMPLE([^,]*, *\(pf_[A-Za-z0-9_]*\),.*/\1/p' "$h"; } | sed "s/^/$m /" >> "$TMP/cpu"
+done
+sort -u "$TMP/cpu" > "$TMP/cpu.s"
+B=tests/fuzz/pf_buffers.h
+awk '/pfb_table\[\] = \{/ {on = 1; next} on && /^\};/ {on = 0}
+     on && /^ *\{ "pf_/ { split($0, q, "\""); n = split(q[2], f, " "); for (i = 1; i <= n; i++) print q[4], f[i] }' "$B" |
+    sort -u > "$TMP/bentries.s"
 
 status=0
-missing=$(comm -23 "$TMP/public.s" "$TMP/entries.s" | awk '{print $2}' | sort | comm -23 - "$TMP/skipped.s")
+missing=$(comm -23 "$TMP/public.s" "$TMP/entries.s" | awk '{print $2}' | sort)
 if [ -n "$missing" ]; then
     echo "coverage: public evaluators without an entry in $F (add PFC_E lines):" >&2
     echo "$missing" | sed 's/^/  /' >&2
@@ -49,17 +59,17 @@ if [ -n "$stale" ]; then
     echo "$stale" | sed 's/^/  /' >&2
     status=1
 fi
-unknown_skip=$(cut -d' ' -f2 "$TMP/public.s" | sort -u | cat - "$TMP/skipped_public.s" | sort -u | comm -13 - "$TMP/skipped.s")
-if [ -n "$unknown_skip" ]; then
-    echo "coverage: pfc_skipped names no public function:" >&2
-    echo "$unknown_skip" | sed 's/^/  /' >&2
+bmissing=$(comm -23 "$TMP/cpu.s" "$TMP/bentries.s")
+if [ -n "$bmissing" ]; then
+    echo "coverage: public CPU-only (PF_CPU_DEF) functions without a driver in $B's pfb_table:" >&2
+    echo "$bmissing" | sed 's/^/  /' >&2
     status=1
 fi
-nskip_unlisted=$(comm -23 "$TMP/skipped_public.s" "$TMP/skipped.s")
-if [ -n "$nskip_unlisted" ]; then
-    echo "coverage: pointer-taking public functions neither in pfc_skipped nor with an entry:" >&2
-    echo "$nskip_unlisted" | sed 's/^/  /' >&2
+bstale=$(comm -13 "$TMP/cpu.s" "$TMP/bentries.s")
+if [ -n "$bstale" ]; then
+    echo "coverage: pfb_table names no such CPU-only function (or under the wrong module):" >&2
+    echo "$bstale" | sed 's/^/  /' >&2
     status=1
 fi
-[ $status -eq 0 ] && echo "coverage: $(wc -l < "$TMP/entries.s" | tr -d ' ') entries, $(wc -l < "$TMP/skipped.s" | tr -d ' ') skipped, every public evaluator covered"
+[ $status -eq 0 ] && echo "coverage: $(wc -l < "$TMP/entries.s" | tr -d ' ') evaluator entries, $(wc -l < "$TMP/bentries.s" | tr -d ' ') CPU-only functions in pf_buffers.h, every public function covered"
 exit $status

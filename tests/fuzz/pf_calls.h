@@ -23,8 +23,8 @@
    to be free of crashes and undefined behaviour (the sanitizers watch).
 
    Coverage: bench/stability.sh and tests/fuzz/run.sh compare pfc_table against the public
-   functions that tests/portability/gen.awk finds; a public evaluator without an entry (and
-   not in pfc_skipped) fails both. */
+   functions that tests/portability/gen.awk finds, and pf_buffers.h's pfb_table against the
+   public PF_CPU_DEF functions; a public function without an entry fails both. */
 #ifndef PF_CALLS_H
 #define PF_CALLS_H
 
@@ -1428,15 +1428,6 @@ static void pfc_f_pf_transfer_slope_stats(pfc_ctx *c)
     pf_slope_moments m = pfc_moments(c);
     pfc_psd_stats(c, pf_transfer_slope_stats(t, m.ex, m.ey, m.exx, m.eyy, m.exy));
 }
-static void pfc_f_pf_colormap_table_size(pfc_ctx *c)
-{
-    /* documented sizes: their product must fit an int (n_mean, n_sigma <= 1290, channels <= 4) */
-    int a = pfc_int(c, -2, 1290), b = pfc_int(c, -2, 1290), ch = pfc_int(c, -1, 4);
-    int k = pf_colormap_table_size(a, b, ch);
-    pfc_out(c, PF_R(k));
-    pfc_flag(c, k < 0);
-}
-
 /* ================================================================ the table */
 #define PFC_E(mod, name, flags, dom, reg) { #name, #mod, pfc_f_##name, flags, dom, reg }
 #define PFC_LIN "finite texels of the type's range, convex weights"
@@ -1649,21 +1640,13 @@ static const pfc_entry pfc_table[] = {
     PFC_E(height, pf_transfer_segment_moments, 0, "knots x0 <= x1 +-2^20, g +-2^10, mean, sigma", "x1 <= x0 gives zeros; E[g^2] clamped at 0 (cancellation); g'^2 = ((g1-g0)/(x1-x0))^2 huge for tiny segments, overflows past 1.8e19 (f)"),
     PFC_E(height, pf_transfer_height, PFC_WIDE, "segment moments", "dev clamped at 0 (cancellation E[g^2] - E[g]^2)"),
     PFC_E(height, pf_transfer_slope_stats, 0, "segment moments, filtered slope moments", "as pf_slope_stats_from_moments; products E[g'^2] E[x^2] overflow as their exact value"),
-    PFC_E(height, pf_colormap_table_size, 0, "n_mean, n_sigma in [-2, 1290], channels [-1, 4]", "0 for sizes < 2; int overflow (UB) when the product exceeds 2^31 - 1 (outside the swept domain)"),
 };
 #define PFC_COUNT ((int)(sizeof pfc_table / sizeof pfc_table[0]))
 
 /* Public functions deliberately without an entry (checked by the coverage scripts, which
    also require every name here to exist). */
-static const char *const pfc_skipped[] = {
-    "pf_gg_hermite_generate",     /* pointer-taking, CPU-only: fuzzed by fuzz_gaussgrid.c */
-    "pf_colormap_filter",         /* pointer-taking CPU-only buffer walkers (optional) */
-    "pf_height_colormap_filter",
-    "pf_transfer_moments_filter",
-    "pf_colormap_table_build",
-    "pf_colormap_table_lookup",
-};
-#define PFC_SKIPPED_COUNT ((int)(sizeof pfc_skipped / sizeof pfc_skipped[0]))
+/* The pointer-taking CPU-only functions (PF_CPU_DEF) have no entry here: tests/fuzz/pf_buffers.h
+   drives them (guarded buffers, return codes), and tests/fuzz/coverage.sh checks its table. */
 
 /* Run entry e once on the words of c (the ctx keeps its word source). */
 static void pfc_call(pfc_ctx *c, const pfc_entry *e)

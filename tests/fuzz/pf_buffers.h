@@ -1,0 +1,1504 @@
+/* tests/fuzz/pf_buffers.h - drivers for the pointer-taking CPU-only functions (pf_moments.h
+   pyramids, builders and samplers; pf_height.h colour-map arrays and tables; pf_gaussgrid.h's
+   Gauss-Hermite generator), checked against the rules at the end of include/pf_core.h
+   ("CPU only: sizes and errors").
+
+   Shared by the libFuzzer harnesses tests/fuzz/fuzz_<module>_buffers.c and the stability sweep
+   (bench/stability.c, section "pointer-taking functions"). Test code: globals, stdio, mmap.
+
+   ONE CALL OF A DRIVER draws every size and argument from the word source of pf_calls.h
+   (fuzzer bytes, or the seeded generator of the sweep), computes the return code the contract
+   allows INDEPENDENTLY of the library (its own side, texel-count and buffer-size arithmetic in
+   long long, checked by division), then:
+   - rejected arguments: every pointer it passes is a small canary-filled guarded buffer (or
+     NULL, when the draw asks for one); it asserts the error code (PF_ERR_ARG or PF_ERR_SIZE;
+     either is accepted when both kinds of fault are present) and that no canary changed;
+   - accepted arguments: every buffer is mapped at EXACTLY its documented size (pfb_map) with a
+     PROT_NONE guard page on both sides, the buffer touching one of them (the end one usually,
+     the start one in 1 draw of 4) and canary bytes in the rest of its page, so any access out
+     of bounds faults (ASan does not see mmap'd memory, the guards do). Mappings are
+     MAP_NORESERVE and mostly untouched, so huge accepted maps (a 2^24 x 1 pyramid, 2^20 x 2^19,
+     up to PF_MAX_REALS reals) cost address space only. Samplers and the table lookup read a
+     few texels: they run on maps of every accepted size. Builders and filters touch their whole
+     buffers: they run only when every buffer holds at most pfb_work_cap reals (2^16 in the
+     fuzzers: 256 KB float, 512 KB double; 2^12 in the sweep), and are still called with huge
+     sizes whose rejection is cheap;
+   - outputs: every output the call must write is written (no canary left), finite where the
+     contract promises it (finite inputs in the documented domain), and within the range the
+     mathematics allows (a pyramid level is a convex combination of level 0; a filtered
+     colour map lies between its knot values; a sample equals an independent long double
+     bilinear/trilinear reference on small maps, and 0 on the untouched zero pages of huge
+     ones). Sample coordinates u, v and lod range over every float: NaN, inf, huge (|u| >= 1e6
+     must clamp, not jump to 0), subnormal.
+   A violation calls pfb_fail: the fuzzers print a reproducer line and trap; the sweep counts it
+   (pfb_tally). Every mapping is unmapped at the end of each driver call (pfb_release_all,
+   also after a fault caught by the sweep). */
+#ifndef PF_BUFFERS_H
+#define PF_BUFFERS_H
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <stdarg.h>
+#include <limits.h>
+#include <sys/mman.h>
+#include <unistd.h>
+#include "pf_calls.h"
+
+/* The checks compute in long double on purpose (independent references): the float build's
+   -Wdouble-promotion, meant for library code, is silenced for this header only. */
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdouble-promotion"
+
+#ifndef MAP_ANONYMOUS
+#  define MAP_ANONYMOUS MAP_ANON
+#endif
+#ifndef MAP_NORESERVE
+#  define MAP_NORESERVE 0
+#endif
+
+/* ---------------------------------------------------------------- failures and tallies */
+enum { PFB_RC = 0, PFB_WROTE, PFB_NONFINITE, PFB_VALUE, PFB_OOB, PFB_KINDS };
+static const char *const pfb_kind_name[PFB_KINDS] = {
+    "wrong return code", "wrote on error", "non-finite output", "wrong output value", "out of bounds"
+};
+
+typedef struct pfb_tally {
+    double calls, rejected_n, run; /* driver calls; of which rejected by the contract; run in full */
+    double n[PFB_KINDS];
+    char example[PFB_KINDS][600];
+} pfb_tally;
+
+static pfb_tally *pfb_t;        /* where pfb_fail counts (sweep), or 0 */
+static int pfb_trap = 1;        /* fuzzers: print and trap on the first failure */
+static long long pfb_work_cap = 1LL << 16; /* builders and filters run when buffers <= this */
+static char pfb_line[600];      /* the current call, as a reproducer line */
+static int pfb_failed_kinds;    /* kinds already counted for this driver call */
+
+static void pfb_setcall(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(pfb_line, sizeof pfb_line, fmt, ap);
+    va_end(ap);
+    if (getenv("PFB_TRACE")) fprintf(stderr, "pfb: %s\n", pfb_line);
+}
+
+/* Set when the call drew a NaN or infinite input (coordinate, weight, range end). Under
+   -ffast-math, which lets the compiler assume no such value exists, such calls are checked for
+   memory safety and return codes only, not for their output values. */
+static int pfb_nonfinite_input;
+#ifdef __FAST_MATH__
+#  define PFB_FAST 1
+#else
+#  define PFB_FAST 0
+#endif
+
+static void pfb_fail(int kind, const char *fmt, ...)
+{
+    char what[300];
+    va_list ap;
+    if (PFB_FAST && pfb_nonfinite_input && (kind == PFB_NONFINITE || kind == PFB_VALUE)) return;
+    va_start(ap, fmt);
+    vsnprintf(what, sizeof what, fmt, ap);
+    va_end(ap);
+    if (pfb_trap) {
+        fprintf(stderr, "pf_fuzz: %s: %s\n  call: %s\n", pfb_kind_name[kind], what, pfb_line);
+        __builtin_trap();
+    }
+    if (pfb_t && !(pfb_failed_kinds & (1 << kind))) {
+        pfb_failed_kinds |= 1 << kind;
+        pfb_t->n[kind] += 1;
+        if (!pfb_t->example[kind][0])
+        {
+            size_t l = strlen(pfb_line) < 400 ? strlen(pfb_line) : 400;
+            memcpy(pfb_t->example[kind], pfb_line, l);
+            snprintf(pfb_t->example[kind] + l, sizeof pfb_t->example[kind] - l, " -> %.190s", what);
+        }
+    }
+}
+
+/* ---------------------------------------------------------------- guarded mappings
+   Buffers of up to PFB_ARENA_REALS reals come from a few arenas mapped once and reused (a
+   fresh page costs a page fault, over 100 us on some virtual machines, which would make the
+   fuzzers 10x slower); larger ones are fresh MAP_NORESERVE mappings, unmapped after each call.
+   Either way the buffer touches a PROT_NONE page on one side and has a PROT_NONE page on the
+   other side beyond the canary bytes that fill the rest of its pages. */
+#define PFB_MAX_MAPS 16
+#define PFB_ARENAS 4
+#define PFB_ARENA_REALS (1LL << 18)
+static struct { unsigned char *base; size_t total; unsigned char *slack; size_t nslack; int arena; } pfb_maps[PFB_MAX_MAPS];
+static int pfb_nmaps;
+static size_t pfb_page;
+static struct { unsigned char *base; size_t rw; int used; } pfb_arena[PFB_ARENAS];
+#define PFB_SLACK_BYTE 0xA5
+
+/* an arena's data pages [base + page, base + page + data) readable and writable, every other
+   page of it PROT_NONE; 0 on failure */
+static unsigned char *pfb_arena_take(size_t data)
+{
+    size_t full = (size_t)PFB_ARENA_REALS * sizeof(pf_real);
+    int a;
+    full = (full + pfb_page - 1) / pfb_page * pfb_page;
+    for (a = 0; a < PFB_ARENAS && pfb_arena[a].used; ++a) {}
+    if (a == PFB_ARENAS || data > full) return 0;
+    if (!pfb_arena[a].base) {
+        unsigned char *base = (unsigned char *)mmap(0, full + 2 * pfb_page, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (base == (unsigned char *)MAP_FAILED) return 0;
+        pfb_arena[a].base = base;
+        pfb_arena[a].rw = 0;
+    }
+    if (pfb_arena[a].rw != data) {
+        unsigned char *d = pfb_arena[a].base + pfb_page;
+        if (data > pfb_arena[a].rw && mprotect(d, data, PROT_READ | PROT_WRITE)) return 0;
+        if (data < pfb_arena[a].rw && mprotect(d + data, pfb_arena[a].rw - data, PROT_NONE)) return 0;
+        pfb_arena[a].rw = data;
+    }
+    pfb_arena[a].used = 1;
+    return pfb_arena[a].base;
+}
+
+/* nreals pf_reals touching a PROT_NONE guard page (the end one, or the start one when
+   at_start), with a guard page on the other side too; the rest of the pages canary bytes.
+   0 when the mapping fails (too large for the address space). */
+static int pfb_fresh; /* the next pfb_map is a fresh mapping (zero pages), not an arena */
+static pf_real *pfb_map(long long nreals, int at_start)
+{
+    size_t bytes, data, total;
+    unsigned char *base, *p;
+    int arena = 1, fresh = pfb_fresh;
+    pfb_fresh = 0;
+    if (!pfb_page) pfb_page = (size_t)sysconf(_SC_PAGESIZE);
+    if (nreals < 0 || pfb_nmaps == PFB_MAX_MAPS) return 0;
+    bytes = (size_t)nreals * sizeof(pf_real);
+    data = (bytes + pfb_page - 1) / pfb_page * pfb_page;
+    total = data + 2 * pfb_page;
+    base = nreals <= PFB_ARENA_REALS && !fresh ? pfb_arena_take(data) : 0;
+    if (!base) {
+        arena = 0;
+        base = (unsigned char *)mmap(0, total, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+        if (base == (unsigned char *)MAP_FAILED) return 0;
+        if (data && mprotect(base + pfb_page, data, PROT_READ | PROT_WRITE)) { munmap(base, total); return 0; }
+    }
+    p = at_start ? base + pfb_page : base + pfb_page + data - bytes;
+    pfb_maps[pfb_nmaps].base = base;
+    pfb_maps[pfb_nmaps].total = total;
+    pfb_maps[pfb_nmaps].slack = at_start ? p + bytes : base + pfb_page;
+    pfb_maps[pfb_nmaps].nslack = data - bytes;
+    pfb_maps[pfb_nmaps].arena = arena;
+    memset(pfb_maps[pfb_nmaps].slack, PFB_SLACK_BYTE, data - bytes);
+    pfb_nmaps++;
+    return (pf_real *)(void *)p;
+}
+
+/* 1 when the slack bytes of every mapping are intact */
+static int pfb_slack_ok(void)
+{
+    int m;
+    size_t k;
+    for (m = 0; m < pfb_nmaps; ++m)
+        for (k = 0; k < pfb_maps[m].nslack; ++k)
+            if (pfb_maps[m].slack[k] != PFB_SLACK_BYTE) return 0;
+    return 1;
+}
+
+static void pfb_release_all(void)
+{
+    int a;
+    while (pfb_nmaps > 0) {
+        --pfb_nmaps;
+        if (!pfb_maps[pfb_nmaps].arena) munmap(pfb_maps[pfb_nmaps].base, pfb_maps[pfb_nmaps].total);
+    }
+    for (a = 0; a < PFB_ARENAS; ++a) pfb_arena[a].used = 0;
+}
+
+/* A canary real: a NaN with a payload no computation produces. */
+static pf_real pfb_canary(void)
+{
+#ifdef PF_DOUBLE
+    pfc_u64 u = 0x7FF4DEADBEEF5A5AULL;
+#else
+    pfc_u32 u = 0x7FA5A5A5u;
+#endif
+    pf_real x;
+    memcpy(&x, &u, sizeof x);
+    return x;
+}
+static int pfb_is_canary(pf_real x)
+{
+    pf_real k = pfb_canary();
+    return memcmp(&x, &k, sizeof x) == 0;
+}
+static void pfb_fill_canary(pf_real *p, long long n)
+{
+    long long i;
+    pf_real k = pfb_canary();
+    for (i = 0; i < n; ++i) p[i] = k;
+}
+static long long pfb_count_changed(const pf_real *p, long long n)
+{
+    long long i, k = 0;
+    for (i = 0; i < n; ++i) k += !pfb_is_canary(p[i]);
+    return k;
+}
+
+/* The small buffer every pointer of a rejected call gets: canary-filled, guarded on both
+   sides. A fixed pool of four, mapped once and kept (4 pages): a fresh page costs a page fault,
+   over 100 us on some virtual machines, and rejected calls are half of all calls. */
+#define PFB_SMALL 64
+#define PFB_POOL 4
+static pf_real *pfb_pool[PFB_POOL];
+static int pfb_npool_used;
+static pf_real *pfb_small(void)
+{
+    pf_real *p;
+    if (pfb_npool_used == PFB_POOL) return 0;
+    if (!pfb_pool[pfb_npool_used]) {
+        unsigned char *base;
+        if (!pfb_page) pfb_page = (size_t)sysconf(_SC_PAGESIZE);
+        base = (unsigned char *)mmap(0, 3 * pfb_page, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (base == (unsigned char *)MAP_FAILED) return 0;
+        if (mprotect(base + pfb_page, pfb_page, PROT_READ | PROT_WRITE)) return 0;
+        /* ends at the guard after it; the page before it is a guard too (the rest of the page
+           before the buffer is canary as well) */
+        pfb_pool[pfb_npool_used] = (pf_real *)(void *)(base + 2 * pfb_page) - PFB_SMALL;
+    }
+    p = pfb_pool[pfb_npool_used++];
+    pfb_fill_canary(p - (long long)(pfb_page / sizeof(pf_real) - PFB_SMALL), (long long)(pfb_page / sizeof(pf_real)));
+    return p;
+}
+/* 1 when the whole page of a pool buffer is canary (no write before the buffer either) */
+static int pfb_pool_page_ok(const pf_real *p)
+{
+    long long before = (long long)(pfb_page / sizeof(pf_real)) - PFB_SMALL;
+    return pfb_count_changed(p - before, before) == 0;
+}
+
+/* ---------------------------------------------------------------- the contract's arithmetic
+   Independent of include/: long long, products checked by division. */
+#define PFB_MAX_SIDE ((long long)1 << 24)
+#define PFB_MAX_REALS ((long long)PF_MAX_REALS)
+
+/* acceptable results: bits PFB_A_OK, PFB_A_ARG, PFB_A_SIZE */
+#define PFB_A_OK 1
+#define PFB_A_ARG 2
+#define PFB_A_SIZE 4
+/* arg: a NULL, an unknown enum, a bad range (PF_ERR_ARG); small: a size below its minimum
+   (PF_ERR_ARG); size: a side or buffer above its limit (PF_ERR_SIZE). Buffer sizes are
+   computed only from sizes that are within their limits. When faults of both codes are
+   present, either code is accepted (the contract orders no checks). */
+typedef struct pfb_expect { int arg, small, size; } pfb_expect;
+static void pfb_side(pfb_expect *e, long long n, long long min)
+{
+    if (n < min) e->small = 1;
+    else if (n > PFB_MAX_SIDE) e->size = 1;
+}
+static int pfb_allowed(pfb_expect e)
+{
+    if (!e.arg && !e.small && !e.size) return PFB_A_OK;
+    return (e.arg || e.small ? PFB_A_ARG : 0) | (e.size ? PFB_A_SIZE : 0);
+}
+static int pfb_rc_allowed(int rc, int allowed)
+{
+    return (rc == PF_OK && (allowed & PFB_A_OK)) || (rc == PF_ERR_ARG && (allowed & PFB_A_ARG)) ||
+           (rc == PF_ERR_SIZE && (allowed & PFB_A_SIZE));
+}
+static const char *pfb_allowed_name(int a)
+{
+    switch (a) {
+    case PFB_A_OK: return "PF_OK";
+    case PFB_A_ARG: return "PF_ERR_ARG";
+    case PFB_A_SIZE: return "PF_ERR_SIZE";
+    default: return "PF_ERR_ARG or PF_ERR_SIZE";
+    }
+}
+/* a * b, or -1 past PF_MAX_REALS (a, b >= 0) */
+static long long pfb_mul(long long a, long long b)
+{
+    if (a < 0 || b < 0) return -1;
+    if (b != 0 && a > PFB_MAX_REALS / b) return -1;
+    return a * b;
+}
+static long long pfb_next(long long n) { return n >= 2 ? n / 2 : 1; }
+/* levels of a valid w x h pyramid */
+static int pfb_levels(long long w, long long h)
+{
+    int n = 1;
+    while (w > 1 || h > 1) { w = pfb_next(w); h = pfb_next(h); ++n; }
+    return n;
+}
+/* texels of the levels below `level` (all of them for level >= levels), valid sides */
+static long long pfb_offset(long long w, long long h, int level)
+{
+    long long off = 0;
+    int l, nl = pfb_levels(w, h);
+    for (l = 0; l < level && l < nl; ++l) { off += w * h; w = pfb_next(w); h = pfb_next(h); }
+    return off;
+}
+static long long pfb_level_side(long long n, int level)
+{
+    int l;
+    for (l = 0; l < level && n > 1; ++l) n = pfb_next(n);
+    return n;
+}
+/* reals of a pyramid (valid sides), -1 past PF_MAX_REALS */
+static long long pfb_pyr_reals(long long w, long long h, long long channels)
+{
+    return pfb_mul(pfb_offset(w, h, 64), channels);
+}
+
+/* ---------------------------------------------------------------- drawing sizes and values */
+/* An int from the whole range, biased to the edges: small, 0, negative, around 2^24 (the
+   side limit), 2^30, INT_MAX, INT_MIN, powers of two +-1, the overflow points of int products
+   (46341 = ceil(sqrt(2^31)), 65537). `lo_small`..`hi_small` is the common small range. */
+static int pfb_int(pfc_ctx *c, int lo_small, int hi_small)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    static const int special[] = { 46340, 46341, 65535, 65536, 65537, 1 << 20, (1 << 20) + 1, 4095, 4097,
+                                   16384, 32768, 1 << 12, 1 << 16, 3, 1 << 15, 0 };
+    switch (PFC_R(u)) {
+    case 0: return (int)(b % 16u) - 3;
+    case 1: return (1 << 24) + (int)(b % 5u) - 2;
+    case 2: return (1 << 30) + (int)(b % 5u) - 2;
+    case 3: return INT_MAX - (int)(b % 4u);
+    case 4: return (b & 1u) ? INT_MIN + (int)((b >> 1) % 4u) : -(int)(b >> 1);
+    case 5: { int k = (int)(b % 31u); return (int)((1u << k) + (b >> 5) % 3u - 1u); }
+    case 6: return special[b % (sizeof special / sizeof special[0])];
+    case 7: return (int)(b >> 0) & INT_MAX;
+    default: return lo_small + (int)(b % (pfc_u32)(hi_small - lo_small + 1));
+    }
+}
+
+/* a real over the whole float range: NaN, +-inf, huge (1e6 .. PF_REAL_MAX), subnormal, 0,
+   around 1e6, and `lo..hi` uniform (most draws) */
+static pf_real pfb_coord(pfc_ctx *c, pf_real lo, pf_real hi)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    pf_real s = (b & 1u) ? PF_R(-1.0) : PF_R(1.0);
+    switch (PFC_R(u)) {
+    case 0: pfb_nonfinite_input = 1; return pfc_from_bits(0x7FC00000u);          /* NaN */
+    case 1: pfb_nonfinite_input = 1; return s * pfc_from_bits(0x7F800000u);      /* +-inf */
+    case 2: return s * pfc_mag(b >> 1, 20, PFC_EMAX);    /* huge: 1e6 .. max */
+    case 3: return s * (PF_R(1.0e6) + (pf_real)(b % 5u) - PF_R(2.0)); /* around the old 1e6 cut */
+    case 4: return s * pfc_mag(b >> 1, PFC_EMIN, -20);   /* tiny */
+    case 5: return (pf_real)(int)(b % 7u) * PF_R(0.5) - PF_R(1.0); /* -1 .. 2 in halves: edges */
+    case 6: return s * PF_REAL_MAX;
+    default: return lo + (hi - lo) * pfc_unif(b);
+    }
+}
+
+/* a finite value: moderate (|x| <= 2^e), sometimes 0 or +-2^e exactly */
+static pf_real pfb_val(pfc_ctx *c, int e)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    pf_real s = (b & 1u) ? PF_R(-1.0) : PF_R(1.0);
+    switch (PFC_R(u)) {
+    case 0: return PF_R(0.0);
+    case 1: return s * pfc_p2(e);
+    case 2: case 3: return s * pfc_mag(b >> 1, -30, e);
+    default: return s * pfc_unif(b) * pfc_p2(e < 4 ? e : 4);
+    }
+}
+
+/* Fill n reals with values: constant (1 draw in 4, the whole map one value), else per texel.
+   Only the first 32 words come from the source (then a generator seeded from them), so a
+   large map costs the fuzzer no input bytes. */
+static void pfb_fill(pfc_ctx *c, pf_real *p, long long n, int e)
+{
+    long long i;
+    pfc_ctx g;
+    pfc_u32 mode = pfc_next(c);
+    memset(&g, 0, sizeof g);
+    g.rng = ((pfc_u64)pfc_next(c) << 32) | pfc_next(c);
+    if (PFC_R(mode) < 4) {
+        pf_real v = pfb_val(c, e);
+        for (i = 0; i < n; ++i) p[i] = v;
+        return;
+    }
+    for (i = 0; i < n; ++i) p[i] = pfb_val(i < 32 ? c : &g, e);
+}
+
+/* 1 in 16: which of k pointers is NULL (0 = none) */
+static int pfb_null(pfc_ctx *c, int k)
+{
+    pfc_u32 u = pfc_next(c);
+    if (PFC_R(u) != 0) return 0;
+    return 1 + (int)(PFC_B(u) % (pfc_u32)k);
+}
+
+/* border enum: CLAMP, WRAP, or an unknown value */
+static int pfb_border(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c);
+    if (PFC_R(u) < 7) return PF_BORDER_CLAMP;
+    if (PFC_R(u) < 14) return PF_BORDER_WRAP;
+    return pfb_int(c, -2, 5);
+}
+static int pfb_border_ok(int b) { return b == PF_BORDER_CLAMP || b == PF_BORDER_WRAP; }
+
+static int pfb_finite(pf_real x) { return pfc_isfinite(x); }
+/* NaN by its bits (-ffast-math folds x != x) */
+static int pfb_isnan(pf_real x)
+{
+    pf_real inf = pfc_from_bits(0x7F800000u);
+    return !pfc_isfinite(x) && memcmp(&x, &inf, sizeof x) != 0 && (inf = -inf, memcmp(&x, &inf, sizeof x) != 0);
+}
+
+
+/* ---------------------------------------------------------------- calls
+   PFB_NORC stands for a function that returns a value rather than a code (the typed samplers,
+   pf_esm_log_weighted_mean, pf_transfer_moments_filter): their bad-argument value is checked
+   instead. */
+#define PFB_NORC 0x7A5A
+static int pfb_rc_check(int rc, int allowed, const char *fn)
+{
+    if (!(allowed & PFB_A_OK) && pfb_t) pfb_t->rejected_n += 1;
+    if (rc == PFB_NORC) return 1;
+    if (pfb_rc_allowed(rc, allowed)) return 1;
+    pfb_fail(PFB_RC, "%s returned %d, the contract says %s", fn, rc, pfb_allowed_name(allowed));
+    return 0;
+}
+
+
+/* The canaries of a rejected call are intact, and the slack of every mapping. */
+static void pfb_check_untouched(pf_real *const *bufs, int nbufs)
+{
+    int k;
+    for (k = 0; k < nbufs; ++k) {
+        if (bufs[k] && pfb_count_changed(bufs[k], PFB_SMALL))
+            pfb_fail(PFB_WROTE, "buffer %d: %lld reals written", k, pfb_count_changed(bufs[k], PFB_SMALL));
+        if (bufs[k] && !pfb_pool_page_ok(bufs[k])) pfb_fail(PFB_WROTE, "buffer %d: written before its start", k);
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* Every output real written and finite: reports the first canary left or non-finite value. */
+static void pfb_check_written(const pf_real *p, long long n, const char *what, int want_finite)
+{
+    long long i;
+    for (i = 0; i < n; ++i) {
+        if (pfb_is_canary(p[i])) { pfb_fail(PFB_VALUE, "%s[%lld] not written", what, i); return; }
+        if (want_finite && !pfb_finite(p[i])) {
+            pfb_fail(PFB_NONFINITE, "%s[%lld] = %a", what, i, (double)p[i]);
+            return;
+        }
+    }
+}
+
+/* per channel range of level 0 */
+#define PFB_MAXC 8
+typedef struct pfb_range { long double lo[PFB_MAXC], hi[PFB_MAXC], mag; } pfb_range;
+static pfb_range pfb_range_of(const pf_real *p, long long texels, int nc)
+{
+    pfb_range r;
+    long long i;
+    int k;
+    r.mag = 0;
+    for (k = 0; k < nc && k < PFB_MAXC; ++k) { r.lo[k] = 1e4000L; r.hi[k] = -1e4000L; }
+    for (i = 0; i < texels; ++i)
+        for (k = 0; k < nc && k < PFB_MAXC; ++k) {
+            long double x = p[i * nc + k];
+            if (x < r.lo[k]) r.lo[k] = x;
+            if (x > r.hi[k]) r.hi[k] = x;
+            if (x > r.mag) r.mag = x;
+            if (-x > r.mag) r.mag = -x;
+        }
+    return r;
+}
+/* every texel of levels >= 1 within level 0's range (a convex combination of it), to
+   rounding: tol relative to the largest magnitude, times the number of levels */
+static void pfb_check_levels(const pf_real *pyr, long long w, long long h, int nc, int log_space, const char *fn)
+{
+    long long i, t0 = w * h, total = pfb_offset(w, h, 64);
+    pfb_range r = pfb_range_of(pyr, t0, nc);
+    /* log space: log(sum w exp(l - m)) has an absolute error of a few eps per level */
+    long double tol = (r.mag + (log_space ? 1 : 0)) * (long double)PF_REAL_EPSILON * 4.0L * (long double)pfb_levels(w, h);
+    int k;
+    pfb_check_written(pyr, total * nc, "pyr", 1);
+    for (i = t0; i < total; ++i)
+        for (k = 0; k < nc && k < PFB_MAXC; ++k) {
+            long double x = pyr[i * nc + k];
+            if (!(x >= r.lo[k] - tol && x <= r.hi[k] + tol)) {
+                pfb_fail(PFB_VALUE, "%s: texel %lld channel %d = %a outside level 0's [%La, %La]", fn, i, k,
+                         (double)pyr[i * nc + k], r.lo[k], r.hi[k]);
+                return;
+            }
+        }
+}
+
+/* ---------------------------------------------------------------- pf_core.h: size helpers */
+/* a long long from the whole range, biased to the edges (and to the int ones) */
+static long long pfb_ll(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    long long r = (long long)(((pfc_u64)pfc_next(c) << 32) | pfc_next(c));
+    switch (PFC_R(u)) {
+    case 0: return LLONG_MAX - (long long)(b % 3u);
+    case 1: return LLONG_MIN + (long long)(b % 3u);
+    case 2: return PFB_MAX_REALS + (long long)(b % 5u) - 2;
+    case 3: return PFB_MAX_SIDE + (long long)(b % 5u) - 2;
+    case 4: return r;
+    case 5: return (long long)1 << (b % 63u);
+    default: return pfb_int(c, -3, 1 << 20);
+    }
+}
+
+static void pfb_d_core(pfc_ctx *c)
+{
+    long long a = pfb_ll(c), b = pfb_ll(c), d = pfb_ll(c), want, got;
+    pfb_setcall("pf_size_mul(%lld, %lld); pf_size_mul3(%lld, %lld, %lld); pf_size_side_ok(%lld)", a, b, a, b, d, a);
+    want = pfb_mul(a, b);
+    got = pf_size_mul(a, b);
+    if (got != want) pfb_fail(PFB_VALUE, "pf_size_mul = %lld, want %lld", got, want);
+    want = want < 0 ? -1 : pfb_mul(want, d); /* "the same way": a * b checked first */
+    got = pf_size_mul3(a, b, d);
+    if (got != want) pfb_fail(PFB_VALUE, "pf_size_mul3 = %lld, want %lld", got, want);
+    got = pf_size_side_ok(a);
+    if (got != (a >= 1 && a <= PFB_MAX_SIDE)) pfb_fail(PFB_VALUE, "pf_size_side_ok = %lld", got);
+}
+
+/* ---------------------------------------------------------------- pf_moments.h: layout */
+static void pfb_d_mip_layout(pfc_ctx *c)
+{
+    int w = pfb_int(c, -1, 70), h = pfb_int(c, -1, 70), level = pfb_int(c, -1, 30);
+    int valid = w >= 1 && h >= 1 && w <= PFB_MAX_SIDE && h <= PFB_MAX_SIDE;
+    long long want_total = valid ? pfb_offset(w, h, 64) : 0, got;
+    pfb_setcall("pf_mip_texel_count(%d, %d); pf_mip_level_count(%d, %d); pf_mip_level_offset(%d, %d, %d)", w, h, w, h,
+                w, h, level);
+    if (want_total > PFB_MAX_REALS) want_total = 0;
+    got = pf_mip_texel_count(w, h);
+    if (got != want_total) pfb_fail(PFB_VALUE, "pf_mip_texel_count = %lld, want %lld", got, want_total);
+    {
+        int kind = pfb_int(c, -1, 6), want = kind == 0 || kind == 1 ? 2 : (kind == 2 || kind == 3 ? 4 : (kind == 4 ? 1 : 0));
+        if (pf_depth_moment_channels(kind) != want)
+            pfb_fail(PFB_VALUE, "pf_depth_moment_channels(%d) = %d, want %d", kind, pf_depth_moment_channels(kind), want);
+    }
+    valid = w >= 1 && h >= 1; /* the layout functions take every int side (the sum fits 2^63) */
+    got = pf_mip_level_count(w, h);
+    if (valid ? got != pfb_levels(w, h) : got != 0)
+        pfb_fail(PFB_VALUE, "pf_mip_level_count = %lld, want %d", got, valid ? pfb_levels(w, h) : 0);
+    if (valid) {
+        got = pf_mip_level_offset(w, h, level);
+        if (got != pfb_offset(w, h, level < 0 ? 0 : level))
+            pfb_fail(PFB_VALUE, "pf_mip_level_offset = %lld, want %lld", got, pfb_offset(w, h, level < 0 ? 0 : level));
+        got = pf_mip_level_size(w, level);
+        if (got != pfb_level_side(w, level < 0 ? 0 : level))
+            pfb_fail(PFB_VALUE, "pf_mip_level_size(%d, %d) = %lld, want %lld", w, level, got,
+                     pfb_level_side(w, level < 0 ? 0 : level));
+    }
+}
+
+/* ---------------------------------------------------------------- pf_moments.h: builders */
+/* which: 0 pf_mip_build, 1 pf_mip_build_log */
+static void pfb_d_mip_build(pfc_ctx *c, int which)
+{
+    const char *fn = which ? "pf_mip_build_log" : "pf_mip_build";
+    int w = pfb_int(c, 1, 40), h = pfb_int(c, 1, 40), nc = pfb_int(c, 1, 6), null = pfb_null(c, 1);
+    int at_start = PFC_R(pfc_next(c)) < 4, e = PFC_R(pfc_next(c)) < 2 ? PFC_EMAX : 20, rc, allowed;
+    pfb_expect ex = { 0, 0, 0 };
+    long long reals = -1;
+    pf_real *pyr;
+    pfb_setcall("%s(%s, %d, %d, %d)", fn, null ? "NULL" : "pyr", w, h, nc);
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (nc < 1) ex.small = 1;
+    if (!ex.small && !ex.size) {
+        reals = pfb_pyr_reals(w, h, nc);
+        if (reals < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[1];
+        b[0] = null ? 0 : pfb_small();
+        rc = which ? (pf_mip_build_log(b[0], w, h, nc)) : (pf_mip_build(b[0], w, h, nc));
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 1);
+        return;
+    }
+    if (reals > pfb_work_cap) return;
+    pyr = pfb_map(reals, at_start);
+    if (!pyr) return;
+    pfb_fill(c, pyr, (long long)w * h * nc, e);
+    pfb_fill_canary(pyr + (long long)w * h * nc, reals - (long long)w * h * nc);
+    if (pfb_t) pfb_t->run += 1;
+    rc = which ? (pf_mip_build_log(pyr, w, h, nc)) : (pf_mip_build(pyr, w, h, nc));
+    if (!pfb_rc_check(rc, allowed, fn)) return;
+    pfb_check_levels(pyr, w, h, nc, which, fn);
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* which: 0 pf_slope_moments_map_from_heights (level 0 only), 1 pf_slope_pyramid_from_heights */
+static void pfb_d_slope(pfc_ctx *c, int which)
+{
+    const char *fn = which ? "pf_slope_pyramid_from_heights" : "pf_slope_moments_map_from_heights";
+    int w = pfb_int(c, 1, 40), h = pfb_int(c, 1, 40), border = pfb_border(c), null = pfb_null(c, 2);
+    int at_start = PFC_R(pfc_next(c)) < 4, rc, allowed;
+    pf_real dx = pfc_mag(PFC_B(pfc_next(c)), -8, 8), dy = pfc_mag(PFC_B(pfc_next(c)), -8, 8);
+    pf_real hs = pfb_val(c, 8);
+    pfb_expect ex = { 0, 0, 0 };
+    long long nh = -1, nout = -1;
+    pf_real *hm, *out;
+    pfb_setcall("%s(%s, %d, %d, %a, %a, %a, %d, %s)", fn, null == 1 ? "NULL" : "heights", w, h, (double)dx,
+                (double)dy, (double)hs, border, null == 2 ? "NULL" : "out");
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (!pfb_border_ok(border)) ex.arg = 1;
+    if (!ex.small && !ex.size) {
+        nh = pfb_mul(w, h);
+        nout = which ? pfb_pyr_reals(w, h, 5) : pfb_mul(nh, 5);
+        if (nh < 0 || nout < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        rc = which ? (pf_slope_pyramid_from_heights(b[0], w, h, dx, dy, hs, border, b[1]))
+                   : (pf_slope_moments_map_from_heights(b[0], w, h, dx, dy, hs, border, b[1]));
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 2);
+        return;
+    }
+    if (nout > pfb_work_cap) return;
+    hm = pfb_map(nh, at_start);
+    out = pfb_map(nout, !at_start);
+    if (!hm || !out) return;
+    pfb_fill(c, hm, nh, 20);
+    pfb_fill_canary(out, nout);
+    if (pfb_t) pfb_t->run += 1;
+    rc = which ? (pf_slope_pyramid_from_heights(hm, w, h, dx, dy, hs, border, out))
+               : (pf_slope_moments_map_from_heights(hm, w, h, dx, dy, hs, border, out));
+    if (!pfb_rc_check(rc, allowed, fn)) return;
+    pfb_check_written(out, nout, "out", 1);
+    {
+        long long i;
+        for (i = 0; i < (long long)w * h; ++i)
+            if (!(out[5 * i + 2] >= 0 && out[5 * i + 3] >= 0)) {
+                pfb_fail(PFB_VALUE, "texel %lld: E[x^2] = %a, E[y^2] = %a", i, (double)out[5 * i + 2], (double)out[5 * i + 3]);
+                break;
+            }
+    }
+    if (which) pfb_check_levels(out, w, h, 5, 0, fn);
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+static int pfb_depth_channels(int kind)
+{
+    switch (kind) {
+    case PF_DEPTH_VSM: case PF_DEPTH_EVSM2: return 2;
+    case PF_DEPTH_EVSM4: case PF_DEPTH_MSM: return 4;
+    case PF_DEPTH_ESM_LOG: return 1;
+    default: return 0;
+    }
+}
+
+/* which: 0 depth (kind drawn), 1 scalar values, 2 normals */
+static void pfb_d_pyramid_from(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_depth_pyramid_from_depths", "pf_scalar_pyramid_from_values",
+                                       "pf_normal_pyramid_from_normals" };
+    const char *fn = fns[which];
+    int w = pfb_int(c, 1, 40), h = pfb_int(c, 1, 40), null = pfb_null(c, 2), kind = 0, nc, nin_c;
+    int at_start = PFC_R(pfc_next(c)) < 4, rc, allowed;
+    pf_real cpos = PF_R(0.0), cneg = PF_R(0.0);
+    pfb_expect ex = { 0, 0, 0 };
+    long long nin = -1, nout = -1, i;
+    pf_real *in, *out;
+    if (which == 0) {
+        pfc_u32 u = pfc_next(c);
+        kind = PFC_R(u) < 14 ? (int)(PFC_B(u) % 5u) : pfb_int(c, -2, 8);
+        cpos = kind == PF_DEPTH_ESM_LOG ? pfc_mag(PFC_B(pfc_next(c)), -4, 12) : PF_R(44.0) * pfc_unif(PFC_B(pfc_next(c)));
+        cneg = PF_R(44.0) * pfc_unif(PFC_B(pfc_next(c)));
+        pfb_setcall("%s(%s, %d, %d, %d, %a, %a, %s)", fn, null == 1 ? "NULL" : "depths", w, h, kind, (double)cpos,
+                    (double)cneg, null == 2 ? "NULL" : "pyr");
+    } else {
+        pfb_setcall("%s(%s, %d, %d, %s)", fn, null == 1 ? "NULL" : "in", w, h, null == 2 ? "NULL" : "pyr");
+    }
+    nc = which == 0 ? pfb_depth_channels(kind) : (which == 1 ? 2 : 3);
+    nin_c = which == 2 ? 3 : 1;
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (nc == 0) ex.arg = 1;
+    if (!ex.small && !ex.size && nc) {
+        nin = pfb_mul(pfb_mul(w, h), nin_c);
+        nout = pfb_pyr_reals(w, h, nc);
+        if (nin < 0 || nout < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        rc = which == 0 ? (pf_depth_pyramid_from_depths(b[0], w, h, kind, cpos, cneg, b[1]))
+           : which == 1 ? (pf_scalar_pyramid_from_values(b[0], w, h, b[1]))
+                        : (pf_normal_pyramid_from_normals(b[0], w, h, b[1]));
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 2);
+        return;
+    }
+    if (nout > pfb_work_cap) return;
+    in = pfb_map(nin, at_start);
+    out = pfb_map(nout, !at_start);
+    if (!in || !out) return;
+    if (which == 0) {
+        pfb_fill(c, in, nin, 0);
+        for (i = 0; i < nin; ++i) in[i] = PF_FABS(in[i]) > PF_R(1.0) ? PF_R(1.0) : PF_FABS(in[i]); /* [0, 1] */
+    } else {
+        pfb_fill(c, in, nin, which == 1 ? 40 : 20);
+    }
+    pfb_fill_canary(out, nout);
+    if (pfb_t) pfb_t->run += 1;
+    rc = which == 0 ? (pf_depth_pyramid_from_depths(in, w, h, kind, cpos, cneg, out))
+       : which == 1 ? (pf_scalar_pyramid_from_values(in, w, h, out))
+                    : (pf_normal_pyramid_from_normals(in, w, h, out));
+    if (!pfb_rc_check(rc, allowed, fn)) return;
+    pfb_check_levels(out, w, h, nc, which == 0 && kind == PF_DEPTH_ESM_LOG, fn);
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_moments.h: N texels */
+static void pfb_fill_weights(pfc_ctx *c, pf_real *wt, long long n)
+{
+    long long i;
+    for (i = 0; i < n; ++i) {
+        pfc_u32 u = pfc_next(c), b = PFC_B(u);
+        switch (PFC_R(u)) {
+        case 0: wt[i] = PF_R(0.0); break;
+        case 1: wt[i] = PF_REAL_MAX; break;
+        case 2: wt[i] = -pfc_unif(b); break;
+        case 3: wt[i] = pfc_mag(b, PFC_EMIN, PFC_EMAX); break;
+        case 4: wt[i] = pfc_mag(b, PFC_EMIN, -100); break;
+        case 5: pfb_nonfinite_input |= (b & 7u) < 2; wt[i] = (b & 7u) == 0 ? pfc_from_bits(0x7F800000u) : ((b & 7u) == 1 ? pfc_from_bits(0x7FC00000u) : PF_REAL_MAX); break;
+        default: wt[i] = pfc_unif(b); break;
+        }
+    }
+}
+
+/* which: 0 pf_moments_weighted_mean, 1 pf_esm_log_weighted_mean */
+static void pfb_d_weighted_mean(pfc_ctx *c, int which)
+{
+    const char *fn = which ? "pf_esm_log_weighted_mean" : "pf_moments_weighted_mean";
+    int n = pfb_int(c, 0, 12), nc = which ? 1 : pfb_int(c, 1, 6), null = pfb_null(c, which ? 2 : 3);
+    int at_start = PFC_R(pfc_next(c)) < 4, rc, allowed, k;
+    pfb_expect ex = { 0, 0, 0 };
+    long long nt = -1, i;
+    pf_real *tx, *wt, *out, r1 = PF_R(0.0);
+    long double lo[PFB_MAXC], hi[PFB_MAXC], mag = 0;
+    int any = 0, inf_w = 0;
+    pfb_setcall("%s(%s, %d, %s, %d%s)", fn, null == 1 ? "NULL" : "texels", nc, null == 2 ? "NULL" : "weights", n,
+                which ? "" : (null == 3 ? ", NULL" : ", out"));
+    if (null) ex.arg = 1;
+    if (nc < 1) ex.small = 1;
+    if (n < 0) ex.small = 1;
+    if (!ex.small) {
+        nt = pfb_mul(n, nc);
+        if (nt < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK && !(allowed & PFB_A_OK)) {
+        pf_real *b[3];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        b[2] = null == 3 ? 0 : pfb_small();
+        if (which) {
+            if (pfb_t) pfb_t->rejected_n += 1;
+            r1 = pf_esm_log_weighted_mean(b[0], b[1], n);
+            if (r1 != -PF_REAL_MAX) pfb_fail(PFB_VALUE, "bad arguments returned %a, want -PF_REAL_MAX", (double)r1);
+        } else {
+            rc = pf_moments_weighted_mean(b[0], nc, b[1], n, b[2]);
+            pfb_rc_check(rc, allowed, fn);
+        }
+        pfb_check_untouched(b, 3);
+        return;
+    }
+    if (nt > pfb_work_cap || nc > pfb_work_cap) return; /* out (channels reals) is written whole */
+    tx = pfb_map(nt, at_start);
+    wt = pfb_map(n, !at_start);
+    out = pfb_map(nc, at_start);
+    if (!tx || !wt || !out) return;
+    pfb_fill(c, tx, nt, which ? 12 : 100);
+    pfb_fill_weights(c, wt, n);
+    for (i = 0; i < n; ++i) inf_w |= wt[i] > PF_REAL_MAX;
+    for (i = 0; i < n && i < 12; ++i) { /* the weights, into the reproducer line */
+        size_t l = strlen(pfb_line);
+        snprintf(pfb_line + l, sizeof pfb_line - l, "%s%a%s", i ? " " : " weights {", (double)wt[i], i + 1 == n ? "}" : "");
+    }
+    pfb_fill_canary(out, nc);
+    if (pfb_t) pfb_t->run += 1;
+    if (which) { out[0] = pf_esm_log_weighted_mean(tx, wt, n); rc = PFB_NORC; }
+    else rc = pf_moments_weighted_mean(tx, nc, wt, n, out);
+    if (inf_w) { /* an infinite weight: PF_ERR_ARG, nothing written (or -PF_REAL_MAX) */
+        if (which ? out[0] != -PF_REAL_MAX : rc != PF_ERR_ARG || pfb_count_changed(out, nc))
+            pfb_fail(which ? PFB_VALUE : PFB_RC, "an infinite weight: returned %d, out[0] = %a", rc, (double)out[0]);
+        return;
+    }
+    if (!pfb_rc_check(rc, allowed, fn) || (rc != PF_OK && rc != PFB_NORC)) return;
+    pfb_check_written(out, nc, "out", 1);
+    for (k = 0; k < nc && k < PFB_MAXC; ++k) { lo[k] = 1e4000L; hi[k] = -1e4000L; }
+    for (i = 0; i < n; ++i) {
+        if (!(wt[i] > PF_R(0.0))) continue;
+        any = 1;
+        for (k = 0; k < nc && k < PFB_MAXC; ++k) {
+            long double x = tx[i * nc + k];
+            if (x < lo[k]) lo[k] = x;
+            if (x > hi[k]) hi[k] = x;
+            if (x > mag) mag = x;
+            if (-x > mag) mag = -x;
+        }
+    }
+    for (k = 0; k < nc && k < PFB_MAXC; ++k) {
+        /* log space: log(sum w exp(l - m)) has an absolute error of a few eps */
+        long double y = out[k], tol = (mag + which) * (long double)PF_REAL_EPSILON * (long double)(4 + n);
+        if (!any) {
+            if (which ? out[0] != -PF_REAL_MAX : out[k] != PF_R(0.0))
+                pfb_fail(PFB_VALUE, "no positive weight: out[%d] = %a, want %s", k, (double)out[k], which ? "-PF_REAL_MAX" : "0");
+        } else if (!(y >= lo[k] - tol && y <= hi[k] + tol)) {
+            pfb_fail(PFB_VALUE, "out[%d] = %a outside the texels' [%La, %La]", k, (double)out[k], lo[k], hi[k]);
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_moments.h: samplers */
+/* Reference texel indices and fraction on an axis of n texels (the documented GPU convention:
+   centre of texel i at (i + 0.5)/n; WRAP repeats, CLAMP clamps u to [0, 1]); NaN reads as 0.
+   inf_mode for an infinite u: 0 reads it as 0 (the header's first wording), 1 clamps it
+   (CLAMP: 0 or 1 by its sign; WRAP: 0). */
+static void pfb_ref_axis(pf_real u, long long n, int border, int inf_mode, long long *i0, long long *i1,
+                         long double *f)
+{
+    long double x, fl;
+    long long i;
+    if (pfb_isnan(u)) u = PF_R(0.0);
+    if (!pfb_finite(u)) u = inf_mode && border == PF_BORDER_CLAMP ? (u > 0 ? PF_R(1.0) : PF_R(0.0)) : PF_R(0.0);
+    x = (long double)u;
+    if (border == PF_BORDER_WRAP) x = x - floorl(x);
+    else x = x < 0 ? 0 : (x > 1 ? 1 : x);
+    x = x * (long double)n - 0.5L;
+    fl = floorl(x);
+    *f = x - fl;
+    i = (long long)fl;
+    if (border == PF_BORDER_WRAP) {
+        *i0 = ((i % n) + n) % n;
+        *i1 = (*i0 + 1) % n;
+    } else {
+        *i0 = i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
+        *i1 = i + 1 < 0 ? 0 : (i + 1 > n - 1 ? n - 1 : i + 1);
+    }
+}
+
+/* long double log(exp(a) wa + exp(b) wb) for wa, wb >= 0 */
+static long double pfb_lse2(long double a, long double wa, long double b, long double wb)
+{
+    long double m;
+    if (!(wa > 0)) return b;
+    if (!(wb > 0)) return a;
+    m = a > b ? a : b;
+    return m + logl(wa * expl(a - m) + wb * expl(b - m));
+}
+
+/* reference bilinear sample of channel k at one level */
+static long double pfb_ref_bilerp(const pf_real *pyr, long long w, long long h, int nc, int level, pf_real u,
+                                  pf_real v, int border, int inf_mode, int log_space, int k)
+{
+    long long lw = pfb_level_side(w, level), lh = pfb_level_side(h, level), base = pfb_offset(w, h, level);
+    long long x0, x1, y0, y1, t[4];
+    long double fx, fy, wt[4], s = 0, m = -1e4000L;
+    int q;
+    pfb_ref_axis(u, lw, border, inf_mode, &x0, &x1, &fx);
+    pfb_ref_axis(v, lh, border, inf_mode, &y0, &y1, &fy);
+    t[0] = base + y0 * lw + x0; t[1] = base + y0 * lw + x1;
+    t[2] = base + y1 * lw + x0; t[3] = base + y1 * lw + x1;
+    wt[0] = (1 - fx) * (1 - fy); wt[1] = fx * (1 - fy); wt[2] = (1 - fx) * fy; wt[3] = fx * fy;
+    if (!log_space) {
+        for (q = 0; q < 4; ++q) if (wt[q] > 0) s += wt[q] * pyr[t[q] * nc + k];
+        return s;
+    }
+    for (q = 0; q < 4; ++q) if (wt[q] > 0 && pyr[t[q] * nc + k] > m) m = pyr[t[q] * nc + k];
+    for (q = 0; q < 4; ++q) if (wt[q] > 0) s += wt[q] * expl(pyr[t[q] * nc + k] - m);
+    return m + logl(s);
+}
+
+/* reference trilinear sample (lod NaN -> 0, clamped to [0, levels - 1]) */
+static long double pfb_ref_sample(const pf_real *pyr, long long w, long long h, int nc, pf_real lod, pf_real u,
+                                  pf_real v, int border, int inf_mode, int log_space, int k)
+{
+    int nl = pfb_levels(w, h), l0;
+    long double L = pfb_isnan(lod) ? 0 : (long double)lod, fl, a, b;
+    if (!(L > 0)) L = 0;
+    if (L > nl - 1) L = nl - 1;
+    l0 = (int)floorl(L);
+    fl = L - l0;
+    a = pfb_ref_bilerp(pyr, w, h, nc, l0, u, v, border, inf_mode, log_space, k);
+    if (!(fl > 0) || l0 + 1 >= nl) return a;
+    b = pfb_ref_bilerp(pyr, w, h, nc, l0 + 1, u, v, border, inf_mode, log_space, k);
+    return log_space ? pfb_lse2(a, 1 - fl, b, fl) : (1 - fl) * a + fl * b;
+}
+
+/* The sampler variants: 0 bilinear, 1 trilinear, 2 bilinear_log, 3 trilinear_log, then the
+   typed ones (fixed channel count, trilinear). */
+enum { PFB_S_BIL, PFB_S_TRI, PFB_S_BIL_LOG, PFB_S_TRI_LOG, PFB_S_SLOPE, PFB_S_SCALAR, PFB_S_D2, PFB_S_D4,
+       PFB_S_EVSM, PFB_S_NORMAL, PFB_S_ESM, PFB_S_COUNT };
+static const char *const pfb_sampler_name[PFB_S_COUNT] = {
+    "pf_mip_sample_bilinear", "pf_mip_sample_trilinear", "pf_mip_sample_bilinear_log", "pf_mip_sample_trilinear_log",
+    "pf_slope_moments_sample", "pf_scalar_moments_sample", "pf_depth_moments2_sample", "pf_depth_moments4_sample",
+    "pf_evsm_moments_sample", "pf_normal_avg_sample", "pf_esm_log_sample"
+};
+static const int pfb_sampler_nc[PFB_S_COUNT] = { 0, 0, 0, 0, 5, 2, 2, 4, 4, 3, 1 };
+
+/* one call of sampler s; the typed ones copy their struct into out */
+static int pfb_sample_call(int s, const pf_real *pyr, int w, int h, int nc, int level, pf_real lod, pf_real u,
+                           pf_real v, int border, pf_real *out)
+{
+    pf_real t[5];
+    switch (s) {
+    case PFB_S_BIL: return (pf_mip_sample_bilinear(pyr, w, h, nc, level, u, v, border, out));
+    case PFB_S_TRI: return (pf_mip_sample_trilinear(pyr, w, h, nc, lod, u, v, border, out));
+    case PFB_S_BIL_LOG: return (pf_mip_sample_bilinear_log(pyr, w, h, nc, level, u, v, border, out));
+    case PFB_S_TRI_LOG: return (pf_mip_sample_trilinear_log(pyr, w, h, nc, lod, u, v, border, out));
+    case PFB_S_SLOPE: { pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.ex; t[1] = m.ey; t[2] = m.exx; t[3] = m.eyy; t[4] = m.exy; break; }
+    case PFB_S_SCALAR: { pf_scalar_moments m = pf_scalar_moments_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.m1; t[1] = m.m2; break; }
+    case PFB_S_D2: { pf_depth_moments2 m = pf_depth_moments2_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.m1; t[1] = m.m2; break; }
+    case PFB_S_D4: { pf_depth_moments4 m = pf_depth_moments4_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; break; }
+    case PFB_S_EVSM: { pf_evsm_moments m = pf_evsm_moments_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; break; }
+    case PFB_S_NORMAL: { pf_vec3 m = pf_normal_avg_sample(pyr, w, h, lod, u, v, border);
+        t[0] = m.x; t[1] = m.y; t[2] = m.z; break; }
+    default: t[0] = pf_esm_log_sample(pyr, w, h, lod, u, v, border); break;
+    }
+    if (out) memcpy(out, t, (size_t)pfb_sampler_nc[s] * sizeof(pf_real));
+    return PFB_NORC;
+}
+
+/* Sizes for samplers: small maps (values, checked against the reference), and huge ones
+   drawn to sit at the limits (2^24 x 1, 2^20 x 2^19, up to PF_MAX_REALS), left as zero pages. */
+static void pfb_d_sample(pfc_ctx *c, int s)
+{
+    const char *fn = pfb_sampler_name[s];
+    int typed = s >= PFB_S_SLOPE, logs = s == PFB_S_BIL_LOG || s == PFB_S_TRI_LOG || s == PFB_S_ESM;
+    int w = pfb_int(c, 1, 24), h = pfb_int(c, 1, 24), nc = typed ? pfb_sampler_nc[s] : pfb_int(c, 1, 6);
+    int level = s == PFB_S_BIL || s == PFB_S_BIL_LOG ? pfb_int(c, -1, 6) : 0;
+    pf_real lod = s == PFB_S_BIL || s == PFB_S_BIL_LOG ? (pf_real)level : pfb_coord(c, PF_R(-0.5), PF_R(8.0));
+    pf_real u = pfb_coord(c, PF_R(-0.25), PF_R(1.25)), v = pfb_coord(c, PF_R(-0.25), PF_R(1.25));
+    int border = pfb_border(c), null = pfb_null(c, typed ? 1 : 2), at_start = PFC_R(pfc_next(c)) < 4;
+    int rc, allowed, k, small, im;
+    pfb_expect ex = { 0, 0, 0 };
+    long long reals = -1;
+    pf_real *pyr, *out;
+    if (PFC_R(pfc_next(c)) < 3) { /* huge maps at the limits */
+        static const int sides[][2] = { { 1 << 24, 1 }, { 1, 1 << 24 }, { 1 << 20, 1 << 19 }, { (1 << 24) - 1, 3 },
+                                        { 1 << 24, 1 << 14 }, { 1 << 24, (1 << 16) - 1 }, { INT_MAX, 1 }, { 1 << 24, 1 << 24 } };
+        pfc_u32 b = PFC_B(pfc_next(c)) % 8u;
+        w = sides[b][0]; h = sides[b][1];
+        if (!typed) nc = 1;
+    }
+    pfb_setcall("%s(%s, %d, %d, %d, %d, %a, %a, %a, %d, %s)  [channels, level, lod, u, v, border]", fn,
+                null == 1 ? "NULL" : "pyr", w, h, nc, level, (double)lod, (double)u, (double)v, border,
+                null == 2 ? "NULL" : "out");
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (nc < 1) ex.small = 1;
+    if (!pfb_border_ok(border)) ex.arg = 1;
+    if (!ex.small && !ex.size) {
+        reals = pfb_pyr_reals(w, h, nc);
+        if (reals < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : (typed ? pfb_map(PFB_SMALL, 0) : pfb_small());
+        rc = pfb_sample_call(s, b[0], w, h, nc, level, lod, u, v, border, b[1]);
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, typed ? 1 : 2);
+        if (typed) /* the returned value: zeros (-PF_REAL_MAX for the ESM log sample) */
+            for (k = 0; k < nc; ++k)
+                if (b[1][k] != (s == PFB_S_ESM ? -PF_REAL_MAX : PF_R(0.0))) {
+                    pfb_fail(PFB_VALUE, "bad arguments returned %a in member %d", (double)b[1][k], k);
+                    break;
+                }
+        return;
+    }
+    if (nc > 4096) return; /* writes and reads every channel */
+    small = reals <= (1LL << 16) && reals <= pfb_work_cap;
+    pfb_fresh = !small; /* left as zero pages */
+    pyr = pfb_map(reals, at_start);
+    out = pfb_map(nc, !at_start);
+    if (!pyr || !out) return;
+    if (small) pfb_fill(c, pyr, reals, logs ? 8 : 16);
+    pfb_fill_canary(out, nc);
+    if (pfb_t) pfb_t->run += 1;
+    rc = pfb_sample_call(s, pyr, w, h, nc, level, lod, u, v, border, out);
+    if (!pfb_rc_check(rc, allowed, fn) || (rc != PF_OK && rc != PFB_NORC)) return;
+    pfb_check_written(out, nc, "out", 1);
+    for (k = 0; k < nc; ++k) {
+        long double got = out[k], best = 1e4000L, mag = 0, tol;
+        long long n = w > h ? w : h;
+        if (!small) { /* zero pages: the sample is 0 */
+            if (!(PF_FABS(out[k]) <= PF_R(8.0) * PF_REAL_EPSILON))
+                pfb_fail(PFB_VALUE, "out[%d] = %a on an all-zero map", k, (double)out[k]);
+            break;
+        }
+        {
+            pfb_range r = pfb_range_of(pyr, reals / nc, nc);
+            mag = r.mag;
+        }
+        tol = (mag + 1) * (long double)PF_REAL_EPSILON * (8.0L + 4.0L * (long double)n) * (logs ? 4.0L : 1.0L);
+        for (im = 0; im < 2; ++im) {
+            long double want = pfb_ref_sample(pyr, w, h, nc, s == PFB_S_BIL || s == PFB_S_BIL_LOG ? (pf_real)(level < 0 ? 0 : level) : lod,
+                                              u, v, border, im, logs, k);
+            long double d = got > want ? got - want : want - got;
+            if (d < best) best = d;
+        }
+        if (!(best <= tol)) {
+            long double want = pfb_ref_sample(pyr, w, h, nc, s == PFB_S_BIL || s == PFB_S_BIL_LOG ? (pf_real)(level < 0 ? 0 : level) : lod,
+                                              u, v, border, 1, logs, k);
+            pfb_fail(PFB_VALUE, "out[%d] = %.9Lg, reference %.9Lg (|diff| %.3Lg > %.3Lg)", k, got, want, best, tol);
+            break;
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_height.h */
+
+/* knots: x non-decreasing (jumps included), values c */
+static void pfb_knots(pfc_ctx *c, pf_real *x, pf_real *cv, long long n, int nc)
+{
+    long long i;
+    pf_real at = pfb_val(c, 6);
+    for (i = 0; i < n; ++i) {
+        pfc_u32 u = pfc_next(c);
+        if (i > 0 && PFC_R(u) >= 3) at += PFC_R(u) < 6 ? pfc_mag(PFC_B(u), -20, 0) : pfc_unif(PFC_B(u)) * PF_R(4.0);
+        x[i] = at;
+    }
+    pfb_fill(c, cv, n * nc, 10);
+}
+
+/* which: 0 pf_colormap_filter, 1 pf_height_colormap_filter, 2 pf_transfer_moments_filter */
+static void pfb_d_colormap(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_colormap_filter", "pf_height_colormap_filter", "pf_transfer_moments_filter" };
+    const char *fn = fns[which];
+    int n = pfb_int(c, 1, 12), nc = which == 2 ? 1 : pfb_int(c, 1, 5), null = pfb_null(c, which == 2 ? 2 : 3);
+    int at_start = PFC_R(pfc_next(c)) < 4, rc, allowed, k, nout = which == 2 ? 4 : 0;
+    pf_real mean = pfb_val(c, 8), sigma = pfb_val(c, 6), lo = pfc_pos(c, 30), li = pfc_pos(c, 30);
+    pfb_expect ex = { 0, 0, 0 };
+    long long nv = -1, i;
+    pf_real *x, *cv, *out;
+    if (nout == 0) nout = nc;
+    pfb_setcall("%s(%s, %s, %d, %d, mean %a, sigma %a, lambda %a %a, %s)", fn, null == 1 ? "NULL" : "x",
+                null == 2 ? "NULL" : "c", n, nc, (double)mean, (double)sigma, (double)lo, (double)li, null == 3 ? "NULL" : "out");
+    if (null) ex.arg = 1;
+    if (n < 1 || nc < 1) ex.small = 1;
+    if (!ex.small) {
+        nv = pfb_mul(n, nc);
+        if (nv < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed == PFB_A_OK && n > PFB_MAX_SIDE) allowed |= PFB_A_SIZE; /* n knots as a side: either reading */
+    if (!(allowed & PFB_A_OK)) {
+        pf_real *b[3];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        b[2] = null == 3 ? 0 : pfb_small();
+        if (which == 0) rc = (pf_colormap_filter(b[0], b[1], n, nc, mean, sigma, b[2]));
+        else if (which == 1)
+            rc = (pf_height_colormap_filter(b[0], b[1], n, nc, lo, li, mean, sigma, PF_R(0.0), PF_R(0.0), b[2]));
+        else { /* returns the moments: zeros for bad arguments */
+            pf_transfer_moments m = pf_transfer_moments_filter(b[0], b[1], n, mean, sigma);
+            rc = PFB_NORC;
+            if (m.g != PF_R(0.0) || m.g2 != PF_R(0.0) || m.dg != PF_R(0.0) || m.dg2 != PF_R(0.0))
+                pfb_fail(PFB_VALUE, "bad arguments returned (%a, %a, %a, %a), want zeros", (double)m.g, (double)m.g2,
+                         (double)m.dg, (double)m.dg2);
+        }
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 3);
+        return;
+    }
+    if (nv > pfb_work_cap) return;
+    x = pfb_map(n, at_start);
+    cv = pfb_map(nv, !at_start);
+    out = pfb_map(nout, at_start);
+    if (!x || !cv || !out) return;
+    pfb_knots(c, x, cv, n, nc);
+    pfb_fill_canary(out, nout);
+    if (pfb_t) pfb_t->run += 1;
+    if (which == 0) rc = (pf_colormap_filter(x, cv, n, nc, mean, sigma, out));
+    else if (which == 1) rc = (pf_height_colormap_filter(x, cv, n, nc, lo, li, mean, sigma, PF_R(0.0), PF_R(0.0), out));
+    else {
+        pf_transfer_moments m = pf_transfer_moments_filter(x, cv, n, mean, sigma);
+        out[0] = m.g; out[1] = m.g2; out[2] = m.dg; out[3] = m.dg2;
+        rc = PFB_NORC;
+    }
+    if (!pfb_rc_check(rc, allowed, fn) || (rc != PF_OK && rc != PFB_NORC)) return;
+    pfb_check_written(out, nout, "out", 1);
+    for (k = 0; k < (which == 2 ? 1 : nc); ++k) {
+        long double mn = 1e4000L, mx = -1e4000L, mag = 0, tol, y = out[k];
+        for (i = 0; i < n; ++i) {
+            long double t = cv[i * nc + k];
+            if (t < mn) mn = t;
+            if (t > mx) mx = t;
+            if (t > mag) mag = t;
+            if (-t > mag) mag = -t;
+        }
+        if (which == 1) { if (mn > 0) mn = 0; if (mx < 0) mx = 0; }
+        tol = mag * (long double)PF_REAL_EPSILON * 32.0L * (long double)(n + 2);
+        if (!(y >= mn - tol && y <= mx + tol)) {
+            pfb_fail(PFB_VALUE, "out[%d] = %a outside the knot values [%La, %La]", k, (double)out[k], mn, mx);
+            break;
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+static void pfb_d_table_size(pfc_ctx *c)
+{
+    int nm = pfb_int(c, -1, 40), ns = pfb_int(c, -1, 40), nc = pfb_int(c, -1, 5);
+    long long want = 0, got;
+    pfb_setcall("pf_colormap_table_size(%d, %d, %d)", nm, ns, nc);
+    if (nm >= 2 && ns >= 2 && nc >= 1 && nm <= PFB_MAX_SIDE && ns <= PFB_MAX_SIDE) {
+        want = pfb_mul(pfb_mul(nm, ns), nc);
+        if (want < 0) want = 0;
+    }
+    got = (long long)pf_colormap_table_size(nm, ns, nc);
+    if (got != want) pfb_fail(PFB_VALUE, "returned %lld, want %lld", got, want);
+}
+
+/* a range end: finite (most draws), inf, NaN, +-PF_REAL_MAX */
+static pf_real pfb_range_end(pfc_ctx *c, pf_real typical)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    switch (PFC_R(u)) {
+    case 0: pfb_nonfinite_input = 1; return pfc_from_bits(0x7FC00000u);
+    case 1: pfb_nonfinite_input = 1; return (b & 1u) ? -pfc_from_bits(0x7F800000u) : pfc_from_bits(0x7F800000u);
+    case 2: return (b & 1u) ? -PF_REAL_MAX : PF_REAL_MAX;
+    case 3: return PF_R(0.0);
+    default: return typical * (PF_R(0.25) + pfc_unif(b));
+    }
+}
+
+/* a table's range as the contract states it: bounds, widths and sample steps finite and > 0 */
+static int pfb_range_ok(pf_real mmin, pf_real mmax, pf_real smax, int nm, int ns)
+{
+    pf_real wm = mmax - mmin;
+    if (!pfb_finite(mmin) || !pfb_finite(mmax) || !pfb_finite(smax) || !pfb_finite(wm)) return 0;
+    if (!(mmax > mmin) || !(smax > PF_R(0.0))) return 0;
+    if (nm >= 2 && !(wm / (pf_real)(nm - 1) > PF_R(0.0))) return 0;
+    if (ns >= 2 && !(smax / (pf_real)(ns - 1) > PF_R(0.0))) return 0;
+    return 1;
+}
+
+static void pfb_d_table_build(pfc_ctx *c)
+{
+    const char *fn = "pf_colormap_table_build";
+    int nm = pfb_int(c, 2, 24), ns = pfb_int(c, 2, 12), nc = pfb_int(c, 1, 4), n = pfb_int(c, 1, 8);
+    int null = pfb_null(c, 4), at_start = PFC_R(pfc_next(c)) < 4, rc, allowed;
+    pf_real mmin = -pfb_range_end(c, PF_R(8.0)), mmax = pfb_range_end(c, PF_R(8.0)), smax = pfb_range_end(c, PF_R(4.0));
+    pfb_expect ex = { 0, 0, 0 };
+    long long reals = -1, nv = -1, i;
+    pf_colormap_table t, t0;
+    pf_real *buf, *x, *cv;
+    pfb_setcall("%s(%s, %s, %d, %d, %a, %a, %a, %s, %s, %d, %d)", fn, null == 1 ? "NULL" : "&t", null == 2 ? "NULL" : "buf",
+                nm, ns, (double)mmin, (double)mmax, (double)smax, null == 3 ? "NULL" : "x", null == 4 ? "NULL" : "c", n, nc);
+    if (null) ex.arg = 1;
+    pfb_side(&ex, nm, 2);
+    pfb_side(&ex, ns, 2);
+    if (nc < 1 || n < 1) ex.small = 1;
+    if (!pfb_range_ok(mmin, mmax, smax, nm, ns)) ex.arg = 1;
+    /* two buffers of independent sizes: the table (n_mean, n_sigma, channels), the values
+       (n, channels) */
+    if (n >= 1 && nc >= 1 && pfb_mul(n, nc) < 0) ex.size = 1;
+    if (nm >= 2 && ns >= 2 && nc >= 1 && nm <= PFB_MAX_SIDE && ns <= PFB_MAX_SIDE && pfb_mul(pfb_mul(nm, ns), nc) < 0)
+        ex.size = 1;
+    if (!ex.small && !ex.size) {
+        reals = pfb_mul(pfb_mul(nm, ns), nc);
+        nv = pfb_mul(n, nc);
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed == PFB_A_OK && n > PFB_MAX_SIDE) allowed |= PFB_A_SIZE;
+    memset(&t, 0xA5, sizeof t);
+    t0 = t;
+    if (!(allowed & PFB_A_OK)) {
+        pf_real *b[3];
+        b[0] = null == 2 ? 0 : pfb_small();
+        b[1] = null == 3 ? 0 : pfb_small();
+        b[2] = null == 4 ? 0 : pfb_small();
+        rc = pf_colormap_table_build(null == 1 ? 0 : &t, b[0], nm, ns, mmin, mmax, smax, b[1], b[2], n, nc);
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 3);
+        if (memcmp(&t, &t0, sizeof t)) pfb_fail(PFB_WROTE, "*t written on error");
+        return;
+    }
+    if (reals > pfb_work_cap / 4 || reals * (long long)n > pfb_work_cap || nv > pfb_work_cap) return;
+    buf = pfb_map(reals, at_start);
+    x = pfb_map(n, !at_start);
+    cv = pfb_map(nv, at_start);
+    if (!buf || !x || !cv) return;
+    pfb_knots(c, x, cv, n, nc);
+    pfb_fill_canary(buf, reals);
+    if (pfb_t) pfb_t->run += 1;
+    rc = pf_colormap_table_build(&t, buf, nm, ns, mmin, mmax, smax, x, cv, n, nc);
+    if (!pfb_rc_check(rc, allowed, fn) || rc != PF_OK) return;
+    if (t.data != buf || t.n_mean != nm || t.n_sigma != ns || t.channels != nc)
+        pfb_fail(PFB_VALUE, "*t does not describe the table");
+    pfb_check_written(buf, reals, "buffer", 1);
+    for (i = 0; i < reals; ++i) {
+        int k = (int)(i % nc);
+        long double mn = 1e4000L, mx = -1e4000L, mag = 0, y = buf[i];
+        long long j;
+        for (j = 0; j < n; ++j) {
+            long double v = cv[j * nc + k];
+            if (v < mn) mn = v;
+            if (v > mx) mx = v;
+            if (v > mag) mag = v;
+            if (-v > mag) mag = -v;
+        }
+        if (!(y >= mn - mag * (long double)PF_REAL_EPSILON * 32.0L * (n + 2) &&
+              y <= mx + mag * (long double)PF_REAL_EPSILON * 32.0L * (n + 2))) {
+            pfb_fail(PFB_VALUE, "entry %lld = %a outside the knot values [%La, %La]", i, (double)buf[i], mn, mx);
+            break;
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* reference bilinear lookup of a table (contract: clamped to the range, NaN as the low end) */
+static long double pfb_ref_lookup(const pf_colormap_table *t, pf_real mean, pf_real sigma, int k)
+{
+    long double u = ((long double)mean - t->mean_min) / ((long double)t->mean_max - t->mean_min) * (t->n_mean - 1);
+    long double v = (long double)sigma / t->sigma_max * (t->n_sigma - 1), fu, fv, lo, hi;
+    long long i, j, cs = t->channels;
+    const pf_real *p00, *p10, *p01, *p11;
+    if (!(u > 0)) u = 0;
+    if (u > t->n_mean - 1) u = t->n_mean - 1;
+    if (!(v > 0)) v = 0;
+    if (v > t->n_sigma - 1) v = t->n_sigma - 1;
+    i = (long long)floorl(u);
+    j = (long long)floorl(v);
+    if (i > t->n_mean - 2) i = t->n_mean - 2;
+    if (j > t->n_sigma - 2) j = t->n_sigma - 2;
+    fu = u - i;
+    fv = v - j;
+    p00 = t->data + (j * t->n_mean + i) * cs;
+    p10 = p00 + cs;
+    p01 = p00 + (long long)t->n_mean * cs;
+    p11 = p01 + cs;
+    lo = p00[k] + fu * ((long double)p10[k] - p00[k]);
+    hi = p01[k] + fu * ((long double)p11[k] - p01[k]);
+    return lo + fv * (hi - lo);
+}
+
+static void pfb_d_table_lookup(pfc_ctx *c)
+{
+    const char *fn = "pf_colormap_table_lookup";
+    pf_colormap_table t;
+    int null = pfb_null(c, 3), at_start = PFC_R(pfc_next(c)) < 4, rc, allowed, k, huge = PFC_R(pfc_next(c)) < 4;
+    pf_real mean = pfb_coord(c, PF_R(-10.0), PF_R(10.0)), sigma = pfb_coord(c, PF_R(-1.0), PF_R(5.0));
+    pfb_expect ex = { 0, 0, 0 };
+    long long reals = -1;
+    pf_real *out;
+    t.data = 0;
+    t.n_mean = pfb_int(c, 2, 16);
+    t.n_sigma = pfb_int(c, 2, 8);
+    t.channels = pfb_int(c, 1, 4);
+    if (huge) {
+        static const int sz[][2] = { { 1 << 24, 2 }, { 2, 1 << 24 }, { 1 << 20, 1 << 19 }, { 1 << 24, 1 << 16 },
+                                     { 1 << 24, 1 << 24 }, { INT_MAX, 2 } };
+        pfc_u32 b = PFC_B(pfc_next(c)) % 6u;
+        t.n_mean = sz[b][0]; t.n_sigma = sz[b][1]; t.channels = 1;
+    }
+    t.mean_min = -pfb_range_end(c, PF_R(8.0));
+    t.mean_max = pfb_range_end(c, PF_R(8.0));
+    t.sigma_max = pfb_range_end(c, PF_R(4.0));
+    pfb_setcall("%s(%s{n_mean %d, n_sigma %d, channels %d, mean [%a, %a], sigma_max %a}, %a, %a, %s)", fn,
+                null == 1 ? "NULL" : "&t", t.n_mean, t.n_sigma, t.channels, (double)t.mean_min, (double)t.mean_max,
+                (double)t.sigma_max, (double)mean, (double)sigma, null == 3 ? "NULL" : "out");
+    if (null) ex.arg = 1; /* 1: t, 2: t->data, 3: out */
+    pfb_side(&ex, t.n_mean, 2);
+    pfb_side(&ex, t.n_sigma, 2);
+    if (t.channels < 1) ex.small = 1;
+    if (!pfb_range_ok(t.mean_min, t.mean_max, t.sigma_max, t.n_mean, t.n_sigma)) ex.arg = 1;
+    if (!ex.small && !ex.size) {
+        reals = pfb_mul(pfb_mul(t.n_mean, t.n_sigma), t.channels);
+        if (reals < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (!(allowed & PFB_A_OK)) {
+        pf_real *b[2];
+        b[0] = null == 2 ? 0 : pfb_small();
+        b[1] = null == 3 ? 0 : pfb_small();
+        t.data = b[0];
+        rc = (pf_colormap_table_lookup(null == 1 ? 0 : &t, mean, sigma, b[1]));
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 2);
+        return;
+    }
+    if (t.channels > 4096) return;
+    pfb_fresh = huge || reals > (1LL << 16) || reals > pfb_work_cap; /* left as zero pages */
+    t.data = pfb_map(reals, at_start);
+    out = pfb_map(t.channels, !at_start);
+    if (!t.data || !out) return;
+    huge = reals > (1LL << 16) || reals > pfb_work_cap;
+    if (!huge) pfb_fill(c, t.data, reals, 10);
+    pfb_fill_canary(out, t.channels);
+    if (pfb_t) pfb_t->run += 1;
+    rc = (pf_colormap_table_lookup(&t, mean, sigma, out));
+    if (!pfb_rc_check(rc, allowed, fn) || (rc != PF_OK && rc != PFB_NORC)) return;
+    pfb_check_written(out, t.channels, "out", 1);
+    for (k = 0; k < t.channels; ++k) {
+        long double want = huge ? 0 : pfb_ref_lookup(&t, mean, sigma, k), got = out[k];
+        long double mag = huge ? 0 : pfb_range_of(t.data, reals, 1).mag;
+        long double tol = (mag + 1) * (long double)PF_REAL_EPSILON * (8.0L + 4.0L * (t.n_mean + t.n_sigma));
+        if (!((got > want ? got - want : want - got) <= tol)) {
+            pfb_fail(PFB_VALUE, "out[%d] = %.9Lg, reference %.9Lg", k, got, want);
+            break;
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_gaussgrid.h */
+static void pfb_d_hermite(pfc_ctx *c)
+{
+    int n = pfb_int(c, 1, PF_GG_GENERATE_MAX + 2), null = pfb_null(c, 2), at_start = PFC_R(pfc_next(c)) < 4, r, i;
+    int ok_n = n >= 1 && n <= PF_GG_GENERATE_MAX;
+    pf_real *nodes, *wts;
+    long double s = 0;
+    pfb_setcall("pf_gg_hermite_generate(%d, %s, %s)", n, null == 1 ? "NULL" : "nodes", null == 2 ? "NULL" : "weights");
+    if (!ok_n || null) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        if (pfb_t) pfb_t->rejected_n += 1;
+        r = pf_gg_hermite_generate(n, b[0], b[1]);
+        if (r != 0) pfb_fail(PFB_RC, "returned %d, want 0", r);
+        pfb_check_untouched(b, 2);
+        return;
+    }
+    nodes = pfb_map(n, at_start);
+    wts = pfb_map(n, !at_start);
+    if (!nodes || !wts) return;
+    pfb_fill_canary(nodes, n);
+    pfb_fill_canary(wts, n);
+    if (pfb_t) pfb_t->run += 1;
+    r = pf_gg_hermite_generate(n, nodes, wts);
+    if (r != n) { pfb_fail(PFB_RC, "returned %d, want %d", r, n); return; }
+    pfb_check_written(nodes, n, "nodes", 1);
+    pfb_check_written(wts, n, "weights", 1);
+    for (i = 0; i < n; ++i) {
+        if (!(wts[i] >= 0) || nodes[i] != -nodes[n - 1 - i] || (i > 0 && !(nodes[i] > nodes[i - 1]))) {
+            pfb_fail(PFB_VALUE, "node %d = %a, weight %a", i, (double)nodes[i], (double)wts[i]);
+            return;
+        }
+        s += wts[i];
+    }
+    if (!(fabsl(s - 1) <= 64.0L * (long double)PF_REAL_EPSILON)) pfb_fail(PFB_VALUE, "weights sum to %.17Lg", s);
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- the table of drivers */
+typedef struct pfb_entry {
+    const char *name;   /* the function(s) checked, space-separated (tests/fuzz/coverage.sh reads them) */
+    const char *module; /* moments, height, gaussgrid */
+    void (*fn)(pfc_ctx *c, int arg);
+    int arg;
+} pfb_entry;
+
+static void pfb_w_layout(pfc_ctx *c, int a) { (void)a; pfb_d_mip_layout(c); }
+static void pfb_w_core(pfc_ctx *c, int a) { (void)a; pfb_d_core(c); }
+static void pfb_w_table_size(pfc_ctx *c, int a) { (void)a; pfb_d_table_size(c); }
+static void pfb_w_table_build(pfc_ctx *c, int a) { (void)a; pfb_d_table_build(c); }
+static void pfb_w_table_lookup(pfc_ctx *c, int a) { (void)a; pfb_d_table_lookup(c); }
+static void pfb_w_hermite(pfc_ctx *c, int a) { (void)a; pfb_d_hermite(c); }
+
+static const pfb_entry pfb_table[] = {
+    { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
+    { "pf_mip_texel_count pf_mip_level_count pf_mip_level_offset pf_mip_level_size pf_depth_moment_channels", "moments", pfb_w_layout, 0 },
+    { "pf_mip_build", "moments", pfb_d_mip_build, 0 },
+    { "pf_mip_build_log", "moments", pfb_d_mip_build, 1 },
+    { "pf_slope_moments_map_from_heights", "moments", pfb_d_slope, 0 },
+    { "pf_slope_pyramid_from_heights", "moments", pfb_d_slope, 1 },
+    { "pf_depth_pyramid_from_depths", "moments", pfb_d_pyramid_from, 0 },
+    { "pf_scalar_pyramid_from_values", "moments", pfb_d_pyramid_from, 1 },
+    { "pf_normal_pyramid_from_normals", "moments", pfb_d_pyramid_from, 2 },
+    { "pf_moments_weighted_mean", "moments", pfb_d_weighted_mean, 0 },
+    { "pf_esm_log_weighted_mean", "moments", pfb_d_weighted_mean, 1 },
+    { "pf_mip_sample_bilinear", "moments", pfb_d_sample, PFB_S_BIL },
+    { "pf_mip_sample_trilinear", "moments", pfb_d_sample, PFB_S_TRI },
+    { "pf_mip_sample_bilinear_log", "moments", pfb_d_sample, PFB_S_BIL_LOG },
+    { "pf_mip_sample_trilinear_log", "moments", pfb_d_sample, PFB_S_TRI_LOG },
+    { "pf_slope_moments_sample", "moments", pfb_d_sample, PFB_S_SLOPE },
+    { "pf_scalar_moments_sample", "moments", pfb_d_sample, PFB_S_SCALAR },
+    { "pf_depth_moments2_sample", "moments", pfb_d_sample, PFB_S_D2 },
+    { "pf_depth_moments4_sample", "moments", pfb_d_sample, PFB_S_D4 },
+    { "pf_evsm_moments_sample", "moments", pfb_d_sample, PFB_S_EVSM },
+    { "pf_normal_avg_sample", "moments", pfb_d_sample, PFB_S_NORMAL },
+    { "pf_esm_log_sample", "moments", pfb_d_sample, PFB_S_ESM },
+    { "pf_colormap_filter", "height", pfb_d_colormap, 0 },
+    { "pf_height_colormap_filter", "height", pfb_d_colormap, 1 },
+    { "pf_transfer_moments_filter", "height", pfb_d_colormap, 2 },
+    { "pf_colormap_table_size", "height", pfb_w_table_size, 0 },
+    { "pf_colormap_table_build", "height", pfb_w_table_build, 0 },
+    { "pf_colormap_table_lookup", "height", pfb_w_table_lookup, 0 },
+    { "pf_gg_hermite_generate", "gaussgrid", pfb_w_hermite, 0 },
+};
+#define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
+
+/* One call of entry e on the words of c; every mapping released after it. */
+static void pfb_call(pfc_ctx *c, const pfb_entry *e)
+{
+    pfc_reset(c);
+    pfb_failed_kinds = 0;
+    pfb_npool_used = 0;
+    pfb_nonfinite_input = 0;
+    pfb_line[0] = 0;
+    if (pfb_t) pfb_t->calls += 1;
+    e->fn(c, e->arg);
+    pfb_release_all();
+}
+
+/* The fuzzers' entry: every driver of `module` on the bytes (each driver its own word stream:
+   the bytes first, then a generator seeded from them and the driver's name). */
+static void pfb_run_module(const char *module, const unsigned char *data, size_t size);
+static void (*const pfb_run_module_ref)(const char *, const unsigned char *, size_t) = pfb_run_module;
+static void pfb_run_module(const char *module, const unsigned char *data, size_t size)
+{
+    (void)pfb_run_module_ref;
+    int i;
+    pfc_u64 h = 1469598103934665603ULL;
+    size_t k;
+    static int ready;
+    if (!ready) { pfc_init(); ready = 1; }
+    (void)&pfc_call; /* pf_calls.h's evaluator table is not used by the buffer drivers */
+    for (k = 0; k < size; ++k) h = (h ^ data[k]) * 1099511628211ULL;
+    for (i = 0; i < PFB_COUNT; ++i) {
+        pfc_ctx c;
+        if (strcmp(pfb_table[i].module, module)) continue;
+        memset(&c, 0, sizeof c);
+        c.data = data;
+        c.size = (unsigned long)size;
+        c.rng = h ^ pfc_hash(pfb_table[i].name);
+        pfb_call(&c, &pfb_table[i]);
+    }
+}
+
+#define PFB_HARNESS(module)                                                      \
+    int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);          \
+    int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)           \
+    {                                                                            \
+        pfb_run_module(module, data, size);                                      \
+        return 0;                                                                \
+    }
+
+#pragma GCC diagnostic pop
+
+#endif /* PF_BUFFERS_H */
