@@ -501,7 +501,6 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
    overflow; a caller's buffer must hold what the function's comment says, the one thing the
    library cannot check. */
 #ifndef PF_GLSL
-#include <stdint.h> /* PTRDIFF_MAX */
 
 #ifndef PF_CPU_DEF
 #  define PF_CPU_DEF static inline
@@ -520,12 +519,26 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
 
 /* Largest buffer, in pf_reals, any CPU function reads or writes: 2^40 on 64-bit hosts (4 TiB of
    floats), PTRDIFF_MAX / 8 where pointers are narrower, so that every offset fits a pointer
-   difference in float and double builds. */
+   difference in float and double builds. PTRDIFF_MAX is read from the compiler's own macros
+   where it has them (gcc, clang, nvcc: __PTRDIFF_MAX__; tcc: __SIZEOF_POINTER__), so that a
+   bare-metal build needs no system header; <stdint.h> only for the others. */
 #ifndef PF_MAX_REALS
-#  if PTRDIFF_MAX / 8 > (1LL << 40)
+#  if defined(__PTRDIFF_MAX__)
+#    define PFI_PTRDIFF_MAX __PTRDIFF_MAX__
+#  elif defined(__SIZEOF_POINTER__)
+#    if __SIZEOF_POINTER__ >= 8
+#      define PFI_PTRDIFF_MAX 9223372036854775807LL
+#    else
+#      define PFI_PTRDIFF_MAX 2147483647L
+#    endif
+#  else
+#    include <stdint.h>
+#    define PFI_PTRDIFF_MAX PTRDIFF_MAX
+#  endif
+#  if PFI_PTRDIFF_MAX / 8 > (1LL << 40)
 #    define PF_MAX_REALS (1LL << 40)
 #  else
-#    define PF_MAX_REALS ((long long)(PTRDIFF_MAX / 8))
+#    define PF_MAX_REALS ((long long)(PFI_PTRDIFF_MAX / 8))
 #  endif
 #endif
 
