@@ -5,6 +5,7 @@
 #   make test         every test in every build (C99 float/double, C++11, clang sanitizers,
 #                     -ffast-math edge tests); ends with "N passed, N failed"
 #   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot)
+#   make bench MAP=f  the ground truth on your own height or normal map (docs/maps.md)
 #   make portability  tcc, nvcc, GLSL -> SPIR-V -> HLSL/MSL, Cortex-M4F, amalgamation, matrix, ARM
 #   make install      headers + pkg-config (PREFIX, DESTDIR); make amalgamate: prefilter.h
 #   make clean
@@ -48,6 +49,20 @@ $(foreach c,$(CONFIGS),$(eval $(call test_rule,$(c))))
 
 TEST_BINS := $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(TESTS)))
 
+# Tests that link a system library: tests/maps/test_*.c (the map loaders of make bench MAP=...,
+# tests/pf_maps.h; libpng, Debian libpng-dev), built and run in every config above with -lpng.
+# They live apart from tests/test_*.c because the portability cells compile those with -lm
+# only, and with cross compilers that have no libpng.
+LIB_TEST_SRC := $(wildcard tests/maps/test_*.c)
+LIB_TESTS    := $(LIB_TEST_SRC:tests/maps/%.c=%)
+define lib_test_rule
+$(BUILD)/$(1)/%: tests/maps/%.c $(HEADERS)
+	@mkdir -p $$(@D)
+	$$(TCC_$(1)) $$(TFLAGS_$(1)) -DPF_TEST_CONFIG='"$(1)"' $(INC) $$< -o $$@ -lpng -lm
+endef
+$(foreach c,$(CONFIGS),$(eval $(call lib_test_rule,$(c))))
+TEST_BINS += $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(LIB_TESTS)))
+
 # C++ tests that cross-check against GLM (tests/test_*.cpp; Debian libglm-dev): C++11, float
 # and double. GLM is a test-only dependency, never needed by the headers.
 GLM_TEST_SRC := $(wildcard tests/test_*.cpp)
@@ -61,7 +76,7 @@ $(BUILD)/glm-double/%: tests/%.cpp $(HEADERS)
 	$(CXX) $(WARN_CXX) -O2 -DPF_DOUBLE -DPF_TEST_CONFIG='"glm-double"' $(INC) $< -o $@ -lm
 TEST_BINS += $(foreach c,$(GLM_CONFIGS),$(addprefix $(BUILD)/$(c)/,$(GLM_TESTS)))
 
-.PHONY: test test-build bench bench-run portability docs clean deps
+.PHONY: test test-build bench bench-run bench-map portability docs clean deps
 test-build: $(TEST_BINS)
 
 # The dependency step first, alone, then the parallel build (a recursive make, so that -j never
@@ -69,7 +84,7 @@ test-build: $(TEST_BINS)
 test:
 	@sh tests/deps.sh test
 	@$(MAKE) --no-print-directory test-build
-	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS)" "$(GLM_CONFIGS)" "$(GLM_TESTS)"
+	@sh tests/run.sh $(BUILD) "$(CONFIGS)" "$(TESTS) $(LIB_TESTS)" "$(GLM_CONFIGS)" "$(GLM_TESTS)"
 
 # ---------------------------------------------------------------- bench (the main job)
 #   make bench                  float + double builds of bench/bench_*.c, run by bench/run.sh:
@@ -109,11 +124,25 @@ REPORT_PROGS := microsurface pictures
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
 $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -Itests $< -o $@ -lm
+	$(CC) $(BENCH_FLAGS) -Itests $< -o $@ -lpng -lm
 
+# The ground truth on the user's own map (bench/map.sh, docs/maps.md): with MAP set, make bench
+# runs bench/microsurface.c and bench/pictures.c on that map instead of the full run, and writes
+# $(MAP_OUT)/report.md (default bench/out/map): slope statistics, errors by footprint and view,
+# pictures, the cheapest method per error target on that surface. A few minutes for 512 x 512.
+#   make bench MAP=rock.png                           8/16-bit grey PNG height map
+#   make bench MAP=rock_n.png MAP_KIND=normal-gl      RGB PNG normal map (normal-dx: DirectX green)
+#   make bench MAP=h.raw MAP_RAW_SIZE=1024x512        raw little-endian float32 heights
+#   MAP_SCALE=s (height of full white in texels; raw: factor) or MAP_RMS_SLOPE=r (default 0.3 for
+#   height maps); MAP_BORDER=clamped for maps that do not tile (mirrored to 2n x 2n)
+MAP_OUT ?= bench/out/map
 bench:
 	@sh tests/deps.sh bench
-	@$(MAKE) --no-print-directory bench-run
+	@$(MAKE) --no-print-directory $(if $(MAP),bench-map,bench-run)
+bench-map: $(REPORT_BINS)
+	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' BENCH_QUICK='$(BENCH_QUICK)' MAP='$(MAP)' MAP_KIND='$(MAP_KIND)' \
+	    MAP_SCALE='$(MAP_SCALE)' MAP_RMS_SLOPE='$(MAP_RMS_SLOPE)' MAP_BORDER='$(MAP_BORDER)' \
+	    MAP_RAW_SIZE='$(MAP_RAW_SIZE)' MAP_OUT='$(MAP_OUT)' sh bench/map.sh $(BUILD)/bench
 bench-run: $(BENCH_BINS) $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/run.sh $(BUILD)/bench
 

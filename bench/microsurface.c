@@ -14,10 +14,18 @@
    maps); the in-footprint reference is what a filtered model can represent (its error is the
    model's), the full one what a renderer without resolved geometry would show.
 
-   CORPUS. The six kinds of pfm_params_default: Gaussian isotropic (12-texel correlation
+   CORPUS. The seven kinds of pfm_params_default: Gaussian isotropic (12-texel correlation
    length), fine Gaussian (3 texels: footprints of 256-4096 texels hold ~9-145 correlation
-   areas pi L^2, the papers' regime), anisotropic Gaussian, ridges, craters, tiles; 512 x 512
-   texels of size 1, periodic.
+   areas pi L^2, the papers' regime), anisotropic Gaussian, peaked (log-normal bumps: slope
+   kurtosis ~5, the photographed-texture regime), ridges, craters, tiles; 512 x 512 texels of
+   size 1, periodic.
+   THE USER'S MAP (--map PATH, what `make bench MAP=...` runs): the corpus is replaced by one
+   height or normal map loaded by tests/pf_maps.h (its header has the formats, the crop, the
+   borders, the scale and the integration of normal maps), the kind "map" in the CSV; the same
+   footprints, views, lights, tasks, methods and error measures; the cost section on that map;
+   the fragment (microsurface.md) describes the map and its slope statistics (RMS, skewness,
+   kurtosis, anisotropy, correlation length). The map is loaded and checked before anything is
+   written: a bad map stops the program with one message and exit status 1, no output.
    FOOTPRINTS. n x n texels, n = 1, 2, 4, ..., 64 (1 to 4096 texels), aligned on the n-grid so
    that the footprint is exactly one texel of pyramid level log2(n) (a box filter: what a
    mip level holds). All positions where there are at most maxpos of them, otherwise a seeded
@@ -103,6 +111,7 @@
 #include "pf_gaussgrid.h"
 #include "pf_height.h"
 #include "pf_microsurface.h"
+#include "pf_maps.h"
 
 #define BASE_SIGMA 0.1 /* deviation of the base lobe's slopes (reference and library) */
 #define F0 1.0         /* Fresnel off: the reference's F is 1 */
@@ -111,6 +120,7 @@
 #define NTASK 5
 #define NMETH 7
 #define NKIND PFM_KIND_COUNT
+#define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
 #define CULL_AREA 0.25 /* samples with a mesosurface projected area below this share of a flat
                           footprint's (wo.z) are skipped (near edge-on; see run_kind) */
@@ -121,8 +131,15 @@ enum { T_MASK, T_SPEC, T_DIFF, T_RAMP, T_BANDS };
 enum { R_FULL, R_BOX };
 static const char *ref_name[NREF] = { "full", "in_footprint" };
 /* display order of the kinds: the two isotropic Gaussian kinds first */
-static const int kind_order[NKIND] = { PFM_GAUSSIAN, PFM_GAUSSIAN_FINE, PFM_GAUSSIAN_ANISO, PFM_RIDGES,
-                                       PFM_CRATERS, PFM_TILES };
+static const int kind_order[NKIND] = { PFM_GAUSSIAN, PFM_GAUSSIAN_FINE, PFM_GAUSSIAN_ANISO, PFM_PEAKED,
+                                       PFM_RIDGES, PFM_CRATERS, PFM_TILES };
+/* the user's map (--map), loaded before anything is written */
+static pfm_surface map_surf;
+static pfmap_info map_info;
+static pfmap_options map_opt;
+static pfmap_stats map_stats;
+static const char *map_path = NULL;
+static const char *kname(int kind) { return kind == KIND_MAP ? "map" : pfm_kind_name(kind); }
 /* methods that read every texel (not shader methods: no cost row, not candidates) */
 static int is_oracle(int t, int k) { return (t == 1 || t == 2) && k >= 5; }
 
@@ -426,7 +443,7 @@ typedef struct stat {
 } stat;
 
 static cell cells[NTASK][NSIZE][NVIEW];
-static stat stats[NKIND][NREF][NTASK][NMETH][NSIZE][NVIEW];
+static stat stats[NKIND + 1][NREF][NTASK][NMETH][NSIZE][NVIEW];
 
 static void cell_add(cell *c, const double *ref, const double *f, int nm)
 {
@@ -486,7 +503,7 @@ typedef struct corpus_info {
     long mask_n, samples_all, samples_culled, samples_backfacing;
     double seconds;
 } corpus_info;
-static corpus_info info[NKIND];
+static corpus_info info[NKIND + 1];
 
 /* features per footprint: texels / (pi L^2), L the kind's correlation length */
 static double features(int kind, int si) { return (double)(1 << (2 * si)) / (3.14159265358979323846 * info[kind].corr * info[kind].corr); }
@@ -537,8 +554,8 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
 {
     pfm_surface surf;
     lib_maps L;
-    pfm_params P = pfm_params_default(kind);
-    int W = S->map, si, vi, ai, li, k, r;
+    pfm_params P = pfm_params_default(kind == KIND_MAP ? PFM_GAUSSIAN : kind);
+    int W = kind == KIND_MAP ? map_surf.w : S->map, si, vi, ai, li, k, r;
     size_t npix = (size_t)W * W;
     unsigned char *vis_o = (unsigned char *)xmalloc(npix), *vis_m = (unsigned char *)xmalloc(npix);
     unsigned char *box_o = (unsigned char *)xmalloc(npix), *box_m = (unsigned char *)xmalloc(npix);
@@ -549,13 +566,20 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     rng rg;
     double t0 = now_ns();
     rg.s = 0x6d6963726f000000ULL + (unsigned long long)kind;
-    if (pfm_surface_make(&surf, W, W, 1.0, P) != 0) {
+    if (kind == KIND_MAP) { /* a copy: the loaded map stays for the cost section */
+        if (pfm_surface_alloc(&surf, W, W, 1.0) != 0) {
+            fprintf(stderr, "microsurface: out of memory\n");
+            exit(1);
+        }
+        memcpy(surf.height, map_surf.height, npix * sizeof(double));
+        pfm_surface_bounds(&surf);
+    } else if (pfm_surface_make(&surf, W, W, 1.0, P) != 0) {
         fprintf(stderr, "microsurface: pfm_surface_make failed for %s\n", pfm_kind_name(kind));
         exit(1);
     }
     lib_maps_build(&L, &surf);
     slope_moments_info(&surf, ci);
-    ci->corr = P.corr_texels;
+    ci->corr = kind == KIND_MAP ? map_stats.corr : P.corr_texels;
     /* hemisphere lights: uniform in solid angle, theta_i <= 85 degrees */
     for (li = 0; li < S->nlights; ++li) {
         double cz = cos(85.0 * DEG) + (1.0 - cos(85.0 * DEG)) * rng_unif(&rg);
@@ -900,6 +924,9 @@ static const char *fmt_pair(char *buf, size_t n, int kind, int t, int k, int s_l
     return buf;
 }
 
+/* the kinds of this run, in display order: the corpus, or the user's map alone */
+static int run_kinds[NKIND + 1], n_run_kinds = 0;
+
 static void write_errors_csv(const settings *S)
 {
     FILE *f = open_out(S, "microsurface_errors.csv");
@@ -907,16 +934,16 @@ static void write_errors_csv(const settings *S)
     fprintf(f, "task,method,kind,reference,footprint_texels,view_deg,rel_l2,max_rel,samples,sum_sq_err,sum_sq_ref\n");
     for (t = 0; t < NTASK; ++t)
         for (k = 0; k < task_nmeth[t]; ++k)
-            for (ko = 0; ko < NKIND; ++ko)
+            for (ko = 0; ko < n_run_kinds; ++ko)
                 for (r = 0; r < NREF; ++r)
                     for (s = 0; s < NSIZE; ++s)
                         for (v = 0; v < NVIEW; ++v) {
                             stat *st;
-                            kind = kind_order[ko];
+                            kind = run_kinds[ko];
                             st = &stats[kind][r][t][k][s][v];
                             if (!st->valid) continue;
                             fprintf(f, "%s,%s,%s,%s,%d,%g,%.6g,%.6g,%ld,%.9g,%.9g\n", task_name[t], meth_name[t][k],
-                                    pfm_kind_name(kind), ref_name[r], 1 << (2 * s), view_deg[v], st->rel_l2,
+                                    kname(kind), ref_name[r], 1 << (2 * s), view_deg[v], st->rel_l2,
                                     st->max_rel, st->samples, st->sum_d2, st->sum_r2);
                         }
     fclose(f);
@@ -976,7 +1003,9 @@ static void chart(const settings *S, const char *name, const char *title, const 
 }
 
 #define YMIN 1e-4 /* lower end of the error charts' y axes */
-#define CHART_KIND PFM_GAUSSIAN_FINE /* the per-task charts and tables: the papers' regime */
+/* the per-task charts and tables: gaussian_fine (the papers' regime), or the user's map */
+static int chart_kind = PFM_GAUSSIAN_FINE;
+#define CHART_KIND chart_kind
 static void make_charts(const settings *S)
 {
     static char colbuf[16][96];
@@ -1001,7 +1030,7 @@ static void make_charts(const settings *S)
         snprintf(dat, sizeof dat, "%s.dat", name);
         write_dat(S, dat, nc, cols, NSIZE, x, y);
         snprintf(title, sizeof title, "%s on %s, in-footprint reference: error vs footprint (views 0-75 deg)",
-                 task_name[t], pfm_kind_name(CHART_KIND));
+                 task_name[t], kname(CHART_KIND));
         chart(S, name, title, "footprint (texels, log)", "relative L2 error (log)", 1, nc, YMIN);
         /* error vs view angle, footprints of 256-4096 texels pooled */
         for (v = 0; v < NVIEW; ++v) {
@@ -1013,8 +1042,9 @@ static void make_charts(const settings *S)
         snprintf(dat, sizeof dat, "%s.dat", name);
         write_dat(S, dat, nc, cols, NVIEW, x, y);
         snprintf(title, sizeof title, "%s on %s, in-footprint reference: error vs view (256-4096 texels)",
-                 task_name[t], pfm_kind_name(CHART_KIND));
+                 task_name[t], kname(CHART_KIND));
         chart(S, name, title, "view angle theta_o (degrees)", "relative L2 error (log)", 0, nc, YMIN);
+        if (map_path) continue; /* one kind: no comparison between kinds */
         /* the library's method on every kind (in-footprint reference) */
         for (s = 0; s < NSIZE; ++s) {
             x[s] = (double)(1 << (2 * s));
@@ -1071,7 +1101,8 @@ static void make_charts(const settings *S)
         }
         for (i = 0; i < ns; ++i) cols[i] = shown[i];
         write_dat(S, "microsurface_cost.dat", ns, cols, NSIZE, x, y);
-        chart(S, "microsurface_cost", "Cost per footprint: brute force vs filtered (gaussian kind, view 60 deg)",
+        chart(S, "microsurface_cost", map_path ? "Cost per footprint: brute force vs filtered (your map, view 60 deg)"
+                                               : "Cost per footprint: brute force vs filtered (gaussian kind, view 60 deg)",
               "footprint (texels, log)", "median ns per footprint (log)", 1, ns, 0.0);
     }
 }
@@ -1102,13 +1133,78 @@ static void kinds_table(FILE *f, int si)
         }
 }
 
+/* per-task tables of CHART_KIND: error by footprint and view, with the size and view charts */
+static void write_task_tables(FILE *f)
+{
+    static const int tab_sizes[4] = { 0, 2, 4, 6 };      /* 1, 16, 256, 4096 texels */
+    static const int tab_views[6] = { 0, 2, 4, 6, 7, 8 }; /* 0, 30, 60, 75, 80, 85 deg */
+    const int VH = POOL_VIEW_HI;
+    int t, k, s, i;
+    /* ---- per-task tables */
+    for (t = 0; t < NTASK; ++t) {
+        fprintf(f, "\n### %s\n\n", task_title[t]);
+        fprintf(f, "`%s` kind, relative L2 error (*in-footprint / full* reference) by footprint (texels) and "
+                   "view angle.\n\n", kname(CHART_KIND));
+        fprintf(f, "| method | texels |");
+        for (i = 0; i < 6; ++i) fprintf(f, " %g deg |", view_deg[tab_views[i]]);
+        fprintf(f, " 0-75 deg pooled |\n|---|--:|");
+        for (i = 0; i < 7; ++i) fprintf(f, "--:|");
+        fprintf(f, "\n");
+        for (k = 0; k < task_nmeth[t]; ++k)
+            for (s = 0; s < 4; ++s) {
+                int si = tab_sizes[s];
+                fprintf(f, "| %s | %d |", s == 0 ? meth_name[t][k] : "", 1 << (2 * si));
+                for (i = 0; i < 6; ++i)
+                    fprintf(f, " %s |", PR(CHART_KIND, t, k, si, si, tab_views[i], tab_views[i]));
+                fprintf(f, " %s |\n", PR(CHART_KIND, t, k, si, si, 0, VH));
+            }
+        fprintf(f, "\n![%s: error vs footprint](microsurface_size_%s.svg)\n", task_name[t], task_name[t]);
+        fprintf(f, "![%s: error vs view](microsurface_view_%s.svg)\n", task_name[t], task_name[t]);
+    }
+}
+
+/* the cost section: brute force and every shader method by footprint size */
+static void write_cost_section(FILE *f, const settings *S)
+{
+    const int TOP = NSIZE - 1;
+    int s, c;
+    /* ---- cost */
+    fprintf(f, "\n### Cost against footprint size\n\n");
+    fprintf(f, "%s, view 60 degrees, %d seeded footprints per size and %d seeded lights; "
+               "median ns per footprint over %d repetitions (quartiles in `microsurface_cost.csv`). "
+               "Every shader method of the error tables is timed under the same name, with the pyramid "
+               "fetches it needs (bilinear samples at the texel centre; `no_masking` and `lambert_macro` "
+               "need none); the colour methods with the banded map (6 knots; the ramp has 2); `no_masking` and "
+               "`lambert_macro` (%.2g ns) are the timing loop's own floor. "
+               "Brute force (march + shade): marches the visibility of the footprint's texels toward "
+               "the view and the light (2 n^2 rays; every occluder, or in the box variant only those "
+               "inside the footprint), then sums the reference shading (specular, diffuse, masking "
+               "together). Brute force (shade only): the same sum with the visibility maps already "
+               "computed (cached maps, as in the error runs); these are the long double reference of "
+               "`tests/pf_microsurface.h`. Brute force (float shade): the same sum in the library's own "
+               "arithmetic (pf_real), every texel's base lobe by `pf_leadr_specular` of a one-slope "
+               "footprint, slopes read from level 0 of the pyramid, cached visibility: what a "
+               "supersampling shader would pay, without the march.\n\n",
+            map_path ? "Your map" : "Gaussian kind", COST_FP, COST_LIGHTS, S->cost_reps,
+            cost[cost_find("no_masking")].med[TOP]);
+    fprintf(f, "| method |");
+    for (s = 0; s < NSIZE; s += 2) fprintf(f, " %d texels (ns) |", 1 << (2 * s));
+    fprintf(f, " x `pf_leadr_specular` at 4096 |\n|---|");
+    for (s = 0; s < NSIZE; s += 2) fprintf(f, "--:|");
+    fprintf(f, "--:|\n");
+    for (c = 0; c < ncost; ++c) {
+        fprintf(f, "| %s |", cost[c].name);
+        for (s = 0; s < NSIZE; s += 2) fprintf(f, " %.4g |", cost[c].med[s]);
+        fprintf(f, " %.3g |\n", cost[c].med[TOP] / cost[c_leadr].med[TOP]);
+    }
+    fprintf(f, "\n![cost per footprint](microsurface_cost.svg)\n");
+}
+
 static void write_md(const settings *S, double total_s)
 {
     FILE *f = open_out(S, "microsurface.md");
-    static const int tab_sizes[4] = { 0, 2, 4, 6 };      /* 1, 16, 256, 4096 texels */
-    static const int tab_views[6] = { 0, 2, 4, 6, 7, 8 }; /* 0, 30, 60, 75, 80, 85 deg */
     const int G = PFM_GAUSSIAN, FN = PFM_GAUSSIAN_FINE, TOP = NSIZE - 1, VH = POOL_VIEW_HI;
-    int t, k, s, ko, i, kind, c;
+    int t, ko, kind;
     fprintf(f, "## Ground truth on synthetic microsurfaces\n\n");
     fprintf(f, "Generated by `bench/microsurface.c` (%s mode, %.0f s); every number below is computed "
                "in that run. Raw cells: `microsurface_errors.csv` (with `sum_sq_err` and `sum_sq_ref`, so "
@@ -1139,7 +1235,7 @@ static void write_md(const settings *S, double total_s)
                "such a surface, and it can sit further from the model than the full one. Tables give "
                "both as *in-footprint / full*; charts use the in-footprint reference, plus the library's "
                "method against the full one.\n\n");
-    fprintf(f, "**Corpus.** %d x %d periodic maps (texel 1), the six kinds of `pfm_params_default` "
+    fprintf(f, "**Corpus.** %d x %d periodic maps (texel 1), the seven kinds of `pfm_params_default` "
                "(below; `gaussian_fine` is the isotropic Gaussian generator with a %g-texel correlation "
                "length, so that footprints of 256-4096 texels hold tens to hundreds of features: the "
                "regime the filtering papers claim); footprints of n x n texels (n = 1, 2, ..., 64) "
@@ -1238,6 +1334,13 @@ static void write_md(const settings *S, double total_s)
             PR(PFM_TILES, T_SPEC, 0, TOP, TOP, 0, VH), PR(PFM_RIDGES, T_DIFF, 0, TOP, TOP, 0, VH),
             PR(PFM_CRATERS, T_DIFF, 0, TOP, TOP, 0, VH), PR(PFM_TILES, T_DIFF, 0, TOP, TOP, 0, VH),
             PR(PFM_GAUSSIAN_ANISO, T_SPEC, 0, TOP, TOP, 0, VH), PR(PFM_GAUSSIAN_ANISO, T_DIFF, 0, TOP, TOP, 0, VH));
+    fprintf(f, "- `peaked` (log-normal bumps, slope kurtosis %.1f: peaked and heavy-tailed like photographed "
+               "textures, unimodal), 4096 texels: masking `pf_beckmann_g1` %s; specular `pf_leadr_specular` %s "
+               "(oracle %s), Toksvig %s; diffuse LEADR grid %s; at 256 texels specular %s, diffuse %s.\n",
+            info[PFM_PEAKED].kurt_x, PR(PFM_PEAKED, T_MASK, 0, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 0, TOP, TOP, 0, VH),
+            PR(PFM_PEAKED, T_SPEC, 5, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 3, TOP, TOP, 0, VH),
+            PR(PFM_PEAKED, T_DIFF, 0, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 0, 4, 4, 0, VH),
+            PR(PFM_PEAKED, T_DIFF, 0, 4, 4, 0, VH));
     {
         int cm = cost_find("brute_force_march_and_shade"), cb = cost_find("brute_force_box_march_and_shade");
         int cf = cost_find("brute_force_float_shade");
@@ -1274,78 +1377,187 @@ static void write_md(const settings *S, double total_s)
     fprintf(f, "\n");
     for (t = 0; t < NTASK; ++t)
         fprintf(f, "![%s against features per footprint](microsurface_features_%s.svg)\n", task_name[t], task_name[t]);
-    /* ---- per-task tables */
-    for (t = 0; t < NTASK; ++t) {
-        fprintf(f, "\n### %s\n\n", task_title[t]);
-        fprintf(f, "`%s` kind, relative L2 error (*in-footprint / full* reference) by footprint (texels) and "
-                   "view angle.\n\n", pfm_kind_name(CHART_KIND));
-        fprintf(f, "| method | texels |");
-        for (i = 0; i < 6; ++i) fprintf(f, " %g deg |", view_deg[tab_views[i]]);
-        fprintf(f, " 0-75 deg pooled |\n|---|--:|");
-        for (i = 0; i < 7; ++i) fprintf(f, "--:|");
-        fprintf(f, "\n");
-        for (k = 0; k < task_nmeth[t]; ++k)
-            for (s = 0; s < 4; ++s) {
-                int si = tab_sizes[s];
-                fprintf(f, "| %s | %d |", s == 0 ? meth_name[t][k] : "", 1 << (2 * si));
-                for (i = 0; i < 6; ++i)
-                    fprintf(f, " %s |", PR(CHART_KIND, t, k, si, si, tab_views[i], tab_views[i]));
-                fprintf(f, " %s |\n", PR(CHART_KIND, t, k, si, si, 0, VH));
-            }
-        fprintf(f, "\n![%s: error vs footprint](microsurface_size_%s.svg)\n", task_name[t], task_name[t]);
-        fprintf(f, "![%s: error vs view](microsurface_view_%s.svg)\n", task_name[t], task_name[t]);
-    }
+    write_task_tables(f);
     /* ---- every kind */
     fprintf(f, "\n### Every kind: where the Gaussian assumption breaks\n\n");
     fprintf(f, "Relative L2 error (*in-footprint / full*) pooled over views 0-75 degrees. The Gaussian "
                "kinds satisfy the assumptions of the filtered models (Gaussian slopes and heights); "
-               "ridges, craters and tiles do not.\n\nFootprints of 4096 texels:\n\n");
+               "peaked, ridges, craters and tiles do not.\n\nFootprints of 4096 texels:\n\n");
     kinds_table(f, TOP);
     fprintf(f, "\nFootprints of 256 texels:\n\n");
     kinds_table(f, 4);
     fprintf(f, "\n");
     for (t = 0; t < NTASK; ++t) fprintf(f, "![%s on every kind](microsurface_kinds_%s.svg)\n", task_name[t], task_name[t]);
-    /* ---- cost */
-    fprintf(f, "\n### Cost against footprint size\n\n");
-    fprintf(f, "Gaussian kind, view 60 degrees, %d seeded footprints per size and %d seeded lights; "
-               "median ns per footprint over %d repetitions (quartiles in `microsurface_cost.csv`). "
-               "Every shader method of the error tables is timed under the same name, with the pyramid "
-               "fetches it needs (bilinear samples at the texel centre; `no_masking` and `lambert_macro` "
-               "need none); the colour methods with the banded map (6 knots; the ramp has 2); `no_masking` and "
-               "`lambert_macro` (%.2g ns) are the timing loop's own floor. "
-               "Brute force (march + shade): marches the visibility of the footprint's texels toward "
-               "the view and the light (2 n^2 rays; every occluder, or in the box variant only those "
-               "inside the footprint), then sums the reference shading (specular, diffuse, masking "
-               "together). Brute force (shade only): the same sum with the visibility maps already "
-               "computed (cached maps, as in the error runs); these are the long double reference of "
-               "`tests/pf_microsurface.h`. Brute force (float shade): the same sum in the library's own "
-               "arithmetic (pf_real), every texel's base lobe by `pf_leadr_specular` of a one-slope "
-               "footprint, slopes read from level 0 of the pyramid, cached visibility: what a "
-               "supersampling shader would pay, without the march.\n\n",
-            COST_FP, COST_LIGHTS, S->cost_reps, cost[cost_find("no_masking")].med[TOP]);
-    fprintf(f, "| method |");
-    for (s = 0; s < NSIZE; s += 2) fprintf(f, " %d texels (ns) |", 1 << (2 * s));
-    fprintf(f, " x `pf_leadr_specular` at 4096 |\n|---|");
-    for (s = 0; s < NSIZE; s += 2) fprintf(f, "--:|");
-    fprintf(f, "--:|\n");
-    for (c = 0; c < ncost; ++c) {
-        fprintf(f, "| %s |", cost[c].name);
-        for (s = 0; s < NSIZE; s += 2) fprintf(f, " %.4g |", cost[c].med[s]);
-        fprintf(f, " %.3g |\n", cost[c].med[TOP] / cost[c_leadr].med[TOP]);
-    }
-    fprintf(f, "\n![cost per footprint](microsurface_cost.svg)\n");
+    write_cost_section(f, S);
     if (!charts_made) fprintf(f, "\n(no charts were made in this run: gnuplot missing or --no-charts.)\n");
+    fclose(f);
+}
+
+/* the most accurate shader method of task t on kind over sizes s_lo..s_hi, views 0..VH
+   (in-footprint reference); -1 if none */
+static int best_method(int kind, int t, int s_lo, int s_hi)
+{
+    int k, best = -1;
+    double be = 1e300;
+    for (k = 0; k < task_nmeth[t]; ++k) {
+        double e;
+        if (is_oracle(t, k)) continue;
+        e = pooled(kind, R_BOX, t, k, s_lo, s_hi, 0, POOL_VIEW_HI);
+        if (e >= 0.0 && e < be) {
+            be = e;
+            best = k;
+        }
+    }
+    return best;
+}
+
+/* The fragment of a --map run: the map, its slope statistics, the key numbers, the per-task
+   tables and charts, the cost. */
+static void write_md_map(const settings *S, double total_s)
+{
+    FILE *f = open_out(S, "microsurface.md");
+    const int M = KIND_MAP, TOP = NSIZE - 1, VH = POOL_VIEW_HI;
+    const corpus_info *ci = &info[M];
+    const char *base = strrchr(map_path, '/');
+    int t, is_normal = map_opt.kind != PFMAP_HEIGHT;
+    base = base ? base + 1 : map_path;
+    fprintf(f, "## Ground truth on your map\n\n");
+    fprintf(f, "Generated by `bench/microsurface.c --map` (%s mode, %.0f s) from `%s`; every number below is "
+               "computed in that run. Raw cells: `microsurface_errors.csv` (kind `map`, with `sum_sq_err` and "
+               "`sum_sq_ref`, so any set of cells pools as sqrt(sum sum_sq_err / sum sum_sq_ref)); timings: "
+               "`microsurface_cost.csv`. Which method to use on this map for each error target: "
+               "[the method guide](#choosing-a-method-on-this-map).\n\n",
+            S->quick ? "QUICK (smoke run)" : "full", total_s, base);
+    /* ---- the map */
+    fprintf(f, "**The map.** A %s, %s, %d x %d texels in the file", pfmap_kind_name(map_opt.kind), map_info.format,
+            map_info.file_w, map_info.file_h);
+    if (map_info.crop_n != map_info.file_w || map_info.crop_n != map_info.file_h)
+        fprintf(f, ", cropped to its centred %d x %d square (columns %d-%d, rows %d-%d from the top; the "
+                   "march, the mip pyramids and the FFT need a power-of-two square)",
+                map_info.crop_n, map_info.crop_n, map_info.crop_x, map_info.crop_x + map_info.crop_n - 1,
+                map_info.crop_y, map_info.crop_y + map_info.crop_n - 1);
+    if (map_opt.border == PFMAP_MIRROR)
+        fprintf(f, "; clamped borders (`MAP_BORDER=clamped`): the map does not tile, so it was mirrored to "
+                   "%d x %d (reflected about its far edges: heights continuous across the seams, slopes "
+                   "change sign there, a crease along them)", map_surf.w, map_surf.h);
+    else
+        fprintf(f, "; periodic borders (the default, `MAP_BORDER=periodic`): the map tiles, and the march and "
+                   "the slopes wrap across its edges (a map that does not tile has a step there: give "
+                   "`MAP_BORDER=clamped`)");
+    fprintf(f, ". Texel = 1 world unit; row 0 of the surface is the image's bottom row (x to the right, y "
+               "up the image, z out of it). ");
+    if (map_opt.rms_slope > 0.0)
+        fprintf(f, "%s rescaled to an RMS slope of %g (`MAP_RMS_SLOPE`; factor %.4g on the %s).", is_normal ? "Slopes" : "Heights",
+                map_opt.rms_slope, map_info.factor, is_normal ? "encoded slopes" : "file's values");
+    else if (map_opt.scale > 0.0)
+        fprintf(f, "%s times %g (`MAP_SCALE`%s): RMS slope %.3g.", is_normal ? "Slopes" : "Heights", map_opt.scale,
+                is_normal ? "" : map_info.format[0] == 'P' ? ": full white is that many texels high" : ": a factor on the stored heights",
+                map_info.rms_slope);
+    else if (is_normal)
+        fprintf(f, "Slopes as encoded (no `MAP_SCALE` or `MAP_RMS_SLOPE`): RMS slope %.3g.", map_info.rms_slope);
+    else
+        fprintf(f, "No `MAP_SCALE` or `MAP_RMS_SLOPE` given: a height map's slopes in texel units depend on a "
+                   "scale the file does not hold, so the heights were rescaled to the default RMS slope %g "
+                   "(factor %.4g on the file's values; give the real one for a real answer).",
+                PFMAP_DEFAULT_RMS_SLOPE, map_info.factor);
+    fprintf(f, "\n\n");
+    if (is_normal) {
+        fprintf(f, "**Normal map to heights.** The brute force marches heights for masking and shadowing, so the "
+                   "normal map was integrated: least squares over the whole (periodic%s) map with the "
+                   "reference's own central differences (Frankot and Chellappa 1988), solved by FFT: "
+                   "H(k) = -i (sin kx P(k) + sin ky Q(k)) / (sin^2 kx + sin^2 ky), P, Q the transforms of the map's "
+                   "slopes -n.x/n.z and -n.y/n.z (`tests/pf_maps.h`). **Residual %.3g**: the RMS of |D h - (p, q)| "
+                   "over the RMS slope (largest %.3g slope units): that share of the map is not the gradient of "
+                   "any height field (its curl), and the reference shades the nearest height field instead. ",
+                map_opt.border == PFMAP_MIRROR ? ", mirrored" : "", map_info.residual, map_info.residual_max);
+        if (map_info.residual > PFMAP_RESIDUAL_WARN)
+            fprintf(f, "**Warning: the residual is above %.2g.** The normal map is far from any height field "
+                       "(painted or blended details, a detail map, or the other green convention: try "
+                       "`MAP_KIND=%s`); the masking and shadowing the reference computes are those of the "
+                       "integrated heights, and the errors below describe that surface, not the map. ",
+                    PFMAP_RESIDUAL_WARN, map_opt.kind == PFMAP_NORMAL_GL ? "normal-dx" : "normal-gl");
+        else
+            fprintf(f, "Below %.2g: the map is close to a height field, and the integrated surface can be trusted. ",
+                    PFMAP_RESIDUAL_WARN);
+        if (map_info.clamped)
+            fprintf(f, "%ld texels had n.z below %.2g (raised to it: slope at most %.0f).", map_info.clamped,
+                    PFMAP_MIN_NZ, 1.0 / PFMAP_MIN_NZ);
+        fprintf(f, "\n\n");
+    }
+    /* ---- slope statistics */
+    fprintf(f, "**Slope statistics** of the surface the reference shades (central differences, every texel):\n\n");
+    fprintf(f, "| RMS slope x / y | mean slope x / y | skewness x / y | kurtosis x / y | kurtosis, 2D | anisotropy "
+               "(RMS ratio; direction of the larger) | correlation length L (texels) | correlation areas pi L^2 per "
+               "4096 texels | share of the slope variance inside 4096-texel footprints |\n");
+    fprintf(f, "|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+    fprintf(f, "| %.3f / %.3f | %.3f / %.3f | %.2f / %.2f | %.2f / %.2f | %.2f | %.2f; %.0f deg | %.1f | %.0f | %.2f |\n\n",
+            map_stats.rms_x, map_stats.rms_y, map_stats.mean_x, map_stats.mean_y, map_stats.skew_x, map_stats.skew_y,
+            map_stats.kurt_x, map_stats.kurt_y, map_stats.kurt_r, map_stats.aniso, map_stats.aniso_angle_deg,
+            map_stats.corr, features(M, TOP), ci->var_in_4096);
+    fprintf(f, "Kurtosis: E[(s - mean)^4] / E[(s - mean)^2]^2 per axis; the 2D one is 1.5 E|d|^4 / E[|d|^2]^2, so "
+               "that both are 3 for a Gaussian. A Gaussian has skewness 0 and kurtosis 3; above 3 the slope "
+               "histogram is peaked and heavy-tailed, which a Gaussian fit of a footprint's slopes (LEADR, "
+               "Toksvig) does not represent (the main report's `peaked`, `ridges`, `craters` and `tiles` "
+               "kinds measure what that costs). Anisotropy: sqrt of the ratio of the slope covariance's "
+               "eigenvalues (1: isotropic). Correlation length: the radius where the heights' periodic "
+               "autocorrelation, averaged over directions, falls to 1/e (L of exp(-r^2 / L^2)); a filtered "
+               "model needs many correlation areas per footprint. Share inside 4096-texel footprints: the "
+               "rest of the slope variance is the spread of their mean slopes, i.e. resolved geometry at that "
+               "scale.\n\n");
+    fprintf(f, "Reference checks on this map: mean G1 at 60 degrees %.3f / %.3f (*in-footprint / full*); visible "
+               "projected area at 75 degrees, 4096 texels %.3f (ideal 1: every viewing ray meets one visible "
+               "point; a deficit is the bilinear surface being rougher than its central-difference slopes, "
+               "and errors of that order at grazing views are the reference's); footprint-views skipped as "
+               "back-facing %.1f%%, near edge-on %.1f%%.\n\n",
+            ci->mean_masking_60[R_BOX], ci->mean_masking_60[R_FULL], ci->vis_den > 0 ? ci->vis_num / ci->vis_den : 0.0,
+            100.0 * (double)ci->samples_backfacing / (double)(ci->samples_all > 0 ? ci->samples_all : 1),
+            100.0 * (double)ci->samples_culled / (double)(ci->samples_all > 0 ? ci->samples_all : 1));
+    /* ---- reference, in short */
+    fprintf(f, "**Reference and error.** As in the main report's ground truth: every texel of an n x n footprint "
+               "(n = 1 .. 64, aligned so that it is one texel of mip level log2 n) shaded with its own "
+               "micro-normal, a narrow Beckmann base lobe (slope deviation %.2g) or a Lambertian one, masking and "
+               "shadowing marched through the height field; the filtered methods read only what a shader can "
+               "fetch (one texel of the moment pyramids). Two references: *in-footprint* (occluders inside "
+               "the footprint only: what a filtered model can represent, so its error is the model's) and "
+               "*full* (every occluder). Error: relative L2, sqrt(sum (f - ref)^2 / sum ref^2) over views at "
+               "%d azimuth(s), %d seeded lights plus the mirror direction, and up to %d positions per size "
+               "(%d above 256 texels).\n\n",
+            BASE_SIGMA, S->naz, S->nlights, 4 * S->maxpos, S->maxpos);
+    /* ---- key numbers */
+    fprintf(f, "**Key numbers** (relative L2 error pooled over views 0-75 degrees, *in-footprint / full* "
+               "reference; the most accurate shader method of each task, and the library's default):\n\n");
+    fprintf(f, "| task | texels | most accurate method | its error | library default | its error |\n");
+    fprintf(f, "|---|--:|---|--:|---|--:|\n");
+    for (t = 0; t < NTASK; ++t) {
+        static const int sz[3] = { 6, 4, 2 };
+        int j;
+        for (j = 0; j < 3; ++j) {
+            int b = best_method(M, t, sz[j], sz[j]);
+            if (b < 0) continue;
+            fprintf(f, "| %s | %d | `%s` | %s | `%s` | %s |\n", j == 0 ? task_name[t] : "", 1 << (2 * sz[j]),
+                    meth_name[t][b], PR(M, t, b, sz[j], sz[j], 0, VH), meth_name[t][0], PR(M, t, 0, sz[j], sz[j], 0, VH));
+        }
+    }
+    fprintf(f, "\nThe oracles (`oracle_histogram_smith`: the exact slope histogram of the footprint with Smith's "
+               "visibility; `oracle_histogram_no_vis`: without visibility) read every texel, so they are not "
+               "shader methods; in the tables below they split a method's error into the Gaussian fit of the "
+               "histogram and the visibility model.\n");
+    write_task_tables(f);
+    write_cost_section(f, S);
+    if (!charts_made) fprintf(f, "\n(no charts were made in this run: --no-charts.)\n");
     fclose(f);
 }
 
 int main(int argc, char **argv)
 {
     settings S;
-    int i, kind;
+    int i, kind, check_only = 0;
     const char *q = getenv("BENCH_QUICK");
     pfm_surface gauss_surf;
     lib_maps gauss_maps;
     double t0 = now_ns();
+    char err[1024];
+    map_opt = pfmap_options_default();
     memset(&S, 0, sizeof S);
     S.quick = q && *q && strcmp(q, "0") != 0 && strcmp(q, "no") != 0;
     S.out = "bench/out";
@@ -1353,13 +1565,55 @@ int main(int argc, char **argv)
     S.charts = 1;
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--quick")) S.quick = 1;
+        else if (!strcmp(argv[i], "--check")) check_only = 1; /* load and check the map, write nothing */
         else if (!strcmp(argv[i], "--no-charts")) S.charts = 0;
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) S.out = argv[++i];
         else if (!strcmp(argv[i], "--gp") && i + 1 < argc) S.gp = argv[++i];
-        else {
-            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts]\n", argv[0]);
+        else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
+        else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
+            /* the map's options; each value checked here, before anything is written */
+            const char *o = argv[i] + 6, *v = argv[++i];
+            if (pfmap_parse_option(o, v, &map_opt, err, sizeof err) != 0) {
+                fprintf(stderr, "microsurface: %s\n", err);
+                return 2;
+            }
+        } else {
+            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts] [--check] [--map PATH [--map-kind "
+                            "height|normal-gl|normal-dx] [--map-scale S | --map-rms-slope R] [--map-border "
+                            "periodic|clamped] [--map-raw-size WxH]]\n", argv[0]);
             return 2;
         }
+    }
+    /* the user's map: loaded and checked before anything is written */
+    if (map_path) {
+        if (pfmap_load(map_path, &map_opt, &map_surf, &map_info, err, sizeof err) != 0) {
+            fprintf(stderr, "microsurface: %s\n", err);
+            return 1;
+        }
+        if (map_surf.w < 64) {
+            fprintf(stderr, "microsurface: %s: the kept square is %d x %d texels; the ground truth needs at least "
+                            "64 x 64 (footprints up to 64 x 64)\n", map_path, map_surf.w, map_surf.h);
+            pfm_surface_free(&map_surf);
+            return 1;
+        }
+        pfmap_slope_stats(&map_surf, &map_stats);
+    }
+    if (check_only) {
+        if (!map_path) {
+            fprintf(stderr, "microsurface: --check needs --map PATH\n");
+            return 2;
+        }
+        printf("microsurface: %s: %s, %s, %d x %d texels in the file, %d x %d kept%s; RMS slope %.3f, slope "
+               "kurtosis %.2f / %.2f, correlation length %.1f texels",
+               map_path, pfmap_kind_name(map_opt.kind), map_info.format, map_info.file_w, map_info.file_h, map_surf.w,
+               map_surf.h, map_opt.border == PFMAP_MIRROR ? " (mirrored)" : "", map_info.rms_slope, map_stats.kurt_x,
+               map_stats.kurt_y, map_stats.corr);
+        if (map_opt.kind != PFMAP_HEIGHT)
+            printf("; integration residual %.3g%s", map_info.residual,
+                   map_info.residual > PFMAP_RESIDUAL_WARN ? " (WARNING: far from a height field)" : "");
+        printf("\n");
+        pfm_surface_free(&map_surf);
+        return 0;
     }
     if (S.quick) {
         S.map = 256;
@@ -1384,18 +1638,38 @@ int main(int argc, char **argv)
                         "without charts)\n");
         return 1;
     }
-    for (kind = 0; kind < NKIND; ++kind) {
-        run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
-        fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
+    if (map_path) {
+        /* one kind, the map; the cost section on it too */
+        n_run_kinds = 1;
+        run_kinds[0] = KIND_MAP;
+        chart_kind = KIND_MAP;
+        S.map = map_surf.w;
+        fprintf(stderr, "microsurface: %s: %s, %s, %d x %d texels, RMS slope %.3f, slope kurtosis %.2f%s\n", map_path,
+                pfmap_kind_name(map_opt.kind), map_info.format, map_surf.w, map_surf.h, map_info.rms_slope,
+                map_stats.kurt_x, map_opt.kind != PFMAP_HEIGHT ? "" : "");
+        if (map_opt.kind != PFMAP_HEIGHT)
+            fprintf(stderr, "microsurface: normal map integrated, residual %.3g%s\n", map_info.residual,
+                    map_info.residual > PFMAP_RESIDUAL_WARN ? " (WARNING: far from a height field; see the report)" : "");
+        run_kind(KIND_MAP, &S, &gauss_surf, &gauss_maps);
+        fprintf(stderr, "microsurface: map done (%.1f s)\n", info[KIND_MAP].seconds);
+    } else {
+        for (i = 0; i < NKIND; ++i) run_kinds[i] = kind_order[i];
+        n_run_kinds = NKIND;
+        for (kind = 0; kind < NKIND; ++kind) {
+            run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
+            fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
+        }
     }
     run_cost(&S, &gauss_surf, &gauss_maps);
     fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (now_ns() - t0) * 1e-9);
     write_errors_csv(&S);
     write_cost_csv(&S);
     make_charts(&S);
-    write_md(&S, (now_ns() - t0) * 1e-9);
+    if (map_path) write_md_map(&S, (now_ns() - t0) * 1e-9);
+    else write_md(&S, (now_ns() - t0) * 1e-9);
     lib_maps_free(&gauss_maps);
     pfm_surface_free(&gauss_surf);
+    pfm_surface_free(&map_surf);
     printf("microsurface: wrote %s/microsurface.md, microsurface_errors.csv, microsurface_cost.csv, %d charts (%.1f s)\n",
            S.out, charts_made, (now_ns() - t0) * 1e-9);
     return 0;

@@ -72,8 +72,11 @@
    passes; pyramid building timed separately, it is a one-off per map; the in-box variant is
    timed apart and not counted in the reference's time).
 
-   OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] (defaults bench/out, bench/pictures.gp; run
-   from the repository root). pic_plane.png, pic_sphere.png: 3 x 2 panels, reference | LEADR |
+   OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] [--map PATH --map-kind K --map-scale S
+   --map-rms-slope R --map-border B --map-raw-size WxH] (defaults bench/out, bench/pictures.gp;
+   run from the repository root). With --map (`make bench MAP=...`, bench/map.sh) both scenes
+   tile the user's height or normal map, loaded by tests/pf_maps.h before anything is written
+   (a bad map: one message, exit 1, no output); the flat self-check keeps the Gaussian map. pic_plane.png, pic_sphere.png: 3 x 2 panels, reference | LEADR |
    naive (radiance), footprint side | LEADR error | naive error, every panel titled (with its
    time per pixel or its mean and 95th-percentile error from this run) and with its own
    numbered colour bar; pictures.md, the markdown fragment of the report (every number computed
@@ -96,6 +99,7 @@
 #include "pf_moments.h"
 #include "pf_beckmann.h"
 #include "pf_microsurface.h"
+#include "pf_maps.h"
 
 /* ---------------------------------------------------------------- settings */
 #define MAP_SIZE        256     /* the height map: MAP_SIZE^2 texels, texel = 1 world unit */
@@ -118,6 +122,15 @@
 
 static const double pic_pi = 3.14159265358979323846;
 
+/* The user's map (--map PATH, `make bench MAP=...`; tests/pf_maps.h): when set, both scenes
+   tile it instead of the Gaussian corpus map (the flat self-check still uses the Gaussian
+   map: it checks the plumbing, not the surface). map_label names it in titles and text. */
+static pfm_surface *user_map = NULL;
+static char map_label[256] = "";
+static char map_title[256] = ""; /* for gnuplot titles: no backquote, quote or backslash */
+static double map_rms = 0.0, map_corr = 0.0;
+/* the side of the map the scenes use (footprints are capped at it) */
+static int map_side(void) { return user_map ? user_map->w : MAP_SIZE; }
 /* ---------------------------------------------------------------- small vector helpers */
 static double v3_dot(const double a[3], const double b[3])
 {
@@ -176,13 +189,18 @@ typedef struct {
 static int maps_make(pic_maps *m, int flat)
 {
     pfm_params p = pfm_params_default(PFM_GAUSSIAN);
-    int W = MAP_SIZE, H = MAP_SIZE, x, y, k;
+    int W = (user_map && !flat) ? user_map->w : MAP_SIZE, H = (user_map && !flat) ? user_map->h : MAP_SIZE, x, y, k;
     long long nt = pf_mip_texel_count(W, H);
     pf_real *heights, *normals;
     double t0;
     if (flat) p.rms_slope = FLAT_RMS_SLOPE;
     memset(m, 0, sizeof *m);
-    if (pfm_surface_make(&m->surf, W, H, 1.0, p) != 0) return 1;
+    if (user_map && !flat) {
+        if (pfm_surface_alloc(&m->surf, W, H, 1.0) != 0) return 1;
+        memcpy(m->surf.height, user_map->height, sizeof(double) * (size_t)W * (size_t)H);
+        pfm_surface_bounds(&m->surf);
+    } else if (pfm_surface_make(&m->surf, W, H, 1.0, p) != 0)
+        return 1;
     heights = (pf_real *)malloc(sizeof(pf_real) * (size_t)W * (size_t)H);
     normals = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)W * (size_t)H);
     m->slope_pyr = (pf_real *)malloc(sizeof(pf_real) * 5 * (size_t)nt);
@@ -910,17 +928,17 @@ static int write_picture(const pic_scene *sc, const pic_result *r, const char *o
             (unsigned)floor(255.0 * pow(sc->bg[1], 1.0 / 2.2) + 0.5),
             (unsigned)floor(255.0 * pow(sc->bg[2], 1.0 / 2.2) + 0.5));
     fprintf(f, "errlo = %.6g\nerrhi = %.6g\nfplo = %.6g\nfphi = %.6g\n", 100.0 * e_lo,
-            100.0 * e_hi, FP_SHOWN_MIN, (double)MAP_SIZE);
+            100.0 * e_hi, FP_SHOWN_MIN, (double)map_side());
     if (strcmp(sc->name, "plane") == 0)
         fprintf(f, "ttl = \"Rough specular plane toward the horizon, brute force against the "
-                   "filtered formulas\\n%dx%d Gaussian height map tiled, light %.0f degrees "
+                   "filtered formulas\\n%dx%d %s tiled, light %.0f degrees "
                    "above the horizon, %dx%d pixels\"\n",
-                MAP_SIZE, MAP_SIZE, PLANE_LIGHT_ELEV, w, h);
+                map_side(), map_side(), user_map ? map_title : "Gaussian height map", PLANE_LIGHT_ELEV, w, h);
     else
         fprintf(f, "ttl = \"Sphere in LEADR's domain, brute force against the filtered "
-                   "formulas\\n%dx%d Gaussian height map tiled %d times around the equator, "
+                   "formulas\\n%dx%d %s tiled %d times around the equator, "
                    "%dx%d pixels\"\n",
-                MAP_SIZE, MAP_SIZE, SPHERE_TILES, w, h);
+                map_side(), map_side(), user_map ? map_title : "Gaussian height map", SPHERE_TILES, w, h);
     fprintf(f, "t0 = \"reference (brute force)\\n%.0f us per pixel\"\n", us_ref);
     for (k = 1; k < 3; ++k)
         fprintf(f, "t%d = \"%s\\n%.0f ns per pixel (%.0fx faster)\"\n", k,
@@ -998,18 +1016,23 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
     double box_s, box_l, in_s, in_l, oof_s, oof_l, tri_s, tri_l, trin_s, trin_l, noise_l;
     double ndf_s, ndf_l;
     int k, lit_s = 0, lit_l = 0, n_noisy = 0;
+    if (user_map) {
+        p.rms_slope = map_rms;
+        p.corr_texels = map_corr;
+    }
     fprintf(md, "![%s: reference, LEADR, naive; footprint size, LEADR error, naive error](%s)\n\n",
             sc->name, png);
     if (strcmp(sc->name, "plane") == 0)
         fprintf(md,
-                "**Rough specular plane.** A %dx%d Gaussian height map (`pfm` corpus defaults: "
+                "**Rough specular plane.** A %dx%d %s: "
                 "RMS slope %.2f per axis, correlation length %.0f texels), tiled on the plane "
                 "z = 0, seen by a pinhole camera %.0f texels above it, pitched %.0f degrees down "
                 "(vertical field of view %.0f degrees) toward the horizon; a directional light "
                 "%.0f degrees above the horizon, in front of the camera (%.0f degrees to the "
                 "right). The footprints run from resolved bumps near the camera to thousands of "
                 "bumps at the horizon. ",
-                m->surf.w, m->surf.h, p.rms_slope, p.corr_texels, PLANE_CAM_HEIGHT,
+                m->surf.w, m->surf.h, user_map ? map_label : "Gaussian height map (`pfm` corpus defaults",
+                p.rms_slope, p.corr_texels, PLANE_CAM_HEIGHT,
                 PLANE_PITCH_DEG, PLANE_FOV_DEG, PLANE_LIGHT_ELEV, PLANE_LIGHT_AZIM);
     else
         fprintf(md,
@@ -1290,12 +1313,51 @@ int main(int argc, char **argv)
     double t_start = now_seconds(), t_png = 0.0;
     long png_bytes[2] = {0, 0};
     FILE *gpf;
+    const char *map_path = NULL;
+    pfmap_options map_opt = pfmap_options_default();
+    pfm_surface map_surf;
+    char err[1024];
+    memset(&map_surf, 0, sizeof map_surf);
     for (s = 1; s < argc; ++s) {
         if (!strcmp(argv[s], "--gp") && s + 1 < argc) gp = argv[++s];
-        else if (argv[s][0] != '-') outdir = argv[s];
+        else if (!strcmp(argv[s], "--map") && s + 1 < argc) map_path = argv[++s];
+        else if (!strncmp(argv[s], "--map-", 6) && s + 1 < argc) {
+            const char *name = argv[s] + 6, *v = argv[s + 1];
+            ++s;
+            if (pfmap_parse_option(name, v, &map_opt, err, sizeof err) != 0) {
+                fprintf(stderr, "pictures: %s\n", err);
+                return 2;
+            }
+        } else if (argv[s][0] != '-') outdir = argv[s];
         else {
-            fprintf(stderr, "usage: %s [OUT_DIR] [--gp bench/pictures.gp]\n", argv[0]);
+            fprintf(stderr, "usage: %s [OUT_DIR] [--gp bench/pictures.gp] [--map PATH [--map-kind K] "
+                            "[--map-scale S | --map-rms-slope R] [--map-border periodic|clamped] "
+                            "[--map-raw-size WxH]]\n", argv[0]);
             return 2;
+        }
+    }
+    /* the user's map: loaded and checked before anything is written */
+    if (map_path) {
+        pfmap_info mi;
+        pfmap_stats st;
+        const char *base = strrchr(map_path, '/');
+        if (pfmap_load(map_path, &map_opt, &map_surf, &mi, err, sizeof err) != 0) {
+            fprintf(stderr, "pictures: %s\n", err);
+            return 1;
+        }
+        pfmap_slope_stats(&map_surf, &st);
+        user_map = &map_surf;
+        map_rms = sqrt(0.5 * (st.rms_x * st.rms_x + st.rms_y * st.rms_y));
+        map_corr = st.corr;
+        snprintf(map_label, sizeof map_label, "user map (`%s`, %s%s", base ? base + 1 : map_path,
+                 map_opt.kind == PFMAP_HEIGHT ? "height map" : "normal map integrated to heights",
+                 map_opt.border == PFMAP_MIRROR ? ", mirrored" : "");
+        {
+            size_t j;
+            snprintf(map_title, sizeof map_title, "map %s", base ? base + 1 : map_path);
+            for (j = 0; map_title[j]; ++j)
+                if (map_title[j] == '`' || map_title[j] == '"' || map_title[j] == '\\' || map_title[j] == '\'')
+                    map_title[j] = '_';
         }
     }
     /* gnuplot draws the pictures: without it there is nothing to show, so stop before the
@@ -1384,6 +1446,7 @@ int main(int argc, char **argv)
             quick ? " (BENCH_QUICK: half-size images)" : "", png_bytes[0], png_bytes[1],
             1e3 * t_png, now_seconds() - t_start);
     fclose(md);
+    pfm_surface_free(&map_surf);
     printf("pictures: done in %.1f s\n", now_seconds() - t_start);
     return 0;
 }

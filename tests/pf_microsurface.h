@@ -9,7 +9,7 @@
    no pf_real. C99 and C++11; every function is static; deterministic (own splitmix64 seeds).
 
    WHAT IT PROVIDES
-   1. Periodic height maps (they tile exactly; w and h powers of two) of six kinds:
+   1. Periodic height maps (they tile exactly; w and h powers of two) of seven kinds:
         PFM_GAUSSIAN        isotropic Gaussian random field: a sum of random-phase waves on the
                             integer frequency lattice 2 pi (i/w, j/h) with a Gaussian spectrum
                             (autocorrelation ~ exp(-r^2 / L^2), L = corr_texels); heights and
@@ -31,7 +31,14 @@
                             Gaussians (kurtosis ~ 8) correlated with height;
         PFM_CRATERS         random bowls with raised rims on a flat ground (the flat ground is
                             an atom of slope 0);
-        PFM_TILES           square tiles with bevelled grooves (slopes on a few values).
+        PFM_TILES           square tiles with bevelled grooves (slopes on a few values);
+        PFM_PEAKED          exp(a g) of a unit Gaussian field g (a = PFM_PEAKED_A = 0.36,
+                            correlation length 6 texels): log-normal heights (a few tall
+                            bumps on a low ground), slopes a scale mixture of Gaussians
+                            (grad g times the log-normal a exp(a g)): unimodal, symmetric,
+                            peaked and heavy-tailed like photographed textures, slope kurtosis
+                            3 exp(4 a^2) = 5.1 (measured 5.0-5.2 on 512^2; gaussian 3,
+                            ridges 9.4), and steeper where higher.
       Every kind is rescaled so that the RMS of the central-difference slopes is rms_slope
       (isotropic kinds: the mean of the x and y variances; ANISO: the x axis of the rotated
       frame, and the y axis is adjusted to aniso times it).
@@ -193,12 +200,17 @@
 #  define PFM_FINE_CORR_TEXELS 3.0
 #endif
 
+/* PFM_PEAKED: heights exp(PFM_PEAKED_A g), g a unit Gaussian field */
+#ifndef PFM_PEAKED_A
+#  define PFM_PEAKED_A 0.36
+#endif
+
 /* kinds; PFM_GAUSSIAN_FINE (added last, so the earlier values keep their numbers) is the
    isotropic Gaussian generator with a fine correlation length (pfm_params_default: 3 texels
    against 12), so that footprints of 256-4096 texels hold tens to hundreds of features: the
    regime the filtering papers claim */
 enum { PFM_GAUSSIAN = 0, PFM_GAUSSIAN_ANISO, PFM_RIDGES, PFM_CRATERS, PFM_TILES, PFM_GAUSSIAN_FINE,
-       PFM_KIND_COUNT };
+       PFM_PEAKED, PFM_KIND_COUNT };
 
 typedef struct {
     int kind;           /* PFM_* */
@@ -288,6 +300,10 @@ PFM_FN pfm_params pfm_params_default(int kind)
     case PFM_GAUSSIAN_FINE:
         p.corr_texels = PFM_FINE_CORR_TEXELS;
         break;
+    case PFM_PEAKED:
+        p.rms_slope = 0.35;
+        p.corr_texels = 6.0;
+        break;
     default:
         break;
     }
@@ -303,6 +319,7 @@ PFM_FN const char *pfm_kind_name(int kind)
     case PFM_CRATERS: return "craters";
     case PFM_TILES: return "tiles";
     case PFM_GAUSSIAN_FINE: return "gaussian_fine";
+    case PFM_PEAKED: return "peaked";
     default: return "unknown";
     }
 }
@@ -625,6 +642,18 @@ PFM_FN int pfm_surface_make(pfm_surface *s, int w, int h, double texel, pfm_para
                         hh[(size_t)pfmi_wrap(gy, h) * w + (size_t)pfmi_wrap(gx, w)] += R * pfmi_crater_profile(rho);
                 }
         }
+        scale = p.rms_slope / sqrt(0.5 * (pfmi_slope_var(hh, w, h, 1.0, 0.0) + pfmi_slope_var(hh, w, h, 0.0, 1.0)));
+        break;
+    }
+    case PFM_PEAKED: {
+        /* exp(a g) of a unit Gaussian field g: the slope a exp(a g) grad g is grad g (Gaussian,
+           independent of g at the same point) times a log-normal scale, a scale mixture of
+           Gaussians: unimodal, symmetric, slope kurtosis 3 exp(4 a^2) for a smooth field */
+        double acc = 0.0;
+        if (pfmi_gaussian_field(w, h, p.corr_texels, p.corr_texels, 0.0, p.seed, hh) != 0) goto fail;
+        for (i = 0; i < n; ++i) acc += hh[i] * hh[i];
+        acc = 1.0 / sqrt(acc / (double)n);
+        for (i = 0; i < n; ++i) hh[i] = exp(PFM_PEAKED_A * hh[i] * acc);
         scale = p.rms_slope / sqrt(0.5 * (pfmi_slope_var(hh, w, h, 1.0, 0.0) + pfmi_slope_var(hh, w, h, 0.0, 1.0)));
         break;
     }

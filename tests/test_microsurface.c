@@ -133,6 +133,27 @@ static void test_generator_statistics(void)
                slope-0 atom of the flat ground; tiles ~5: slopes on a few values) */
             PF_CHECK(kurt > 4.5, "%s kurt %g (expected clearly non-Gaussian)", pfm_kind_name(k), kurt);
         }
+        if (k == PFM_PEAKED) {
+            /* the photographed-texture regime of issue 18: kurtosis 4-6 (3 exp(4 a^2) = 5.1
+               for a smooth field; standard error ~0.3 at L = 6), symmetric, and unimodal:
+               the histogram of the x slopes in bins of half an RMS falls away from the
+               central bin on both sides (5% slack for sampling noise) */
+            long bins[16];
+            int b, x, y, mono = 1;
+            PF_CHECK(kurt > 4.0 && kurt < 6.0 && fabs(skew) < 0.35, "peaked kurt %g skew %g", kurt, skew);
+            memset(bins, 0, sizeof bins);
+            for (y = 0; y < s.h; ++y)
+                for (x = 0; x < s.w; ++x) {
+                    double sx, sy;
+                    pfm_slope(&s, x, y, &sx, &sy);
+                    b = (int)floor(sx / (0.5 * st.rms_x)) + 8;
+                    if (b >= 0 && b < 16) bins[b]++;
+                }
+            for (b = 8; b < 15; ++b) mono &= bins[b + 1] <= bins[b] * 105 / 100;
+            for (b = 7; b > 0; --b) mono &= bins[b - 1] <= bins[b] * 105 / 100;
+            PF_CHECK(mono, "peaked: x-slope histogram not unimodal (%ld %ld %ld %ld | %ld %ld %ld %ld)", bins[4],
+                     bins[5], bins[6], bins[7], bins[8], bins[9], bins[10], bins[11]);
+        }
         pf_test_note("%s rms %.3f/%.3f skew %.2f kurt %.2f", pfm_kind_name(k), st.rms_x, st.rms_y, skew,
                      kurt);
         pfm_surface_free(&s);
