@@ -2,26 +2,22 @@
    moments, average normals (Toksvig), depth moments for shadow maps; their mip reductions,
    mip pyramids and bilinear/trilinear sampling.
 
-   WHY MOMENTS. A shading function f that is non-linear in a map's values cannot be filtered by
-   averaging the map. It can be filtered exactly when it is rewritten as a linear function of new
-   per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1, eq. 40): averaging those quantities
-   over a footprint then averages f. Raw moments E[1], E[m], E[m m^T], ... of a texel's values
-   are such quantities: the moments of a union (a mixture) of footprints are the weighted
-   averages of their moments (sec. 7.2). So everything in this header is averaged with plain
-   weighted sums - a box mip reduction, a bilinear or trilinear sampler - and the statistics
-   (mean, variance, covariance) are formed only after filtering, in the shader:
-     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010 as
-                     summarized by Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and
-                     sec. 4.1, which stores exactly these five in mipmapped textures);
+   WHY MOMENTS. A shading function non-linear in a map's values is filtered exactly when it is
+   rewritten as a linear function of per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1,
+   eq. 40): averaging those over a footprint then averages the function. Raw moments are such
+   quantities: the moments of a union (a mixture) of footprints are the weighted averages of
+   their moments (sec. 7.2). So everything here is averaged with plain weighted sums (a box mip
+   reduction, a bilinear or trilinear sampler), and mean, variance and covariance are formed
+   only after filtering, in the shader:
+     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010;
+                     Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and sec. 4.1);
      scalar moments  E[f], E[f^2] of a colour-driving or height map: the mean and variance of a
                      Gaussian filtering distribution (Heitz et al. 2014 sec. 4.2);
-     average normal  E[n] of unit normals, unnormalized; its length shrinks as the normals
-                     spread, which is what Toksvig's variance estimate reads (pf_toksvig.h;
-                     Bruneton & Neyret 2012 sec. 3.2.1, 7.2.2);
-     depth moments   (z, z^2) for VSM, warped (exp) moments for EVSM, (z, z^2, z^3, z^4) for
-                     moment shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); and ESM's
-                     E[exp(c z)] kept as its logarithm and reduced with log-sum-exp, so that no
-                     float ever holds exp(c z) and nothing overflows, whatever c.
+     average normal  E[n] of unit normals, unnormalized: its length shrinks as the normals
+                     spread, which is what Toksvig's variance reads (pf_toksvig.h);
+     depth moments   (z, z^2) for VSM, exp-warped moments for EVSM, (z .. z^4) for moment
+                     shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); ESM's
+                     E[exp(c z)] as its logarithm, reduced with log-sum-exp (never overflows).
 
    USAGE (shader or CPU: the evaluators)
      pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
@@ -30,99 +26,69 @@
    USAGE (CPU: a whole pyramid in one caller buffer, no allocation)
      long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
      pf_real *pyr = <n * 5 pf_reals from the caller>;
-     pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr);
+     if (pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr) != PF_OK) ...
      pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, PF_BORDER_WRAP);
 
    FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
-     types and texels  pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
-                       pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
-                       pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
-                       pf_normal_avg_from_normal, pf_normal_avg_from_slope;
-                       pf_esm_log_from_depth, pf_esm_log_combine2
-     linear algebra    pf_<T>_add, pf_<T>_scale (scalar, depth2, depth4, evsm; the slope
-                       moments' and pf_vec3's live in pf_beckmann.h and pf_core.h)
-     reductions        for T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
-                       evsm_moments, normal_avg (a pf_vec3):
-                         pf_<T>_reduce2x2(a, b, c, d)       the even-size mip texel (box)
-                         pf_<T>_reduce3(a, b, c, w)         3 texels, weights w (odd edge)
-                         pf_<T>_reduce3x3(t00 .. t22, wx, wy)  9 texels (odd corner),
-                                                            separable weights
-                         pf_<T>_accumulate(acc, t, w)       acc + w t: N texels, one at a time
-                         pf_<T>_lerp(a, b, t), pf_<T>_bilinear(t00, t10, t01, t11, fx, fy)
-                       pf_mip_next_size(n), pf_mip_weights3(j, n)   the odd-size weights below
-     ESM (log space)   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
-                       pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
-                       (N texels, streaming)
-     height maps       pf_height_slope_central, pf_height_slope_edge,
-                       pf_slope_moments_from_heights
-   FUNCTIONS (CPU only: they walk caller-owned buffers; linkage PF_CPU_DEF; compiled out under
-   PF_GLSL, skipped by the shader-subset portability checks)
-     pyramid layout    pf_mip_level_count, pf_mip_level_size, pf_mip_level_offset,
-                       pf_mip_texel_count
-     building          pf_mip_build (linear, any channel count), pf_mip_build_log (ESM),
-                       pf_slope_moments_map_from_heights (level 0 only),
-                       pf_slope_pyramid_from_heights, pf_depth_pyramid_from_depths,
-                       pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
-     N texels          pf_moments_weighted_mean, pf_esm_log_weighted_mean
-     sampling          pf_mip_sample_bilinear, pf_mip_sample_trilinear, and their _log
-                       variants (ESM); typed: pf_slope_moments_sample, pf_scalar_moments_sample,
-                       pf_depth_moments2_sample, pf_depth_moments4_sample,
-                       pf_evsm_moments_sample, pf_normal_avg_sample, pf_esm_log_sample
+     texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
+                     pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
+                     pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
+                     pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
+     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm (slope moments:
+                     pf_beckmann.h; pf_vec3: pf_core.h)
+     reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
+                     T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
+                     evsm_moments, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
+                     pf_mip_next_size, pf_mip_weights3 (odd sizes)
+     ESM log space   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
+                     pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
+     height maps     pf_height_slope_central, _edge, pf_slope_moments_from_heights
+   FUNCTIONS (CPU only, linkage PF_CPU_DEF: they walk caller-owned buffers; compiled out under
+   PF_GLSL)
+     layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
+     building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
+                     pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
+                     pf_depth_moment_channels, pf_depth_pyramid_from_depths,
+                     pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
+     N texels        pf_moments_weighted_mean, pf_esm_log_weighted_mean
+     sampling        pf_mip_sample_bilinear, _trilinear, _bilinear_log, _trilinear_log;
+                     pf_<T>_sample for the six T above, pf_esm_log_sample
 
-   CONVENTIONS
-     Buffers. A map with C channels is an array of pf_real, texel (i, j) (column i, row j) at
-     [(j w + i) C ... + C - 1]: the interleaved layout of an RGBA32F upload. The moment structs
-     map to channels in member order: slope (ex, ey, exx, eyy, exy) = 5 channels; scalar and
-     depth2 2; depth4 and evsm 4; normal_avg 3; ESM log 1. One builder serves every linear
-     type (pf_mip_build with the channel count), so a caller who splits the five slope moments
-     into an RGBA and an R texture builds two pyramids with C = 4 and C = 1 (or builds one with
-     C = 5 and splits it while uploading).
-     Pyramid. Level 0 is w x h; level l+1 is pf_mip_next_size of each side, i.e. floor(n/2),
-     but never below 1; the last level is 1 x 1. Levels are stored one after the other, level 0
-     first, each row-major: pf_mip_level_offset gives where level l starts (in texels; multiply
-     by C for pf_reals). pf_mip_texel_count(w, h) is the total (< 4/3 w h + levels).
-     Odd sizes (polyphase box). A destination texel covers exactly n_src / n_dst source texels,
-     so every texel of a level has the same footprint, the mean of every level equals the mean
-     of level 0 exactly, and the 1 x 1 top is the global mean. With n_src = 2k + 1 and
-     n_dst = k, destination texel j covers source texels 2j, 2j+1, 2j+2 with weights
-     (k - j, k, j + 1) / (2k + 1): the last column is not simply folded into the last texel
-     (which would give that texel a 1.5x footprint and make the next level's plain 2x2 average
-     no longer the mean). Even sizes use (1/2, 1/2, 0); size 1 stays 1 with (1, 0, 0).
-     pf_mip_weights3 returns these weights; in 2D they are separable (3x3 in a corner where both
-     sizes are odd, 3x2 on an odd edge).
-     Sampling follows the GPU convention: texel i of an n-texel level has its centre at
-     u = (i + 0.5)/n; PF_BORDER_WRAP repeats, PF_BORDER_CLAMP clamps to the edge texel; a
-     trilinear lod is clamped to [0, levels - 1] (NaN: 0).
-     Height maps. Texel (i, j) of a w x h height map sits at x = (i + 0.5) dx, y = (j + 0.5) dy
-     (row j + 1 is +y). The slope is height_scale * grad h (Dupuy et al. 2013 sec. 4.2, height
-     scaling), from the central difference (h[i+1] - h[i-1]) / (2 dx): second order, error
-     (dx^2 / 6) h''' (measured in tests/test_moments.c). PF_BORDER_WRAP for tiling maps;
-     PF_BORDER_CLAMP reads no texel outside the map and uses the second-order one-sided
-     difference (-3 h0 + 4 h1 - h2) / (2 dx) on the first and last column/row, so the order is
-     2 everywhere (2 texels: (h1 - h0)/dx, first order; 1 texel: slope 0).
-     Weights are applied before summing (w a + w b, never w (a + b)), so reducing values near
-     the largest float (EVSM's second moment exp(2c) at c = 44 is 1.6e38) stays finite.
-     NaN texels propagate: a NaN texel makes NaN every texel that averages it with a nonzero
-     weight (its ancestors in the pyramid, a sample whose footprint covers it) and nothing else;
-     texels with zero weight are never read, so nothing is read out of bounds. A pyramid's
-     weights are rounded, so a level or sample of texels near +-PF_REAL_MAX that overflows is
-     clamped to the range of its texels (finite; not under -ffast-math, which folds the test).
-     Limits and errors (the CPU functions; pf_core.h, "sizes and errors"). Every builder and
-     sampler returns PF_OK, or, having written nothing: PF_ERR_ARG for a NULL pointer, w, h,
-     channels or n below 1 (n below 0), a border other than PF_BORDER_CLAMP / _WRAP, an unknown
-     PF_DEPTH_* kind or an infinite weight; PF_ERR_SIZE for w or h above PF_MAX_SIDE (2^24) or
-     a buffer (pyramid, map, texels) above PF_MAX_REALS pf_reals (2^40 on 64-bit hosts).
-     pf_mip_texel_count returns 0 for every size the builders reject; typed samplers return
-     zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX. Offsets and indices
-     are long long, so no accepted size overflows. Coordinates: CLAMP clamps any u (infinities
-     too) to the edge, NaN is 0; WRAP takes u - floor(u) in pf_real (exact: every |u| >= 2^23
-     in float is an integer and wraps to 0), infinities and NaN are 0.
+   CONVENTIONS (docs/moments.md gives the reasons and the tests behind each)
+     Buffers. Texel (i, j) (column i, row j) of a map of C channels is pf_reals
+     [(j w + i) C ...+ C - 1], as an RGBA32F upload; struct members are channels in order
+     (slope ex, ey, exx, eyy, exy: 5; scalar, depth2: 2; depth4, evsm: 4; normal: 3; ESM: 1).
+     Pyramid. Level l+1 is pf_mip_next_size of each side of level l, down to 1 x 1; levels are
+     stored one after the other from level 0, each row-major. Odd sizes reduce as a polyphase
+     box (pf_mip_weights3): every texel of a level has the same footprint and every level's
+     mean is level 0's, so the 1 x 1 top is the global mean.
+     Sampling: the GPU's. Texel i of n is centred at u = (i + 0.5)/n; PF_BORDER_CLAMP clamps any
+     u (infinities too) to the edge texel, PF_BORDER_WRAP repeats with u - floor(u) in pf_real
+     (a u too large to have a fraction wraps to 0); NaN, and infinities under WRAP, are 0.
+     A trilinear lod is clamped to [0, levels - 1] (NaN: 0).
+     Height maps. Texel (i, j) sits at ((i + 0.5) dx, (j + 0.5) dy), row j + 1 is +y; the slope
+     is height_scale * grad h (Dupuy et al. 2013 sec. 4.2) by pf_height_slope_central.
+     PF_BORDER_WRAP for tiling maps; PF_BORDER_CLAMP reads no texel outside the map and uses
+     pf_height_slope_edge on the first and last column and row (2 texels on an axis:
+     (h1 - h0)/d; 1 texel: slope 0).
+     Robustness. Weights are applied before summing (w a + w b, never w (a + b)), so values near
+     the largest float (EVSM's exp(2c) = 1.6e38 at c = 44) reduce to finite values. A NaN
+     texel makes NaN exactly the texels that average it with a nonzero weight; zero-weight
+     texels are never read. A level or sample of texels near +-PF_REAL_MAX that overflows
+     through the rounded weights is clamped to the range of its texels (not under -ffast-math).
+     Limits and errors (pf_core.h, "sizes and errors"). Every builder and sampler returns
+     PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; w, h or channels below 1;
+     n below 0; a border other than PF_BORDER_CLAMP / _WRAP; an unknown PF_DEPTH_* kind; a +inf
+     weight) or PF_ERR_SIZE (w or h above PF_MAX_SIDE, 2^24 by default; a pyramid, map or texel
+     buffer above PF_MAX_REALS pf_reals, 2^40 on 64-bit hosts). On those errors the typed
+     samplers return zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX;
+     pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices are long long.
 
    ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
-   timings). Reductions and sampling are sums of a few products: the moments of a reduction
-   equal the mixture moments of its texels to a few ulps (tests/test_moments.c). The 5-moment
-   pyramid of a 4096^2 float height map is built in one pass over the heights, each level
-   reduced while the rows it needs are still in cache.
+   timings). Reductions and sampling are sums of a few products: their moments equal the
+   mixture moments of their texels to a few ulps (tests/test_moments.c). A pyramid is built
+   in one pass, each level reduced while the rows it needs are in cache: the 5-moment pyramid
+   of a 4096^2 float height map writes at over half of memcpy's bandwidth (docs/moments.md).
 
    SOURCES
      Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
@@ -137,33 +103,24 @@
 #endif
 
 /* ---------------------------------------------------------------- depth moments
-   Depths z are in [0, 1] (0 nearest the light). All of these are linear in the texels, so a
-   mip pyramid and a bilinear/trilinear sampler may average them; pf_shadow.h evaluates the
-   filtered values. */
+   Depths z are in [0, 1] (0 nearest the light); pf_shadow.h evaluates the filtered values. */
 
 /* Two moments (E[w], E[w^2]) of a depth or of a warped depth w: VSM stores w = z; EVSM-2
    stores w = exp(c (2z - 1)). */
 PF_STRUCT_BEGIN(pf_depth_moments2)
-    pf_real m1;
-    pf_real m2;
+    pf_real m1, m2;
 PF_STRUCT_END(pf_depth_moments2)
 
 /* Four power moments E[z], E[z^2], E[z^3], E[z^4] (moment shadow maps, Peters & Klein 2015). */
 PF_STRUCT_BEGIN(pf_depth_moments4)
-    pf_real m1;
-    pf_real m2;
-    pf_real m3;
-    pf_real m4;
+    pf_real m1, m2, m3, m4;
 PF_STRUCT_END(pf_depth_moments4)
 
 /* EVSM-4 (Lauritzen & McCool 2008): with zs = 2z - 1 in [-1, 1], the moments of the positive
    warp p = exp(c_pos zs) and of the negative warp n = -exp(-c_neg zs):
    pos1 = E[p], pos2 = E[p^2], neg1 = E[n] (<= 0), neg2 = E[n^2]. */
 PF_STRUCT_BEGIN(pf_evsm_moments)
-    pf_real pos1;
-    pf_real pos2;
-    pf_real neg1;
-    pf_real neg2;
+    pf_real pos1, pos2, neg1, neg2;
 PF_STRUCT_END(pf_evsm_moments)
 
 /* Largest EVSM warp exponent c such that the second moment exp(2c) stays finite in the
@@ -196,20 +153,17 @@ PF_DEF pf_depth_moments2 pf_evsm2_from_depth(pf_real z, pf_real c_pos)
 /* EVSM-4 texel: moments of both warps. */
 PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_real c_neg)
 {
-    pf_real p = pf_evsm_warp_pos(z, c_pos);
-    pf_real n = pf_evsm_warp_neg(z, c_neg);
+    pf_real p = pf_evsm_warp_pos(z, c_pos), n = pf_evsm_warp_neg(z, c_neg);
     return pf_evsm_moments_make(p, p * p, n, n * n);
 }
 
-/* ESM texel in log space: log(exp(c z)) = c z. A pyramid of these is reduced with
-   log-sum-exp (below), so E[exp(c z)] is never formed and cannot overflow for any c. */
+/* ESM texel in log space: log(exp(c z)) = c z (see "ESM in log space" below). */
 PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c) { return c * z; }
-/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow:
-   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m the larger log among those of positive weight,
-   so the sum holds that term's weight times exp(0) = 1 and never underflows to 0: a zero
-   weight on the larger log (l0 = 1504, w0 = 0, l1 = 1277, w1 = 0.88 gave log(0) = -inf when m
-   was max(l0, l1)) now gives l1 + log(w1). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log
-   of an empty sum kept finite, as pf_esm_log_reduce3; a NaN log propagates. */
+/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow: m + log(w0 exp(l0 - m) +
+   w1 exp(l1 - m)) with m the larger log among those of positive weight, so the sum holds a
+   term w exp(0) and cannot underflow to log(0) (a zero weight on the larger log gives the
+   other log + log(its weight)). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log of an empty
+   sum kept finite; a NaN log propagates. */
 PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
 {
     pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
@@ -233,14 +187,11 @@ PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
 { return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
 
 /* ---------------------------------------------------------------- scalar-map moments
-   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After
-   filtering, f over the footprint is modelled as a Gaussian with mean E[f] and variance
-   E[f^2] - E[f]^2, and a colour map is filtered by convolving it with that Gaussian
-   (Heitz et al. 2014 sec. 4.2, eq. 9; the variance there is printed as "f^2 bar - f bar",
-   meaning E[f^2] - E[f]^2). */
+   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After filtering
+   f is a Gaussian of mean E[f] and variance E[f^2] - E[f]^2 over the footprint, convolved with
+   the colour map (Heitz et al. 2014 sec. 4.2, eq. 9, whose "f^2 bar - f bar" means that). */
 PF_STRUCT_BEGIN(pf_scalar_moments)
-    pf_real m1;
-    pf_real m2;
+    pf_real m1, m2;
 PF_STRUCT_END(pf_scalar_moments)
 
 PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
@@ -277,13 +228,12 @@ PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
 /* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
 PF_DEF int pf_mip_next_size(int n) { return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0); }
 /* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
-   texels is reduced to pf_mip_next_size(n_src) (see CONVENTIONS, odd sizes):
-     n_src even        (1/2, 1/2, 0)
-     n_src = 2k + 1    ((k - j), k, (j + 1)) / (2k + 1)   (polyphase box, j in [0, k))
-     n_src = 1         (1, 0, 0)
-   The weights sum to 1 and every source texel gets a total weight of n_dst / n_src. A zero
-   weight means "do not read that texel" (it may be outside the map). j is clamped to the
-   destination size; n_src < 1 gives (0, 0, 0). */
+   texels is reduced to pf_mip_next_size(n_src), the polyphase box (each destination texel
+   covers exactly n_src / n_dst source texels; docs/moments.md, Odd sizes):
+     n_src even (1/2, 1/2, 0); n_src = 2k + 1 (k - j, k, j + 1) / (2k + 1); n_src = 1 (1, 0, 0)
+   Separable in 2D: reduce3x3 in a corner where both sizes are odd, reduce3 on an odd edge.
+   The weights sum to 1; a zero weight means "do not read that texel" (it may be outside the
+   map). j is clamped to [0, n_dst - 1]; n_src < 1 gives (0, 0, 0). */
 PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
 {
     int k = n_src / 2;
@@ -295,168 +245,72 @@ PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
     return pf_vec3_make(PF_R(k - jc) / n, PF_R(k) / n, PF_R(jc + 1) / n);
 }
 
-/* ---------------------------------------------------------------- reductions and sampling
-   For every linear moment type T: the 2x2 box of an even mip level, the 3-texel and 9-texel
-   weighted sums of odd levels (weights from pf_mip_weights3; reduce3x3 applies wx along rows
-   and wy across them: t<col><row>), N texels by accumulation (acc + w t, then scale by
-   1/sum(w)), and the lerp / bilinear interpolation of a sampler. Each operation is written
-   once, below, from the type's own _add and _scale (V: pf_vec3 for the average normals), and
-   every typed function is that body: so a fix lands once and every type computes exactly the
-   same sums in the same order. Weights are applied to each texel before summing (w a + w b,
-   see CONVENTIONS): a + w b is V_add(a, V_scale(b, w)), never V_scale(V_add(a, b), w). The
-   bodies are macros (GLSL has no generics; its preprocessor pastes ## like C's). */
-#define PFI_MOM_LERP(V) { return V##_add(V##_scale(a, PF_R(1.0) - t), V##_scale(b, t)); }
-#define PFI_MOM_REDUCE2X2(V)                                                                   \
+/* ---------------------------------------------------------------- reductions
+   PFI_MOM_STAMP(T, F, BOX) defines the six reductions of a moment type T (which has T_add and
+   T_scale) with function prefix F (BOX: the reduce2x2 body):
+     T F_reduce2x2(T a, T b, T c, T d)      the even-size mip texel: a/4 + b/4 + c/4 + d/4
+     T F_reduce3(T a, T b, T c, pf_vec3 w)  3 texels, w.x a + w.y b + w.z c (an odd edge;
+                                            w from pf_mip_weights3)
+     T F_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,
+                   pf_vec3 wx, pf_vec3 wy)  9 texels (an odd corner), t<col><row>: reduce3 by
+                                            wy of the three rows' reduce3 by wx
+     T F_accumulate(T acc, T t, pf_real w)  acc + w t: N texels one at a time (then scale by
+                                            1/sum(w))
+     T F_lerp(T a, T b, pf_real t)          (1 - t) a + t b
+     T F_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)
+                                            lerp by fy of the rows' lerps by fx (a sampler)
+   One body per operation, so every type computes the same sums in the same order and a fix
+   lands once; weights are applied to each texel before summing (T_add(a, T_scale(b, w)), see
+   CONVENTIONS). GLSL's preprocessor pastes ## like C's, so this pastes into shaders.
+   tests/portability/gen.awk expands the stamps, so the portability checks call and the fuzz
+   coverage check (tests/fuzz/coverage.sh) lists every generated function. */
+#define PFI_MOM_BOX(V)                                                                         \
     { return V##_add(V##_add(V##_add(V##_scale(a, PF_R(0.25)), V##_scale(b, PF_R(0.25))),       \
                              V##_scale(c, PF_R(0.25))), V##_scale(d, PF_R(0.25))); }
-#define PFI_MOM_REDUCE3(V) { return V##_add(V##_add(V##_scale(a, w.x), V##_scale(b, w.y)), V##_scale(c, w.z)); }
-#define PFI_MOM_REDUCE3X3(F)                                                                   \
+#define PFI_MOM_STAMP(T, F, BOX)                                                               \
+    PF_DEF T F##_lerp(T a, T b, pf_real t)                                                     \
+    { return T##_add(T##_scale(a, PF_R(1.0) - t), T##_scale(b, t)); }                          \
+    PF_DEF T F##_reduce2x2(T a, T b, T c, T d) BOX(T)                                          \
+    PF_DEF T F##_reduce3(T a, T b, T c, pf_vec3 w)                                             \
+    { return T##_add(T##_add(T##_scale(a, w.x), T##_scale(b, w.y)), T##_scale(c, w.z)); }      \
+    PF_DEF T F##_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,      \
+                           pf_vec3 wx, pf_vec3 wy)                                             \
     { return F##_reduce3(F##_reduce3(t00, t10, t20, wx), F##_reduce3(t01, t11, t21, wx),       \
-                         F##_reduce3(t02, t12, t22, wx), wy); }
-#define PFI_MOM_ACCUMULATE(V) { return V##_add(acc, V##_scale(t, w)); }
-#define PFI_MOM_BILINEAR(F) { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
+                         F##_reduce3(t02, t12, t22, wx), wy); }                                \
+    PF_DEF T F##_accumulate(T acc, T t, pf_real w) { return T##_add(acc, T##_scale(t, w)); }   \
+    PF_DEF T F##_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)                  \
+    { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
 
-/* ---- pf_slope_moments: five slope moments (pf_beckmann.h) */
-PF_DEF pf_slope_moments pf_slope_moments_lerp(pf_slope_moments a, pf_slope_moments b, pf_real t)
-PFI_MOM_LERP(pf_slope_moments)
-PF_DEF pf_slope_moments pf_slope_moments_reduce2x2(pf_slope_moments a, pf_slope_moments b,
-                                                   pf_slope_moments c, pf_slope_moments d)
-PFI_MOM_REDUCE2X2(pf_slope_moments)
-PF_DEF pf_slope_moments pf_slope_moments_reduce3(pf_slope_moments a, pf_slope_moments b,
-                                                 pf_slope_moments c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_slope_moments)
-PF_DEF pf_slope_moments pf_slope_moments_reduce3x3(pf_slope_moments t00, pf_slope_moments t10,
-    pf_slope_moments t20, pf_slope_moments t01, pf_slope_moments t11, pf_slope_moments t21,
-    pf_slope_moments t02, pf_slope_moments t12, pf_slope_moments t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_slope_moments)
-PF_DEF pf_slope_moments pf_slope_moments_accumulate(pf_slope_moments acc, pf_slope_moments t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_slope_moments)
-PF_DEF pf_slope_moments pf_slope_moments_bilinear(pf_slope_moments t00, pf_slope_moments t10,
-    pf_slope_moments t01, pf_slope_moments t11, pf_real fx, pf_real fy)
-PFI_MOM_BILINEAR(pf_slope_moments)
+PFI_MOM_STAMP(pf_slope_moments, pf_slope_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_scalar_moments, pf_scalar_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments2, pf_depth_moments2, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments4, pf_depth_moments4, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_vec3, pf_normal_avg, PFI_MOM_BOX)
 
-/* ---- pf_scalar_moments: scalar-map moments */
-PF_DEF pf_scalar_moments pf_scalar_moments_lerp(pf_scalar_moments a, pf_scalar_moments b, pf_real t)
-PFI_MOM_LERP(pf_scalar_moments)
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce2x2(pf_scalar_moments a, pf_scalar_moments b,
-                                                     pf_scalar_moments c, pf_scalar_moments d)
-PFI_MOM_REDUCE2X2(pf_scalar_moments)
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce3(pf_scalar_moments a, pf_scalar_moments b,
-                                                   pf_scalar_moments c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_scalar_moments)
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce3x3(pf_scalar_moments t00, pf_scalar_moments t10,
-    pf_scalar_moments t20, pf_scalar_moments t01, pf_scalar_moments t11, pf_scalar_moments t21,
-    pf_scalar_moments t02, pf_scalar_moments t12, pf_scalar_moments t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_scalar_moments)
-PF_DEF pf_scalar_moments pf_scalar_moments_accumulate(pf_scalar_moments acc, pf_scalar_moments t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_scalar_moments)
-PF_DEF pf_scalar_moments pf_scalar_moments_bilinear(pf_scalar_moments t00, pf_scalar_moments t10,
-    pf_scalar_moments t01, pf_scalar_moments t11, pf_real fx, pf_real fy)
-PFI_MOM_BILINEAR(pf_scalar_moments)
-
-/* ---- pf_depth_moments2: VSM / EVSM-2 moments */
-PF_DEF pf_depth_moments2 pf_depth_moments2_lerp(pf_depth_moments2 a, pf_depth_moments2 b, pf_real t)
-PFI_MOM_LERP(pf_depth_moments2)
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce2x2(pf_depth_moments2 a, pf_depth_moments2 b,
-                                                     pf_depth_moments2 c, pf_depth_moments2 d)
-PFI_MOM_REDUCE2X2(pf_depth_moments2)
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3(pf_depth_moments2 a, pf_depth_moments2 b,
-                                                   pf_depth_moments2 c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_depth_moments2)
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3x3(pf_depth_moments2 t00, pf_depth_moments2 t10,
-    pf_depth_moments2 t20, pf_depth_moments2 t01, pf_depth_moments2 t11, pf_depth_moments2 t21,
-    pf_depth_moments2 t02, pf_depth_moments2 t12, pf_depth_moments2 t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_depth_moments2)
-PF_DEF pf_depth_moments2 pf_depth_moments2_accumulate(pf_depth_moments2 acc, pf_depth_moments2 t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_depth_moments2)
-PF_DEF pf_depth_moments2 pf_depth_moments2_bilinear(pf_depth_moments2 t00, pf_depth_moments2 t10,
-    pf_depth_moments2 t01, pf_depth_moments2 t11, pf_real fx, pf_real fy)
-PFI_MOM_BILINEAR(pf_depth_moments2)
-
-/* ---- pf_depth_moments4: MSM power moments */
-PF_DEF pf_depth_moments4 pf_depth_moments4_lerp(pf_depth_moments4 a, pf_depth_moments4 b, pf_real t)
-PFI_MOM_LERP(pf_depth_moments4)
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce2x2(pf_depth_moments4 a, pf_depth_moments4 b,
-                                                     pf_depth_moments4 c, pf_depth_moments4 d)
-PFI_MOM_REDUCE2X2(pf_depth_moments4)
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3(pf_depth_moments4 a, pf_depth_moments4 b,
-                                                   pf_depth_moments4 c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_depth_moments4)
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3x3(pf_depth_moments4 t00, pf_depth_moments4 t10,
-    pf_depth_moments4 t20, pf_depth_moments4 t01, pf_depth_moments4 t11, pf_depth_moments4 t21,
-    pf_depth_moments4 t02, pf_depth_moments4 t12, pf_depth_moments4 t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_depth_moments4)
-PF_DEF pf_depth_moments4 pf_depth_moments4_accumulate(pf_depth_moments4 acc, pf_depth_moments4 t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_depth_moments4)
-PF_DEF pf_depth_moments4 pf_depth_moments4_bilinear(pf_depth_moments4 t00, pf_depth_moments4 t10,
-    pf_depth_moments4 t01, pf_depth_moments4 t11, pf_real fx, pf_real fy)
-PFI_MOM_BILINEAR(pf_depth_moments4)
-
-/* ---- pf_evsm_moments: EVSM-4 moments */
-/* Midpoint (a + b)/2 of two values of the same sign, as a + (b - a)/2: |b - a| <= max(|a|, |b|),
-   so nothing overflows. */
+/* EVSM-4's 2x2 box is midpoints of midpoints, a + (b - a)/2: with one constant weight q,
+   -ffast-math (and GPU compilers, which reassociate freely) factor q a + q b + q c + q d into
+   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the float
+   sum (the sweep found 14 inf per 10^6 under gcc -ffast-math); no compiler distributes the
+   half over b - a, so this stays finite in every build. |b - a| <= max(|a|, |b|) because
+   every member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0). Error <= 2
+   ulp (tests/test_moments.c); two operations more per member than the weighted sum. */
 PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b) { return a + PF_R(0.5) * (b - a); }
 PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_moments b)
 {
     return pf_evsm_moments_make(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(a.pos2, b.pos2),
                                 pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(a.neg2, b.neg2));
 }
-
-PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b, pf_real t)
-PFI_MOM_LERP(pf_evsm_moments)
-/* The 2x2 box as midpoints of midpoints, not q a + q b + q c + q d: with one constant weight
-   q, -ffast-math (and GPU compilers, which reassociate freely) factor that sum into
-   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the
-   float sum (the sweep found 14 inf per 10^6 under gcc -ffast-math). A compiler does not
-   distribute the half over b - a, so the midpoint form stays finite in every build. Each
-   member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0), as the
-   midpoints need; error <= 2 ulp (tests/test_moments.c). Two operations more per member
-   than the weighted sum. */
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
-                                                 pf_evsm_moments c, pf_evsm_moments d)
-{
-    return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d));
-}
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,
-                                               pf_evsm_moments c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_evsm_moments)
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce3x3(pf_evsm_moments t00, pf_evsm_moments t10,
-    pf_evsm_moments t20, pf_evsm_moments t01, pf_evsm_moments t11, pf_evsm_moments t21,
-    pf_evsm_moments t02, pf_evsm_moments t12, pf_evsm_moments t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_evsm_moments)
-PF_DEF pf_evsm_moments pf_evsm_moments_accumulate(pf_evsm_moments acc, pf_evsm_moments t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_evsm_moments)
-PF_DEF pf_evsm_moments pf_evsm_moments_bilinear(pf_evsm_moments t00, pf_evsm_moments t10,
-    pf_evsm_moments t01, pf_evsm_moments t11, pf_real fx, pf_real fy)
-PFI_MOM_BILINEAR(pf_evsm_moments)
-
-/* ---- pf_vec3: unnormalized average normals (Toksvig); linear algebra from pf_core.h */
-PF_DEF pf_vec3 pf_normal_avg_lerp(pf_vec3 a, pf_vec3 b, pf_real t)
-PFI_MOM_LERP(pf_vec3)
-PF_DEF pf_vec3 pf_normal_avg_reduce2x2(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 d)
-PFI_MOM_REDUCE2X2(pf_vec3)
-PF_DEF pf_vec3 pf_normal_avg_reduce3(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 w)
-PFI_MOM_REDUCE3(pf_vec3)
-PF_DEF pf_vec3 pf_normal_avg_reduce3x3(pf_vec3 t00, pf_vec3 t10, pf_vec3 t20, pf_vec3 t01, pf_vec3 t11,
-    pf_vec3 t21, pf_vec3 t02, pf_vec3 t12, pf_vec3 t22, pf_vec3 wx, pf_vec3 wy)
-PFI_MOM_REDUCE3X3(pf_normal_avg)
-PF_DEF pf_vec3 pf_normal_avg_accumulate(pf_vec3 acc, pf_vec3 t, pf_real w)
-PFI_MOM_ACCUMULATE(pf_vec3)
-PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_vec3 t11, pf_real fx,
-                                      pf_real fy)
-PFI_MOM_BILINEAR(pf_normal_avg)
+#define PFI_MOM_MIDPOINTS(V)                                                                   \
+    { return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d)); }
+PFI_MOM_STAMP(pf_evsm_moments, pf_evsm_moments, PFI_MOM_MIDPOINTS)
 
 /* ---------------------------------------------------------------- ESM in log space
-   An ESM texel stores l = c z (pf_esm_log_from_depth) instead of exp(c z). A reduction
-   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)) with m the largest l
-   among the texels of positive weight: every exponential is <= 1 and the sum is in
-   (0, sum w], so the result is finite for any finite l and any c (exp(c z) itself overflows
-   float for c z > 88.7). The result is the log of the weighted mean when the weights sum to
-   1. Texels of zero weight are skipped (not even their exponential is formed). */
-
-/* Floor of the exponent arguments l - m (<= 0) in the sums below: exp(-80) = 1.8e-35 is below
-   the rounding of any sum that holds a 1 (float and double), and stopping there keeps every
-   exponential normal (libm's underflow path is slow, and subnormals are slow on most CPUs). */
+   An ESM texel stores l = c z, not exp(c z) (which overflows float for c z > 88.7). A reduction
+   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)), m the largest l of
+   positive weight: every exponential is <= 1, the sum is in (0, sum w], the result finite for
+   any finite l and c. Zero-weight texels are skipped. l - m is floored at -80 (exp(-80) is
+   below the rounding of a sum that holds a 1), which keeps every exponential normal (libm's
+   underflow path and subnormals are slow). */
 #define PFI_LSE_ARG_MIN PF_R(-80.0)
 
 /* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
@@ -511,12 +365,10 @@ PF_DEF pf_real pf_esm_log_bilinear(pf_real t00, pf_real t10, pf_real t01, pf_rea
 
 /* Streaming log-sum-exp over N texels: lmax is the largest log seen, sum = sum_i w_i
    exp(l_i - lmax), weight = sum_i w_i. Start from PF_ESM_LOG_SUM_EMPTY (or
-   pf_esm_log_sum_first), add texels with
-   pf_esm_log_sum_add, read log(sum w e^l / sum w) with pf_esm_log_sum_mean. */
+   pf_esm_log_sum_first), add texels with pf_esm_log_sum_add, read log(sum w e^l / sum w) with
+   pf_esm_log_sum_mean. */
 PF_STRUCT_BEGIN(pf_esm_log_sum)
-    pf_real lmax;
-    pf_real sum;
-    pf_real weight;
+    pf_real lmax, sum, weight;
 PF_STRUCT_END(pf_esm_log_sum)
 
 PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
@@ -545,18 +397,16 @@ PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
 
 /* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
 PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
-{
-    if (!(a.weight > PF_R(0.0))) return -PF_REAL_MAX;
-    return a.lmax + PF_LOG(a.sum / a.weight);
-}
+{ return a.weight > PF_R(0.0) ? a.lmax + PF_LOG(a.sum / a.weight) : -PF_REAL_MAX; }
 
-/* ---------------------------------------------------------------- slopes from a height map
-   Central difference (second order, error (d^2/6) h''' + O(d^4)) and the one-sided
-   second-order difference used on a clamped border; d is the texel spacing. */
+/* ---------------------------------------------------------------- slopes from a height map */
+/* Central difference (h_plus - h_minus) / (2 d), d the texel spacing: second order, error
+   (d^2/6) h''' + O(d^4). */
 PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
 { return (h_plus - h_minus) / (PF_R(2.0) * spacing); }
-/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''). For
-   the far border pass the texels in reverse order and negate. */
+/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''),
+   the clamped border's stencil. For the far border pass the texels in reverse order and
+   negate. */
 PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
 { return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing); }
 /* Slope moments of an interior texel of a height map from its four neighbours (left, right,
@@ -573,11 +423,8 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 }
 
 /* ================================================================ CPU only
-   Everything below walks caller-owned buffers (pointers, loops over a whole map). It is C/C++
-   host code: linkage PF_CPU_DEF (pf_core.h: static inline by default, never __device__),
-   compiled out under PF_GLSL. Nothing allocates: the caller provides every buffer. Arguments
-   follow pf_core.h's "sizes and errors" rules; the limits of each function are in CONVENTIONS
-   (Limits and errors) and in its comment. */
+   Host code that walks caller-owned buffers and allocates nothing (linkage PF_CPU_DEF,
+   pf_core.h). Errors as in CONVENTIONS (Limits and errors) plus what each comment adds. */
 #ifndef PF_GLSL
 
 /* Border handling of the height-map stencils and of sampling (any other value: PF_ERR_ARG). */
@@ -598,43 +445,32 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 /* Number of levels of a w x h pyramid, the 1 x 1 top included (0 if w < 1 or h < 1). */
 PF_CPU_DEF int pf_mip_level_count(int w, int h)
 {
-    int n = 0;
-    if (w < 1 || h < 1) return 0;
-    for (;;) {
-        ++n;
-        if (w == 1 && h == 1) return n;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
-    }
-}
-
-/* Size along one axis at a level: n halved (floor, never below 1) level times. */
-PF_CPU_DEF int pf_mip_level_size(int n, int level)
-{
-    int l;
-    if (n < 1) return 0;
-    for (l = 0; l < level && n > 1; ++l) n = pf_mip_next_size(n);
+    int n = w >= 1 && h >= 1;
+    for (; n > 0 && (w > 1 || h > 1); ++n) w = pf_mip_next_size(w), h = pf_mip_next_size(h);
     return n;
 }
 
+/* Size along one axis at a level: n halved (floor, never below 1) level times (0 for n < 1). */
+PF_CPU_DEF int pf_mip_level_size(int n, int level)
+{
+    for (; level > 0 && n > 1; --level) n = pf_mip_next_size(n);
+    return n < 1 ? 0 : n;
+}
+
 /* Where level `level` starts, in texels from the start of the pyramid (multiply by the
-   channel count for pf_reals). level >= pf_mip_level_count gives the total. Any int w, h:
-   the sum stays below 2^63. */
+   channel count for pf_reals); level >= pf_mip_level_count gives the total. Any int w, h: the
+   sum stays below 2^63. */
 PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
 {
     long long off = 0;
     int l, nl = pf_mip_level_count(w, h);
-    for (l = 0; l < level && l < nl; ++l) {
+    for (l = 0; l < level && l < nl; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h))
         off += (long long)w * (long long)h;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
-    }
     return off;
 }
 
-/* PF_OK when p is not NULL and a w x h pyramid of `channels` channels is within the limits:
-   PF_ERR_ARG for NULL, w, h or channels < 1; PF_ERR_SIZE for a side above PF_MAX_SIDE or more
-   than PF_MAX_REALS pf_reals. */
+/* The pyramid checks: PF_ERR_ARG for a NULL p or w, h, channels < 1; PF_ERR_SIZE for a side
+   above PF_MAX_SIDE or a pyramid of more than PF_MAX_REALS pf_reals; else PF_OK. */
 PF_CPU_DEF int pfi_mip_check(const void *p, int w, int h, int channels)
 {
     if (!p || w < 1 || h < 1 || channels < 1) return PF_ERR_ARG;
@@ -642,26 +478,22 @@ PF_CPU_DEF int pfi_mip_check(const void *p, int w, int h, int channels)
     return pf_size_mul(pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS), channels) < 0 ? PF_ERR_SIZE : PF_OK;
 }
 
-/* Texels of the whole pyramid of a w x h base (all levels, one buffer); the buffer holds
-   pf_mip_texel_count(w, h) * channels pf_reals. 0 for every size the builders reject: w or
-   h < 1 or > PF_MAX_SIDE, or more than PF_MAX_REALS texels. */
+/* Texels of the whole pyramid of a w x h base (all levels, one buffer of
+   pf_mip_texel_count(w, h) * channels pf_reals). 0 when w or h is below 1 or above
+   PF_MAX_SIDE or the texels alone exceed PF_MAX_REALS; a builder of C channels also rejects
+   (PF_ERR_SIZE) a count with count * C > PF_MAX_REALS. */
 PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
 { return pfi_mip_check(&w, w, h, 1) == PF_OK ? pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS) : 0; }
 
 /* ---------------------------------------------------------------- level reduction (private)
-   The pyramid is reduced as a cascade over rows: as soon as the source rows a destination
-   row needs are complete (2j, 2j+1 and, for odd heights, 2j+2), that row is reduced, and the
-   same check runs one level up. Level l+1 is therefore computed while the rows of level l it
-   reads are still in cache, and a pyramid built from a height or depth map costs about one
-   pass over memory. */
+   A cascade over rows: as soon as the source rows a destination row needs are complete (2j,
+   2j+1 and, for odd heights, 2j+2), that row is reduced, and the same check runs one level up;
+   each level is computed while the rows it reads are still in cache, so a pyramid built from a
+   map costs about one pass over memory. */
 typedef struct pfi_mip_cascade {
     pf_real *pyr;
-    int channels;
-    int log_space;
-    int levels;
-    int lw[PF_MIP_MAX_LEVELS];
-    int lh[PF_MIP_MAX_LEVELS];
-    int next_row[PF_MIP_MAX_LEVELS];
+    int channels, log_space, levels;
+    int lw[PF_MIP_MAX_LEVELS], lh[PF_MIP_MAX_LEVELS], next_row[PF_MIP_MAX_LEVELS];
     long long off[PF_MIP_MAX_LEVELS]; /* in pf_reals */
 } pfi_mip_cascade;
 
@@ -673,33 +505,22 @@ PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int
     long long off = 0;
     if (rc != PF_OK) return rc;
     c->levels = pf_mip_level_count(w, h);
-    c->pyr = pyr;
-    c->channels = channels;
-    c->log_space = log_space;
-    for (l = 0; l < c->levels; ++l) {
-        c->lw[l] = w;
-        c->lh[l] = h;
-        c->next_row[l] = 0;
-        c->off[l] = off;
+    c->pyr = pyr, c->channels = channels, c->log_space = log_space;
+    for (l = 0; l < c->levels; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h)) {
+        c->lw[l] = w, c->lh[l] = h, c->next_row[l] = 0, c->off[l] = off;
         off += (long long)w * (long long)h * (long long)channels;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
     }
     return PF_OK;
 }
 
-/* The 2x2 box with a compile-time channel count (the common case: both sizes even).
-   Under -ffast-math the compiler factors q a + q b + q c + q d into q (a + b + c + d), which
-   overflows for texels above PF_REAL_MAX / 4 (an EVSM-4 pyramid at the largest float exponent
-   holds 1.65e38); there each pair is averaged as a midpoint instead: a + (b - a)/2 when a and b
-   have one sign (|b - a| <= max(|a|, |b|)), (a + b)/2 when they have opposite signs (|a + b|
-   <= max(|a|, |b|)), which no reassociation turns into an overflowing sum. Plain builds keep
-   the four products (IEEE order, no overflow, and the fastest loop). */
+/* The 2x2 box with a compile-time channel count (the common case: both sizes even). Plain
+   builds sum the four products q a + q b + q c + q d (IEEE order, no overflow, the fastest
+   loop). -ffast-math factors that into q (a + b + c + d), which overflows for texels above
+   PF_REAL_MAX / 4 (see pf_evsm_moments_reduce2x2); there each pair is averaged as a midpoint,
+   a + (b - a)/2 for one sign, (a + b)/2 for opposite signs (neither exceeds max(|a|, |b|)). */
 #ifdef __FAST_MATH__
 PF_CPU_DEF pf_real pfi_mip_mid(pf_real a, pf_real b)
-{
-    return (a >= PF_R(0.0)) == (b >= PF_R(0.0)) ? a + PF_R(0.5) * (b - a) : PF_R(0.5) * (a + b);
-}
+{ return (a >= PF_R(0.0)) == (b >= PF_R(0.0)) ? a + PF_R(0.5) * (b - a) : PF_R(0.5) * (a + b); }
 #endif
 PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
 {
@@ -723,17 +544,29 @@ PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b
 PF_CPU_DEF int pfi_mip_taps(int n_src) { return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2); }
 /* A weighted mean s of n taps (tap[t][k], positive weights) that overflowed: the rounded
    weights may sum to a little more than 1, so taps near +-PF_REAL_MAX can give +-inf; the mean
-   lies between the smallest and the largest tap, so s is clamped there (NaN stays NaN). Only
-   called when s is not finite. */
+   lies between the smallest and the largest tap, so s is clamped there (NaN stays NaN). */
 PF_CPU_DEF pf_real pfi_taps_clamp(pf_real s, const pf_real *const *tap, int n, long long k)
 {
     pf_real lo = tap[0][k], hi = tap[0][k];
     int t;
-    for (t = 1; t < n; ++t) {
-        lo = pf_min(lo, tap[t][k]);
-        hi = pf_max(hi, tap[t][k]);
-    }
+    for (t = 1; t < n; ++t) lo = pf_min(lo, tap[t][k]), hi = pf_max(hi, tap[t][k]);
     return pf_clamp(s, lo, hi);
+}
+/* Channel k of the weighted mean of n taps of positive weights w: sum w[t] tap[t][k] (clamped
+   as above when it overflows) or, in log space, log sum w[t] exp(tap[t][k]) by log-sum-exp. */
+PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, int n, long long k,
+                                 int log_space)
+{
+    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
+    int t;
+    if (!log_space) {
+        for (t = 0; t < n; ++t) s += w[t] * tap[t][k];
+        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
+    }
+    for (t = 0; t < n; ++t)
+        if (tap[t][k] > m) m = tap[t][k];
+    for (t = 0; t < n; ++t) s += w[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
+    return m + PF_LOG(s); /* s >= the largest weight > 0 unless a tap is NaN, which propagates */
 }
 
 /* Reduces row j of level l + 1 from level l. */
@@ -743,13 +576,9 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
     const pf_real *src = c->pyr + c->off[l];
     pf_real *dst = c->pyr + c->off[l + 1] + (long long)j * dw * nc;
     const pf_real *rows[3];
-    pf_real wy[3];
-    pf_vec3 v = pf_mip_weights3(j, sh);
+    pf_vec3 vy = pf_mip_weights3(j, sh), vx;
     int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, a, k;
     long long i;
-    wy[0] = v.x;
-    wy[1] = v.y;
-    wy[2] = v.z;
     for (b = 0; b < ny; ++b) rows[b] = src + (2LL * j + b) * sw * nc;
     if (!c->log_space && nx == 2 && ny == 2) {
         switch (nc) { /* constant channel counts let the compiler unroll and vectorize */
@@ -769,36 +598,18 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
             }
         return;
     }
-    for (i = 0; i < dw; ++i) {
-        pf_real wx[3], wt[9];
+    for (i = 0; i < dw; ++i) { /* odd sizes: up to 3 x 3 taps, every weight positive */
+        pf_real wy[3], wx[3], wt[9];
         const pf_real *tap[9];
         int nt = 0;
-        v = pf_mip_weights3((int)i, sw);
-        wx[0] = v.x;
-        wx[1] = v.y;
-        wx[2] = v.z;
+        vx = pf_mip_weights3((int)i, sw);
+        wx[0] = vx.x, wx[1] = vx.y, wx[2] = vx.z, wy[0] = vy.x, wy[1] = vy.y, wy[2] = vy.z;
         for (b = 0; b < ny; ++b)
-            for (a = 0; a < nx; ++a) {
+            for (a = 0; a < nx; ++a, ++nt) {
                 wt[nt] = wy[b] * wx[a];
                 tap[nt] = rows[b] + (2 * i + a) * nc;
-                ++nt;
             }
-        for (k = 0; k < nc; ++k) {
-            pf_real s = PF_R(0.0);
-            int t;
-            if (!c->log_space) {
-                for (t = 0; t < nt; ++t) s += wt[t] * tap[t][k];
-                if (!(s >= -PF_REAL_MAX && s <= PF_REAL_MAX)) s = pfi_taps_clamp(s, tap, nt, k);
-                dst[i * nc + k] = s;
-            } else {
-                pf_real m = -PF_REAL_MAX;
-                for (t = 0; t < nt; ++t)
-                    if (tap[t][k] > m) m = tap[t][k];
-                for (t = 0; t < nt; ++t) s += wt[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
-                /* s >= the largest weight > 0 unless a tap is NaN, which then propagates */
-                dst[i * nc + k] = m + PF_LOG(s);
-            }
-        }
+        for (k = 0; k < nc; ++k) dst[i * nc + k] = pfi_taps_mean(tap, wt, nt, k, c->log_space);
     }
 }
 
@@ -810,109 +621,69 @@ PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
         int last = sh == 1 ? 0 : ((sh & 1) ? 2 * j + 2 : 2 * j + 1);
         if (j >= c->lh[l + 1] || last > r) return;
         pfi_mip_reduce_row(c, l, j);
-        c->next_row[l + 1] = j + 1;
-        ++l;
-        r = j;
+        c->next_row[++l] = j + 1, r = j;
     }
 }
 
 /* ---------------------------------------------------------------- building
-   Every builder returns PF_OK, or PF_ERR_ARG / PF_ERR_SIZE (CONVENTIONS) having written
-   nothing. pyr always holds pf_mip_texel_count(w, h) * channels pf_reals. */
-PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
+   pyr always holds pf_mip_texel_count(w, h) * channels pf_reals; errors as in CONVENTIONS.
+   Each builder writes level 0 row by row and pushes each row into the cascade (one pass).
+   They stay separate functions with their own loops: merged into one, the compiler made the
+   depth loops slower (MSM pyramid 1.5x in bench_moments). */
+/* The height-map stencil at index i of an axis of n texels (CONVENTIONS, Height maps): the
+   slope there is c[0] v[x[0]] + c[1] v[x[1]] + c[2] v[x[2]], k = height_scale / (2 spacing)
+   folded into c: central (wrapped, or inside the map), (v1 - v0)/d for n = 2, the one-sided
+   pf_height_slope_edge at a clamped border (mirrored at the far end), 0 for n = 1. */
+PF_CPU_DEF void pfi_slope_stencil(long long i, int n, int border, pf_real k, long long *x, pf_real *c)
 {
-    pfi_mip_cascade c;
-    int r, rc = pfi_mip_cascade_init(&c, pyr, w, h, channels, log_space);
-    if (rc != PF_OK) return rc;
-    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
-    return PF_OK;
+    pf_real s = i == 0 ? k : -k;
+    x[0] = x[1] = x[2] = i;
+    c[0] = c[1] = c[2] = PF_R(0.0);
+    if (n < 2) return;
+    if (border == PF_BORDER_WRAP || (i > 0 && i < n - 1)) {
+        x[0] = pfi_wrap_index(i - 1, n), x[1] = pfi_wrap_index(i + 1, n);
+        c[0] = -k, c[1] = k;
+    } else if (n == 2) {
+        x[0] = 0, x[1] = 1;
+        c[0] = -PF_R(2.0) * k, c[1] = PF_R(2.0) * k;
+    } else {
+        x[1] = i == 0 ? 1 : n - 2, x[2] = i == 0 ? 2 : n - 3;
+        c[0] = -PF_R(3.0) * s, c[1] = PF_R(4.0) * s, c[2] = -s;
+    }
 }
 
-/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
-   pf_reals, at the start of pyr) the caller has filled. Works for every linear moment type
-   (the channel count says which). */
-PF_CPU_DEF int pf_mip_build(pf_real *pyr, int w, int h, int channels)
-{ return pfi_mip_build(pyr, w, h, channels, 0); }
-/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
-   holds log of the mean of exp over its footprint). */
-PF_CPU_DEF int pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
-{ return pfi_mip_build(pyr, w, h, channels, 1); }
-/* Row r of the slope-moment map of a height map (5 channels), see CONVENTIONS. */
+/* Stores the slope moments of slope (sx, sy). */
+PF_CPU_DEF void pfi_put_slope(pf_real *o, pf_real sx, pf_real sy)
+{ o[0] = sx, o[1] = sy, o[2] = sx * sx, o[3] = sy * sy, o[4] = sx * sy; }
+/* Row r of the slope-moment map of a height map (5 channels). */
 PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
                               pf_real height_scale, int border, pf_real *out)
 {
-    /* y derivative as c0 R0[i] + c1 R1[i] + c2 R2[i] (scaled by height_scale / (2 dy)) */
     const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
-    const pf_real *r0 = heights + (long long)r * w, *r1 = r0, *r2 = r0;
-    const pf_real *row = r0;
-    pf_real c0 = PF_R(0.0), c1 = PF_R(0.0), c2 = PF_R(0.0);
+    const pf_real *row = heights + (long long)r * w, *r0, *r1, *r2;
+    long long y[3], x[3];
+    pf_real cy[3], cx[3], c0, c1, c2;
     int i;
-    if (h >= 2) {
-        if (border == PF_BORDER_WRAP || (r > 0 && r < h - 1)) {
-            r0 = heights + pfi_wrap_index((long long)r - 1, h) * w;
-            r1 = heights + pfi_wrap_index((long long)r + 1, h) * w;
-            c0 = -ky;
-            c1 = ky;
-        } else if (h == 2) { /* (h1 - h0) / dy at both rows */
-            r0 = heights;
-            r1 = heights + w;
-            c0 = -PF_R(2.0) * ky;
-            c1 = PF_R(2.0) * ky;
-        } else if (r == 0) { /* (-3 h0 + 4 h1 - h2) / (2 dy) */
-            r0 = heights;
-            r1 = heights + w;
-            r2 = heights + 2LL * w;
-            c0 = -PF_R(3.0) * ky;
-            c1 = PF_R(4.0) * ky;
-            c2 = -ky;
-        } else { /* last row: (3 h[n-1] - 4 h[n-2] + h[n-3]) / (2 dy) */
-            r0 = heights + (long long)(h - 1) * w;
-            r1 = heights + (long long)(h - 2) * w;
-            r2 = heights + (long long)(h - 3) * w;
-            c0 = PF_R(3.0) * ky;
-            c1 = -PF_R(4.0) * ky;
-            c2 = ky;
-        }
-    }
+    pfi_slope_stencil(r, h, border, ky, y, cy);
+    r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
+    c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
     /* interior texels: branch-free, so the compiler can vectorize the row */
     for (i = 1; i < w - 1; ++i) {
         pf_real sx = kx * (row[i + 1] - row[i - 1]);
-        pf_real sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
-        pf_real *o = out + 5 * i;
-        o[0] = sx;
-        o[1] = sy;
-        o[2] = sx * sx;
-        o[3] = sy * sy;
-        o[4] = sx * sy;
+        pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
     }
     /* the first and last texels of the row */
     for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
-        pf_real sx, sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
-        pf_real *o = out + 5 * i;
-        if (w == 1) {
-            sx = PF_R(0.0);
-        } else if (border == PF_BORDER_WRAP) {
-            sx = kx * (row[pfi_wrap_index((long long)i + 1, w)] - row[pfi_wrap_index((long long)i - 1, w)]);
-        } else if (w == 2) {
-            sx = PF_R(2.0) * kx * (row[1] - row[0]);
-        } else if (i == 0) {
-            sx = kx * (PF_R(4.0) * row[1] - PF_R(3.0) * row[0] - row[2]);
-        } else {
-            sx = kx * (PF_R(3.0) * row[w - 1] - PF_R(4.0) * row[w - 2] + row[w - 3]);
-        }
-        o[0] = sx;
-        o[1] = sy;
-        o[2] = sx * sx;
-        o[3] = sy * sy;
-        o[4] = sx * sy;
+        pfi_slope_stencil(i, w, border, kx, x, cx);
+        pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
+                      c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
     }
 }
 
 /* Level 0 only: the slope moments (5 interleaved channels, pf_slope_moments order) of every
-   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major.
+   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major;
    dx, dy: texel spacing; height_scale multiplies the heights; border: PF_BORDER_WRAP or
-   PF_BORDER_CLAMP (see CONVENTIONS for the stencils). PF_ERR_ARG: NULL, w or h < 1, another
-   border; PF_ERR_SIZE: a side above PF_MAX_SIDE or w h 5 > PF_MAX_REALS. */
+   PF_BORDER_CLAMP (CONVENTIONS, Height maps). PF_ERR_SIZE when w h 5 > PF_MAX_REALS. */
 PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
                                                  pf_real dy, pf_real height_scale, int border,
                                                  pf_real *out)
@@ -926,10 +697,41 @@ PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, 
     return PF_OK;
 }
 
+/* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
+PF_CPU_DEF int pf_depth_moment_channels(int kind)
+{
+    if (kind == PF_DEPTH_VSM || kind == PF_DEPTH_EVSM2) return 2;
+    if (kind == PF_DEPTH_EVSM4 || kind == PF_DEPTH_MSM) return 4;
+    return kind == PF_DEPTH_ESM_LOG ? 1 : 0;
+}
+
+/* Stores a texel's members in order. */
+PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] = m.m2; }
+PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
+PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
+PF_CPU_DEF void pfi_put_v3(pf_real *t, pf_vec3 m) { t[0] = m.x; t[1] = m.y; t[2] = m.z; }
+
+PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
+{
+    pfi_mip_cascade c;
+    int r, rc = pfi_mip_cascade_init(&c, pyr, w, h, channels, log_space);
+    if (rc != PF_OK) return rc;
+    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+    return PF_OK;
+}
+/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
+   pf_reals, at the start of pyr) the caller has filled; any linear moment type (the channel
+   count says which). */
+PF_CPU_DEF int pf_mip_build(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 0); }
+/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
+   holds log of the mean of exp over its footprint). */
+PF_CPU_DEF int pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 1); }
+
 /* The whole 5-moment pyramid of a height map in one pass: level 0 as
-   pf_slope_moments_map_from_heights, every level above reduced as the rows arrive.
-   pyr: pf_mip_texel_count(w, h) * 5 pf_reals. Errors as pf_mip_build, and PF_ERR_ARG for a
-   NULL heights or another border. */
+   pf_slope_moments_map_from_heights (same arguments). pyr: pf_mip_texel_count(w, h) * 5
+   pf_reals. */
 PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
                                              pf_real dy, pf_real height_scale, int border,
                                              pf_real *pyr)
@@ -945,28 +747,10 @@ PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int 
     return PF_OK;
 }
 
-/* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
-PF_CPU_DEF int pf_depth_moment_channels(int kind)
-{
-    switch (kind) {
-    case PF_DEPTH_VSM: return 2;
-    case PF_DEPTH_EVSM2: return 2;
-    case PF_DEPTH_EVSM4: return 4;
-    case PF_DEPTH_MSM: return 4;
-    case PF_DEPTH_ESM_LOG: return 1;
-    default: return 0;
-    }
-}
-
-/* Stores a texel's members in order. */
-PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] = m.m2; }
-PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
-PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
 /* The pyramid of a depth map (w h depths in [0, 1], row-major) for one PF_DEPTH_* kind:
    c_pos is the EVSM positive exponent and the ESM exponent, c_neg the EVSM negative one
    (ignored by the others). PF_DEPTH_ESM_LOG stores c_pos z and reduces in log space.
-   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. Errors as
-   pf_mip_build, and PF_ERR_ARG for a NULL depths or an unknown kind. */
+   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. */
 PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
                                             pf_real c_pos, pf_real c_neg, pf_real *pyr)
 {
@@ -990,15 +774,12 @@ PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h,
     }
     return PF_OK;
 }
-
 /* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values: the same
-   texels as PF_DEPTH_VSM's (z, z^2), so the same builder. Errors as pf_mip_build, and
-   PF_ERR_ARG for a NULL values. */
+   texels as PF_DEPTH_VSM's (z, z^2), so the same builder. */
 PF_CPU_DEF int pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
 { return pf_depth_pyramid_from_depths(values, w, h, PF_DEPTH_VSM, PF_R(0.0), PF_R(0.0), pyr); }
 /* The pyramid of average normals (3 channels) of a normal map (w h normals, 3 interleaved
-   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). Errors
-   as pf_mip_build, and PF_ERR_ARG for a NULL normals. */
+   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). */
 PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
 {
     pfi_mip_cascade c;
@@ -1008,55 +789,42 @@ PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int
     for (r = 0; r < h; ++r) {
         const pf_real *n = normals + (long long)r * w * 3;
         pf_real *o = pyr + (long long)r * w * 3;
-        for (i = 0; i < w; ++i) {
-            pf_vec3 u = pf_normal_avg_from_normal(pf_vec3_make(n[3 * i], n[3 * i + 1], n[3 * i + 2]));
-            o[3 * i] = u.x;
-            o[3 * i + 1] = u.y;
-            o[3 * i + 2] = u.z;
-        }
+        for (i = 0; i < w; ++i)
+            pfi_put_v3(o + 3 * i, pf_normal_avg_from_normal(pf_vec3_make(n[3 * i], n[3 * i + 1], n[3 * i + 2])));
         pfi_mip_push_row(&c, 0, r);
     }
     return PF_OK;
 }
 
-/* ---------------------------------------------------------------- N texels */
-/* The largest positive weight of n (0 if none; NaN weights are skipped; +inf is returned). */
-PF_CPU_DEF pf_real pfi_max_weight(const pf_real *weights, int n)
+/* ---------------------------------------------------------------- N texels
+   Both weighted means skip texels of weight <= 0 (or NaN) without reading them, and divide the
+   weights by a divisor d first, so any finite weights work, under -ffast-math too (two weights
+   of PF_REAL_MAX give the plain mean): d = wmax 2^-32 (exact) for a largest weight wmax > 1,
+   else wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math
+   turns w / wmax into w * (1/wmax) with subnormals flushed to 0; 1/d >= 2^-96 is normal. */
+PF_CPU_DEF pf_real pfi_weight_divisor(const pf_real *weights, int n)
 {
     pf_real m = PF_R(0.0);
     int i;
     for (i = 0; i < n; ++i)
         if (weights[i] > m) m = weights[i];
-    return m;
-}
-
-/* The divisor that brings the weights to at most 2^32: wmax 2^-32 (exact) for wmax > 1, else
-   wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math turns
-   w / wmax into w * (1/wmax) with subnormals flushed to 0 (every weight became 0); the
-   reciprocal of this divisor is >= 2^-96, normal in float and double. */
-PF_CPU_DEF pf_real pfi_weight_divisor(pf_real wmax)
-{
-    return wmax > PF_R(1.0) ? wmax * PF_R(2.3283064365386963e-10) : wmax; /* 2^-32 */
+    return m > PF_R(1.0) ? m * PF_R(2.3283064365386963e-10) : m; /* 2^-32; +inf stays +inf */
 }
 
 /* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
-   (texels: n C pf_reals, weights: n, out: C). Texels with w_i <= 0 (or NaN) are skipped, not
-   read. The weights are divided by the largest one (times 2^-32) first, so any finite weights
-   work, under -ffast-math too (two weights of PF_REAL_MAX give the plain mean). No positive weight (n = 0 too): out is zeroed,
-   PF_OK. PF_ERR_ARG: a NULL, channels < 1, n < 0, an infinite weight; PF_ERR_SIZE: n C >
-   PF_MAX_REALS. */
+   (texels: n C pf_reals, weights: n, out: C). No positive weight (n = 0 too): out is zeroed,
+   PF_OK. PF_ERR_SIZE when n C > PF_MAX_REALS. */
 PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
                                         int n, pf_real *out)
 {
-    pf_real wsum = PF_R(0.0), wmax, d;
+    pf_real wsum = PF_R(0.0), d;
     int i, k;
     if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
     if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
-    wmax = pfi_max_weight(weights, n);
-    if (!(wmax <= PF_REAL_MAX)) return PF_ERR_ARG;
+    d = pfi_weight_divisor(weights, n);
+    if (!(d <= PF_REAL_MAX)) return PF_ERR_ARG;
     for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
-    if (!(wmax > PF_R(0.0))) return PF_OK;
-    d = pfi_weight_divisor(wmax);
+    if (!(d > PF_R(0.0))) return PF_OK;
     for (i = 0; i < n; ++i)
         if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
     for (i = 0; i < n; ++i) {
@@ -1070,27 +838,23 @@ PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, con
     return PF_OK;
 }
 
-/* log of the weighted mean of exp(l_i) (ESM, log space) over n texels, weights divided by the
-   largest first as above. -PF_REAL_MAX if no weight is positive, and for bad arguments (a
-   NULL, n < 0, an infinite weight). */
+/* log of the weighted mean of exp(l_i) (ESM, log space) over n texels. -PF_REAL_MAX when no
+   weight is positive (n = 0 too), and for bad arguments (a NULL, n < 0, a +inf weight). */
 PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
 {
     pf_esm_log_sum a = PF_ESM_LOG_SUM_EMPTY;
-    pf_real wmax;
+    pf_real d;
     int i;
     if (!logs || !weights || n < 0) return -PF_REAL_MAX;
-    wmax = pfi_max_weight(weights, n);
-    if (!(wmax > PF_R(0.0) && wmax <= PF_REAL_MAX)) return -PF_REAL_MAX;
-    wmax = pfi_weight_divisor(wmax);
-    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i] / wmax);
+    d = pfi_weight_divisor(weights, n);
+    if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i] / d);
     return pf_esm_log_sum_mean(a);
 }
 
 /* ---------------------------------------------------------------- sampling */
-/* Texel indices and the fraction for coordinate u on an axis of n texels (GPU convention:
-   centre of texel i at (i + 0.5)/n). CLAMP: u clamped to [0, 1] (infinities too), NaN is 0.
-   WRAP: u - floor(u), computed in pf_real (exact: for |u| >= 2^23 in float, 2^52 in double, u
-   is an integer and wraps to 0); NaN and infinities are 0. Indices in long long, in [0, n). */
+/* Texel indices (long long, in [0, n)) and the fraction for coordinate u on an axis of n
+   texels, under the Sampling convention (CONVENTIONS). */
 PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long long *i1, pf_real *f)
 {
     pf_real x;
@@ -1100,63 +864,33 @@ PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long l
     x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
     i = pfi_floor_index(x, -1, n - 1);
     *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
-    if (border == PF_BORDER_WRAP) {
-        *i0 = pfi_wrap_index(i, n);
-        *i1 = pfi_wrap_index(i + 1, n);
-    } else {
-        *i0 = i < 0 ? 0 : i;
-        *i1 = i + 1 > n - 1 ? n - 1 : i + 1;
-    }
+    *i0 = border == PF_BORDER_WRAP ? pfi_wrap_index(i, n) : (i < 0 ? 0 : i);
+    *i1 = border == PF_BORDER_WRAP ? pfi_wrap_index(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
 }
 
-/* Bilinear weights and the four texel offsets (in pf_reals) of (u, v) at one level. */
-typedef struct pfi_mip_bilerp {
-    long long t[4];
-    pf_real w[4];
-} pfi_mip_bilerp;
+/* The taps of positive bilinear weight of (u, v) at one level of a pyramid. */
+typedef struct pfi_mip_bilerp { const pf_real *tap[4]; pf_real w[4]; int n; } pfi_mip_bilerp;
 
-PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(int w, int h, int channels, int level, pf_real u,
-                                            pf_real v, int border)
+PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(const pf_real *pyr, int w, int h, int channels,
+                                            int level, pf_real u, pf_real v, int border)
 {
     pfi_mip_bilerp b;
-    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level);
-    long long x0, x1, y0, y1, base = pf_mip_level_offset(w, h, level) * channels;
+    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level), t;
+    long long x[2], y[2];
     pf_real fx, fy;
-    pfi_mip_axis(u, lw, border, &x0, &x1, &fx);
-    pfi_mip_axis(v, lh, border, &y0, &y1, &fy);
-    b.t[0] = base + (y0 * lw + x0) * channels;
-    b.t[1] = base + (y0 * lw + x1) * channels;
-    b.t[2] = base + (y1 * lw + x0) * channels;
-    b.t[3] = base + (y1 * lw + x1) * channels;
-    b.w[0] = (PF_R(1.0) - fx) * (PF_R(1.0) - fy);
-    b.w[1] = fx * (PF_R(1.0) - fy);
-    b.w[2] = (PF_R(1.0) - fx) * fy;
-    b.w[3] = fx * fy;
+    pyr += pf_mip_level_offset(w, h, level) * channels;
+    pfi_mip_axis(u, lw, border, &x[0], &x[1], &fx);
+    pfi_mip_axis(v, lh, border, &y[0], &y[1], &fy);
+    for (t = 0, b.n = 0; t < 4; ++t) {
+        pf_real wt = ((t & 1) ? fx : PF_R(1.0) - fx) * ((t & 2) ? fy : PF_R(1.0) - fy);
+        if (!(wt > PF_R(0.0))) continue;
+        b.tap[b.n] = pyr + (y[t >> 1] * lw + x[t & 1]) * channels;
+        b.w[b.n++] = wt;
+    }
     return b;
 }
 
-PF_CPU_DEF pf_real pfi_mip_bilerp_channel(const pf_real *pyr, const pfi_mip_bilerp *b, int k,
-                                          int log_space)
-{
-    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
-    const pf_real *tap[4];
-    int t, n = 0;
-    for (t = 0; t < 4; ++t)
-        if (b->w[t] > PF_R(0.0)) tap[n++] = pyr + b->t[t];
-    if (!log_space) {
-        for (t = 0; t < 4; ++t)
-            if (b->w[t] > PF_R(0.0)) s += b->w[t] * pyr[b->t[t] + k];
-        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
-    }
-    for (t = 0; t < 4; ++t)
-        if (b->w[t] > PF_R(0.0) && pyr[b->t[t] + k] > m) m = pyr[b->t[t] + k];
-    for (t = 0; t < 4; ++t)
-        if (b->w[t] > PF_R(0.0)) s += b->w[t] * PF_EXP(pfi_lse_arg(pyr[b->t[t] + k] - m));
-    return m + PF_LOG(s);
-}
-
-/* The shared sampler: PF_OK, or PF_ERR_ARG (NULL pyr or out, channels < 1, w or h < 1, an
-   unknown border) / PF_ERR_SIZE (as pf_mip_build) with out untouched. */
+/* The shared sampler: PF_OK, or the error with out untouched. */
 PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
                               pf_real u, pf_real v, int border, int log_space, pf_real *out)
 {
@@ -1170,15 +904,15 @@ PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf
     if (lod > PF_R(nl - 1)) lod = PF_R(nl - 1);
     l0 = (int)PF_FLOOR(lod);
     fl = lod - PF_R(l0);
-    b0 = pfi_mip_bilerp_at(w, h, channels, l0, u, v, border);
+    b0 = pfi_mip_bilerp_at(pyr, w, h, channels, l0, u, v, border);
     if (!(fl > PF_R(0.0)) || l0 + 1 >= nl) {
-        for (k = 0; k < channels; ++k) out[k] = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
+        for (k = 0; k < channels; ++k) out[k] = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
         return PF_OK;
     }
-    b1 = pfi_mip_bilerp_at(w, h, channels, l0 + 1, u, v, border);
+    b1 = pfi_mip_bilerp_at(pyr, w, h, channels, l0 + 1, u, v, border);
     for (k = 0; k < channels; ++k) {
-        pf_real a = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
-        pf_real c = pfi_mip_bilerp_channel(pyr, &b1, k, log_space), s;
+        pf_real a = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
+        pf_real c = pfi_taps_mean(b1.tap, b1.w, b1.n, k, log_space), s;
         if (log_space) {
             out[k] = pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl);
             continue;
@@ -1190,7 +924,7 @@ PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf
 }
 
 /* Bilinear sample of level `level` (clamped to the pyramid) at (u, v): `channels` pf_reals
-   into out. Returns PF_OK, or PF_ERR_ARG / PF_ERR_SIZE with out untouched (pfi_mip_sample). */
+   into out. PF_OK, or the error with out untouched. */
 PF_CPU_DEF int pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
                                       pf_real u, pf_real v, int border, pf_real *out)
 { return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out); }
@@ -1202,21 +936,15 @@ PF_CPU_DEF int pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int cha
 PF_CPU_DEF int pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels, int level,
                                           pf_real u, pf_real v, int border, pf_real *out)
 { return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out); }
-PF_CPU_DEF int pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels,
-                                           pf_real lod, pf_real u, pf_real v, int border,
-                                           pf_real *out)
+PF_CPU_DEF int pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                                           pf_real u, pf_real v, int border, pf_real *out)
 { return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out); }
 /* Typed trilinear samples (an integer lod is a bilinear sample of that level), one stamp per
-   type: pf_slope_moments_sample, pf_scalar_moments_sample, pf_depth_moments2_sample,
-   pf_depth_moments4_sample, pf_evsm_moments_sample, pf_normal_avg_sample (T F(pyr, w, h, lod,
-   u, v, border)). Bad arguments (those pf_mip_sample_trilinear rejects) return all zeros. */
+   type: T pf_<T>_sample(pyr, w, h, lod, u, v, border) for the six T of the reductions.
+   Bad arguments (those pf_mip_sample_trilinear rejects) return all zeros. */
 #define PFI_TYPED_SAMPLE(T, F, NC, MAKE)                                                       \
     PF_CPU_DEF T F(const pf_real *pyr, int w, int h, pf_real lod, pf_real u, pf_real v, int border) \
-    {                                                                                          \
-        pf_real t[5] = {0, 0, 0, 0, 0};                                                        \
-        pfi_mip_sample(pyr, w, h, NC, lod, u, v, border, 0, t);                                \
-        return MAKE;                                                                           \
-    }
+    { pf_real t[5] = {0, 0, 0, 0, 0}; pfi_mip_sample(pyr, w, h, NC, lod, u, v, border, 0, t); return MAKE; }
 PFI_TYPED_SAMPLE(pf_slope_moments, pf_slope_moments_sample, 5, pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]))
 PFI_TYPED_SAMPLE(pf_scalar_moments, pf_scalar_moments_sample, 2, pf_scalar_moments_make(t[0], t[1]))
 PFI_TYPED_SAMPLE(pf_depth_moments2, pf_depth_moments2_sample, 2, pf_depth_moments2_make(t[0], t[1]))

@@ -12,7 +12,15 @@
 # What counts as a public function: a declaration that starts a line with
 #     PF_DEF <return type> pf_<name>(<args>)
 # (args may continue on later lines; the declaration is joined up to its closing paren).
-# Names not starting pf_ (private helpers are pfi_...) are skipped. Comments and #define lines are ignored.
+# Names not starting pf_ (private helpers are pfi_...) are skipped. Comments are ignored.
+#
+# Stamps: a function-like macro whose body holds PF_DEF declarations, e.g.
+#     #define PFI_STAMP(T, F) \
+#         PF_DEF T F##_lerp(T a, T b, pf_real t) { ... } \
+#         PF_DEF T F##_scale(T a, pf_real w) { ... }
+# is remembered, and a line that invokes it, `PFI_STAMP(pf_x, pf_x)`, declares what the
+# expansion declares (parameters replaced as whole tokens, ## pasted), at the invocation's line
+# and region, as if the functions were written out. Other #define lines are ignored.
 #
 # Arguments are synthesised from their type:
 #   pf_real            a value read from the input buffer (in[k] / pfp_in.v[k]) so nothing folds
@@ -141,9 +149,46 @@ function record_member(sname, s,    n, t, i, type, names, k, m, first) {
     }
 }
 
+# A stamp's body with its parameters replaced by the arguments and ## pasted; every PF_DEF
+# declaration in it is recorded.
+function expand_stamp(call, file, line, reg,    p, e, name, na, a, np, q, i, body, out, tok) {
+    p = index(call, "("); e = close_paren(call)
+    name = trim(substr(call, 1, p - 1))
+    na = split_args(substr(call, p + 1, e - p - 1), a)
+    np = split(stamp_params[name], q, /[ \t]*,[ \t]*/)
+    if (na != np) die(file ":" line ": " name " takes " np " arguments, given " na)
+    for (i = 1; i <= np; i++) arg_of[q[i]] = a[i]
+    body = stamp_body[name]; out = ""
+    while (match(body, /[A-Za-z_][A-Za-z0-9_]*/)) {
+        tok = substr(body, RSTART, RLENGTH)
+        out = out substr(body, 1, RSTART - 1) ((tok in arg_of) ? arg_of[tok] : tok)
+        body = substr(body, RSTART + RLENGTH)
+    }
+    out = out body
+    for (i = 1; i <= np; i++) delete arg_of[q[i]]
+    gsub(/[ \t]*##[ \t]*/, "", out)
+    while ((p = index(out, "PF_DEF ")) > 0) {
+        out = substr(out, p)
+        e = index(substr(out, 8), "PF_DEF ")
+        record_decl(e ? substr(out, 1, e + 6) : out, file, line, reg)
+        out = substr(out, 8)
+    }
+}
+
+# A complete #define: remembered as a stamp when its body holds PF_DEF.
+function define_done(s,    name, params) {
+    sub(/^[ \t]*#[ \t]*define[ \t]+/, "", s)
+    if (!match(s, /^[A-Za-z_][A-Za-z0-9_]*\(/)) return
+    name = substr(s, 1, RLENGTH - 1)
+    params = substr(s, RLENGTH + 1); sub(/\).*$/, "", params)
+    s = substr(s, RLENGTH + 1); sub(/^[^)]*\)/, "", s)
+    if (index(s, "PF_DEF") == 0) return
+    stamp_params[name] = trim(params); stamp_body[name] = s
+}
+
 FNR == 1 {
     file = FILENAME; sub(/^.*\//, "", file)
-    depth = 0; incomment = 0; pending = ""; instruct = ""
+    depth = 0; incomment = 0; pending = ""; instruct = ""; indefine = ""; pend_stamp = 0
     nfiles++; file_order[nfiles] = file
 }
 
@@ -151,12 +196,36 @@ FNR == 1 {
     raw = $0
     sub(/\r$/, "", raw)                             # CRLF checkouts
     s = strip_comments(raw)
+    if (indefine != "") {                            # continuation lines of a #define
+        indefine = indefine " " s
+        if (indefine ~ /\\[ \t]*$/) sub(/\\[ \t]*$/, "", indefine)
+        else { define_done(indefine); indefine = "" }
+        next
+    }
     if (pending != "") {
         pending = pending " " trim(s)
-        if (close_paren(pending)) { record_decl(pending, file, pend_line, pend_reg); pending = "" }
+        if (close_paren(pending)) {
+            if (pend_stamp) expand_stamp(pending, file, pend_line, pend_reg)
+            else record_decl(pending, file, pend_line, pend_reg)
+            pending = ""; pend_stamp = 0
+        }
+        next
+    }
+    if (s ~ /^[ \t]*#[ \t]*define[ \t]/) {
+        if (s ~ /\\[ \t]*$/) { indefine = s; sub(/\\[ \t]*$/, "", indefine) }
+        else define_done(s)
         next
     }
     if (s ~ /^[ \t]*#/) { directive(s); next }
+    if (match(s, /^[ \t]*[A-Za-z_][A-Za-z0-9_]*[ \t]*\(/)) {
+        callee = substr(s, RSTART, RLENGTH); sub(/[ \t]*\($/, "", callee); callee = trim(callee)
+        if (callee in stamp_body) {                # a stamp: declares what its expansion declares
+            s = trim(s)
+            if (close_paren(s)) expand_stamp(s, file, FNR, region())
+            else { pending = s; pend_line = FNR; pend_reg = region(); pend_stamp = 1 }
+            next
+        }
+    }
     if (instruct != "") {
         if (s ~ /PF_STRUCT_END[ \t]*\(/) { instruct = ""; next }
         record_member(instruct, s)
