@@ -48,6 +48,11 @@
      PF_GLSL          compile as GLSL 4.50 (see docs/porting.md): structs through
                       PF_STRUCT_BEGIN/END, no typedef, casts through PF_R, built-in math.
      PF_NO_MATH_H     do not include <math.h> (when every PF_ math macro is user-provided).
+     PF_CPU_DEF       linkage of the CPU-only functions that take pointers (default static
+                      inline, never __device__).
+     PF_MAX_SIDE      largest side those functions accept (default 2^24).
+     PF_MAX_REALS     largest buffer, in pf_reals, they read or write (default 2^40; narrower
+                      on 32-bit hosts). See "CPU only: sizes and errors" at the end.
 
    USAGE
      #include "pf_core.h"
@@ -61,6 +66,7 @@
      pf_vec2_make  pf_vec2_dot
      pf_vec3_make  pf_vec3_add  pf_vec3_sub  pf_vec3_scale  pf_vec3_dot  pf_vec3_cross
      pf_vec3_length  pf_vec3_normalize
+     CPU only: PF_OK PF_ERR_ARG PF_ERR_SIZE, pf_size_mul pf_size_mul3 pf_size_side_ok
 
    CONVENTIONS
      Public names pf_, private pfi_ (not pf__: GLSL and C++ reserve every identifier that
@@ -507,6 +513,106 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
     if (m < PFI_NORM_TINY || m > PFI_NORM_HUGE) a = pf_vec3_scale(a, m < PFI_NORM_TINY ? PFI_NORM_UP : PFI_NORM_DOWN);
     return pf_vec3_scale(a, PF_R(1.0) / pf_vec3_length(a));
 }
+
+/* ================================================================ CPU only: sizes and errors
+   The rules every function that takes a pointer follows (pf_moments.h pyramids and samplers,
+   pf_height.h colour-map arrays and tables, pf_gaussgrid.h's Gauss-Hermite generator). They
+   walk caller-owned buffers, so they are host code: linkage PF_CPU_DEF (static inline by
+   default, never __device__), compiled out under PF_GLSL.
+
+   Before it reads or writes anything, such a function checks every argument and returns
+     PF_OK        (0)  on success;
+     PF_ERR_ARG   (-1) for a NULL pointer it would use, an unknown enum value (border, kind), a
+                       size below its minimum, or a range that is empty, reversed or not finite;
+     PF_ERR_SIZE  (-2) for a size above its documented limit: a side above PF_MAX_SIDE, or a
+                       buffer of more than PF_MAX_REALS pf_reals;
+   and on an error it writes nothing. Functions that return a count (pf_mip_texel_count,
+   pf_colormap_table_size, pf_gg_hermite_generate) return 0 for every size they cannot serve
+   (each states exactly which; a texel count times a channel count can still exceed the limit); functions that return a value say which value they return. Sizes, offsets and
+   indices are computed in long long through the helpers below, so no documented size can
+   overflow; a caller's buffer must hold what the function's comment says, the one thing the
+   library cannot check. */
+#ifndef PF_GLSL
+
+#ifndef PF_CPU_DEF
+#  define PF_CPU_DEF static inline
+#endif
+
+#define PF_OK 0
+#define PF_ERR_ARG (-1)
+#define PF_ERR_SIZE (-2)
+
+/* Largest side (texels along one axis, entries along one table axis) any CPU function takes:
+   2^24, far above any GPU texture (16384 or 32768), and small enough that side arithmetic in
+   int never overflows. */
+#ifndef PF_MAX_SIDE
+#  define PF_MAX_SIDE (1L << 24)
+#endif
+
+/* Largest buffer, in pf_reals, any CPU function reads or writes: 2^40 on 64-bit hosts (4 TiB of
+   floats), PTRDIFF_MAX / 8 where pointers are narrower, so that every offset fits a pointer
+   difference in float and double builds. PTRDIFF_MAX is read from the compiler's own macros
+   where it has them (gcc, clang, nvcc: __PTRDIFF_MAX__; tcc: __SIZEOF_POINTER__), so that a
+   bare-metal build needs no system header; <stdint.h> only for the others. */
+#ifndef PF_MAX_REALS
+#  if defined(__PTRDIFF_MAX__)
+#    define PFI_PTRDIFF_MAX __PTRDIFF_MAX__
+#  elif defined(__SIZEOF_POINTER__)
+#    if __SIZEOF_POINTER__ >= 8
+#      define PFI_PTRDIFF_MAX 9223372036854775807LL
+#    else
+#      define PFI_PTRDIFF_MAX 2147483647L
+#    endif
+#  else
+#    include <stdint.h>
+#    define PFI_PTRDIFF_MAX PTRDIFF_MAX
+#  endif
+#  if PFI_PTRDIFF_MAX / 8 > (1LL << 40)
+#    define PF_MAX_REALS (1LL << 40)
+#  else
+#    define PF_MAX_REALS ((long long)(PFI_PTRDIFF_MAX / 8))
+#  endif
+#endif
+
+/* a * b as a count of pf_reals, or -1 when a or b is negative or the product exceeds
+   PF_MAX_REALS (checked by division first: the product itself never overflows). */
+PF_CPU_DEF long long pf_size_mul(long long a, long long b)
+{
+    if (a < 0 || b < 0) return -1;
+    if (b != 0 && a > PF_MAX_REALS / b) return -1;
+    return a * b;
+}
+
+/* a * b * c the same way. */
+PF_CPU_DEF long long pf_size_mul3(long long a, long long b, long long c)
+{
+    long long ab = pf_size_mul(a, b);
+    return ab < 0 ? -1 : pf_size_mul(ab, c);
+}
+
+/* 1 when n is a valid side: 1 <= n <= PF_MAX_SIDE. */
+PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE; }
+
+/* i modulo n in [0, n) for any i and n >= 1 (a wrapped texel index), without the overflow of
+   ((i % n) + n) % n near the ends of the range. */
+PF_CPU_DEF long long pfi_wrap_index(long long i, long long n)
+{
+    long long r = i % n;
+    return r < 0 ? r + n : r;
+}
+
+/* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
+   pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
+   float-to-integer conversion, which is undefined behaviour in C. */
+PF_CPU_DEF long long pfi_floor_index(pf_real x, long long lo, long long hi)
+{
+    long long i;
+    if (!(x > (pf_real)lo)) return lo;
+    if (!(x < (pf_real)hi)) return hi;
+    i = (long long)PF_FLOOR(x);
+    return i < lo ? lo : (i > hi ? hi : i);
+}
+#endif /* !PF_GLSL */
 
 #endif /* PF_CORE_H */
 
@@ -1358,8 +1464,11 @@ PF_DEF pf_real pf_leadr_specular_point(pf_vec3 wo, pf_vec3 to_light, pf_slope_st
      below the mesosurface gets weight exactly 0. Out-of-range N is clamped to
      [1, PF_GG_MAX_N]; an unknown set reads as PF_GG_UNIFORM; an index outside the grid gives
      a sample of weight 0. sigma = 0 collapses every sample onto the mean slope; |r| = 1 is
-     fine. No allocation, no I/O, no globals; every PF_DEF function is pointer-free except the
-     CPU-only generator.
+     fine. No allocation, no I/O, no globals; every PF_DEF function is pointer-free. The one
+     pointer-taking function, the CPU-only pf_gg_hermite_generate (linkage PF_CPU_DEF, host
+     code, compiled out under PF_GLSL), follows pf_core.h's "CPU only: sizes and errors": it
+     checks n (1 .. PF_GG_GENERATE_MAX = 64) and both pointers before touching anything and
+     returns its count, n, or 0 with both arrays untouched.
 
    ACCURACY AND COST (measured: docs/gaussgrid.md, tests/test_gaussgrid.c, bench/bench_gaussgrid.c)
      The grid's error is the quadrature error of the node set on the integrand (kinks where a
@@ -1982,14 +2091,16 @@ PF_DEF pf_real pf_gg_diffuse_directional(pf_gg_grid g, pf_vec3 wi)
     return acc * v * PF_INV_PI;
 }
 
-/* ---------------------------------------------------------------- CPU only: Gauss-Hermite for any N */
+/* ---------------------------------------------------------------- CPU only: Gauss-Hermite for any N
+   Host code under pf_core.h's "CPU only: sizes and errors" rules: linkage PF_CPU_DEF (static
+   inline by default, never __device__), compiled out under PF_GLSL. */
 #ifndef PF_GLSL
 #define PF_GG_GENERATE_MAX 64 /* largest N of pf_gg_hermite_generate */
 
 /* Sturm count: how many eigenvalues of the Jacobi matrix of He_n (zero diagonal, off-diagonal
    sqrt(1), ..., sqrt(n-1); its eigenvalues are the zeros of He_n, Golub & Welsch 1969) lie
    below x, from the signs of the pivots of LDL^T of (J - x I). */
-PF_DEF int pfi_gg_sturm_count(int n, pf_real x)
+PF_CPU_DEF int pfi_gg_sturm_count(int n, pf_real x)
 {
     pf_real d = -x;
     int i, c = 0;
@@ -2004,7 +2115,7 @@ PF_DEF int pfi_gg_sturm_count(int n, pf_real x)
 
 /* Orthonormal Hermite polynomial P_{n-1}(x) = He_{n-1}(x)/sqrt((n-1)!) by its recurrence
    P_k = (x P_{k-1} - sqrt(k-1) P_{k-2}) / sqrt(k); the Gauss weight is 1/(n P_{n-1}(x)^2). */
-PF_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
+PF_CPU_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
 {
     pf_real p0 = PF_R(1.0), p1 = x, p2;
     int k;
@@ -2019,13 +2130,16 @@ PF_DEF pf_real pfi_gg_orthonormal_he(int m, pf_real x)
 
 /* pf_gg_hermite_generate(n, nodes, weights): the n-point Gauss-Hermite rule of a standard
    normal (probabilists' weight exp(-x^2/2), weights normalized to sum 1), nodes ascending and
-   exactly symmetric, written to the caller's arrays of n entries. 1 <= n <= PF_GG_GENERATE_MAX;
-   returns n, or 0 (arrays untouched) outside that range or for NULL arrays.
+   exactly symmetric, written to the caller's arrays of n entries (nodes and weights each hold
+   n reals: at most 64, so no size arithmetic can overflow). It returns a count, as pf_core.h's
+   policy has counts do: n on success; 0, with both arrays untouched (nothing read or
+   written), for every argument it rejects: n < 1 or n > PF_GG_GENERATE_MAX (64; INT_MIN and
+   INT_MAX included) or a NULL nodes or weights. It never returns PF_ERR_* codes.
    Method: each zero of He_n by bisection on the Sturm count of the Jacobi matrix (no
    initial guesses needed, every root bracketed), weights 1/(n P_{n-1}^2) formed as
    (1/(sqrt(n) P_{n-1}))^2 so that large n cannot overflow (far weights underflow to 0, where
    the true weight is below the smallest pf_real anyway). Cost ~ n^2 x 100 operations. */
-PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
+PF_CPU_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
 {
     int i, it;
     pf_real bound, s = PF_R(0.0);
@@ -2101,7 +2215,8 @@ PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
      transfer function pf_transfer_moments_make, pf_transfer_moments_add,
                        pf_transfer_segment_moments, pf_transfer_end_moments,
                        pf_transfer_height, pf_transfer_slope_stats (eqs. 19-28)
-     CPU only (#ifndef PF_GLSL: they walk caller-owned arrays; no allocation, no I/O)
+     CPU only (#ifndef PF_GLSL, linkage PF_CPU_DEF: they walk caller-owned arrays; no
+     allocation, no I/O)
                        pf_colormap_filter, pf_height_colormap_filter, pf_transfer_moments_filter,
                        pf_colormap_table_size, pf_colormap_table_build, pf_colormap_table_lookup
 
@@ -2125,6 +2240,19 @@ PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
      Filtering means the expectation E[C(X)], X ~ N(mean, sigma^2). sigma <= 0 (or NaN) means
      no filtering: the map's own value (at a jump, the mean of the two sides). Colour channels
      are independent: the weights of pf_gauss_segment_weights serve all channels.
+     CPU-only functions (pf_core.h, "CPU only: sizes and errors"). Every argument is checked
+     before anything is read or written. pf_colormap_filter, pf_height_colormap_filter,
+     pf_colormap_table_build and pf_colormap_table_lookup return PF_OK (0), PF_ERR_ARG (-1) for
+     a NULL pointer, n < 1 knots, channels < 1, table sides < 2 or a table range that is empty,
+     reversed or not finite (its bounds, width or sample step), PF_ERR_SIZE (-2) for a table
+     side above PF_MAX_SIDE (2^24), a table above PF_MAX_REALS reals or n * channels above
+     PF_MAX_REALS; on an error they write nothing (*t included). pf_colormap_table_size returns
+     the table's reals as a long long, 0 for every size the builder rejects.
+     pf_transfer_moments_filter returns zeros for NULL arrays or n < 1. Offsets are long long;
+     the one thing the code cannot check is that a buffer holds what the comment says: x and c
+     (or g) n and n * channels reals, out channels, a table pf_colormap_table_size reals. A NaN
+     mean makes every knot read as standing at the mean: out = (c[0] + c[n-1]) / 2 (finite,
+     meaningless); NaN sigma means no filtering (as sigma <= 0).
 
    ACCURACY AND COST (measured: docs/height.md, tests/test_height.c, bench/bench_height.c)
      pf_height_visibility      relative error ~ eps (1 + |log V| + Lambda z^2), the conditioning
@@ -2132,8 +2260,11 @@ PF_DEF int pf_gg_hermite_generate(int n, pf_real *nodes, pf_real *weights)
      pf_visible_height         ours: (4,5) rationals in s = sqrt(log(1+Lambda)); fit error of
                                mu_d 9.5e-6, sigma_d 6.7e-5 (relative) over every Lambda >= 0;
                                one log, one sqrt, two divisions.
-     pf_visible_height_published  Heitz et al. 2014 eqs. 16-17: mu_d off by up to ~0.13 sigma_h
-                               (20% at Lambda = 1), sigma_d by a few %.
+     pf_visible_height_published  Heitz et al. 2014 eqs. 16-17, valid for 0 <= Lambda <= 1900:
+                               mu_d off by up to 0.131 sigma_h (at Lambda = 0.56; 20% at
+                               Lambda = 1), sigma_d by up to 5.3% (at Lambda = 26). Beyond
+                               1900 both errors grow without bound (mu_d +0.35 sigma_h at 1e4,
+                               +2.6 at 1e9, +16 at 1e30): use pf_visible_height there.
      pf_visible_height_exact   64-node sinh-mapped trapezoidal rule: mu_d ~1e-9, sigma_d ~5e-8
                                relative in double (rounding-limited in float); ~1000x the fit.
      colour filters            closed form, absolute error a few eps per knot within ~5 sigma.
@@ -2317,8 +2448,15 @@ PF_DEF pf_height_dist pf_height_dist_make(pf_real mean, pf_real dev)
 
 /* The published fits (Heitz et al. 2014 eqs. 16-17; the mean also in Heitz & Neyret 2011
    sec. 4.4): mu_d = 0.39 log(1 + 4.75 L), sigma_d = 1 / (1 + 0.26 log(1 + 1.13 L)). Kept to
-   reproduce the paper; measured errors in docs/height.md (the mean's slope at L = 0 is
-   1.85, twice the true 0.90). lambda is the sum Lambda_o + Lambda_i. */
+   reproduce the paper; lambda is the sum Lambda_o + Lambda_i. Valid range 0 <= L <= 1900,
+   where (measured against quadrature of eq. 15, tests/test_height.c, float and double alike)
+   |mu_d error| <= 0.131 sigma_h (max at L = 0.56, +0.131; -0.122 at L = 42; the mean's slope
+   at L = 0 is 1.85, twice the true 0.90) and |sigma_d error| <= 5.33% relative (max at
+   L = 26). Beyond L = 1900 the fit's 0.39 log L outgrows the true sqrt(2 log L): the mu_d
+   error rises monotonically (+0.35 sigma_h at L = 1e4, +1.13 at 1e6, +2.60 at 1e9, +16.0 at
+   1e30, where it returns (27.55, 0.0527) for the true (11.51, 0.110)) and the sigma_d error
+   falls monotonically (-4.0% at 1e4, past -5.33% from L = 1.9e4, -23% at 1e9, -52% at 1e30).
+   Every L still gives finite values (L is clamped to [0, PF_LAMBDA_MAX], NaN -> 0). */
 PF_DEF pf_height_dist pf_visible_height_published(pf_real lambda)
 {
     pf_real l = pfi_lambda_clamp(lambda);
@@ -2675,19 +2813,43 @@ PF_DEF pf_slope_stats pf_transfer_slope_stats(pf_transfer_moments m, pf_real ex,
 /* ---------------------------------------------------------------- CPU only: arrays
    These walk caller-owned arrays (pointers), so they are not part of the shader subset; a
    shader loops over pf_gauss_segment_weights / pf_transfer_segment_moments instead. No
-   allocation, no I/O. Knots: x[0..n-1] non-decreasing; values c[k * channels + ch]. */
+   allocation, no I/O. Knots: x[0..n-1] non-decreasing; values c[k * channels + ch].
+   Linkage PF_CPU_DEF (host code, never __device__); the rules are pf_core.h's "CPU only:
+   sizes and errors": every argument is checked before anything is read or written; PF_OK on
+   success, PF_ERR_ARG (-1) for a NULL pointer, a size below its minimum or a range that is
+   empty, reversed or not finite, PF_ERR_SIZE (-2) for a size above its limit, and nothing
+   written on an error. Offsets are computed in long long. */
 #ifndef PF_GLSL
 
-/* E[C(X)] for the piecewise-linear colour map (x, c) with n >= 1 knots and `channels` values
-   per knot, X ~ N(mean, sigma^2): out[0..channels-1]. One erfc and one exp per knot (each
-   knot's tails are shared by its two pieces). n <= 0 or channels <= 0 writes nothing. */
-PF_DEF void pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
-                               pf_real mean, pf_real sigma, pf_real *out)
+/* The checks shared by the array functions: knots n >= 1 and channels >= 1 (PF_ERR_ARG below),
+   n * channels <= PF_MAX_REALS (the values array; PF_ERR_SIZE above). */
+PF_CPU_DEF int pfi_colormap_check(int n, int channels)
+{
+    if (n < 1 || channels < 1) return PF_ERR_ARG;
+    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
+    return PF_OK;
+}
+
+/* E[C(X)] for the piecewise-linear colour map (x, c) with n >= 1 knots and `channels` >= 1
+   values per knot, X ~ N(mean, sigma^2): out[0..channels-1]. One erfc and one exp per knot
+   (each knot's tails are shared by its two pieces).
+   Buffers: x holds n reals, c holds n * channels, out receives channels.
+   Returns PF_OK; PF_ERR_ARG (nothing written) for x, c or out NULL, n < 1 or channels < 1;
+   PF_ERR_SIZE (nothing written) for n * channels > PF_MAX_REALS.
+   sigma <= 0 or NaN: the unfiltered map at mean (at a jump, the mean of its two sides).
+   mean NaN: every knot reads as standing at the mean (as in pf_gauss_cdf and
+   pf_gauss_segment_weights, which a shader loop would call), so out = (c[0] + c[n-1]) / 2 per
+   channel, for every sigma: finite, and meaningless; check means upstream. */
+PF_CPU_DEF int pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
+                                  pf_real mean, pf_real sigma, pf_real *out)
 {
     pfi_gauss_knot ka, kb;
     pf_real below, above;
-    int k, ch;
-    if (n <= 0 || channels <= 0) return;
+    const pf_real *ck;
+    int k, ch, rc;
+    if (!x || !c || !out) return PF_ERR_ARG;
+    rc = pfi_colormap_check(n, channels);
+    if (rc != PF_OK) return rc;
     ka = pfi_gauss_knot_at(x[0], mean, sigma);
     below = ka.lower;
     for (ch = 0; ch < channels; ch++) out[ch] = c[ch] * below;
@@ -2695,39 +2857,49 @@ PF_DEF void pf_colormap_filter(const pf_real *x, const pf_real *c, int n, int ch
         pf_vec2 w;
         kb = pfi_gauss_knot_at(x[k + 1], mean, sigma);
         w = pfi_segment_weights(ka, kb, x[k], x[k + 1], mean, sigma);
-        for (ch = 0; ch < channels; ch++)
-            out[ch] += w.x * c[k * channels + ch] + w.y * c[(k + 1) * channels + ch];
+        ck = c + (long long)k * channels; /* knot k; knot k + 1 is ck + channels */
+        for (ch = 0; ch < channels; ch++) out[ch] += w.x * ck[ch] + w.y * ck[(long long)channels + ch];
         ka = kb;
     }
     above = ka.upper;
-    for (ch = 0; ch < channels; ch++) out[ch] += c[(n - 1) * channels + ch] * above;
+    ck = c + (long long)(n - 1) * channels;
+    for (ch = 0; ch < channels; ch++) out[ch] += ck[ch] * above;
+    return PF_OK;
 }
 
 /* Height-correlated colour, Heitz et al. 2014 eq. 13: C_h = Vbar <C, D_h>, with D_h our
    Gaussian fit for Lambda_o + Lambda_i in heights (mean_h, sigma_h), perturbed by noise
    (mu_r, sigma_r; 0, 0 for none), and Vbar = pf_height_mean_visibility (eq. 12). out gets
-   `channels` values. (Without the Vbar factor: pf_colormap_filter with pf_height_colour_dist.) */
-PF_DEF void pf_height_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
-                                      pf_real lambda_o, pf_real lambda_i, pf_real mean_h,
-                                      pf_real sigma_h, pf_real mu_r, pf_real sigma_r, pf_real *out)
+   `channels` values. (Without the Vbar factor: pf_colormap_filter with pf_height_colour_dist.)
+   Buffers, sizes and return codes as pf_colormap_filter (nothing written on an error).
+   NaN Lambdas read as 0; a NaN in mean_h, sigma_h or mu_r makes the filtering mean NaN:
+   out = Vbar (c[0] + c[n-1]) / 2 as in pf_colormap_filter. */
+PF_CPU_DEF int pf_height_colormap_filter(const pf_real *x, const pf_real *c, int n, int channels,
+                                         pf_real lambda_o, pf_real lambda_i, pf_real mean_h,
+                                         pf_real sigma_h, pf_real mu_r, pf_real sigma_r, pf_real *out)
 {
     pf_height_dist d = pf_height_colour_dist(lambda_o, lambda_i, mean_h, sigma_h, mu_r, sigma_r);
     pf_real v = pf_height_mean_visibility(lambda_o, lambda_i);
-    int ch;
-    if (n <= 0 || channels <= 0) return;
-    pf_colormap_filter(x, c, n, channels, d.mean, d.dev, out);
+    int ch, rc = pf_colormap_filter(x, c, n, channels, d.mean, d.dev, out);
+    if (rc != PF_OK) return rc;
     for (ch = 0; ch < channels; ch++) out[ch] *= v;
+    return PF_OK;
 }
 
-/* The four moments of the piecewise-linear transfer function (x, g), n >= 1 knots, for
-   f ~ N(mean, sigma^2). n <= 0 gives zeros. */
-PF_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf_real *g, int n,
-                                                      pf_real mean, pf_real sigma)
+/* The four moments of the piecewise-linear transfer function (x, g), n >= 1 knots (x and g
+   hold n reals each), for f ~ N(mean, sigma^2). It returns the moments by value, so bad
+   arguments - x or g NULL, n < 1 - give zeros (0, 0, 0, 0) and read nothing (a valid map can
+   give zeros too, g = 0 everywhere: check the arguments if the difference matters). Every
+   n >= 1 that fits an int is within PF_MAX_REALS. sigma <= 0 or NaN: no filtering. mean NaN:
+   every knot at the mean (as pf_colormap_filter): g = (g[0] + g[n-1]) / 2,
+   g2 = (g[0]^2 + g[n-1]^2) / 2, dg = dg2 = 0. */
+PF_CPU_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf_real *g, int n,
+                                                          pf_real mean, pf_real sigma)
 {
     pf_transfer_moments m = pf_transfer_moments_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
     pfi_gauss_knot ka, kb;
     int k;
-    if (n <= 0) return m;
+    if (!x || !g || n < 1) return m;
     ka = pfi_gauss_knot_at(x[0], mean, sigma);
     m = pf_transfer_end_moments(g[0], ka.lower);
     for (k = 0; k + 1 < n; k++) {
@@ -2745,31 +2917,69 @@ PF_DEF pf_transfer_moments pf_transfer_moments_filter(const pf_real *x, const pf
    (i: mean, j: sigma; row-major, ready for a 2D texture upload). On the GPU the lookup is a
    bilinear texture fetch; pf_colormap_table_lookup is the same bilinear interpolation on the
    CPU (the reference for its error). Choose [mean_min, mean_max] to cover the knots plus a few
-   sigma_max: lookups clamp to the table's range. */
+   sigma_max: lookups clamp to the table's range.
+   Limits (checked by the builder and again by every lookup): 2 <= n_mean, n_sigma <=
+   PF_MAX_SIDE (2^24), channels >= 1, n_mean * n_sigma * channels <= PF_MAX_REALS;
+   mean_min < mean_max and 0 < sigma_max, every bound, the widths mean_max - mean_min and
+   sigma_max, and the sample steps width / (n - 1) finite and > 0. The size fields stay int:
+   every side is at most 2^24 and channels is an int argument; only offsets need more than 31
+   bits (up to PF_MAX_REALS), and they are computed in long long, never stored. */
 typedef struct pf_colormap_table {
     pf_real *data;
     int n_mean, n_sigma, channels;
     pf_real mean_min, mean_max, sigma_max;
 } pf_colormap_table;
 
-/* Reals needed by a table (0 for sizes < 2 or channels < 1). */
-PF_DEF int pf_colormap_table_size(int n_mean, int n_sigma, int channels)
+/* Reals needed by a table: n_mean * n_sigma * channels as a long long (65537 x 65537 x 1 is
+   4295098369), or 0 for any size the builder rejects: n_mean or n_sigma < 2 or > PF_MAX_SIDE,
+   channels < 1, or a product above PF_MAX_REALS. */
+PF_CPU_DEF long long pf_colormap_table_size(int n_mean, int n_sigma, int channels)
 {
+    long long total;
     if (n_mean < 2 || n_sigma < 2 || channels < 1) return 0;
-    return n_mean * n_sigma * channels;
+    if (!pf_size_side_ok(n_mean) || !pf_size_side_ok(n_sigma)) return 0;
+    total = pf_size_mul3(n_mean, n_sigma, channels);
+    return total < 0 ? 0 : total;
 }
 
-/* Fills buffer (pf_colormap_table_size reals) with the filtered map and describes it in *t.
-   Returns 0 on success, -1 on bad sizes or ranges (nothing written). One pf_colormap_filter
-   per entry. */
-PF_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_mean, int n_sigma,
-                                   pf_real mean_min, pf_real mean_max, pf_real sigma_max,
-                                   const pf_real *x, const pf_real *c, int n, int channels)
+/* 1 when x is finite (not NaN, not +-inf), by comparison only (no isfinite: C99 and C++11
+   spell it differently, and MCU libms may lack it). -ffinite-math-only (part of -ffast-math)
+   lets the compiler assume it is 1. */
+PF_CPU_DEF int pfi_height_finite(pf_real x) { return x >= -PF_REAL_MAX && x <= PF_REAL_MAX; }
+
+/* Every check of a table's description (see pf_colormap_table): PF_OK, PF_ERR_ARG or
+   PF_ERR_SIZE. */
+PF_CPU_DEF int pfi_colormap_table_check(int n_mean, int n_sigma, int channels, pf_real mean_min,
+                                        pf_real mean_max, pf_real sigma_max)
 {
-    int i, j;
-    if (pf_colormap_table_size(n_mean, n_sigma, channels) == 0 || n < 1 || !(mean_max > mean_min) ||
-        !(sigma_max > PF_R(0.0)))
-        return -1;
+    pf_real wm = mean_max - mean_min;
+    if (n_mean < 2 || n_sigma < 2 || channels < 1) return PF_ERR_ARG;
+    if (pf_colormap_table_size(n_mean, n_sigma, channels) == 0) return PF_ERR_SIZE;
+    if (!pfi_height_finite(mean_min) || !pfi_height_finite(mean_max) || !pfi_height_finite(wm) || !(wm > PF_R(0.0)) ||
+        !(wm / (pf_real)(n_mean - 1) > PF_R(0.0)))
+        return PF_ERR_ARG;
+    if (!pfi_height_finite(sigma_max) || !(sigma_max / (pf_real)(n_sigma - 1) > PF_R(0.0))) return PF_ERR_ARG;
+    return PF_OK;
+}
+
+/* Fills buffer (pf_colormap_table_size(n_mean, n_sigma, channels) reals) with the filtered
+   map (x, c), n knots, and describes it in *t. One pf_colormap_filter per entry; the sample
+   means are mean_min + (mean_max - mean_min) (i / (n_mean - 1)), which cannot overflow.
+   Returns PF_OK; PF_ERR_ARG (nothing written, *t untouched) for t, buffer, x or c NULL,
+   n < 1, n_mean or n_sigma < 2, channels < 1, or a bad range (see pf_colormap_table:
+   mean_min = -inf, sigma_max = inf, NaN bounds, [-3e38, 3e38] in float whose width
+   overflows, mean_max <= mean_min, sigma_max <= 0); PF_ERR_SIZE (nothing written) for a side
+   above PF_MAX_SIDE, a table above PF_MAX_REALS reals, or n * channels > PF_MAX_REALS. */
+PF_CPU_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_mean, int n_sigma,
+                                       pf_real mean_min, pf_real mean_max, pf_real sigma_max,
+                                       const pf_real *x, const pf_real *c, int n, int channels)
+{
+    int i, j, rc;
+    pf_real wm = mean_max - mean_min;
+    if (!t || !buffer || !x || !c) return PF_ERR_ARG;
+    rc = pfi_colormap_table_check(n_mean, n_sigma, channels, mean_min, mean_max, sigma_max);
+    if (rc == PF_OK) rc = pfi_colormap_check(n, channels);
+    if (rc != PF_OK) return rc;
     t->data = buffer;
     t->n_mean = n_mean;
     t->n_sigma = n_sigma;
@@ -2778,41 +2988,51 @@ PF_DEF int pf_colormap_table_build(pf_colormap_table *t, pf_real *buffer, int n_
     t->mean_max = mean_max;
     t->sigma_max = sigma_max;
     for (j = 0; j < n_sigma; j++) {
-        pf_real sg = sigma_max * (pf_real)j / (pf_real)(n_sigma - 1);
+        pf_real sg = sigma_max * ((pf_real)j / (pf_real)(n_sigma - 1));
+        pf_real *row = buffer + (long long)j * n_mean * channels;
         for (i = 0; i < n_mean; i++) {
-            pf_real mu = mean_min + (mean_max - mean_min) * (pf_real)i / (pf_real)(n_mean - 1);
-            pf_colormap_filter(x, c, n, channels, mu, sg, buffer + (j * n_mean + i) * channels);
+            pf_real mu = mean_min + wm * ((pf_real)i / (pf_real)(n_mean - 1));
+            pf_colormap_filter(x, c, n, channels, mu, sg, row + (long long)i * channels);
         }
     }
-    return 0;
+    return PF_OK;
 }
 
 /* Bilinear lookup of a built table at (mean, sigma), clamped to the table's range (NaN reads
-   as the range's low end); writes t->channels values to out. */
-PF_DEF void pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, pf_real sigma, pf_real *out)
+   as the range's low end); writes t->channels values to out. The four entries read are inside
+   the table for every mean and sigma (indices clamped before any conversion, offsets in
+   long long). Returns PF_OK; PF_ERR_ARG (nothing written) for t, t->data or out NULL or a
+   description that pf_colormap_table_build would reject as PF_ERR_ARG; PF_ERR_SIZE for one it
+   would reject as PF_ERR_SIZE (a table it could not have built). */
+PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, pf_real sigma, pf_real *out)
 {
-    pf_real u = (mean - t->mean_min) / (t->mean_max - t->mean_min) * (pf_real)(t->n_mean - 1);
-    pf_real v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
-    pf_real fu, fv;
-    int i, j, ch, cs = t->channels;
+    pf_real u, v, fu, fv;
+    long long i, j, stride;
+    int ch, cs, rc;
     const pf_real *p00, *p10, *p01, *p11;
-    u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1));
+    if (!t || !t->data || !out) return PF_ERR_ARG;
+    rc = pfi_colormap_table_check(t->n_mean, t->n_sigma, t->channels, t->mean_min, t->mean_max, t->sigma_max);
+    if (rc != PF_OK) return rc;
+    cs = t->channels;
+    u = (mean - t->mean_min) / (t->mean_max - t->mean_min) * (pf_real)(t->n_mean - 1);
+    v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
+    u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1)); /* NaN -> 0 */
     v = pf_min(pf_max(v, PF_R(0.0)), (pf_real)(t->n_sigma - 1));
-    i = (int)u;
-    j = (int)v;
-    if (i > t->n_mean - 2) i = t->n_mean - 2;
-    if (j > t->n_sigma - 2) j = t->n_sigma - 2;
+    i = pfi_floor_index(u, 0, t->n_mean - 2);
+    j = pfi_floor_index(v, 0, t->n_sigma - 2);
     fu = u - (pf_real)i;
     fv = v - (pf_real)j;
-    p00 = t->data + (j * t->n_mean + i) * cs;
+    stride = (long long)t->n_mean * cs;
+    p00 = t->data + j * stride + i * cs;
     p10 = p00 + cs;
-    p01 = p00 + t->n_mean * cs;
+    p01 = p00 + stride;
     p11 = p01 + cs;
     for (ch = 0; ch < cs; ch++) {
         pf_real lo = p00[ch] + fu * (p10[ch] - p00[ch]);
         pf_real hi = p01[ch] + fu * (p11[ch] - p01[ch]);
         out[ch] = lo + fv * (hi - lo);
     }
+    return PF_OK;
 }
 
 #endif /* !PF_GLSL */
@@ -2824,26 +3044,22 @@ PF_DEF void pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, p
    moments, average normals (Toksvig), depth moments for shadow maps; their mip reductions,
    mip pyramids and bilinear/trilinear sampling.
 
-   WHY MOMENTS. A shading function f that is non-linear in a map's values cannot be filtered by
-   averaging the map. It can be filtered exactly when it is rewritten as a linear function of new
-   per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1, eq. 40): averaging those quantities
-   over a footprint then averages f. Raw moments E[1], E[m], E[m m^T], ... of a texel's values
-   are such quantities: the moments of a union (a mixture) of footprints are the weighted
-   averages of their moments (sec. 7.2). So everything in this header is averaged with plain
-   weighted sums - a box mip reduction, a bilinear or trilinear sampler - and the statistics
-   (mean, variance, covariance) are formed only after filtering, in the shader:
-     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010 as
-                     summarized by Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and
-                     sec. 4.1, which stores exactly these five in mipmapped textures);
+   WHY MOMENTS. A shading function non-linear in a map's values is filtered exactly when it is
+   rewritten as a linear function of per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1,
+   eq. 40): averaging those over a footprint then averages the function. Raw moments are such
+   quantities: the moments of a union (a mixture) of footprints are the weighted averages of
+   their moments (sec. 7.2). So everything here is averaged with plain weighted sums (a box mip
+   reduction, a bilinear or trilinear sampler), and mean, variance and covariance are formed
+   only after filtering, in the shader:
+     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010;
+                     Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and sec. 4.1);
      scalar moments  E[f], E[f^2] of a colour-driving or height map: the mean and variance of a
                      Gaussian filtering distribution (Heitz et al. 2014 sec. 4.2);
-     average normal  E[n] of unit normals, unnormalized; its length shrinks as the normals
-                     spread, which is what Toksvig's variance estimate reads (pf_toksvig.h;
-                     Bruneton & Neyret 2012 sec. 3.2.1, 7.2.2);
-     depth moments   (z, z^2) for VSM, warped (exp) moments for EVSM, (z, z^2, z^3, z^4) for
-                     moment shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); and ESM's
-                     E[exp(c z)] kept as its logarithm and reduced with log-sum-exp, so that no
-                     float ever holds exp(c z) and nothing overflows, whatever c.
+     average normal  E[n] of unit normals, unnormalized: its length shrinks as the normals
+                     spread, which is what Toksvig's variance reads (pf_toksvig.h);
+     depth moments   (z, z^2) for VSM, exp-warped moments for EVSM, (z .. z^4) for moment
+                     shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); ESM's
+                     E[exp(c z)] as its logarithm, reduced with log-sum-exp (never overflows).
 
    USAGE (shader or CPU: the evaluators)
      pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
@@ -2852,90 +3068,69 @@ PF_DEF void pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, p
    USAGE (CPU: a whole pyramid in one caller buffer, no allocation)
      long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
      pf_real *pyr = <n * 5 pf_reals from the caller>;
-     pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr);
+     if (pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr) != PF_OK) ...
      pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, PF_BORDER_WRAP);
 
    FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
-     types and texels  pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
-                       pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
-                       pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
-                       pf_normal_avg_from_normal, pf_normal_avg_from_slope;
-                       pf_esm_log_from_depth, pf_esm_log_combine2
-     linear algebra    pf_<T>_add, pf_<T>_scale (scalar, depth2, depth4, evsm; the slope
-                       moments' and pf_vec3's live in pf_beckmann.h and pf_core.h)
-     reductions        for T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
-                       evsm_moments, normal_avg (a pf_vec3):
-                         pf_<T>_reduce2x2(a, b, c, d)       the even-size mip texel (box)
-                         pf_<T>_reduce3(a, b, c, w)         3 texels, weights w (odd edge)
-                         pf_<T>_reduce3x3(t00 .. t22, wx, wy)  9 texels (odd corner),
-                                                            separable weights
-                         pf_<T>_accumulate(acc, t, w)       acc + w t: N texels, one at a time
-                         pf_<T>_lerp(a, b, t), pf_<T>_bilinear(t00, t10, t01, t11, fx, fy)
-                       pf_mip_next_size(n), pf_mip_weights3(j, n)   the odd-size weights below
-     ESM (log space)   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
-                       pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
-                       (N texels, streaming)
-     height maps       pf_height_slope_central, pf_height_slope_edge,
-                       pf_slope_moments_from_heights
-   FUNCTIONS (CPU only: they walk caller-owned buffers; linkage PF_CPU_DEF; compiled out under
-   PF_GLSL, skipped by the shader-subset portability checks)
-     pyramid layout    pf_mip_level_count, pf_mip_level_size, pf_mip_level_offset,
-                       pf_mip_texel_count
-     building          pf_mip_build (linear, any channel count), pf_mip_build_log (ESM),
-                       pf_slope_moments_map_from_heights (level 0 only),
-                       pf_slope_pyramid_from_heights, pf_depth_pyramid_from_depths,
-                       pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
-     N texels          pf_moments_weighted_mean, pf_esm_log_weighted_mean
-     sampling          pf_mip_sample_bilinear, pf_mip_sample_trilinear, and their _log
-                       variants (ESM); typed: pf_slope_moments_sample, pf_scalar_moments_sample,
-                       pf_depth_moments2_sample, pf_depth_moments4_sample,
-                       pf_evsm_moments_sample, pf_normal_avg_sample, pf_esm_log_sample
+     texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
+                     pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
+                     pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
+                     pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
+     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm (slope moments:
+                     pf_beckmann.h; pf_vec3: pf_core.h)
+     reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
+                     T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
+                     evsm_moments, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
+                     pf_mip_next_size, pf_mip_weights3 (odd sizes)
+     ESM log space   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
+                     pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
+     height maps     pf_height_slope_central, _edge, pf_slope_moments_from_heights
+   FUNCTIONS (CPU only, linkage PF_CPU_DEF: they walk caller-owned buffers; compiled out under
+   PF_GLSL)
+     layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
+     building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
+                     pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
+                     pf_depth_moment_channels, pf_depth_pyramid_from_depths,
+                     pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
+     N texels        pf_moments_weighted_mean, pf_esm_log_weighted_mean
+     sampling        pf_mip_sample_bilinear, _trilinear, _bilinear_log, _trilinear_log;
+                     pf_<T>_sample for the six T above, pf_esm_log_sample
 
-   CONVENTIONS
-     Buffers. A map with C channels is an array of pf_real, texel (i, j) (column i, row j) at
-     [(j w + i) C ... + C - 1]: the interleaved layout of an RGBA32F upload. The moment structs
-     map to channels in member order: slope (ex, ey, exx, eyy, exy) = 5 channels; scalar and
-     depth2 2; depth4 and evsm 4; normal_avg 3; ESM log 1. One builder serves every linear
-     type (pf_mip_build with the channel count), so a caller who splits the five slope moments
-     into an RGBA and an R texture builds two pyramids with C = 4 and C = 1 (or builds one with
-     C = 5 and splits it while uploading).
-     Pyramid. Level 0 is w x h; level l+1 is pf_mip_next_size of each side, i.e. floor(n/2),
-     but never below 1; the last level is 1 x 1. Levels are stored one after the other, level 0
-     first, each row-major: pf_mip_level_offset gives where level l starts (in texels; multiply
-     by C for pf_reals). pf_mip_texel_count(w, h) is the total (< 4/3 w h + levels).
-     Odd sizes (polyphase box). A destination texel covers exactly n_src / n_dst source texels,
-     so every texel of a level has the same footprint, the mean of every level equals the mean
-     of level 0 exactly, and the 1 x 1 top is the global mean. With n_src = 2k + 1 and
-     n_dst = k, destination texel j covers source texels 2j, 2j+1, 2j+2 with weights
-     (k - j, k, j + 1) / (2k + 1): the last column is not simply folded into the last texel
-     (which would give that texel a 1.5x footprint and make the next level's plain 2x2 average
-     no longer the mean). Even sizes use (1/2, 1/2, 0); size 1 stays 1 with (1, 0, 0).
-     pf_mip_weights3 returns these weights; in 2D they are separable (3x3 in a corner where both
-     sizes are odd, 3x2 on an odd edge).
-     Sampling follows the GPU convention: texel i of an n-texel level has its centre at
-     u = (i + 0.5)/n; PF_BORDER_WRAP repeats, PF_BORDER_CLAMP clamps to the edge texel; a
-     trilinear lod is clamped to [0, levels - 1].
-     Height maps. Texel (i, j) of a w x h height map sits at x = (i + 0.5) dx, y = (j + 0.5) dy
-     (row j + 1 is +y). The slope is height_scale * grad h (Dupuy et al. 2013 sec. 4.2, height
-     scaling), from the central difference (h[i+1] - h[i-1]) / (2 dx): second order, error
-     (dx^2 / 6) h''' (measured in tests/test_moments.c). PF_BORDER_WRAP for tiling maps;
-     PF_BORDER_CLAMP reads no texel outside the map and uses the second-order one-sided
-     difference (-3 h0 + 4 h1 - h2) / (2 dx) on the first and last column/row, so the order is
-     2 everywhere (2 texels: (h1 - h0)/dx, first order; 1 texel: slope 0).
-     Weights are applied before summing (w a + w b, never w (a + b)), so reducing values near
-     the largest float (EVSM's second moment exp(2c) at c = 44 is 1.6e38) stays finite.
-     NaN texels propagate: a NaN texel makes NaN every texel that averages it with a nonzero
-     weight (its ancestors in the pyramid, a sample whose footprint covers it) and nothing else;
-     texels with zero weight are never read, so nothing is read out of bounds. Zero-size maps
-     (w < 1 or h < 1), null pointers and channel counts < 1 make the CPU functions do nothing
-     (the counts return 0). Indices are int within a row and long long for offsets; a map
-     needs w C < 2^30.
+   CONVENTIONS (docs/moments.md gives the reasons and the tests behind each)
+     Buffers. Texel (i, j) (column i, row j) of a map of C channels is pf_reals
+     [(j w + i) C ...+ C - 1], as an RGBA32F upload; struct members are channels in order
+     (slope ex, ey, exx, eyy, exy: 5; scalar, depth2: 2; depth4, evsm: 4; normal: 3; ESM: 1).
+     Pyramid. Level l+1 is pf_mip_next_size of each side of level l, down to 1 x 1; levels are
+     stored one after the other from level 0, each row-major. Odd sizes reduce as a polyphase
+     box (pf_mip_weights3): every texel of a level has the same footprint and every level's
+     mean is level 0's, so the 1 x 1 top is the global mean.
+     Sampling: the GPU's. Texel i of n is centred at u = (i + 0.5)/n; PF_BORDER_CLAMP clamps any
+     u (infinities too) to the edge texel, PF_BORDER_WRAP repeats with u - floor(u) in pf_real
+     (a u too large to have a fraction wraps to 0); NaN, and infinities under WRAP, are 0.
+     A trilinear lod is clamped to [0, levels - 1] (NaN: 0).
+     Height maps. Texel (i, j) sits at ((i + 0.5) dx, (j + 0.5) dy), row j + 1 is +y; the slope
+     is height_scale * grad h (Dupuy et al. 2013 sec. 4.2) by pf_height_slope_central.
+     PF_BORDER_WRAP for tiling maps; PF_BORDER_CLAMP reads no texel outside the map and uses
+     pf_height_slope_edge on the first and last column and row (2 texels on an axis:
+     (h1 - h0)/d; 1 texel: slope 0).
+     Robustness. Weights are applied before summing (w a + w b, never w (a + b)), so values near
+     the largest float (EVSM's exp(2c) = 1.6e38 at c = 44) reduce to finite values. A NaN
+     texel makes NaN exactly the texels that average it with a nonzero weight; zero-weight
+     texels are never read. A level or sample of texels near +-PF_REAL_MAX that overflows
+     through the rounded weights is clamped to the range of its texels (not under -ffast-math).
+     Limits and errors (pf_core.h, "sizes and errors"). Every builder and sampler returns
+     PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; w, h or channels below 1;
+     n below 0; a border other than PF_BORDER_CLAMP / _WRAP; an unknown PF_DEPTH_* kind; a +inf
+     weight) or PF_ERR_SIZE (w or h above PF_MAX_SIDE, 2^24 by default; a pyramid, map or texel
+     buffer above PF_MAX_REALS pf_reals, 2^40 on 64-bit hosts). On those errors the typed
+     samplers return zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX;
+     pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices are long long.
 
    ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
-   timings). Reductions and sampling are sums of a few products: the moments of a reduction
-   equal the mixture moments of its texels to a few ulps (tests/test_moments.c). The 5-moment
-   pyramid of a 4096^2 float height map is built in one pass over the heights, each level
-   reduced while the rows it needs are still in cache.
+   timings). Reductions and sampling are sums of a few products: their moments equal the
+   mixture moments of their texels to a few ulps (tests/test_moments.c). A pyramid is built
+   in one pass, each level reduced while the rows it needs are in cache: the 5-moment pyramid
+   of a 4096^2 float height map writes at over half of memcpy's bandwidth (docs/moments.md).
 
    SOURCES
      Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
@@ -2950,33 +3145,24 @@ PF_DEF void pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean, p
 #endif
 
 /* ---------------------------------------------------------------- depth moments
-   Depths z are in [0, 1] (0 nearest the light). All of these are linear in the texels, so a
-   mip pyramid and a bilinear/trilinear sampler may average them; pf_shadow.h evaluates the
-   filtered values. */
+   Depths z are in [0, 1] (0 nearest the light); pf_shadow.h evaluates the filtered values. */
 
 /* Two moments (E[w], E[w^2]) of a depth or of a warped depth w: VSM stores w = z; EVSM-2
    stores w = exp(c (2z - 1)). */
 PF_STRUCT_BEGIN(pf_depth_moments2)
-    pf_real m1;
-    pf_real m2;
+    pf_real m1, m2;
 PF_STRUCT_END(pf_depth_moments2)
 
 /* Four power moments E[z], E[z^2], E[z^3], E[z^4] (moment shadow maps, Peters & Klein 2015). */
 PF_STRUCT_BEGIN(pf_depth_moments4)
-    pf_real m1;
-    pf_real m2;
-    pf_real m3;
-    pf_real m4;
+    pf_real m1, m2, m3, m4;
 PF_STRUCT_END(pf_depth_moments4)
 
 /* EVSM-4 (Lauritzen & McCool 2008): with zs = 2z - 1 in [-1, 1], the moments of the positive
    warp p = exp(c_pos zs) and of the negative warp n = -exp(-c_neg zs):
    pos1 = E[p], pos2 = E[p^2], neg1 = E[n] (<= 0), neg2 = E[n^2]. */
 PF_STRUCT_BEGIN(pf_evsm_moments)
-    pf_real pos1;
-    pf_real pos2;
-    pf_real neg1;
-    pf_real neg2;
+    pf_real pos1, pos2, neg1, neg2;
 PF_STRUCT_END(pf_evsm_moments)
 
 /* Largest EVSM warp exponent c such that the second moment exp(2c) stays finite in the
@@ -2986,86 +3172,40 @@ PF_STRUCT_END(pf_evsm_moments)
 #define PF_EVSM_EXP_MAX_F16 PF_R(5.54)
 
 PF_DEF pf_depth_moments2 pf_depth_moments2_make(pf_real m1, pf_real m2)
-{
-    pf_depth_moments2 m;
-    m.m1 = m1;
-    m.m2 = m2;
-    return m;
-}
-
+{ pf_depth_moments2 m; m.m1 = m1; m.m2 = m2; return m; }
 PF_DEF pf_depth_moments4 pf_depth_moments4_make(pf_real m1, pf_real m2, pf_real m3, pf_real m4)
-{
-    pf_depth_moments4 m;
-    m.m1 = m1;
-    m.m2 = m2;
-    m.m3 = m3;
-    m.m4 = m4;
-    return m;
-}
-
+{ pf_depth_moments4 m; m.m1 = m1; m.m2 = m2; m.m3 = m3; m.m4 = m4; return m; }
 PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real neg1, pf_real neg2)
-{
-    pf_evsm_moments m;
-    m.pos1 = pos1;
-    m.pos2 = pos2;
-    m.neg1 = neg1;
-    m.neg2 = neg2;
-    return m;
-}
-
+{ pf_evsm_moments m; m.pos1 = pos1; m.pos2 = pos2; m.neg1 = neg1; m.neg2 = neg2; return m; }
 /* VSM texel: (z, z^2). */
 PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
-{
-    return pf_depth_moments2_make(z, z * z);
-}
-
+{ return pf_depth_moments2_make(z, z * z); }
 /* MSM texel: (z, z^2, z^3, z^4). */
 PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
-{
-    pf_real z2 = z * z;
-    return pf_depth_moments4_make(z, z2, z2 * z, z2 * z2);
-}
-
+{ pf_real z2 = z * z; return pf_depth_moments4_make(z, z2, z2 * z, z2 * z2); }
 /* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
    c <= PF_EVSM_EXP_MAX_F32 (or _F16 for 16-bit storage) so the squares stay finite. */
 PF_DEF pf_real pf_evsm_warp_pos(pf_real z, pf_real c)
-{
-    return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0)));
-}
-
+{ return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0))); }
 PF_DEF pf_real pf_evsm_warp_neg(pf_real z, pf_real c)
-{
-    return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0)));
-}
-
+{ return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0))); }
 /* EVSM-2 texel: moments of the positive warp only. */
 PF_DEF pf_depth_moments2 pf_evsm2_from_depth(pf_real z, pf_real c_pos)
-{
-    pf_real p = pf_evsm_warp_pos(z, c_pos);
-    return pf_depth_moments2_make(p, p * p);
-}
-
+{ pf_real p = pf_evsm_warp_pos(z, c_pos); return pf_depth_moments2_make(p, p * p); }
 /* EVSM-4 texel: moments of both warps. */
 PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_real c_neg)
 {
-    pf_real p = pf_evsm_warp_pos(z, c_pos);
-    pf_real n = pf_evsm_warp_neg(z, c_neg);
+    pf_real p = pf_evsm_warp_pos(z, c_pos), n = pf_evsm_warp_neg(z, c_neg);
     return pf_evsm_moments_make(p, p * p, n, n * n);
 }
 
-/* ESM texel in log space: log(exp(c z)) = c z. A pyramid of these is reduced with
-   log-sum-exp (below), so E[exp(c z)] is never formed and cannot overflow for any c. */
-PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c)
-{
-    return c * z;
-}
-
-/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow:
-   m + log(w0 exp(l0 - m) + w1 exp(l1 - m)), m the larger log among those of positive weight,
-   so the sum holds that term's weight times exp(0) = 1 and never underflows to 0: a zero
-   weight on the larger log (l0 = 1504, w0 = 0, l1 = 1277, w1 = 0.88 gave log(0) = -inf when m
-   was max(l0, l1)) now gives l1 + log(w1). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log
-   of an empty sum kept finite, as pf_esm_log_reduce3; a NaN log propagates. */
+/* ESM texel in log space: log(exp(c z)) = c z (see "ESM in log space" below). */
+PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c) { return c * z; }
+/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow: m + log(w0 exp(l0 - m) +
+   w1 exp(l1 - m)) with m the larger log among those of positive weight, so the sum holds a
+   term w exp(0) and cannot underflow to log(0) (a zero weight on the larger log gives the
+   other log + log(its weight)). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log of an empty
+   sum kept finite; a NaN log propagates. */
 PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
 {
     pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
@@ -3076,83 +3216,42 @@ PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w
 
 /* a + b and w a, componentwise (the moments are linear). */
 PF_DEF pf_depth_moments2 pf_depth_moments2_add(pf_depth_moments2 a, pf_depth_moments2 b)
-{
-    return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2);
-}
-
+{ return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2); }
 PF_DEF pf_depth_moments2 pf_depth_moments2_scale(pf_depth_moments2 a, pf_real w)
-{
-    return pf_depth_moments2_make(w * a.m1, w * a.m2);
-}
-
+{ return pf_depth_moments2_make(w * a.m1, w * a.m2); }
 PF_DEF pf_depth_moments4 pf_depth_moments4_add(pf_depth_moments4 a, pf_depth_moments4 b)
-{
-    return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4);
-}
-
+{ return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4); }
 PF_DEF pf_depth_moments4 pf_depth_moments4_scale(pf_depth_moments4 a, pf_real w)
-{
-    return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4);
-}
-
+{ return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4); }
 PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
-{
-    return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2);
-}
-
+{ return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2); }
 PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
-{
-    return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2);
-}
+{ return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
 
 /* ---------------------------------------------------------------- scalar-map moments
-   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After
-   filtering, f over the footprint is modelled as a Gaussian with mean E[f] and variance
-   E[f^2] - E[f]^2, and a colour map is filtered by convolving it with that Gaussian
-   (Heitz et al. 2014 sec. 4.2, eq. 9; the variance there is printed as "f^2 bar - f bar",
-   meaning E[f^2] - E[f]^2). */
+   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After filtering
+   f is a Gaussian of mean E[f] and variance E[f^2] - E[f]^2 over the footprint, convolved with
+   the colour map (Heitz et al. 2014 sec. 4.2, eq. 9, whose "f^2 bar - f bar" means that). */
 PF_STRUCT_BEGIN(pf_scalar_moments)
-    pf_real m1;
-    pf_real m2;
+    pf_real m1, m2;
 PF_STRUCT_END(pf_scalar_moments)
 
 PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
-{
-    pf_scalar_moments m;
-    m.m1 = m1;
-    m.m2 = m2;
-    return m;
-}
-
+{ pf_scalar_moments m; m.m1 = m1; m.m2 = m2; return m; }
 /* One texel: (f, f^2). */
 PF_DEF pf_scalar_moments pf_scalar_moments_from_value(pf_real f)
-{
-    return pf_scalar_moments_make(f, f * f);
-}
-
+{ return pf_scalar_moments_make(f, f * f); }
 PF_DEF pf_scalar_moments pf_scalar_moments_add(pf_scalar_moments a, pf_scalar_moments b)
-{
-    return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2);
-}
-
+{ return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2); }
 PF_DEF pf_scalar_moments pf_scalar_moments_scale(pf_scalar_moments a, pf_real w)
-{
-    return pf_scalar_moments_make(w * a.m1, w * a.m2);
-}
-
+{ return pf_scalar_moments_make(w * a.m1, w * a.m2); }
 PF_DEF pf_real pf_scalar_moments_mean(pf_scalar_moments m) { return m.m1; }
-
 /* Variance E[f^2] - E[f]^2, clamped at 0: rounding in the filtered moments (and 16-bit
    storage) can make it slightly negative where the map is flat. NaN gives 0. */
 PF_DEF pf_real pf_scalar_moments_variance(pf_scalar_moments m)
-{
-    return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0));
-}
-
+{ return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0)); }
 PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
-{
-    return PF_SQRT(pf_scalar_moments_variance(m));
-}
+{ return PF_SQRT(pf_scalar_moments_variance(m)); }
 
 /* ---------------------------------------------------------------- average normals
    A texel of a normal map is a unit normal; the pyramid averages them without renormalizing,
@@ -3161,33 +3260,22 @@ PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
 
 /* The texel of a normal n: n normalized (the zero vector gives (0, 0, 1), see
    pf_vec3_normalize). */
-PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n)
-{
-    return pf_vec3_normalize(n);
-}
-
+PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n) { return pf_vec3_normalize(n); }
 /* The texel of a slope (x, y): the unit normal (-x, -y, 1)/sqrt(1 + x^2 + y^2)
    (Dupuy et al. 2013 sec. 4.1 slope convention). */
 PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
-{
-    return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0)));
-}
+{ return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0))); }
 
 /* ---------------------------------------------------------------- mip geometry */
 /* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
-PF_DEF int pf_mip_next_size(int n)
-{
-    return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0);
-}
-
+PF_DEF int pf_mip_next_size(int n) { return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0); }
 /* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
-   texels is reduced to pf_mip_next_size(n_src) (see CONVENTIONS, odd sizes):
-     n_src even        (1/2, 1/2, 0)
-     n_src = 2k + 1    ((k - j), k, (j + 1)) / (2k + 1)   (polyphase box, j in [0, k))
-     n_src = 1         (1, 0, 0)
-   The weights sum to 1 and every source texel gets a total weight of n_dst / n_src. A zero
-   weight means "do not read that texel" (it may be outside the map). j is clamped to the
-   destination size; n_src < 1 gives (0, 0, 0). */
+   texels is reduced to pf_mip_next_size(n_src), the polyphase box (each destination texel
+   covers exactly n_src / n_dst source texels; docs/moments.md, Odd sizes):
+     n_src even (1/2, 1/2, 0); n_src = 2k + 1 (k - j, k, j + 1) / (2k + 1); n_src = 1 (1, 0, 0)
+   Separable in 2D: reduce3x3 in a corner where both sizes are odd, reduce3 on an odd edge.
+   The weights sum to 1; a zero weight means "do not read that texel" (it may be outside the
+   map). j is clamped to [0, n_dst - 1]; n_src < 1 gives (0, 0, 0). */
 PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
 {
     int k = n_src / 2;
@@ -3199,349 +3287,76 @@ PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
     return pf_vec3_make(PF_R(k - jc) / n, PF_R(k) / n, PF_R(jc + 1) / n);
 }
 
-/* ---------------------------------------------------------------- reductions and sampling
-   For every linear moment type T: the 2x2 box of an even mip level, the 3-texel and 9-texel
-   weighted sums of odd levels (weights from pf_mip_weights3; reduce3x3 applies wx along rows
-   and wy across them: t<col><row>), N texels by accumulation (acc + w t, then scale by
-   1/sum(w)), and the lerp / bilinear interpolation of a sampler. Weights are applied to each
-   texel before summing (see CONVENTIONS). */
+/* ---------------------------------------------------------------- reductions
+   PFI_MOM_STAMP(T, F, BOX) defines the six reductions of a moment type T (which has T_add and
+   T_scale) with function prefix F (BOX: the reduce2x2 body):
+     T F_reduce2x2(T a, T b, T c, T d)      the even-size mip texel: a/4 + b/4 + c/4 + d/4
+     T F_reduce3(T a, T b, T c, pf_vec3 w)  3 texels, w.x a + w.y b + w.z c (an odd edge;
+                                            w from pf_mip_weights3)
+     T F_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,
+                   pf_vec3 wx, pf_vec3 wy)  9 texels (an odd corner), t<col><row>: reduce3 by
+                                            wy of the three rows' reduce3 by wx
+     T F_accumulate(T acc, T t, pf_real w)  acc + w t: N texels one at a time (then scale by
+                                            1/sum(w))
+     T F_lerp(T a, T b, pf_real t)          (1 - t) a + t b
+     T F_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)
+                                            lerp by fy of the rows' lerps by fx (a sampler)
+   One body per operation, so every type computes the same sums in the same order and a fix
+   lands once; weights are applied to each texel before summing (T_add(a, T_scale(b, w)), see
+   CONVENTIONS). GLSL's preprocessor pastes ## like C's, so this pastes into shaders.
+   tests/portability/gen.awk expands the stamps, so the portability checks call and the fuzz
+   coverage check (tests/fuzz/coverage.sh) lists every generated function. */
+#define PFI_MOM_BOX(V)                                                                         \
+    { return V##_add(V##_add(V##_add(V##_scale(a, PF_R(0.25)), V##_scale(b, PF_R(0.25))),       \
+                             V##_scale(c, PF_R(0.25))), V##_scale(d, PF_R(0.25))); }
+#define PFI_MOM_STAMP(T, F, BOX)                                                               \
+    PF_DEF T F##_lerp(T a, T b, pf_real t)                                                     \
+    { return T##_add(T##_scale(a, PF_R(1.0) - t), T##_scale(b, t)); }                          \
+    PF_DEF T F##_reduce2x2(T a, T b, T c, T d) BOX(T)                                          \
+    PF_DEF T F##_reduce3(T a, T b, T c, pf_vec3 w)                                             \
+    { return T##_add(T##_add(T##_scale(a, w.x), T##_scale(b, w.y)), T##_scale(c, w.z)); }      \
+    PF_DEF T F##_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,      \
+                           pf_vec3 wx, pf_vec3 wy)                                             \
+    { return F##_reduce3(F##_reduce3(t00, t10, t20, wx), F##_reduce3(t01, t11, t21, wx),       \
+                         F##_reduce3(t02, t12, t22, wx), wy); }                                \
+    PF_DEF T F##_accumulate(T acc, T t, pf_real w) { return T##_add(acc, T##_scale(t, w)); }   \
+    PF_DEF T F##_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)                  \
+    { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
 
-/* ---- pf_slope_moments: five slope moments (pf_beckmann.h) */
-PF_DEF pf_slope_moments pf_slope_moments_lerp(pf_slope_moments a, pf_slope_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_slope_moments_make(s * a.ex + t * b.ex, s * a.ey + t * b.ey, s * a.exx + t * b.exx,
-                                 s * a.eyy + t * b.eyy, s * a.exy + t * b.exy);
-}
+PFI_MOM_STAMP(pf_slope_moments, pf_slope_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_scalar_moments, pf_scalar_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments2, pf_depth_moments2, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments4, pf_depth_moments4, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_vec3, pf_normal_avg, PFI_MOM_BOX)
 
-PF_DEF pf_slope_moments pf_slope_moments_reduce2x2(pf_slope_moments a, pf_slope_moments b,
-                                                   pf_slope_moments c, pf_slope_moments d)
+/* EVSM-4's 2x2 box is midpoints of midpoints, a + (b - a)/2: with one constant weight q,
+   -ffast-math (and GPU compilers, which reassociate freely) factor q a + q b + q c + q d into
+   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the float
+   sum (the sweep found 14 inf per 10^6 under gcc -ffast-math); no compiler distributes the
+   half over b - a, so this stays finite in every build. |b - a| <= max(|a|, |b|) because
+   every member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0). Error <= 2
+   ulp (tests/test_moments.c); two operations more per member than the weighted sum. */
+PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b) { return a + PF_R(0.5) * (b - a); }
+PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_moments b)
 {
-    pf_real q = PF_R(0.25);
-    return pf_slope_moments_make(q * a.ex + q * b.ex + q * c.ex + q * d.ex,
-                                 q * a.ey + q * b.ey + q * c.ey + q * d.ey,
-                                 q * a.exx + q * b.exx + q * c.exx + q * d.exx,
-                                 q * a.eyy + q * b.eyy + q * c.eyy + q * d.eyy,
-                                 q * a.exy + q * b.exy + q * c.exy + q * d.exy);
+    return pf_evsm_moments_make(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(a.pos2, b.pos2),
+                                pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(a.neg2, b.neg2));
 }
-
-PF_DEF pf_slope_moments pf_slope_moments_reduce3(pf_slope_moments a, pf_slope_moments b,
-                                                 pf_slope_moments c, pf_vec3 w)
-{
-    return pf_slope_moments_make(w.x * a.ex + w.y * b.ex + w.z * c.ex,
-                                 w.x * a.ey + w.y * b.ey + w.z * c.ey,
-                                 w.x * a.exx + w.y * b.exx + w.z * c.exx,
-                                 w.x * a.eyy + w.y * b.eyy + w.z * c.eyy,
-                                 w.x * a.exy + w.y * b.exy + w.z * c.exy);
-}
-
-PF_DEF pf_slope_moments pf_slope_moments_reduce3x3(pf_slope_moments t00, pf_slope_moments t10,
-                                                   pf_slope_moments t20, pf_slope_moments t01,
-                                                   pf_slope_moments t11, pf_slope_moments t21,
-                                                   pf_slope_moments t02, pf_slope_moments t12,
-                                                   pf_slope_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_slope_moments r0 = pf_slope_moments_reduce3(t00, t10, t20, wx);
-    pf_slope_moments r1 = pf_slope_moments_reduce3(t01, t11, t21, wx);
-    pf_slope_moments r2 = pf_slope_moments_reduce3(t02, t12, t22, wx);
-    return pf_slope_moments_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_slope_moments pf_slope_moments_accumulate(pf_slope_moments acc, pf_slope_moments t,
-                                                    pf_real w)
-{
-    return pf_slope_moments_make(acc.ex + w * t.ex, acc.ey + w * t.ey, acc.exx + w * t.exx,
-                                 acc.eyy + w * t.eyy, acc.exy + w * t.exy);
-}
-
-PF_DEF pf_slope_moments pf_slope_moments_bilinear(pf_slope_moments t00, pf_slope_moments t10,
-                                                  pf_slope_moments t01, pf_slope_moments t11,
-                                                  pf_real fx, pf_real fy)
-{
-    return pf_slope_moments_lerp(pf_slope_moments_lerp(t00, t10, fx),
-                                 pf_slope_moments_lerp(t01, t11, fx), fy);
-}
-
-/* ---- pf_scalar_moments: scalar-map moments */
-PF_DEF pf_scalar_moments pf_scalar_moments_lerp(pf_scalar_moments a, pf_scalar_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_scalar_moments_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce2x2(pf_scalar_moments a, pf_scalar_moments b,
-                                                     pf_scalar_moments c, pf_scalar_moments d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_scalar_moments_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce3(pf_scalar_moments a, pf_scalar_moments b,
-                                                   pf_scalar_moments c, pf_vec3 w)
-{
-    return pf_scalar_moments_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_reduce3x3(pf_scalar_moments t00, pf_scalar_moments t10,
-                                                     pf_scalar_moments t20, pf_scalar_moments t01,
-                                                     pf_scalar_moments t11, pf_scalar_moments t21,
-                                                     pf_scalar_moments t02, pf_scalar_moments t12,
-                                                     pf_scalar_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_scalar_moments r0 = pf_scalar_moments_reduce3(t00, t10, t20, wx);
-    pf_scalar_moments r1 = pf_scalar_moments_reduce3(t01, t11, t21, wx);
-    pf_scalar_moments r2 = pf_scalar_moments_reduce3(t02, t12, t22, wx);
-    return pf_scalar_moments_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_accumulate(pf_scalar_moments acc, pf_scalar_moments t,
-                                                      pf_real w)
-{
-    return pf_scalar_moments_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
-}
-
-PF_DEF pf_scalar_moments pf_scalar_moments_bilinear(pf_scalar_moments t00, pf_scalar_moments t10,
-                                                    pf_scalar_moments t01, pf_scalar_moments t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_scalar_moments_lerp(pf_scalar_moments_lerp(t00, t10, fx),
-                                  pf_scalar_moments_lerp(t01, t11, fx), fy);
-}
-
-/* ---- pf_depth_moments2: VSM / EVSM-2 moments */
-PF_DEF pf_depth_moments2 pf_depth_moments2_lerp(pf_depth_moments2 a, pf_depth_moments2 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_depth_moments2_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce2x2(pf_depth_moments2 a, pf_depth_moments2 b,
-                                                     pf_depth_moments2 c, pf_depth_moments2 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_depth_moments2_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3(pf_depth_moments2 a, pf_depth_moments2 b,
-                                                   pf_depth_moments2 c, pf_vec3 w)
-{
-    return pf_depth_moments2_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_reduce3x3(pf_depth_moments2 t00, pf_depth_moments2 t10,
-                                                     pf_depth_moments2 t20, pf_depth_moments2 t01,
-                                                     pf_depth_moments2 t11, pf_depth_moments2 t21,
-                                                     pf_depth_moments2 t02, pf_depth_moments2 t12,
-                                                     pf_depth_moments2 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_depth_moments2 r0 = pf_depth_moments2_reduce3(t00, t10, t20, wx);
-    pf_depth_moments2 r1 = pf_depth_moments2_reduce3(t01, t11, t21, wx);
-    pf_depth_moments2 r2 = pf_depth_moments2_reduce3(t02, t12, t22, wx);
-    return pf_depth_moments2_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_accumulate(pf_depth_moments2 acc, pf_depth_moments2 t,
-                                                      pf_real w)
-{
-    return pf_depth_moments2_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2);
-}
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_bilinear(pf_depth_moments2 t00, pf_depth_moments2 t10,
-                                                    pf_depth_moments2 t01, pf_depth_moments2 t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_depth_moments2_lerp(pf_depth_moments2_lerp(t00, t10, fx),
-                                  pf_depth_moments2_lerp(t01, t11, fx), fy);
-}
-
-/* ---- pf_depth_moments4: MSM power moments */
-PF_DEF pf_depth_moments4 pf_depth_moments4_lerp(pf_depth_moments4 a, pf_depth_moments4 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_depth_moments4_make(s * a.m1 + t * b.m1, s * a.m2 + t * b.m2, s * a.m3 + t * b.m3,
-                                  s * a.m4 + t * b.m4);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce2x2(pf_depth_moments4 a, pf_depth_moments4 b,
-                                                     pf_depth_moments4 c, pf_depth_moments4 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_depth_moments4_make(q * a.m1 + q * b.m1 + q * c.m1 + q * d.m1,
-                                  q * a.m2 + q * b.m2 + q * c.m2 + q * d.m2,
-                                  q * a.m3 + q * b.m3 + q * c.m3 + q * d.m3,
-                                  q * a.m4 + q * b.m4 + q * c.m4 + q * d.m4);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3(pf_depth_moments4 a, pf_depth_moments4 b,
-                                                   pf_depth_moments4 c, pf_vec3 w)
-{
-    return pf_depth_moments4_make(w.x * a.m1 + w.y * b.m1 + w.z * c.m1,
-                                  w.x * a.m2 + w.y * b.m2 + w.z * c.m2,
-                                  w.x * a.m3 + w.y * b.m3 + w.z * c.m3,
-                                  w.x * a.m4 + w.y * b.m4 + w.z * c.m4);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_reduce3x3(pf_depth_moments4 t00, pf_depth_moments4 t10,
-                                                     pf_depth_moments4 t20, pf_depth_moments4 t01,
-                                                     pf_depth_moments4 t11, pf_depth_moments4 t21,
-                                                     pf_depth_moments4 t02, pf_depth_moments4 t12,
-                                                     pf_depth_moments4 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_depth_moments4 r0 = pf_depth_moments4_reduce3(t00, t10, t20, wx);
-    pf_depth_moments4 r1 = pf_depth_moments4_reduce3(t01, t11, t21, wx);
-    pf_depth_moments4 r2 = pf_depth_moments4_reduce3(t02, t12, t22, wx);
-    return pf_depth_moments4_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_accumulate(pf_depth_moments4 acc, pf_depth_moments4 t,
-                                                      pf_real w)
-{
-    return pf_depth_moments4_make(acc.m1 + w * t.m1, acc.m2 + w * t.m2, acc.m3 + w * t.m3,
-                                  acc.m4 + w * t.m4);
-}
-
-PF_DEF pf_depth_moments4 pf_depth_moments4_bilinear(pf_depth_moments4 t00, pf_depth_moments4 t10,
-                                                    pf_depth_moments4 t01, pf_depth_moments4 t11,
-                                                    pf_real fx, pf_real fy)
-{
-    return pf_depth_moments4_lerp(pf_depth_moments4_lerp(t00, t10, fx),
-                                  pf_depth_moments4_lerp(t01, t11, fx), fy);
-}
-
-/* ---- pf_evsm_moments: EVSM-4 moments */
-PF_DEF pf_evsm_moments pf_evsm_moments_lerp(pf_evsm_moments a, pf_evsm_moments b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_evsm_moments_make(s * a.pos1 + t * b.pos1, s * a.pos2 + t * b.pos2,
-                                s * a.neg1 + t * b.neg1, s * a.neg2 + t * b.neg2);
-}
-
-/* Midpoint (a + b)/2 of two values of the same sign, as a + (b - a)/2: |b - a| <= max(|a|, |b|),
-   so nothing overflows. */
-PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b)
-{
-    return a + PF_R(0.5) * (b - a);
-}
-
-/* The 2x2 box as midpoints of midpoints, not q a + q b + q c + q d: with one constant weight
-   q, -ffast-math (and GPU compilers, which reassociate freely) factor that sum into
-   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the
-   float sum (the sweep found 14 inf per 10^6 under gcc -ffast-math). A compiler does not
-   distribute the half over b - a, so the midpoint form stays finite in every build. Each
-   member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0), as the
-   midpoints need; error <= 2 ulp (tests/test_moments.c). Two operations more per member
-   than the weighted sum. */
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce2x2(pf_evsm_moments a, pf_evsm_moments b,
-                                                 pf_evsm_moments c, pf_evsm_moments d)
-{
-    return pf_evsm_moments_make(pfi_midpoint(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(c.pos1, d.pos1)),
-                                pfi_midpoint(pfi_midpoint(a.pos2, b.pos2), pfi_midpoint(c.pos2, d.pos2)),
-                                pfi_midpoint(pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(c.neg1, d.neg1)),
-                                pfi_midpoint(pfi_midpoint(a.neg2, b.neg2), pfi_midpoint(c.neg2, d.neg2)));
-}
-
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce3(pf_evsm_moments a, pf_evsm_moments b,
-                                               pf_evsm_moments c, pf_vec3 w)
-{
-    return pf_evsm_moments_make(w.x * a.pos1 + w.y * b.pos1 + w.z * c.pos1,
-                                w.x * a.pos2 + w.y * b.pos2 + w.z * c.pos2,
-                                w.x * a.neg1 + w.y * b.neg1 + w.z * c.neg1,
-                                w.x * a.neg2 + w.y * b.neg2 + w.z * c.neg2);
-}
-
-PF_DEF pf_evsm_moments pf_evsm_moments_reduce3x3(pf_evsm_moments t00, pf_evsm_moments t10,
-                                                 pf_evsm_moments t20, pf_evsm_moments t01,
-                                                 pf_evsm_moments t11, pf_evsm_moments t21,
-                                                 pf_evsm_moments t02, pf_evsm_moments t12,
-                                                 pf_evsm_moments t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_evsm_moments r0 = pf_evsm_moments_reduce3(t00, t10, t20, wx);
-    pf_evsm_moments r1 = pf_evsm_moments_reduce3(t01, t11, t21, wx);
-    pf_evsm_moments r2 = pf_evsm_moments_reduce3(t02, t12, t22, wx);
-    return pf_evsm_moments_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_evsm_moments pf_evsm_moments_accumulate(pf_evsm_moments acc, pf_evsm_moments t, pf_real w)
-{
-    return pf_evsm_moments_make(acc.pos1 + w * t.pos1, acc.pos2 + w * t.pos2, acc.neg1 + w * t.neg1,
-                                acc.neg2 + w * t.neg2);
-}
-
-PF_DEF pf_evsm_moments pf_evsm_moments_bilinear(pf_evsm_moments t00, pf_evsm_moments t10,
-                                                pf_evsm_moments t01, pf_evsm_moments t11,
-                                                pf_real fx, pf_real fy)
-{
-    return pf_evsm_moments_lerp(pf_evsm_moments_lerp(t00, t10, fx),
-                                pf_evsm_moments_lerp(t01, t11, fx), fy);
-}
-
-/* ---- pf_vec3: unnormalized average normals (Toksvig) */
-PF_DEF pf_vec3 pf_normal_avg_lerp(pf_vec3 a, pf_vec3 b, pf_real t)
-{
-    pf_real s = PF_R(1.0) - t;
-    return pf_vec3_make(s * a.x + t * b.x, s * a.y + t * b.y, s * a.z + t * b.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_reduce2x2(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 d)
-{
-    pf_real q = PF_R(0.25);
-    return pf_vec3_make(q * a.x + q * b.x + q * c.x + q * d.x,
-                        q * a.y + q * b.y + q * c.y + q * d.y,
-                        q * a.z + q * b.z + q * c.z + q * d.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_reduce3(pf_vec3 a, pf_vec3 b, pf_vec3 c, pf_vec3 w)
-{
-    return pf_vec3_make(w.x * a.x + w.y * b.x + w.z * c.x,
-                        w.x * a.y + w.y * b.y + w.z * c.y,
-                        w.x * a.z + w.y * b.z + w.z * c.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_reduce3x3(pf_vec3 t00, pf_vec3 t10, pf_vec3 t20, pf_vec3 t01,
-                                       pf_vec3 t11, pf_vec3 t21, pf_vec3 t02, pf_vec3 t12,
-                                       pf_vec3 t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_vec3 r0 = pf_normal_avg_reduce3(t00, t10, t20, wx);
-    pf_vec3 r1 = pf_normal_avg_reduce3(t01, t11, t21, wx);
-    pf_vec3 r2 = pf_normal_avg_reduce3(t02, t12, t22, wx);
-    return pf_normal_avg_reduce3(r0, r1, r2, wy);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_accumulate(pf_vec3 acc, pf_vec3 t, pf_real w)
-{
-    return pf_vec3_make(acc.x + w * t.x, acc.y + w * t.y, acc.z + w * t.z);
-}
-
-PF_DEF pf_vec3 pf_normal_avg_bilinear(pf_vec3 t00, pf_vec3 t10, pf_vec3 t01, pf_vec3 t11,
-                                      pf_real fx, pf_real fy)
-{
-    return pf_normal_avg_lerp(pf_normal_avg_lerp(t00, t10, fx),
-                              pf_normal_avg_lerp(t01, t11, fx), fy);
-}
+#define PFI_MOM_MIDPOINTS(V)                                                                   \
+    { return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d)); }
+PFI_MOM_STAMP(pf_evsm_moments, pf_evsm_moments, PFI_MOM_MIDPOINTS)
 
 /* ---------------------------------------------------------------- ESM in log space
-   An ESM texel stores l = c z (pf_esm_log_from_depth) instead of exp(c z). A reduction
-   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)) with m the largest l
-   among the texels of positive weight: every exponential is <= 1 and the sum is in
-   (0, sum w], so the result is finite for any finite l and any c (exp(c z) itself overflows
-   float for c z > 88.7). The result is the log of the weighted mean when the weights sum to
-   1. Texels of zero weight are skipped (not even their exponential is formed). */
-
-/* Floor of the exponent arguments l - m (<= 0) in the sums below: exp(-80) = 1.8e-35 is below
-   the rounding of any sum that holds a 1 (float and double), and stopping there keeps every
-   exponential normal (libm's underflow path is slow, and subnormals are slow on most CPUs). */
+   An ESM texel stores l = c z, not exp(c z) (which overflows float for c z > 88.7). A reduction
+   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)), m the largest l of
+   positive weight: every exponential is <= 1, the sum is in (0, sum w], the result finite for
+   any finite l and c. Zero-weight texels are skipped. l - m is floored at -80 (exp(-80) is
+   below the rounding of a sum that holds a 1), which keeps every exponential normal (libm's
+   underflow path and subnormals are slow). */
 #define PFI_LSE_ARG_MIN PF_R(-80.0)
 
 /* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
-PF_DEF pf_real pfi_lse_arg(pf_real d)
-{
-    return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d;
-}
-
+PF_DEF pf_real pfi_lse_arg(pf_real d) { return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d; }
 /* log of the mean of exp(l) over 4 texels (the 2x2 box). */
 PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
 {
@@ -3592,33 +3407,21 @@ PF_DEF pf_real pf_esm_log_bilinear(pf_real t00, pf_real t10, pf_real t01, pf_rea
 
 /* Streaming log-sum-exp over N texels: lmax is the largest log seen, sum = sum_i w_i
    exp(l_i - lmax), weight = sum_i w_i. Start from PF_ESM_LOG_SUM_EMPTY (or
-   pf_esm_log_sum_first), add texels with
-   pf_esm_log_sum_add, read log(sum w e^l / sum w) with pf_esm_log_sum_mean. */
+   pf_esm_log_sum_first), add texels with pf_esm_log_sum_add, read log(sum w e^l / sum w) with
+   pf_esm_log_sum_mean. */
 PF_STRUCT_BEGIN(pf_esm_log_sum)
-    pf_real lmax;
-    pf_real sum;
-    pf_real weight;
+    pf_real lmax, sum, weight;
 PF_STRUCT_END(pf_esm_log_sum)
 
 PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
-{
-    pf_esm_log_sum a;
-    a.lmax = lmax;
-    a.sum = sum;
-    a.weight = weight;
-    return a;
-}
-
+{ pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
 /* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
    in the portability generator). */
 #define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
 
 /* The sum of one texel l of weight w > 0 (a start without the empty state). */
 PF_DEF pf_esm_log_sum pf_esm_log_sum_first(pf_real l, pf_real w)
-{
-    return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY;
-}
-
+{ return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY; }
 /* Adds texel l with weight w (w <= 0 or NaN: skipped). When l is a new maximum the running
    sum is rescaled by exp(old max - l) <= 1, so nothing grows beyond sum(w). */
 PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
@@ -3636,26 +3439,18 @@ PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
 
 /* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
 PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
-{
-    if (!(a.weight > PF_R(0.0))) return -PF_REAL_MAX;
-    return a.lmax + PF_LOG(a.sum / a.weight);
-}
+{ return a.weight > PF_R(0.0) ? a.lmax + PF_LOG(a.sum / a.weight) : -PF_REAL_MAX; }
 
-/* ---------------------------------------------------------------- slopes from a height map
-   Central difference (second order, error (d^2/6) h''' + O(d^4)) and the one-sided
-   second-order difference used on a clamped border; d is the texel spacing. */
+/* ---------------------------------------------------------------- slopes from a height map */
+/* Central difference (h_plus - h_minus) / (2 d), d the texel spacing: second order, error
+   (d^2/6) h''' + O(d^4). */
 PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
-{
-    return (h_plus - h_minus) / (PF_R(2.0) * spacing);
-}
-
-/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''). For
-   the far border pass the texels in reverse order and negate. */
+{ return (h_plus - h_minus) / (PF_R(2.0) * spacing); }
+/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''),
+   the clamped border's stencil. For the far border pass the texels in reverse order and
+   negate. */
 PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
-{
-    return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing);
-}
-
+{ return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing); }
 /* Slope moments of an interior texel of a height map from its four neighbours (left, right,
    below, above) by central differences: slope = height_scale * (dh/dx, dh/dy)
    (Dupuy et al. 2013 sec. 4.2; height scaling multiplies slopes by the scale and the
@@ -3670,16 +3465,11 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 }
 
 /* ================================================================ CPU only
-   Everything below walks caller-owned buffers (pointers, loops over a whole map). It is C/C++
-   host code: linkage PF_CPU_DEF (static inline by default, never __device__), compiled out
-   under PF_GLSL. Nothing allocates: the caller provides every buffer. */
+   Host code that walks caller-owned buffers and allocates nothing (linkage PF_CPU_DEF,
+   pf_core.h). Errors as in CONVENTIONS (Limits and errors) plus what each comment adds. */
 #ifndef PF_GLSL
 
-#ifndef PF_CPU_DEF
-#  define PF_CPU_DEF static inline
-#endif
-
-/* Border handling of the height-map stencils and of sampling. */
+/* Border handling of the height-map stencils and of sampling (any other value: PF_ERR_ARG). */
 #define PF_BORDER_CLAMP 0
 #define PF_BORDER_WRAP 1
 
@@ -3697,102 +3487,128 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 /* Number of levels of a w x h pyramid, the 1 x 1 top included (0 if w < 1 or h < 1). */
 PF_CPU_DEF int pf_mip_level_count(int w, int h)
 {
-    int n = 0;
-    if (w < 1 || h < 1) return 0;
-    for (;;) {
-        ++n;
-        if (w == 1 && h == 1) return n;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
-    }
-}
-
-/* Size along one axis at a level: n halved (floor, never below 1) level times. */
-PF_CPU_DEF int pf_mip_level_size(int n, int level)
-{
-    int l;
-    if (n < 1) return 0;
-    for (l = 0; l < level && n > 1; ++l) n = pf_mip_next_size(n);
+    int n = w >= 1 && h >= 1;
+    for (; n > 0 && (w > 1 || h > 1); ++n) w = pf_mip_next_size(w), h = pf_mip_next_size(h);
     return n;
 }
 
+/* Size along one axis at a level: n halved (floor, never below 1) level times (0 for n < 1). */
+PF_CPU_DEF int pf_mip_level_size(int n, int level)
+{
+    for (; level > 0 && n > 1; --level) n = pf_mip_next_size(n);
+    return n < 1 ? 0 : n;
+}
+
 /* Where level `level` starts, in texels from the start of the pyramid (multiply by the
-   channel count for pf_reals). level >= pf_mip_level_count gives the total. */
+   channel count for pf_reals); level >= pf_mip_level_count gives the total. Any int w, h: the
+   sum stays below 2^63. */
 PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
 {
     long long off = 0;
     int l, nl = pf_mip_level_count(w, h);
-    for (l = 0; l < level && l < nl; ++l) {
+    for (l = 0; l < level && l < nl; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h))
         off += (long long)w * (long long)h;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
-    }
     return off;
 }
 
-/* Texels of the whole pyramid of a w x h base (all levels, one buffer); 0 for an empty map.
-   The buffer holds pf_mip_texel_count(w, h) * channels pf_reals. */
-PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
+/* The pyramid checks: PF_ERR_ARG for a NULL p or w, h, channels < 1; PF_ERR_SIZE for a side
+   above PF_MAX_SIDE or a pyramid of more than PF_MAX_REALS pf_reals; else PF_OK. */
+PF_CPU_DEF int pfi_mip_check(const void *p, int w, int h, int channels)
 {
-    return pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS);
+    if (!p || w < 1 || h < 1 || channels < 1) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
+    return pf_size_mul(pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS), channels) < 0 ? PF_ERR_SIZE : PF_OK;
 }
 
+/* Texels of the whole pyramid of a w x h base (all levels, one buffer of
+   pf_mip_texel_count(w, h) * channels pf_reals). 0 when w or h is below 1 or above
+   PF_MAX_SIDE or the texels alone exceed PF_MAX_REALS; a builder of C channels also rejects
+   (PF_ERR_SIZE) a count with count * C > PF_MAX_REALS. */
+PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
+{ return pfi_mip_check(&w, w, h, 1) == PF_OK ? pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS) : 0; }
+
 /* ---------------------------------------------------------------- level reduction (private)
-   The pyramid is reduced as a cascade over rows: as soon as the source rows a destination
-   row needs are complete (2j, 2j+1 and, for odd heights, 2j+2), that row is reduced, and the
-   same check runs one level up. Level l+1 is therefore computed while the rows of level l it
-   reads are still in cache, and a pyramid built from a height or depth map costs about one
-   pass over memory. */
+   A cascade over rows: as soon as the source rows a destination row needs are complete (2j,
+   2j+1 and, for odd heights, 2j+2), that row is reduced, and the same check runs one level up;
+   each level is computed while the rows it reads are still in cache, so a pyramid built from a
+   map costs about one pass over memory. */
 typedef struct pfi_mip_cascade {
     pf_real *pyr;
-    int channels;
-    int log_space;
-    int levels;
-    int lw[PF_MIP_MAX_LEVELS];
-    int lh[PF_MIP_MAX_LEVELS];
-    int next_row[PF_MIP_MAX_LEVELS];
+    int channels, log_space, levels;
+    int lw[PF_MIP_MAX_LEVELS], lh[PF_MIP_MAX_LEVELS], next_row[PF_MIP_MAX_LEVELS];
     long long off[PF_MIP_MAX_LEVELS]; /* in pf_reals */
 } pfi_mip_cascade;
 
-/* Returns 0 (and builds nothing) for an empty map, a null buffer or channels < 1. */
+/* pfi_mip_check's code; on PF_OK c is ready. */
 PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int h, int channels,
                                     int log_space)
 {
-    int l;
+    int l, rc = pfi_mip_check(pyr, w, h, channels);
     long long off = 0;
+    if (rc != PF_OK) return rc;
     c->levels = pf_mip_level_count(w, h);
-    if (c->levels == 0 || !pyr || channels < 1) return 0;
-    c->pyr = pyr;
-    c->channels = channels;
-    c->log_space = log_space;
-    for (l = 0; l < c->levels; ++l) {
-        c->lw[l] = w;
-        c->lh[l] = h;
-        c->next_row[l] = 0;
-        c->off[l] = off;
+    c->pyr = pyr, c->channels = channels, c->log_space = log_space;
+    for (l = 0; l < c->levels; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h)) {
+        c->lw[l] = w, c->lh[l] = h, c->next_row[l] = 0, c->off[l] = off;
         off += (long long)w * (long long)h * (long long)channels;
-        w = pf_mip_next_size(w);
-        h = pf_mip_next_size(h);
     }
-    return 1;
+    return PF_OK;
 }
 
-/* The 2x2 box with a compile-time channel count (the common case: both sizes even). */
+/* The 2x2 box with a compile-time channel count (the common case: both sizes even). Plain
+   builds sum the four products q a + q b + q c + q d (IEEE order, no overflow, the fastest
+   loop). -ffast-math factors that into q (a + b + c + d), which overflows for texels above
+   PF_REAL_MAX / 4 (see pf_evsm_moments_reduce2x2); there each pair is averaged as a midpoint,
+   a + (b - a)/2 for one sign, (a + b)/2 for opposite signs (neither exceeds max(|a|, |b|)). */
+#ifdef __FAST_MATH__
+PF_CPU_DEF pf_real pfi_mip_mid(pf_real a, pf_real b)
+{ return (a >= PF_R(0.0)) == (b >= PF_R(0.0)) ? a + PF_R(0.5) * (b - a) : PF_R(0.5) * (a + b); }
+#endif
 PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
 {
     const pf_real q = PF_R(0.25);
-    int i, k;
+    long long i;
+    int k;
     for (i = 0; i < dw; ++i) {
         const pf_real *a0 = a + 2 * i * nc, *b0 = b + 2 * i * nc;
         pf_real *d = dst + i * nc;
+#ifdef __FAST_MATH__
+        (void)q;
+        for (k = 0; k < nc; ++k)
+            d[k] = pfi_mip_mid(pfi_mip_mid(a0[k], a0[nc + k]), pfi_mip_mid(b0[k], b0[nc + k]));
+#else
         for (k = 0; k < nc; ++k) d[k] = q * a0[k] + q * a0[nc + k] + q * b0[k] + q * b0[nc + k];
+#endif
     }
 }
 
 /* Number of source texels with a nonzero weight along an axis of n_src texels. */
-PF_CPU_DEF int pfi_mip_taps(int n_src)
+PF_CPU_DEF int pfi_mip_taps(int n_src) { return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2); }
+/* A weighted mean s of n taps (tap[t][k], positive weights) that overflowed: the rounded
+   weights may sum to a little more than 1, so taps near +-PF_REAL_MAX can give +-inf; the mean
+   lies between the smallest and the largest tap, so s is clamped there (NaN stays NaN). */
+PF_CPU_DEF pf_real pfi_taps_clamp(pf_real s, const pf_real *const *tap, int n, long long k)
 {
-    return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2);
+    pf_real lo = tap[0][k], hi = tap[0][k];
+    int t;
+    for (t = 1; t < n; ++t) lo = pf_min(lo, tap[t][k]), hi = pf_max(hi, tap[t][k]);
+    return pf_clamp(s, lo, hi);
+}
+/* Channel k of the weighted mean of n taps of positive weights w: sum w[t] tap[t][k] (clamped
+   as above when it overflows) or, in log space, log sum w[t] exp(tap[t][k]) by log-sum-exp. */
+PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, int n, long long k,
+                                 int log_space)
+{
+    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
+    int t;
+    if (!log_space) {
+        for (t = 0; t < n; ++t) s += w[t] * tap[t][k];
+        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
+    }
+    for (t = 0; t < n; ++t)
+        if (tap[t][k] > m) m = tap[t][k];
+    for (t = 0; t < n; ++t) s += w[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
+    return m + PF_LOG(s); /* s >= the largest weight > 0 unless a tap is NaN, which propagates */
 }
 
 /* Reduces row j of level l + 1 from level l. */
@@ -3802,13 +3618,10 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
     const pf_real *src = c->pyr + c->off[l];
     pf_real *dst = c->pyr + c->off[l + 1] + (long long)j * dw * nc;
     const pf_real *rows[3];
-    pf_real wy[3];
-    pf_vec3 v = pf_mip_weights3(j, sh);
-    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, i, k, a;
-    wy[0] = v.x;
-    wy[1] = v.y;
-    wy[2] = v.z;
-    for (b = 0; b < ny; ++b) rows[b] = src + (long long)(2 * j + b) * sw * nc;
+    pf_vec3 vy = pf_mip_weights3(j, sh), vx;
+    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, a, k;
+    long long i;
+    for (b = 0; b < ny; ++b) rows[b] = src + (2LL * j + b) * sw * nc;
     if (!c->log_space && nx == 2 && ny == 2) {
         switch (nc) { /* constant channel counts let the compiler unroll and vectorize */
         case 1: pfi_mip_box_row(dst, rows[0], rows[1], dw, 1); return;
@@ -3827,35 +3640,18 @@ PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
             }
         return;
     }
-    for (i = 0; i < dw; ++i) {
-        pf_real wx[3], wt[9];
+    for (i = 0; i < dw; ++i) { /* odd sizes: up to 3 x 3 taps, every weight positive */
+        pf_real wy[3], wx[3], wt[9];
         const pf_real *tap[9];
         int nt = 0;
-        v = pf_mip_weights3(i, sw);
-        wx[0] = v.x;
-        wx[1] = v.y;
-        wx[2] = v.z;
+        vx = pf_mip_weights3((int)i, sw);
+        wx[0] = vx.x, wx[1] = vx.y, wx[2] = vx.z, wy[0] = vy.x, wy[1] = vy.y, wy[2] = vy.z;
         for (b = 0; b < ny; ++b)
-            for (a = 0; a < nx; ++a) {
+            for (a = 0; a < nx; ++a, ++nt) {
                 wt[nt] = wy[b] * wx[a];
                 tap[nt] = rows[b] + (2 * i + a) * nc;
-                ++nt;
             }
-        for (k = 0; k < nc; ++k) {
-            pf_real s = PF_R(0.0);
-            int t;
-            if (!c->log_space) {
-                for (t = 0; t < nt; ++t) s += wt[t] * tap[t][k];
-                dst[i * nc + k] = s;
-            } else {
-                pf_real m = -PF_REAL_MAX;
-                for (t = 0; t < nt; ++t)
-                    if (tap[t][k] > m) m = tap[t][k];
-                for (t = 0; t < nt; ++t) s += wt[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
-                /* s >= the largest weight > 0 unless a tap is NaN, which then propagates */
-                dst[i * nc + k] = m + PF_LOG(s);
-            }
-        }
+        for (k = 0; k < nc; ++k) dst[i * nc + k] = pfi_taps_mean(tap, wt, nt, k, c->log_space);
     }
 }
 
@@ -3867,448 +3663,338 @@ PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
         int last = sh == 1 ? 0 : ((sh & 1) ? 2 * j + 2 : 2 * j + 1);
         if (j >= c->lh[l + 1] || last > r) return;
         pfi_mip_reduce_row(c, l, j);
-        c->next_row[l + 1] = j + 1;
-        ++l;
-        r = j;
+        c->next_row[++l] = j + 1, r = j;
     }
 }
 
-/* ---------------------------------------------------------------- building */
-/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
-   pf_reals, at the start of pyr) the caller has filled; pyr holds pf_mip_texel_count(w, h)
-   * channels pf_reals. Works for every linear moment type (the channel count says which). */
-PF_CPU_DEF void pf_mip_build(pf_real *pyr, int w, int h, int channels)
+/* ---------------------------------------------------------------- building
+   pyr always holds pf_mip_texel_count(w, h) * channels pf_reals; errors as in CONVENTIONS.
+   Each builder writes level 0 row by row and pushes each row into the cascade (one pass).
+   They stay separate functions with their own loops: merged into one, the compiler made the
+   depth loops slower (MSM pyramid 1.5x in bench_moments). */
+/* The height-map stencil at index i of an axis of n texels (CONVENTIONS, Height maps): the
+   slope there is c[0] v[x[0]] + c[1] v[x[1]] + c[2] v[x[2]], k = height_scale / (2 spacing)
+   folded into c: central (wrapped, or inside the map), (v1 - v0)/d for n = 2, the one-sided
+   pf_height_slope_edge at a clamped border (mirrored at the far end), 0 for n = 1. */
+PF_CPU_DEF void pfi_slope_stencil(long long i, int n, int border, pf_real k, long long *x, pf_real *c)
 {
-    pfi_mip_cascade c;
-    int r;
-    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 0)) return;
-    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+    pf_real s = i == 0 ? k : -k;
+    x[0] = x[1] = x[2] = i;
+    c[0] = c[1] = c[2] = PF_R(0.0);
+    if (n < 2) return;
+    if (border == PF_BORDER_WRAP || (i > 0 && i < n - 1)) {
+        x[0] = pfi_wrap_index(i - 1, n), x[1] = pfi_wrap_index(i + 1, n);
+        c[0] = -k, c[1] = k;
+    } else if (n == 2) {
+        x[0] = 0, x[1] = 1;
+        c[0] = -PF_R(2.0) * k, c[1] = PF_R(2.0) * k;
+    } else {
+        x[1] = i == 0 ? 1 : n - 2, x[2] = i == 0 ? 2 : n - 3;
+        c[0] = -PF_R(3.0) * s, c[1] = PF_R(4.0) * s, c[2] = -s;
+    }
 }
 
-/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
-   holds log of the mean of exp over its footprint). */
-PF_CPU_DEF void pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
-{
-    pfi_mip_cascade c;
-    int r;
-    if (!pfi_mip_cascade_init(&c, pyr, w, h, channels, 1)) return;
-    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
-}
-
-/* Row r of the slope-moment map of a height map (5 channels), see CONVENTIONS. */
+/* Stores the slope moments of slope (sx, sy). */
+PF_CPU_DEF void pfi_put_slope(pf_real *o, pf_real sx, pf_real sy)
+{ o[0] = sx, o[1] = sy, o[2] = sx * sx, o[3] = sy * sy, o[4] = sx * sy; }
+/* Row r of the slope-moment map of a height map (5 channels). */
 PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
                               pf_real height_scale, int border, pf_real *out)
 {
-    /* y derivative as c0 R0[i] + c1 R1[i] + c2 R2[i] (scaled by height_scale / (2 dy)) */
     const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
-    const pf_real *r0 = heights + (long long)r * w, *r1 = r0, *r2 = r0;
-    const pf_real *row = r0;
-    pf_real c0 = PF_R(0.0), c1 = PF_R(0.0), c2 = PF_R(0.0);
+    const pf_real *row = heights + (long long)r * w, *r0, *r1, *r2;
+    long long y[3], x[3];
+    pf_real cy[3], cx[3], c0, c1, c2;
     int i;
-    if (h >= 2) {
-        if (border == PF_BORDER_WRAP || (r > 0 && r < h - 1)) {
-            r0 = heights + (long long)((r + h - 1) % h) * w;
-            r1 = heights + (long long)((r + 1) % h) * w;
-            c0 = -ky;
-            c1 = ky;
-        } else if (h == 2) { /* (h1 - h0) / dy at both rows */
-            r0 = heights;
-            r1 = heights + w;
-            c0 = -PF_R(2.0) * ky;
-            c1 = PF_R(2.0) * ky;
-        } else if (r == 0) { /* (-3 h0 + 4 h1 - h2) / (2 dy) */
-            r0 = heights;
-            r1 = heights + w;
-            r2 = heights + 2LL * w;
-            c0 = -PF_R(3.0) * ky;
-            c1 = PF_R(4.0) * ky;
-            c2 = -ky;
-        } else { /* last row: (3 h[n-1] - 4 h[n-2] + h[n-3]) / (2 dy) */
-            r0 = heights + (long long)(h - 1) * w;
-            r1 = heights + (long long)(h - 2) * w;
-            r2 = heights + (long long)(h - 3) * w;
-            c0 = PF_R(3.0) * ky;
-            c1 = -PF_R(4.0) * ky;
-            c2 = ky;
-        }
-    }
+    pfi_slope_stencil(r, h, border, ky, y, cy);
+    r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
+    c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
     /* interior texels: branch-free, so the compiler can vectorize the row */
     for (i = 1; i < w - 1; ++i) {
         pf_real sx = kx * (row[i + 1] - row[i - 1]);
-        pf_real sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
-        pf_real *o = out + 5 * i;
-        o[0] = sx;
-        o[1] = sy;
-        o[2] = sx * sx;
-        o[3] = sy * sy;
-        o[4] = sx * sy;
+        pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
     }
     /* the first and last texels of the row */
     for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
-        pf_real sx, sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
-        pf_real *o = out + 5 * i;
-        if (w == 1) {
-            sx = PF_R(0.0);
-        } else if (border == PF_BORDER_WRAP) {
-            sx = kx * (row[(i + 1) % w] - row[(i + w - 1) % w]);
-        } else if (w == 2) {
-            sx = PF_R(2.0) * kx * (row[1] - row[0]);
-        } else if (i == 0) {
-            sx = kx * (PF_R(4.0) * row[1] - PF_R(3.0) * row[0] - row[2]);
-        } else {
-            sx = kx * (PF_R(3.0) * row[w - 1] - PF_R(4.0) * row[w - 2] + row[w - 3]);
-        }
-        o[0] = sx;
-        o[1] = sy;
-        o[2] = sx * sx;
-        o[3] = sy * sy;
-        o[4] = sx * sy;
+        pfi_slope_stencil(i, w, border, kx, x, cx);
+        pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
+                      c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
     }
 }
 
 /* Level 0 only: the slope moments (5 interleaved channels, pf_slope_moments order) of every
-   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major.
+   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major;
    dx, dy: texel spacing; height_scale multiplies the heights; border: PF_BORDER_WRAP or
-   PF_BORDER_CLAMP (see CONVENTIONS for the stencils). */
-PF_CPU_DEF void pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                                  pf_real dy, pf_real height_scale, int border,
-                                                  pf_real *out)
+   PF_BORDER_CLAMP (CONVENTIONS, Height maps). PF_ERR_SIZE when w h 5 > PF_MAX_REALS. */
+PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                                 pf_real dy, pf_real height_scale, int border,
+                                                 pf_real *out)
 {
     int r;
-    if (!heights || !out || w < 1 || h < 1) return;
+    if (!heights || !out || w < 1 || h < 1 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))
+        return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 5) < 0) return PF_ERR_SIZE;
     for (r = 0; r < h; ++r)
         pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
-}
-
-/* The whole 5-moment pyramid of a height map in one pass: level 0 as
-   pf_slope_moments_map_from_heights, every level above reduced as the rows arrive.
-   pyr: pf_mip_texel_count(w, h) * 5 pf_reals. */
-PF_CPU_DEF void pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                              pf_real dy, pf_real height_scale, int border,
-                                              pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int r;
-    if (!heights || !pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) return;
-    for (r = 0; r < h; ++r) {
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
-        pfi_mip_push_row(&c, 0, r);
-    }
+    return PF_OK;
 }
 
 /* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
 PF_CPU_DEF int pf_depth_moment_channels(int kind)
 {
-    switch (kind) {
-    case PF_DEPTH_VSM: return 2;
-    case PF_DEPTH_EVSM2: return 2;
-    case PF_DEPTH_EVSM4: return 4;
-    case PF_DEPTH_MSM: return 4;
-    case PF_DEPTH_ESM_LOG: return 1;
-    default: return 0;
+    if (kind == PF_DEPTH_VSM || kind == PF_DEPTH_EVSM2) return 2;
+    if (kind == PF_DEPTH_EVSM4 || kind == PF_DEPTH_MSM) return 4;
+    return kind == PF_DEPTH_ESM_LOG ? 1 : 0;
+}
+
+/* Stores a texel's members in order. */
+PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] = m.m2; }
+PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
+PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
+PF_CPU_DEF void pfi_put_v3(pf_real *t, pf_vec3 m) { t[0] = m.x; t[1] = m.y; t[2] = m.z; }
+
+PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
+{
+    pfi_mip_cascade c;
+    int r, rc = pfi_mip_cascade_init(&c, pyr, w, h, channels, log_space);
+    if (rc != PF_OK) return rc;
+    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
+    return PF_OK;
+}
+/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
+   pf_reals, at the start of pyr) the caller has filled; any linear moment type (the channel
+   count says which). */
+PF_CPU_DEF int pf_mip_build(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 0); }
+/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
+   holds log of the mean of exp over its footprint). */
+PF_CPU_DEF int pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
+{ return pfi_mip_build(pyr, w, h, channels, 1); }
+
+/* The whole 5-moment pyramid of a height map in one pass: level 0 as
+   pf_slope_moments_map_from_heights (same arguments). pyr: pf_mip_texel_count(w, h) * 5
+   pf_reals. */
+PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
+                                             pf_real dy, pf_real height_scale, int border,
+                                             pf_real *pyr)
+{
+    pfi_mip_cascade c;
+    int r, rc;
+    if (!heights || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) != PF_OK) return rc;
+    for (r = 0; r < h; ++r) {
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
+        pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
 
 /* The pyramid of a depth map (w h depths in [0, 1], row-major) for one PF_DEPTH_* kind:
    c_pos is the EVSM positive exponent and the ESM exponent, c_neg the EVSM negative one
    (ignored by the others). PF_DEPTH_ESM_LOG stores c_pos z and reduces in log space.
    pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. */
-PF_CPU_DEF void pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
-                                             pf_real c_pos, pf_real c_neg, pf_real *pyr)
+PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
+                                            pf_real c_pos, pf_real c_neg, pf_real *pyr)
 {
     pfi_mip_cascade c;
-    int nc = pf_depth_moment_channels(kind), r, i;
-    if (!depths || nc == 0 || !pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG))
-        return;
+    int nc = pf_depth_moment_channels(kind), r, i, rc;
+    if (!depths || nc == 0) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
         const pf_real *z = depths + (long long)r * w;
         pf_real *o = pyr + (long long)r * w * nc;
-        switch (kind) {
-        case PF_DEPTH_VSM:
-            for (i = 0; i < w; ++i) {
-                o[2 * i] = z[i];
-                o[2 * i + 1] = z[i] * z[i];
-            }
-            break;
-        case PF_DEPTH_EVSM2:
-            for (i = 0; i < w; ++i) {
-                pf_depth_moments2 m = pf_evsm2_from_depth(z[i], c_pos);
-                o[2 * i] = m.m1;
-                o[2 * i + 1] = m.m2;
-            }
-            break;
+        switch (kind) { /* outside the loops, so each loop vectorizes */
+        case PF_DEPTH_VSM: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_depth_moments2_from_depth(z[i])); break;
+        case PF_DEPTH_EVSM2: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_evsm2_from_depth(z[i], c_pos)); break;
         case PF_DEPTH_EVSM4:
-            for (i = 0; i < w; ++i) {
-                pf_evsm_moments m = pf_evsm_moments_from_depth(z[i], c_pos, c_neg);
-                o[4 * i] = m.pos1;
-                o[4 * i + 1] = m.pos2;
-                o[4 * i + 2] = m.neg1;
-                o[4 * i + 3] = m.neg2;
-            }
+            for (i = 0; i < w; ++i) pfi_put_evsm(o + 4 * i, pf_evsm_moments_from_depth(z[i], c_pos, c_neg));
             break;
-        case PF_DEPTH_MSM:
-            for (i = 0; i < w; ++i) {
-                pf_real z2 = z[i] * z[i];
-                o[4 * i] = z[i];
-                o[4 * i + 1] = z2;
-                o[4 * i + 2] = z2 * z[i];
-                o[4 * i + 3] = z2 * z2;
-            }
-            break;
-        default: /* PF_DEPTH_ESM_LOG */
-            for (i = 0; i < w; ++i) o[i] = c_pos * z[i];
-            break;
+        case PF_DEPTH_MSM: for (i = 0; i < w; ++i) pfi_put_d4(o + 4 * i, pf_depth_moments4_from_depth(z[i])); break;
+        default: for (i = 0; i < w; ++i) o[i] = pf_esm_log_from_depth(z[i], c_pos); break;
         }
         pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
-
-/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values. */
-PF_CPU_DEF void pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int r, i;
-    if (!values || !pfi_mip_cascade_init(&c, pyr, w, h, 2, 0)) return;
-    for (r = 0; r < h; ++r) {
-        const pf_real *f = values + (long long)r * w;
-        pf_real *o = pyr + (long long)r * w * 2;
-        for (i = 0; i < w; ++i) {
-            o[2 * i] = f[i];
-            o[2 * i + 1] = f[i] * f[i];
-        }
-        pfi_mip_push_row(&c, 0, r);
-    }
-}
-
+/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values: the same
+   texels as PF_DEPTH_VSM's (z, z^2), so the same builder. */
+PF_CPU_DEF int pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
+{ return pf_depth_pyramid_from_depths(values, w, h, PF_DEPTH_VSM, PF_R(0.0), PF_R(0.0), pyr); }
 /* The pyramid of average normals (3 channels) of a normal map (w h normals, 3 interleaved
    pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). */
-PF_CPU_DEF void pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
+PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
 {
     pfi_mip_cascade c;
-    int r, i;
-    if (!normals || !pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) return;
+    int r, i, rc;
+    if (!normals) return PF_ERR_ARG;
+    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
         const pf_real *n = normals + (long long)r * w * 3;
         pf_real *o = pyr + (long long)r * w * 3;
-        for (i = 0; i < w; ++i) {
-            const pf_real *t = n + 3 * i;
-            pf_vec3 u = pf_normal_avg_from_normal(pf_vec3_make(t[0], t[1], t[2]));
-            o[3 * i] = u.x;
-            o[3 * i + 1] = u.y;
-            o[3 * i + 2] = u.z;
-        }
+        for (i = 0; i < w; ++i)
+            pfi_put_v3(o + 3 * i, pf_normal_avg_from_normal(pf_vec3_make(n[3 * i], n[3 * i + 1], n[3 * i + 2])));
         pfi_mip_push_row(&c, 0, r);
     }
+    return PF_OK;
 }
 
-/* ---------------------------------------------------------------- N texels */
-/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n texels of `channels` pf_reals. Texels
-   with w_i <= 0 (or NaN) are skipped, not read. No positive weight: out is zeroed. */
-PF_CPU_DEF void pf_moments_weighted_mean(const pf_real *texels, int channels,
-                                         const pf_real *weights, int n, pf_real *out)
+/* ---------------------------------------------------------------- N texels
+   Both weighted means skip texels of weight <= 0 (or NaN) without reading them, and divide the
+   weights by a divisor d first, so any finite weights work, under -ffast-math too (two weights
+   of PF_REAL_MAX give the plain mean): d = wmax 2^-32 (exact) for a largest weight wmax > 1,
+   else wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math
+   turns w / wmax into w * (1/wmax) with subnormals flushed to 0; 1/d >= 2^-96 is normal. */
+PF_CPU_DEF pf_real pfi_weight_divisor(const pf_real *weights, int n)
 {
-    pf_real wsum = PF_R(0.0);
-    int i, k;
-    if (!texels || !weights || !out || channels < 1) return;
-    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    pf_real m = PF_R(0.0);
+    int i;
     for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0)) wsum += weights[i];
-    if (!(wsum > PF_R(0.0))) return;
+        if (weights[i] > m) m = weights[i];
+    return m > PF_R(1.0) ? m * PF_R(2.3283064365386963e-10) : m; /* 2^-32; +inf stays +inf */
+}
+
+/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
+   (texels: n C pf_reals, weights: n, out: C). No positive weight (n = 0 too): out is zeroed,
+   PF_OK. PF_ERR_SIZE when n C > PF_MAX_REALS. */
+PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
+                                        int n, pf_real *out)
+{
+    pf_real wsum = PF_R(0.0), d;
+    int i, k;
+    if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
+    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
+    d = pfi_weight_divisor(weights, n);
+    if (!(d <= PF_REAL_MAX)) return PF_ERR_ARG;
+    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    if (!(d > PF_R(0.0))) return PF_OK;
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
     for (i = 0; i < n; ++i) {
-        pf_real w = weights[i] / wsum;
+        /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
+           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
+        volatile pf_real wd = weights[i] / d;
+        pf_real w = wd / wsum;
         if (!(weights[i] > PF_R(0.0))) continue;
         for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
     }
+    return PF_OK;
 }
 
-/* log of the weighted mean of exp(l_i) (ESM, log space); -PF_REAL_MAX if no weight is
-   positive. */
+/* log of the weighted mean of exp(l_i) (ESM, log space) over n texels. -PF_REAL_MAX when no
+   weight is positive (n = 0 too), and for bad arguments (a NULL, n < 0, a +inf weight). */
 PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
 {
     pf_esm_log_sum a = PF_ESM_LOG_SUM_EMPTY;
+    pf_real d;
     int i;
-    if (!logs || !weights) return -PF_REAL_MAX;
-    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i]);
+    if (!logs || !weights || n < 0) return -PF_REAL_MAX;
+    d = pfi_weight_divisor(weights, n);
+    if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i) a = pf_esm_log_sum_add(a, logs[i], weights[i] / d);
     return pf_esm_log_sum_mean(a);
 }
 
 /* ---------------------------------------------------------------- sampling */
-/* Texel indices and the fraction for coordinate u on an axis of n texels (GPU convention:
-   centre of texel i at (i + 0.5)/n). NaN and infinite u are treated as 0; huge u lose
-   precision but never index out of bounds. */
-PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, int *i0, int *i1, pf_real *f)
+/* Texel indices (long long, in [0, n)) and the fraction for coordinate u on an axis of n
+   texels, under the Sampling convention (CONVENTIONS). */
+PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long long *i1, pf_real *f)
 {
-    pf_real x, fl;
-    int i;
-    if (!(u > -PF_R(1.0e6) && u < PF_R(1.0e6))) u = PF_R(0.0);
-    if (border == PF_BORDER_WRAP) u = u - PF_FLOOR(u);
-    else u = pf_clamp(u, PF_R(0.0), PF_R(1.0));
-    x = u * PF_R(n) - PF_R(0.5);
-    fl = PF_FLOOR(x);
-    *f = x - fl;
-    i = (int)fl;
-    if (border == PF_BORDER_WRAP) {
-        i = ((i % n) + n) % n;
-        *i0 = i;
-        *i1 = (i + 1) % n;
-    } else {
-        *i0 = i < 0 ? 0 : (i > n - 1 ? n - 1 : i);
-        *i1 = i + 1 < 0 ? 0 : (i + 1 > n - 1 ? n - 1 : i + 1);
-    }
+    pf_real x;
+    long long i;
+    if (border == PF_BORDER_WRAP) u = (u - u == PF_R(0.0)) ? u - PF_FLOOR(u) : PF_R(0.0);
+    else u = (u == u) ? pf_clamp(u, PF_R(0.0), PF_R(1.0)) : PF_R(0.0);
+    x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
+    i = pfi_floor_index(x, -1, n - 1);
+    *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
+    *i0 = border == PF_BORDER_WRAP ? pfi_wrap_index(i, n) : (i < 0 ? 0 : i);
+    *i1 = border == PF_BORDER_WRAP ? pfi_wrap_index(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
 }
 
-/* Bilinear weights and the four texel offsets (in pf_reals) of (u, v) at one level. */
-typedef struct pfi_mip_bilerp {
-    long long t[4];
-    pf_real w[4];
-} pfi_mip_bilerp;
+/* The taps of positive bilinear weight of (u, v) at one level of a pyramid. */
+typedef struct pfi_mip_bilerp { const pf_real *tap[4]; pf_real w[4]; int n; } pfi_mip_bilerp;
 
-PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(int w, int h, int channels, int level, pf_real u,
-                                            pf_real v, int border)
+PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(const pf_real *pyr, int w, int h, int channels,
+                                            int level, pf_real u, pf_real v, int border)
 {
     pfi_mip_bilerp b;
-    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level);
-    int x0, x1, y0, y1;
+    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level), t;
+    long long x[2], y[2];
     pf_real fx, fy;
-    long long base = pf_mip_level_offset(w, h, level) * channels;
-    pfi_mip_axis(u, lw, border, &x0, &x1, &fx);
-    pfi_mip_axis(v, lh, border, &y0, &y1, &fy);
-    b.t[0] = base + ((long long)y0 * lw + x0) * channels;
-    b.t[1] = base + ((long long)y0 * lw + x1) * channels;
-    b.t[2] = base + ((long long)y1 * lw + x0) * channels;
-    b.t[3] = base + ((long long)y1 * lw + x1) * channels;
-    b.w[0] = (PF_R(1.0) - fx) * (PF_R(1.0) - fy);
-    b.w[1] = fx * (PF_R(1.0) - fy);
-    b.w[2] = (PF_R(1.0) - fx) * fy;
-    b.w[3] = fx * fy;
+    pyr += pf_mip_level_offset(w, h, level) * channels;
+    pfi_mip_axis(u, lw, border, &x[0], &x[1], &fx);
+    pfi_mip_axis(v, lh, border, &y[0], &y[1], &fy);
+    for (t = 0, b.n = 0; t < 4; ++t) {
+        pf_real wt = ((t & 1) ? fx : PF_R(1.0) - fx) * ((t & 2) ? fy : PF_R(1.0) - fy);
+        if (!(wt > PF_R(0.0))) continue;
+        b.tap[b.n] = pyr + (y[t >> 1] * lw + x[t & 1]) * channels;
+        b.w[b.n++] = wt;
+    }
     return b;
 }
 
-PF_CPU_DEF pf_real pfi_mip_bilerp_channel(const pf_real *pyr, const pfi_mip_bilerp *b, int k,
-                                          int log_space)
+/* The shared sampler: PF_OK, or the error with out untouched. */
+PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                              pf_real u, pf_real v, int border, int log_space, pf_real *out)
 {
-    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
-    int t;
-    if (!log_space) {
-        for (t = 0; t < 4; ++t)
-            if (b->w[t] > PF_R(0.0)) s += b->w[t] * pyr[b->t[t] + k];
-        return s;
-    }
-    for (t = 0; t < 4; ++t)
-        if (b->w[t] > PF_R(0.0) && pyr[b->t[t] + k] > m) m = pyr[b->t[t] + k];
-    for (t = 0; t < 4; ++t)
-        if (b->w[t] > PF_R(0.0)) s += b->w[t] * PF_EXP(pfi_lse_arg(pyr[b->t[t] + k] - m));
-    return m + PF_LOG(s);
-}
-
-PF_CPU_DEF void pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
-                               pf_real u, pf_real v, int border, int log_space, pf_real *out)
-{
-    int nl = pf_mip_level_count(w, h), l0, k;
+    int nl, l0, k, rc = pfi_mip_check(pyr, w, h, channels);
     pf_real fl;
     pfi_mip_bilerp b0, b1;
-    if (!pyr || !out || nl == 0 || channels < 1) return;
+    if (rc == PF_OK && (!out || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))) rc = PF_ERR_ARG;
+    if (rc != PF_OK) return rc;
+    nl = pf_mip_level_count(w, h);
     if (!(lod > PF_R(0.0))) lod = PF_R(0.0); /* NaN too */
     if (lod > PF_R(nl - 1)) lod = PF_R(nl - 1);
     l0 = (int)PF_FLOOR(lod);
     fl = lod - PF_R(l0);
-    b0 = pfi_mip_bilerp_at(w, h, channels, l0, u, v, border);
+    b0 = pfi_mip_bilerp_at(pyr, w, h, channels, l0, u, v, border);
     if (!(fl > PF_R(0.0)) || l0 + 1 >= nl) {
-        for (k = 0; k < channels; ++k) out[k] = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
-        return;
+        for (k = 0; k < channels; ++k) out[k] = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
+        return PF_OK;
     }
-    b1 = pfi_mip_bilerp_at(w, h, channels, l0 + 1, u, v, border);
+    b1 = pfi_mip_bilerp_at(pyr, w, h, channels, l0 + 1, u, v, border);
     for (k = 0; k < channels; ++k) {
-        pf_real a = pfi_mip_bilerp_channel(pyr, &b0, k, log_space);
-        pf_real c = pfi_mip_bilerp_channel(pyr, &b1, k, log_space);
-        out[k] = log_space ? pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl)
-                           : (PF_R(1.0) - fl) * a + fl * c;
+        pf_real a = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
+        pf_real c = pfi_taps_mean(b1.tap, b1.w, b1.n, k, log_space), s;
+        if (log_space) {
+            out[k] = pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl);
+            continue;
+        }
+        s = (PF_R(1.0) - fl) * a + fl * c;
+        out[k] = s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c));
     }
+    return PF_OK;
 }
 
 /* Bilinear sample of level `level` (clamped to the pyramid) at (u, v): `channels` pf_reals
-   into out. */
-PF_CPU_DEF void pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
-                                       pf_real u, pf_real v, int border, pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out);
-}
-
+   into out. PF_OK, or the error with out untouched. */
+PF_CPU_DEF int pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
+                                      pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out); }
 /* Trilinear sample: bilinear at floor(lod) and floor(lod) + 1, blended by the fraction. */
-PF_CPU_DEF void pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels,
-                                        pf_real lod, pf_real u, pf_real v, int border,
-                                        pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out);
-}
-
+PF_CPU_DEF int pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                                       pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out); }
 /* The same for log-space (ESM) pyramids: the weights apply to exp of the texels. */
-PF_CPU_DEF void pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels,
-                                           int level, pf_real u, pf_real v, int border,
-                                           pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out);
-}
+PF_CPU_DEF int pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels, int level,
+                                          pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out); }
+PF_CPU_DEF int pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels, pf_real lod,
+                                           pf_real u, pf_real v, int border, pf_real *out)
+{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out); }
+/* Typed trilinear samples (an integer lod is a bilinear sample of that level), one stamp per
+   type: T pf_<T>_sample(pyr, w, h, lod, u, v, border) for the six T of the reductions.
+   Bad arguments (those pf_mip_sample_trilinear rejects) return all zeros. */
+#define PFI_TYPED_SAMPLE(T, F, NC, MAKE)                                                       \
+    PF_CPU_DEF T F(const pf_real *pyr, int w, int h, pf_real lod, pf_real u, pf_real v, int border) \
+    { pf_real t[5] = {0, 0, 0, 0, 0}; pfi_mip_sample(pyr, w, h, NC, lod, u, v, border, 0, t); return MAKE; }
+PFI_TYPED_SAMPLE(pf_slope_moments, pf_slope_moments_sample, 5, pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]))
+PFI_TYPED_SAMPLE(pf_scalar_moments, pf_scalar_moments_sample, 2, pf_scalar_moments_make(t[0], t[1]))
+PFI_TYPED_SAMPLE(pf_depth_moments2, pf_depth_moments2_sample, 2, pf_depth_moments2_make(t[0], t[1]))
+PFI_TYPED_SAMPLE(pf_depth_moments4, pf_depth_moments4_sample, 4, pf_depth_moments4_make(t[0], t[1], t[2], t[3]))
+PFI_TYPED_SAMPLE(pf_evsm_moments, pf_evsm_moments_sample, 4, pf_evsm_moments_make(t[0], t[1], t[2], t[3]))
+PFI_TYPED_SAMPLE(pf_vec3, pf_normal_avg_sample, 3, pf_vec3_make(t[0], t[1], t[2]))
 
-PF_CPU_DEF void pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels,
-                                            pf_real lod, pf_real u, pf_real v, int border,
-                                            pf_real *out)
-{
-    pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out);
-}
-
-/* Typed trilinear samples (an integer lod is a bilinear sample of that level). */
-PF_CPU_DEF pf_slope_moments pf_slope_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
-                                                    pf_real u, pf_real v, int border)
-{
-    pf_real t[5] = {0, 0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 5, lod, u, v, border, 0, t);
-    return pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]);
-}
-
-PF_CPU_DEF pf_scalar_moments pf_scalar_moments_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[2] = {0, 0};
-    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
-    return pf_scalar_moments_make(t[0], t[1]);
-}
-
-PF_CPU_DEF pf_depth_moments2 pf_depth_moments2_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[2] = {0, 0};
-    pfi_mip_sample(pyr, w, h, 2, lod, u, v, border, 0, t);
-    return pf_depth_moments2_make(t[0], t[1]);
-}
-
-PF_CPU_DEF pf_depth_moments4 pf_depth_moments4_sample(const pf_real *pyr, int w, int h,
-                                                      pf_real lod, pf_real u, pf_real v,
-                                                      int border)
-{
-    pf_real t[4] = {0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
-    return pf_depth_moments4_make(t[0], t[1], t[2], t[3]);
-}
-
-PF_CPU_DEF pf_evsm_moments pf_evsm_moments_sample(const pf_real *pyr, int w, int h, pf_real lod,
-                                                  pf_real u, pf_real v, int border)
-{
-    pf_real t[4] = {0, 0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 4, lod, u, v, border, 0, t);
-    return pf_evsm_moments_make(t[0], t[1], t[2], t[3]);
-}
-
-PF_CPU_DEF pf_vec3 pf_normal_avg_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
-                                        pf_real v, int border)
-{
-    pf_real t[3] = {0, 0, 0};
-    pfi_mip_sample(pyr, w, h, 3, lod, u, v, border, 0, t);
-    return pf_vec3_make(t[0], t[1], t[2]);
-}
-
+/* The ESM log sample; bad arguments return -PF_REAL_MAX (the log of an empty sum). */
 PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
                                      pf_real v, int border)
 {

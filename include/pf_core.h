@@ -495,8 +495,8 @@ PF_DEF pf_vec3 pf_vec3_normalize(pf_vec3 a)
      PF_ERR_SIZE  (-2) for a size above its documented limit: a side above PF_MAX_SIDE, or a
                        buffer of more than PF_MAX_REALS pf_reals;
    and on an error it writes nothing. Functions that return a count (pf_mip_texel_count,
-   pf_colormap_table_size, pf_gg_hermite_generate) return 0 for every argument their builder
-   would reject; functions that return a value say which value they return. Sizes, offsets and
+   pf_colormap_table_size, pf_gg_hermite_generate) return 0 for every size they cannot serve
+   (each states exactly which; a texel count times a channel count can still exceed the limit); functions that return a value say which value they return. Sizes, offsets and
    indices are computed in long long through the helpers below, so no documented size can
    overflow; a caller's buffer must hold what the function's comment says, the one thing the
    library cannot check. */
