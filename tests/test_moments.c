@@ -1468,6 +1468,32 @@ static void edge_issue19_box_near_max_finite(void)
     PF_CHECK(bad == 0, "%d non-finite texels or failed builds", bad);
 }
 
+/* The stability sweep's -ffast-math finding: weights of PF_REAL_MAX next to ordinary ones, and
+   the largest log carried by an ordinary weight, make sum / weight subnormal; flushed to 0 it
+   gave log(0) = -inf. Against the log-sum-exp in long double. */
+static void edge_esm_log_mean_tiny_share(void)
+{
+    pf_real w[11] = {PF_R(0.4422), PF_R(0.2661), PF_R(0.2189), PF_REAL_MAX, PF_REAL_MAX, PF_R(0.0),
+                     PF_R(0.5333), PF_R(0.0), PF_R(0.1927), PF_R(0.5567), PF_R(0.4227)};
+    pf_real l[11] = {PF_R(11.4776), PF_R(-3.25003), PF_R(13.1511), PF_R(9.00505e-10), PF_R(12.194),
+                     PF_R(979.734), PF_R(2342.93), PF_R(-433.901), PF_R(-6.24934e-10), PF_R(-684.021),
+                     PF_R(3332.54)};
+    long double m = -1e30L, s = 0.0L, ws = 0.0L, want;
+    pf_real got = pf_esm_log_weighted_mean(l, w, 11);
+    int i;
+    for (i = 0; i < 11; ++i)
+        if (w[i] > 0 && (long double)l[i] > m) m = (long double)l[i];
+    for (i = 0; i < 11; ++i)
+        if (w[i] > 0) {
+            s += (long double)w[i] * expl((long double)l[i] - m);
+            ws += (long double)w[i];
+        }
+    want = m + logl(s / ws);
+    pf_test_note("got %.9g, want %.9Lg", (double)got, want);
+    PF_CHECK(pf_test_finite(got) && fabsl((long double)got - want) <= 16.0L * PF_TEST_EPS * fabsl(want),
+             "got %g, want %Lg", (double)got, want);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1494,6 +1520,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_issue19_weighted_mean_huge_weights);
     PF_TEST_RUN(edge_issue19_weighted_mean_huge_weights);
     PF_TEST_RUN(edge_issue19_box_near_max_finite);
+    PF_TEST_RUN(edge_esm_log_mean_tiny_share);
     PF_TEST_RUN(test_issue19_build_near_max_finite);
     return PF_TEST_END();
 }
