@@ -32,7 +32,7 @@ glslang-tools|portability|cmd glslangValidator|GLSL 4.50 -> SPIR-V compile of ev
 spirv-tools|portability|cmd spirv-val|SPIR-V validation and spirv-opt
 spirv-cross|portability|cmd spirv-cross|SPIR-V -> HLSL and MSL
 gcc-arm-none-eabi|portability|cmd arm-none-eabi-gcc|Cortex-M4F (float-only FPU) build
-libnewlib-arm-none-eabi|portability|file /usr/lib/arm-none-eabi/include/math.h|its C library (math.h)
+libnewlib-arm-none-eabi|portability|file /usr/lib/arm-none-eabi/newlib/nano.specs|its C library (newlib, nano.specs: the link check)
 gcc-arm-linux-gnueabihf|portability|cmd arm-linux-gnueabihf-gcc|ARM hard-float build of the float test suite
 libc6-dev-armhf-cross|portability|file /usr/arm-linux-gnueabihf/lib/libc.a|its static C library
 qemu-user|portability|cmd qemu-arm|runs the ARM test binaries
