@@ -396,9 +396,7 @@ PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
 }
 
 /* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
-/* A ratio sum / weight below the normal range (the largest texel carries a tiny share of the
-   weight) is flushed to 0 on GPUs and under -ffast-math, and its log would be -inf: the two
-   logs are then taken apart (both operands are normal). */
+/* A subnormal sum / weight (flushed to 0 on GPUs and under -ffast-math) takes the logs apart. */
 PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
 {
     pf_real r = a.sum / a.weight;
@@ -845,22 +843,10 @@ PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, con
     return PF_OK;
 }
 
-/* log of the weighted mean of exp(l_i) (ESM, log space) over n texels:
-   log(sum_i w_i exp(l_i) / sum_i w_i). The log-sum-exp is anchored at the largest
-   v_i = l_i + log(w_i / wmax), not at the largest l_i: a texel with the largest log but a tiny
-   share of the weight (weights spanning more than e^80) would otherwise leave every other term
-   at the exp(-80) floor of the sum (wrong by e^8 at a log spread of 88, a float ESM map's
-   whole range) and make sum / weight subnormal (0 under -ffast-math). With the anchor the
-   dominant term is 1, so the floor costs at most n e^-80 relatively. Two logs and two exps per
-   texel (the streaming pf_esm_log_sum_* is the shader's cheaper form). Weights below
-   wmax 2^-32 PF_REAL_MIN count as 0. -PF_REAL_MAX when no weight is positive (n = 0 too), and for bad
-   arguments (a NULL, n < 0, a +inf weight). */
-/* log(w / wmax) for a weight w, from wd = w / d and wmaxd = wmax / d (both <= 2^32, see
-   pfi_weight_divisor): the ratio is formed from two normal numbers, so it is exact to an ulp
-   and no reciprocal of a huge weight appears (volatile: -ffast-math would fold the two
-   divisions into one by wmax). A share below the smallest normal (which a flush to zero would
-   lose) is taken as log(wd) - log(wmaxd); -PF_REAL_MAX (counted as 0) only when wd itself is
-   below the smallest normal (w < wmax 2^-32 PF_REAL_MIN). */
+/* log(w / wmax) from wd = w / d and wmaxd = wmax / d (both <= 2^32): a ratio of two normal
+   numbers, with no reciprocal of a huge weight (volatile: -ffast-math would fold the two
+   divisions into one by wmax); a subnormal share (flushed to 0 on FTZ) as log(wd) -
+   log(wmaxd); -PF_REAL_MAX (counted as 0) when wd itself is below PF_REAL_MIN. */
 PF_CPU_DEF pf_real pfi_log_weight_share(pf_real w, pf_real d, pf_real wmaxd)
 {
     volatile pf_real wd = w / d;
@@ -868,28 +854,31 @@ PF_CPU_DEF pf_real pfi_log_weight_share(pf_real w, pf_real d, pf_real wmaxd)
     if (r >= PF_REAL_MIN) return PF_LOG(r);
     return wd >= PF_REAL_MIN ? PF_LOG(wd) - PF_LOG(wmaxd) : -PF_REAL_MAX;
 }
-
+/* log(sum_i w_i exp(l_i) / sum_i w_i) (ESM, log space) over n texels, its log-sum-exp anchored
+   at the largest l_i + log(w_i / wmax), not the largest l_i: a texel with the largest log and a
+   tiny share of the weight would leave the others at the exp(-80) floor (wrong by e^8 over a
+   float ESM map's log range) and make sum / weight subnormal. The anchor term is 1, so the
+   floor costs at most n e^-80. Two logs, two exps per texel (pf_esm_log_sum_* streams more
+   cheaply). -PF_REAL_MAX when no weight is positive (n = 0 too) and for bad arguments (a NULL,
+   n < 0, a +inf weight). */
 PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
 {
-    pf_real d, wmaxd, m = -PF_REAL_MAX, s = PF_R(0.0), ws = PF_R(0.0), lw;
+    pf_real d, wmaxd = PF_R(0.0), m = -PF_REAL_MAX, s = PF_R(0.0), ws = PF_R(0.0), lw;
     int i;
     if (!logs || !weights || n < 0) return -PF_REAL_MAX;
     d = pfi_weight_divisor(weights, n);
     if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
-    wmaxd = PF_R(0.0); /* wmax / d: 2^32 for wmax > 1, else 1 */
+    for (i = 0; i < n; ++i) wmaxd = pf_max(wmaxd, weights[i] / d); /* 2^32 or 1 */
     for (i = 0; i < n; ++i)
-        if (weights[i] / d > wmaxd) wmaxd = weights[i] / d;
-    for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX &&
-            logs[i] + lw > m)
-            m = logs[i] + lw;
+        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX)
+            m = pf_max(m, logs[i] + lw);
     if (!(m > -PF_REAL_MAX)) return -PF_REAL_MAX;
     for (i = 0; i < n; ++i)
         if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX) {
-            s += PF_EXP(pfi_lse_arg(logs[i] + lw - m)); /* the anchor texel adds exactly 1 */
+            s += PF_EXP(pfi_lse_arg(logs[i] + lw - m));
             ws += PF_EXP(pfi_lse_arg(lw));
         }
-    return m + PF_LOG(s / ws); /* s and ws in [1, n]: no under- or overflow */
+    return m + PF_LOG(s / ws); /* s, ws in [1, n] */
 }
 
 /* ---------------------------------------------------------------- sampling */
