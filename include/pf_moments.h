@@ -868,10 +868,10 @@ PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *
     if (!logs || !weights || n < 0) return -PF_REAL_MAX;
     d = pfi_weight_divisor(weights, n);
     if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
-    for (i = 0; i < n; ++i) wmaxd = pf_max(wmaxd, weights[i] / d); /* 2^32 or 1 */
+    for (i = 0; i < n; ++i) wmaxd = pf_max(weights[i] / d, wmaxd); /* 2^32 or 1; NaN skipped */
     for (i = 0; i < n; ++i)
         if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX)
-            m = pf_max(m, logs[i] + lw);
+            m = pf_max(logs[i] + lw, m);
     if (!(m > -PF_REAL_MAX)) return -PF_REAL_MAX;
     for (i = 0; i < n; ++i)
         if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX) {

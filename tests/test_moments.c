@@ -1500,6 +1500,32 @@ static void edge_esm_log_mean_tiny_share(void)
              "got %g, want %Lg", (double)got, want);
 }
 
+/* NaN weights are skipped like weights <= 0 (the fuzzer's finding after the ESM mean was
+   rewritten: a NaN weight made the largest weight NaN); NaN logs with a positive weight
+   propagate. */
+static void test_esm_log_mean_nan_weight(void)
+{
+    volatile pf_real zero = PF_R(0.0);
+    pf_real nan = zero / zero;
+    pf_real w[6] = {PF_R(0.4556), PF_R(-0.41), PF_R(1e-30), PF_R(0.4928), nan, PF_R(0.0)};
+    pf_real l[6] = {PF_R(1.0), PF_R(5.0), PF_R(2.0), PF_R(3.0), PF_R(4.0), PF_R(6.0)};
+    long double s = 0.0L, ws = 0.0L, want;
+    pf_real got = pf_esm_log_weighted_mean(l, w, 6), o[1];
+    int i;
+    for (i = 0; i < 6; ++i)
+        if (w[i] > 0) {
+            s += (long double)w[i] * expl((long double)l[i]);
+            ws += (long double)w[i];
+        }
+    want = logl(s / ws);
+    PF_CHECK(pf_test_finite(got) && fabsl((long double)got - want) <= 16.0L * PF_TEST_EPS * fabsl(want),
+             "ESM log mean with a NaN weight: %g, want %Lg", (double)got, want);
+    PF_CHECK(pf_moments_weighted_mean(l, 1, w, 6, o) == PF_OK && pf_test_finite(o[0]),
+             "weighted mean with a NaN weight: %g", (double)o[0]);
+    l[0] = nan;
+    PF_CHECK(!pf_test_finite(pf_esm_log_weighted_mean(l, w, 6)), "a NaN log of positive weight must propagate");
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1527,6 +1553,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_issue19_weighted_mean_huge_weights);
     PF_TEST_RUN(edge_issue19_box_near_max_finite);
     PF_TEST_RUN(edge_esm_log_mean_tiny_share);
+    PF_TEST_RUN(test_esm_log_mean_nan_weight);
     PF_TEST_RUN(test_issue19_build_near_max_finite);
     return PF_TEST_END();
 }
