@@ -1510,7 +1510,7 @@ static void test_esm_log_mean_nan_weight(void)
     pf_real w[6] = {PF_R(0.4556), PF_R(-0.41), PF_R(1e-30), PF_R(0.4928), nan, PF_R(0.0)};
     pf_real l[6] = {PF_R(1.0), PF_R(5.0), PF_R(2.0), PF_R(3.0), PF_R(4.0), PF_R(6.0)};
     long double s = 0.0L, ws = 0.0L, want;
-    pf_real got = pf_esm_log_weighted_mean(l, w, 6), o[1];
+    pf_real got = pf_esm_log_weighted_mean(l, w, 6), o[1] = {0};
     int i;
     for (i = 0; i < 6; ++i)
         if (w[i] > 0) {
