@@ -84,7 +84,8 @@
                                of P^Lambda.
      pf_visible_height         ours: (4,5) rationals in s = sqrt(log(1+Lambda)); fit error of
                                mu_d 9.5e-6, sigma_d 6.7e-5 (relative) over every Lambda >= 0;
-                               one log, one sqrt, two divisions.
+                               one sqrt, two divisions, and one log (Lambda > 1) or a
+                               degree-6 series and a division (Lambda <= 1).
      pf_visible_height_published  Heitz et al. 2014 eqs. 16-17, valid for 0 <= Lambda <= 1900:
                                mu_d off by up to 0.131 sigma_h (at Lambda = 0.56; 20% at
                                Lambda = 1), sigma_d by up to 5.3% (at Lambda = 26). Beyond
@@ -93,6 +94,9 @@
      pf_visible_height_exact   64-node sinh-mapped trapezoidal rule: mu_d ~1e-9, sigma_d ~5e-8
                                relative in double (rounding-limited in float); ~1000x the fit.
      colour filters            closed form, absolute error a few eps per knot within ~5 sigma.
+     GLSL                      no step needs exact rounding (the private log1p is a series near
+                               0), so shader compilers cannot fold accuracy away; measured on
+                               lavapipe and bounded by the GLSL precision rules: docs/gpu.md.
 
    SOURCES
      Heitz, Nowrouzezahrai, Poulin, Neyret 2014, Filtering Non-Linear Transfer Functions on
@@ -112,14 +116,42 @@
 #define PFI_LOG_SQRT_2PI PF_R(0.918938533204672741780329736405617640)
 
 /* ---------------------------------------------------------------- private helpers */
-/* log(1 + x) for x > -1 without losing x when |x| is tiny (Goldberg's trick: log(u) x / (u - 1)
-   with u = 1 + x rounded is accurate to a few ulp given a faithful log). -ffast-math may fold
-   u - 1 into x, which costs accuracy for tiny x but stays finite. */
+/* log(1 + x) for x > -1, accurate relative to itself for tiny |x|, with no step that needs
+   exact rounding (a shader compiler may fold (1 + x) - 1 to x: GLSL without `precise` allows
+   it, and Goldberg's log(u) x / (u - 1) then returns log(u), whose GLSL error near u = 1 is an
+   absolute 2^-21, docs/gpu.md). For -1/2 <= x <= 1 no log is called: log(1 + x) =
+   2 atanh(t) = 2 (t + t^3/3 + t^5/5 + ...), t = x / (2 + x), |t| <= 1/3; the terms are
+   truncated where what is left is below 0.12 ulp (float: through t^13, double: through t^31;
+   the left-over is t^2k / (2k + 1) <= 9^-k / (2k + 1) relative). Outside, 1 + x is exact (x < -1/2,
+   Sterbenz) or rounds by half an ulp of a value whose log is >= log 2, so the built-in log
+   (3 ulp there in GLSL) is accurate relative to the result. Measured against log1pl:
+   1.46 ulp (float), 1.39 ulp (double) (tests/test_height.c, test_log1p_series). */
 PF_DEF pf_real pfi_log1p(pf_real x)
 {
-    pf_real u = PF_R(1.0) + x;
-    if (u == PF_R(1.0)) return x;
-    return PF_LOG(u) * (x / (u - PF_R(1.0)));
+    pf_real t, t2, p;
+    if (!(x >= PF_R(-0.5) && x <= PF_R(1.0))) return PF_LOG(PF_R(1.0) + x);
+    if (PF_FABS(x) < PF_R(0.25) * PF_REAL_EPSILON) return x; /* x - x^2/2 rounds to x; and x/2
+                                                                 would lose subnormal bits */
+    t = x / (PF_R(2.0) + x);
+    t2 = t * t;
+#ifdef PF_DOUBLE
+    /* 1/17, ..., 1/31, then 1/3, ..., 1/15 */
+    p = PF_R(0.0588235294117647058823529) + t2 * (PF_R(0.0526315789473684210526316)
+      + t2 * (PF_R(0.0476190476190476190476190) + t2 * (PF_R(0.0434782608695652173913043)
+      + t2 * (PF_R(0.04) + t2 * (PF_R(0.0370370370370370370370370)
+      + t2 * (PF_R(0.0344827586206896551724138) + t2 * PF_R(0.0322580645161290322580645)))))));
+    p = PF_R(0.333333333333333333333333) + t2 * (PF_R(0.2) + t2 * (PF_R(0.142857142857142857142857)
+      + t2 * (PF_R(0.111111111111111111111111) + t2 * (PF_R(0.0909090909090909090909091)
+      + t2 * (PF_R(0.0769230769230769230769231) + t2 * (PF_R(0.0666666666666666666666667)
+      + t2 * p))))));
+#else
+    /* 1/3, 1/5, ..., 1/13 */
+    p = PF_R(0.333333333333333333333333) + t2 * (PF_R(0.2) + t2 * (PF_R(0.142857142857142857142857)
+      + t2 * (PF_R(0.111111111111111111111111) + t2 * (PF_R(0.0909090909090909090909091)
+      + t2 * PF_R(0.0769230769230769230769231)))));
+#endif
+    /* 2t + 2t t^2 p: the leading term added last keeps the relative accuracy of t */
+    return PF_R(2.0) * t + PF_R(2.0) * t * (t2 * p);
 }
 
 /* Beyond |t| = PFI_TAIL_ZERO the normal tail and density are below the smallest normal
@@ -436,7 +468,7 @@ PF_DEF pf_vec3 pfi_narrow_moments(pf_real x0, pf_real x1, pf_real mean, pf_real 
                + h2 * (he6 / PF_R(5040.0) + h2 * he8 / PF_R(362880.0)))));
     pf_real u1 = PF_R(0.5) * m0 - ph * h2 * (tc / PF_R(3.0) + h2 * (he3 / PF_R(30.0) + h2 * (he5 / PF_R(840.0)
                + h2 * he7 / PF_R(45360.0))));
-    pf_real u2 = u1 - PF_R(0.25) * m0 + ph * h * (PF_R(1.0) / PF_R(6.0) + h2 * (he2 / PF_R(20.0)
+    pf_real u2 = u1 - PF_R(0.25) * m0 + ph * h * (PF_R(0.166666666666666666666667) + h2 * (he2 / PF_R(20.0)
                + h2 * (he4 / PF_R(336.0) + h2 * he6 / PF_R(12960.0))));
     u1 = pf_min(pf_max(u1, PF_R(0.0)), m0);
     return pf_vec3_make(m0, u1, pf_min(pf_max(u2, PF_R(0.0)), u1));

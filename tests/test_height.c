@@ -1231,6 +1231,58 @@ static void test_mem_nan_inputs(void)
              "NaN mean_h: %g %g", (double)out[0], (double)out[1]);
 }
 
+/* The private log1p (the base of log Phi for z >= 0 and of s = sqrt(log(1 + Lambda))) against
+   libm's long double log1pl: its atanh series on [-1/2, 1], the built-in log outside, and the
+   tiny and subnormal arguments it returns as they are. Every step is plain arithmetic that a
+   shader compiler may not fold into something else (docs/gpu.md), so the CPU bound is the GPU's
+   too, apart from the 3 ulp the GLSL log may take beyond [-1/2, 1]. */
+static void test_log1p_series(void)
+{
+    long double worst = 0.0L, at = 0.0L;
+    long i;
+    for (i = 0; i < 400000; i++) {
+        long double u = (long double)i / 400000.0L, r, e;
+        pf_real x;
+        if (i % 3 == 0) x = (pf_real)(-1.0L + 1e-6L + 5.0L * u);            /* (-1, 4] */
+        else if (i % 3 == 1) x = (pf_real)(-0.6L + 1.7L * u);              /* both joins */
+        else x = (pf_real)((i % 2 ? -1.0L : 1.0L) * ldexpl(1.0L + u, -(int)(i % 149))); /* tiny */
+        if (!(x > PF_R(-1.0)) || x == PF_R(0.0)) continue;
+        r = log1pl((long double)x);
+        e = fabsl(((long double)pfi_log1p(x) - r) / r) / PF_TEST_EPS;
+        if (e > worst) { worst = e; at = (long double)x; }
+    }
+    pf_test_note("max %.3Lg eps at x = %.6Lg", worst, at);
+    PF_CHECK(worst <= 2.0L, "pfi_log1p %.3Lg eps at x = %.6Lg (bound 2)", worst, at);
+}
+
+/* The issue-20 cases, where the GPU had folded (1 + x) - 1: mu_d at tiny Lambda follows its
+   slope 0.9032 (relative; the old form lost it to the absolute 2^-21 of a GLSL log), and
+   log Phi(5.4) = log1p(-Q(5.4)) keeps its relative accuracy. */
+static void test_log1p_small_lambda(void)
+{
+    static const long double ls[] = { 1e-30L, 1e-12L, 1e-6L, 3e-4L, 0.01L, 0.4L, 0.99L };
+    long double worst = 0.0L, e;
+    size_t i;
+    for (i = 0; i < sizeof ls / sizeof ls[0]; i++) {
+        pf_real l = (pf_real)ls[i];
+        long double s2 = log1pl((long double)l); /* s^2: mu_d ~ 0.9032054649 s^2 for tiny s */
+        long double mu = (long double)pf_visible_height(l).mean;
+        if (ls[i] <= 1e-6L) {
+            e = fabsl(mu / (0.9032054649L * s2) - 1.0L);
+            if (e > worst) worst = e;
+        }
+    }
+    pf_test_note("mu_d / (0.9032 log1p(L)) - 1 <= %.3Lg for L <= 1e-6", worst);
+    PF_CHECK(worst <= 1e-5L, "mu_d at tiny Lambda off its slope by %.3Lg", worst);
+    {
+        long double r = log1pl(-pf_oracle_normal_sf(5.4L));
+        e = fabsl((long double)pf_height_log_cdf(PF_R(5.4)) / r - 1.0L);
+        pf_test_note("log Phi(5.4) %.3Lg relative", e);
+        /* erfc's own few ulp, plus z^2 eps from rounding z / sqrt 2 (the conditioning) */
+        PF_CHECK(e <= (5.4L * 5.4L + 8.0L) * PF_TEST_EPS, "log Phi(5.4) off by %.3Lg relative", e);
+    }
+}
+
 /* ------------------------------------------------------------------ edge cases (also -ffast-math) */
 
 static int in01(pf_real v) { return pf_test_finite(v) && v >= PF_R(0.0) && v <= PF_R(1.0); }
@@ -1378,6 +1430,8 @@ int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
     PF_TEST_RUN(test_log_cdf_both_tails);
+    PF_TEST_RUN(test_log1p_series);
+    PF_TEST_RUN(test_log1p_small_lambda);
     PF_TEST_RUN(test_visibility_power);
     PF_TEST_RUN(test_closed_forms_quadrature);
     PF_TEST_RUN(test_visibility_average_is_g1);

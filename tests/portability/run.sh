@@ -27,6 +27,8 @@
 #   amalgam-*      prefilter.h (tests/portability/amalgamate.sh) is up to date, and smoke.c plus
 #                  every public function build on it alone and run: C99/C11 (gcc, clang), C++11/
 #                  17/20 (g++, clang++), tcc, nvcc host (+ device kernel); GLSL with the prelude
+#   gpu-lavapipe   tests/gpu/run.sh: every GLSL-callable evaluator run on lavapipe (Mesa's CPU
+#                  Vulkan driver) and compared with the C float and double builds (docs/gpu.md)
 #   consumer-*     tests/consumer/run.sh: make install + plain -I, pkg-config, CMake
 #                  find_package after cmake --install, CMake add_subdirectory; each built and run
 #   arm-float      the float test suite cross-built with arm-linux-gnueabihf-gcc -static
@@ -590,6 +592,26 @@ check_consumers() {
     done < "$d/lines.txt"
 }
 
+# ------------------------------------------------------------------ GLSL executed on lavapipe
+# gpu-lavapipe: tests/gpu/run.sh runs every GLSL-callable public evaluator on Mesa's CPU Vulkan
+# driver and compares it with the C float and double builds (bounds from the GLSL / Vulkan
+# precision rules, docs/gpu.md). FAILs (never SKIPs) when glslang-tools, libvulkan-dev or
+# mesa-vulkan-drivers is missing.
+check_gpu() {
+    d=$OUT/gpu-lavapipe; mkdir -p "$d"
+    sh tests/gpu/run.sh "$d" > "$d/run.log" 2>&1
+    rc=$?
+    set -- $(grep '^RESULT' "$d/run.log" | tail -1)
+    t=$(sed -n 's/^[0-9]* functions on .*, \([0-9.]* s\)$/\1/p' "$d/run.log")
+    if [ $rc -eq 0 ] && [ "${3:-1}" = 0 ]; then
+        report ok gpu-lavapipe "${2:-?} functions on lavapipe within their GLSL precision bounds ($t; $d/gpu/results.md)"
+    else
+        grep -E '^FAIL|^gpu:' "$d/run.log" | head -8 | sed 's/^/       /'
+        if grep -q '^gpu:' "$d/run.log"; then report FAIL gpu-lavapipe "tests/gpu/run.sh could not run (log: $d/run.log)"
+        else report FAIL gpu-lavapipe "${3:-?} of $((${2:-0} + ${3:-0})) functions failed (log: $d/run.log)"; fi
+    fi
+}
+
 # ------------------------------------------------------------------ run
 # PF_PORT_ONLY="a b": only the checks whose name starts with a or b (make matrix, arm, consumers).
 selected() {
@@ -618,6 +640,7 @@ selected m4f-link && check_m4f_link
 selected m4f-nolibm && check_m4f_nolibm
 selected amalgam && check_amalgam
 selected consumer- && check_consumers
+selected gpu-lavapipe && check_gpu
 check_cells
 size_table
 echo
