@@ -61,9 +61,14 @@ else
     echo "(\`microsurface_cost.csv\`, largest footprint; the fetch is about half of it on a CPU and"
     echo "hardware texture filtering on a GPU), and the ratio to LEADR specular timed in the same run."
     echo "Oracles (methods that read every texel) are not candidates."
-    awk -F, -v costf="$cost" -v mode="$mode" '
+    [ -f "$out/gpu_methods.csv" ] &&
+        echo "GPU: the SPIR-V ops (after spirv-opt -O) of the method's library evaluators, fetches not included ([GPU cost](#gpu-cost), \`gpu_methods.csv\`), where the shader generator can count them."
+    awk -F, -v costf="$cost" -v mode="$mode" -v gpuf="$out/gpu_methods.csv" '
         function fmt(e) { return (e >= 0.1) ? sprintf("%.2f", e) : (e >= 0.001 ? sprintf("%.3f", e) : sprintf("%.1e", e)) }
+        function gpu(m) { return (m in gops && gops[m] != "n/a") ? sprintf("; GPU %s ops", gops[m]) : "" }
         BEGIN {
+            # GPU cost (bench/gpu/cost.sh): method -> SPIR-V ops
+            while ((getline line < gpuf) > 0) { split(line, c, ","); if (c[1] != "method") gops[c[1]] = c[2] }
             # cost of each method at its largest measured footprint
             while ((getline line < costf) > 0) {
                 split(line, c, ",")
@@ -143,8 +148,8 @@ else
                             if (e <= tgt[g] && mc < bestc) { bestc = mc; best = ms[i]; be = e }
                         }
                         if (best != "") {
-                            if (bestc < 1e29) printf " `%s` (%s; %.0f ns, %.2fx LEADR) |", best, fmt(be), bestc, cx[best]
-                            else printf " `%s` (%s; cost not timed) |", best, fmt(be)
+                            if (bestc < 1e29) printf " `%s` (%s; %.0f ns, %.2fx LEADR%s) |", best, fmt(be), bestc, cx[best], gpu(best)
+                            else printf " `%s` (%s; cost not timed%s) |", best, fmt(be), gpu(best)
                         } else if (acc != "") printf " none (best: `%s`, %s) |", acc, fmt(acce)
                         else printf " - |"
                     }
@@ -159,17 +164,20 @@ fi
 # abs err of bench/pf_bench.h's CSV) meets it, else the most accurate one. SKIP_BASELINE=1 when
 # the family's baseline is not a candidate (one PCF tap is not a filtered shadow test).
 cheapest() {
-    echo "| target | cheapest method that meets it |"
-    echo "|---|---|"
+    echo "| target | cheapest method that meets it | GPU cost (SPIR-V ops) |"
+    echo "|---|---|--:|"
     for t in 0.10 0.03 0.01 0.001; do
-        awk -F, -v t="$t" -v f="$2" -v c="$3" -v label="$4" -v skipbase="$5" '
+        awk -F, -v t="$t" -v f="$2" -v c="$3" -v label="$4" -v skipbase="$5" -v gpuf="$out/gpu_methods.csv" '
+            BEGIN { while ((getline line < gpuf) > 0) { split(line, g, ","); gops[g[1]] = g[2] } }
             NR > 1 && $1 == f && $3 == "float" && $c != "" && !(skipbase && $2 == $6) {
                 if ($c + 0 <= t + 0 && (best == "" || $4 + 0 < bc)) { best = $2; bc = $4 + 0; bx = $5; be = $c }
                 if (acc == "" || $c + 0 < ae) { acc = $2; ae = $c + 0 }
                 base = $6 }
             END {
-                if (best != "") printf "| %g%% | `%s` (%s %s; %.1f ns, %.2fx `%s`) |\n", 100 * t, best, label, be, bc, bx, base
-                else printf "| %g%% | none (best: `%s`, %s) |\n", 100 * t, acc, ae }' "$1"
+                m = (best != "") ? best : acc
+                go = (m in gops) ? gops[m] : "-"
+                if (best != "") printf "| %g%% | `%s` (%s %s; %.1f ns, %.2fx `%s`) | %s |\n", 100 * t, best, label, be, bc, bx, base, go
+                else printf "| %g%% | none (best: `%s`, %s) | %s |\n", 100 * t, acc, ae, go }' "$1"
     done
 }
 

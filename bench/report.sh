@@ -5,6 +5,7 @@
 #   microsurface.md (+ csv, svg)                       bench/microsurface.c (ground truth)
 #   pictures.md (+ png)                                bench/pictures.c
 #   stability.md (+ csv)                               bench/stability.c
+#   gpu_cost.md (+ csv, svg)                           bench/gpu/cost.sh (GPU instruction counts)
 #   choosing.md                                        bench/choosing.sh (the method guide)
 # A missing fragment is reported as missing in the report (never silently dropped).
 # Images are referenced by bare file name: they sit beside report.md.
@@ -123,6 +124,7 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     fragment microsurface.md "Ground truth on synthetic microsurfaces"
     fragment pictures.md "Pictures"
     fragment stability.md "Stability"
+    fragment gpu_cost.md "GPU cost"
     fragment choosing.md "Choosing a method"
     echo
     echo "## Appendix: every family, float and double"

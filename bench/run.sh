@@ -110,6 +110,10 @@ else
     sh bench/stability.sh "$(dirname "$dir")"
 fi
 echo "bench: stability done ($(($(date +%s) - t0)) s)"
+# GPU cost: SPIR-V (and PTX where nvcc exists) instruction counts of every public function and
+# of the textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
+echo "bench: GPU cost ..."
+sh bench/gpu/cost.sh "$out"
 
 # ---------------------------------------------------------------- charts
 charts=""
