@@ -1,0 +1,625 @@
+/* test_horizon.c - pf_horizon.h against independent oracles: a long double brute-force march
+   of the horizon (own bilinear sampler), a fine march of the continuous bilinear surface,
+   per-footprint means of oracle moments (the pyramid), eq. 26 by counting texels, Legendre
+   coefficients by quadrature of explicit polynomials, the bivariate-Gaussian masking term by
+   quadrature; the bidirectional limits; bad input with guarded buffers. */
+#define _DEFAULT_SOURCE
+#include "pf_horizon.h"
+#include "pf_test.h"
+
+#define TPI 3.14159265358979323846264338327950288L
+
+/* ---------------------------------------------------------------- oracle helpers */
+static long double ora_node(const pf_real *hm, int w, int h, long long ix, long long iy, int wrap)
+{
+    if (wrap) {
+        ix = ((ix % w) + w) % w;
+        iy = ((iy % h) + h) % h;
+    } else {
+        if (ix < 0) ix = 0;
+        if (ix > w - 1) ix = w - 1;
+        if (iy < 0) iy = 0;
+        if (iy > h - 1) iy = h - 1;
+    }
+    return (long double)hm[iy * w + ix];
+}
+
+static long double ora_bilinear(const pf_real *hm, int w, int h, long double px, long double py, int wrap)
+{
+    long double fx = floorl(px), fy = floorl(py), u = px - fx, v = py - fy;
+    long long ix = (long long)fx, iy = (long long)fy;
+    return (1.0L - v) * ((1.0L - u) * ora_node(hm, w, h, ix, iy, wrap) + u * ora_node(hm, w, h, ix + 1, iy, wrap)) +
+           v * ((1.0L - u) * ora_node(hm, w, h, ix, iy + 1, wrap) + u * ora_node(hm, w, h, ix + 1, iy + 1, wrap));
+}
+
+/* horizon elevation of node (i, j) toward azimuth phi: samples every `step` texels up to dmax */
+static long double ora_horizon(const pf_real *hm, int w, int h, int i, int j, long double phi, long double spacing,
+                               long double step, long double dmax, int wrap)
+{
+    long double h0 = (long double)hm[(long long)j * w + i], best = -1e300L, d;
+    long double c = cosl(phi), s = sinl(phi);
+    if (fabsl(c) < 1e-15L) c = 0.0L;
+    if (fabsl(s) < 1e-15L) s = 0.0L;
+    for (d = step; d <= dmax + 1e-9L; d += step) {
+        long double t = (ora_bilinear(hm, w, h, i + d * c, j + d * s, wrap) - h0) / (d * spacing);
+        if (t > best) best = t;
+    }
+    return atanl(best);
+}
+
+/* a smooth random-ish height map: a few waves (periodic when wrap) plus a bump */
+static void make_map(pf_real *hm, int w, int h, unsigned seed)
+{
+    pf_test_rng r;
+    int i, j, k;
+    double a[6], fx[6], fy[6], ph[6];
+    r.state = seed;
+    for (k = 0; k < 6; ++k) {
+        a[k] = pf_test_uniform(&r, 0.3, 1.5);
+        fx[k] = (double)(int)pf_test_uniform(&r, 0, 4);
+        fy[k] = (double)(int)pf_test_uniform(&r, 0, 4);
+        ph[k] = pf_test_uniform(&r, 0, 6.283);
+    }
+    for (j = 0; j < h; ++j)
+        for (i = 0; i < w; ++i) {
+            double v = 0.0;
+            for (k = 0; k < 6; ++k) v += a[k] * sin(6.283185307179586 * (fx[k] * i / w + fy[k] * j / h) + ph[k]);
+            v += 0.3 * pf_test_uniform(&r, -1, 1);
+            hm[j * w + i] = (pf_real)v;
+        }
+}
+
+#ifdef PF_DOUBLE
+#  define ANG_TOL 1e-12L
+#else
+#  define ANG_TOL 2e-5L
+#endif
+
+/* ---------------------------------------------------------------- horizon angles */
+static void test_horizon_angles_vs_brute_march(void)
+{
+    enum { W = 37, H = 29 };
+    static pf_real hm[W * H], out[W * H * 16];
+    int ns[3] = { 4, 8, 16 }, b, q, i, j, a;
+    long double worst = 0.0L;
+    make_map(hm, W, H, 11u);
+    for (b = 0; b < 2; ++b)
+        for (q = 0; q < 3; ++q) {
+            int n = ns[q], rc = pf_horizon_map(hm, W, H, PF_R(0.7), n, 20, b ? PF_BORDER_WRAP : PF_BORDER_CLAMP,
+                                               PF_HORIZON_ANGLES, 0, out);
+            PF_CHECK(rc == PF_OK, "rc %d", rc);
+            for (j = 0; j < H; ++j)
+                for (i = 0; i < W; ++i)
+                    for (a = 0; a < n; ++a) {
+                        long double ref = ora_horizon(hm, W, H, i, j, 2.0L * TPI * a / n, 0.7L, 1.0L, 20.0L, b);
+                        long double err = fabsl((long double)out[(j * W + i) * n + a] - ref);
+                        if (err > worst) worst = err;
+                    }
+        }
+    pf_test_note("max |angle error| %.3Lg rad (n = 4, 8, 16; wrap and clamp)", worst);
+    PF_CHECK(worst <= ANG_TOL, "max error %Lg", worst);
+}
+
+/* Along the axes the sampled horizon is the exact horizon of the bilinear surface (the
+   tangent (h(d) - h0)/d is monotonic between nodes); off the axes it can only be lower. */
+static void test_horizon_angles_vs_continuous_surface(void)
+{
+    enum { W = 24, H = 24 };
+    static pf_real hm[W * H], out[W * H * 8];
+    int i, j, a;
+    long double worst_axis = 0.0L, worst_above = 0.0L, mean_diag = 0.0L;
+    long cnt = 0;
+    make_map(hm, W, H, 5u);
+    PF_CHECK(pf_horizon_map(hm, W, H, PF_R(1.0), 8, 12, PF_BORDER_WRAP, PF_HORIZON_ANGLES, 0, out) == PF_OK, "rc");
+    for (j = 0; j < H; ++j)
+        for (i = 0; i < W; ++i)
+            for (a = 0; a < 8; ++a) {
+                long double fine = ora_horizon(hm, W, H, i, j, 2.0L * TPI * a / 8, 1.0L, 1.0L / 64.0L, 12.0L, 1);
+                long double got = (long double)out[(j * W + i) * 8 + a];
+                if (a % 2 == 0) {
+                    if (fabsl(got - fine) > worst_axis) worst_axis = fabsl(got - fine);
+                } else {
+                    if (got - fine > worst_above) worst_above = got - fine;
+                    mean_diag += fine - got;
+                    ++cnt;
+                }
+            }
+    pf_test_note("axes: max |error| %.3Lg rad against a 1/64-texel march; diagonals: mean deficit %.3Lg rad",
+                 worst_axis, mean_diag / cnt);
+    PF_CHECK(worst_axis <= ANG_TOL, "axis error %Lg", worst_axis);
+    PF_CHECK(worst_above <= ANG_TOL, "diagonal sample above the continuous horizon by %Lg", worst_above);
+}
+
+/* The pyramid's texels are the footprint means of the oracle's (T, T^2, S T). */
+static void test_horizon_pyramid_is_footprint_mean(void)
+{
+    enum { W = 32, N = 4 };
+    static pf_real hm[W * W], pyr[(W * W * 4 / 3 + 8) * 3 * N];
+    static long double T[W * W * N], S[W * W * N];
+    int i, j, a, lvl;
+    long double worst = 0.0L;
+    make_map(hm, W, W, 23u);
+    PF_CHECK((long long)(sizeof pyr / sizeof pyr[0]) >= pf_mip_texel_count(W, W) * 3 * N, "buffer");
+    PF_CHECK(pf_horizon_pyramid(hm, W, W, PF_R(0.5), N, 16, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, pyr) == PF_OK, "rc");
+    for (j = 0; j < W; ++j)
+        for (i = 0; i < W; ++i) {
+            long double sx = (ora_node(hm, W, W, i + 1, j, 1) - ora_node(hm, W, W, i - 1, j, 1)) / (2.0L * 0.5L);
+            long double sy = (ora_node(hm, W, W, i, j + 1, 1) - ora_node(hm, W, W, i, j - 1, 1)) / (2.0L * 0.5L);
+            for (a = 0; a < N; ++a) {
+                long double phi = 2.0L * TPI * a / N;
+                T[(j * W + i) * N + a] = ora_horizon(hm, W, W, i, j, phi, 0.5L, 1.0L, 16.0L, 1);
+                S[(j * W + i) * N + a] = sx * (a == 1 || a == 3 ? 0.0L : cosl(phi)) + sy * (a == 0 || a == 2 ? 0.0L : sinl(phi));
+            }
+        }
+    for (lvl = 0; lvl <= 5; ++lvl) {
+        int side = W >> lvl, f = 1 << lvl, x, y;
+        const pf_real *base = pyr + pf_mip_level_offset(W, W, lvl) * 3 * N;
+        for (y = 0; y < side; ++y)
+            for (x = 0; x < side; ++x)
+                for (a = 0; a < N; ++a) {
+                    long double m[3] = { 0, 0, 0 };
+                    int c;
+                    for (j = y * f; j < (y + 1) * f; ++j)
+                        for (i = x * f; i < (x + 1) * f; ++i) {
+                            long double t = T[(j * W + i) * N + a];
+                            m[0] += t;
+                            m[1] += t * t;
+                            m[2] += S[(j * W + i) * N + a] * t;
+                        }
+                    for (c = 0; c < 3; ++c) {
+                        long double err = fabsl((long double)base[(y * side + x) * 3 * N + 3 * a + c] - m[c] / (f * f));
+                        if (err > worst) worst = err;
+                    }
+                }
+    }
+    pf_test_note("max |moment error| over all levels %.3Lg", worst);
+    PF_CHECK(worst <= 40.0L * ANG_TOL, "max error %Lg", worst);
+}
+
+/* ---------------------------------------------------------------- eq. 26 by counting */
+static long double inv_phi(long double p)
+{
+    long double lo = -12.0L, hi = 12.0L;
+    int it;
+    for (it = 0; it < 200; ++it) {
+        long double mid = 0.5L * (lo + hi);
+        if (0.5L * erfcl(-mid / sqrtl(2.0L)) < p) lo = mid;
+        else hi = mid;
+    }
+    return 0.5L * (lo + hi);
+}
+
+/* A footprint whose horizon angles are the quantiles of a Gaussian: eq. 26 counted over its
+   texels is the Gaussian CDF to 1/N, and pf_horizon_visibility_gauss from the texels' moments
+   must match the count. The ramp's model error is measured (and bounded) too. */
+static void test_horizon_eq26_gauss_counting(void)
+{
+    enum { N = 4000 };
+    static long double th[N];
+    long double m1 = 0.0L, m2 = 0.0L, worst = 0.0L, worst_ramp = 0.0L;
+    int t, k;
+    for (t = 0; t < N; ++t) {
+        th[t] = 0.25L + 0.2L * inv_phi((t + 0.5L) / N);
+        m1 += th[t];
+        m2 += th[t] * th[t];
+    }
+    m1 /= N;
+    m2 /= N;
+    for (k = -40; k <= 40; ++k) {
+        long double e = 0.25L + 0.02L * k, count = 0.0L;
+        pf_hdf_moments m = pf_hdf_moments_make((pf_real)m1, (pf_real)m2, PF_R(0.0));
+        for (t = 0; t < N; ++t) count += th[t] < e;
+        count /= N;
+        if (fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - count) > worst)
+            worst = fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - count);
+        if (fabsl((long double)pf_horizon_visibility_ramp(m, (pf_real)e) - count) > worst_ramp)
+            worst_ramp = fabsl((long double)pf_horizon_visibility_ramp(m, (pf_real)e) - count);
+    }
+    pf_test_note("Gaussian HDF vs counted: max |dV| %.2Lg; Fournier ramp (model error) %.3Lg", worst, worst_ramp);
+    PF_CHECK(worst <= 1.5e-3L, "gauss vs counting %Lg", worst);
+    /* the ramp reaches 1 at mu + sigma where Phi(1) = 0.8413: 1 - Phi(1) = 0.1587 */
+    PF_CHECK(worst_ramp > 0.15L && worst_ramp < 0.17L, "ramp model error %Lg", worst_ramp);
+}
+
+/* explicit Legendre polynomials P_0..P_8 (coefficients of x^0..x^8, times the denominators) */
+static long double ora_legendre(int j, long double x)
+{
+    static const long double c[9][10] = {
+        { 1, 1 },
+        { 1, 0, 1 },
+        { 2, -1, 0, 3 },
+        { 2, 0, -3, 0, 5 },
+        { 8, 3, 0, -30, 0, 35 },
+        { 8, 0, 15, 0, -70, 0, 63 },
+        { 16, -5, 0, 105, 0, -315, 0, 231 },
+        { 16, 0, -35, 0, 315, 0, -693, 0, 429 },
+        { 128, 35, 0, -1260, 0, 6930, 0, -12012, 0, 6435 },
+    };
+    long double s = 0.0L, p = 1.0L;
+    int k;
+    for (k = 0; k <= j; ++k, p *= x) s += c[j][k + 1] * p;
+    return s / c[j][0];
+}
+
+static void test_horizon_legendre_vs_quadrature(void)
+{
+    long double worst_c = 0.0L, worst_b = 0.0L;
+    int j, is, ix;
+    for (j = 0; j < 8; ++j) {
+        long double nrm = sqrtl(j + 0.5L);
+        for (is = -20; is <= 20; ++is) {
+            long double s = is / 20.0L, q = 0.0L, h = (1.0L - s) / 20000.0L;
+            int k;
+            for (k = 0; k <= 20000; ++k) {
+                long double wgt = (k == 0 || k == 20000) ? 1.0L : ((k & 1) ? 4.0L : 2.0L);
+                q += wgt * nrm * ora_legendre(j, s + k * h);
+            }
+            q *= h / 3.0L;
+            if (fabsl((long double)pf_horizon_legendre_coeff(j, (pf_real)s) - q) > worst_c)
+                worst_c = fabsl((long double)pf_horizon_legendre_coeff(j, (pf_real)s) - q);
+        }
+        for (ix = -20; ix <= 20; ++ix) {
+            long double x = ix / 20.0L;
+            long double err = fabsl((long double)pf_horizon_legendre_basis(j, (pf_real)x) - nrm * ora_legendre(j, x));
+            if (err > worst_b) worst_b = err;
+        }
+    }
+    pf_test_note("a_j(s) vs Simpson quadrature: max %.2Lg; P^_j vs explicit polynomials: max %.2Lg", worst_c, worst_b);
+    PF_CHECK(worst_c <= 40.0L * PF_TEST_EPS + 1e-14L, "coeff %Lg", worst_c);
+    PF_CHECK(worst_b <= 40.0L * PF_TEST_EPS, "basis %Lg", worst_b);
+}
+
+/* Eq. 30 on a real map: the Legendre pyramid's footprint coefficients give the mean of the
+   texels' truncated steps (linearity), which converges to eq. 26 counted over the texels as k
+   grows. */
+static void test_horizon_eq26_legendre_counting(void)
+{
+    enum { W = 32, N = 4, K = 8 };
+    static pf_real hm[W * W], pyr[(W * W * 4 / 3 + 8) * K * N], ang[W * W * N];
+    int a, ix, k, t;
+    long double worst_lin = 0.0L, l2[K + 1];
+    make_map(hm, W, W, 7u);
+    PF_CHECK(pf_horizon_pyramid(hm, W, W, PF_R(1.0), N, 16, PF_BORDER_WRAP, PF_HORIZON_LEGENDRE, K, pyr) == PF_OK, "rc");
+    PF_CHECK(pf_horizon_map(hm, W, W, PF_R(1.0), N, 16, PF_BORDER_WRAP, PF_HORIZON_ANGLES, 0, ang) == PF_OK, "rc");
+    for (k = 0; k <= K; ++k) l2[k] = 0.0L;
+    {
+        /* level 3: 4 x 4 texels of 8 x 8 */
+        const pf_real *lv = pyr + pf_mip_level_offset(W, W, 3) * K * N;
+        int fx, fy;
+        for (fy = 0; fy < 4; ++fy)
+            for (fx = 0; fx < 4; ++fx)
+                for (a = 0; a < N; ++a)
+                    for (ix = -50; ix <= 50; ++ix) {
+                        long double x = ix / 50.0L, count = 0.0L, mean_trunc = 0.0L;
+                        const pf_real *cf = lv + ((fy * 4 + fx) * N + a) * K;
+                        pf_hdf_legendre c = pf_hdf_legendre_make(cf[0], cf[1], cf[2], cf[3], cf[4], cf[5], cf[6], cf[7]);
+                        for (t = 0; t < 64; ++t) {
+                            int i = fx * 8 + t % 8, j = fy * 8 + t / 8, q;
+                            long double st = sinl((long double)ang[(j * W + i) * N + a]), v = 0.0L;
+                            count += st < x;
+                            for (q = 0; q < K; ++q) {
+                                long double nq = sqrtl(q + 0.5L), aq;
+                                /* a_q by its closed form, with the explicit polynomials */
+                                if (q == 0) aq = (1.0L - st) * nq;
+                                else aq = nq * (ora_legendre(q - 1, st) - ora_legendre(q + 1, st)) / (2 * q + 1);
+                                v += aq * nq * ora_legendre(q, x);
+                            }
+                            mean_trunc += v;
+                        }
+                        count /= 64.0L;
+                        mean_trunc /= 64.0L;
+                        if (mean_trunc >= 0.0L && mean_trunc <= 1.0L &&
+                            fabsl((long double)pf_horizon_visibility_legendre(c, K, (pf_real)x) - mean_trunc) > worst_lin)
+                            worst_lin = fabsl((long double)pf_horizon_visibility_legendre(c, K, (pf_real)x) - mean_trunc);
+                        for (k = 1; k <= K; ++k) {
+                            long double d = (long double)pf_horizon_visibility_legendre(c, k, (pf_real)x) - count;
+                            l2[k] += d * d;
+                        }
+                    }
+    }
+    for (k = 1; k <= K; ++k) l2[k] = sqrtl(l2[k] / (16.0L * N * 101.0L));
+    pf_test_note("eq. 30 from filtered coefficients = mean of truncated steps to %.2Lg; RMS vs counted eq. 26: "
+                 "k=2 %.3Lg, k=4 %.3Lg, k=8 %.3Lg", worst_lin, l2[2], l2[4], l2[8]);
+    PF_CHECK(worst_lin <= 1e-4L, "linearity %Lg", worst_lin);
+    PF_CHECK(l2[8] < l2[4] && l2[4] < l2[2] && l2[8] < 0.12L, "no convergence: %Lg %Lg %Lg", l2[2], l2[4], l2[8]);
+}
+
+/* ---------------------------------------------------------------- evaluators */
+static void test_horizon_visibility_formulas(void)
+{
+    pf_test_rng r;
+    long double worst_g = 0.0L, worst_r = 0.0L;
+    int it;
+    r.state = 99u;
+    for (it = 0; it < 20000; ++it) {
+        long double mu = (long double)pf_test_uniform(&r, -0.5, 1.2), sd = (long double)pf_test_uniform(&r, 0.005, 0.6);
+        long double e = mu + sd * (long double)pf_test_uniform(&r, -6, 6);
+        pf_hdf_moments m = pf_hdf_moments_make((pf_real)mu, (pf_real)(mu * mu + sd * sd), PF_R(0.0));
+        /* the moments as the float build stores them */
+        long double smu = (long double)m.m1, ssd = sqrtl((long double)m.m2 - smu * smu);
+        long double g = 0.5L * erfcl((smu - (long double)(pf_real)e) / (ssd * sqrtl(2.0L)));
+        long double rp = ((long double)(pf_real)e - smu + ssd) / (2.0L * ssd);
+        rp = rp < 0.0L ? 0.0L : (rp > 1.0L ? 1.0L : rp);
+        if (fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - g) > worst_g)
+            worst_g = fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - g);
+        if (fabsl((long double)pf_horizon_visibility_ramp(m, (pf_real)e) - rp) > worst_r)
+            worst_r = fabsl((long double)pf_horizon_visibility_ramp(m, (pf_real)e) - rp);
+    }
+    pf_test_note("gauss vs erfcl: max abs %.2Lg; ramp vs its formula: %.2Lg", worst_g, worst_r);
+    /* E[T^2] - E[T]^2 cancels: float keeps ~1e-7 of m2 absolute, so sigma's error can reach a
+       few 1e-5 relative for small sigma over large mu */
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_g <= 1e-9L && worst_r <= 1e-9L, "%Lg %Lg", worst_g, worst_r);
+#else
+    PF_CHECK(worst_g <= 5e-4L && worst_r <= 5e-4L, "%Lg %Lg", worst_g, worst_r);
+#endif
+    /* steps and NaN */
+    PF_CHECK(pf_horizon_visibility_gauss(pf_hdf_moments_make(PF_R(0.5), PF_R(0.25), PF_R(0.0)), PF_R(0.5)) == PF_R(1.0), "step at mu");
+    PF_CHECK(pf_horizon_visibility_gauss(pf_hdf_moments_make(PF_R(0.5), PF_R(0.25), PF_R(0.0)), PF_R(0.49)) == PF_R(0.0), "step below");
+    PF_CHECK(pf_horizon_visibility_ramp(pf_hdf_moments_make(PF_R(0.3), PF_R(0.08), PF_R(0.0)), PF_R(0.29)) == PF_R(0.0), "neg var");
+    PF_CHECK(pf_horizon_visibility_gauss(pf_hdf_moments_make(PF_R(NAN), PF_R(0.0), PF_R(0.0)), PF_R(0.3)) == PF_R(0.0), "nan");
+}
+
+/* eq. 23's limits: at the hotspot (l = v) and when fully lit (V(l) = 1) every visible texel is
+   lit; when everything is visible (V(v) = 1) the answer is V(l). And eq. 28 against its
+   formula in long double; the hotspot measured on a real horizon map by counting. */
+static void test_horizon_bidir_limits(void)
+{
+    pf_test_rng r;
+    int it, bad = 0;
+    long double worst = 0.0L;
+    r.state = 5u;
+    for (it = 0; it < 5000; ++it) {
+        pf_real v = (pf_real)pf_test_uniform(&r, 0.01, 1.0), l = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+        pf_real c = (pf_real)pf_test_uniform(&r, -1.0, 1.0), wd = (pf_real)pf_test_uniform(&r, 0.05, 1.0);
+        long double al = 0.5L * (1.0L + (long double)c), mn = (long double)(l < v ? l : v), mx = (long double)l + (long double)v - 1.0L, ref;
+        if (mx < 0.0L) mx = 0.0L;
+        ref = (al * mn + (1.0L - al) * mx) / (long double)v;
+        if (ref > 1.0L) ref = 1.0L;
+        if (fabsl((long double)pf_horizon_bidir_tan(l, v, c) - ref) > worst) worst = fabsl((long double)pf_horizon_bidir_tan(l, v, c) - ref);
+        bad += fabs((double)pf_horizon_bidir_tan(v, v, PF_R(1.0)) - 1.0) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_ashikhmin(v, v, PF_R(1.0), wd) - 1.0) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_tan(PF_R(1.0), v, c) - 1.0) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_ashikhmin(PF_R(1.0), v, c, wd) - 1.0) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_tan(l, PF_R(1.0), c) - (double)l) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_ashikhmin(l, PF_R(1.0), c, wd) - (double)l) > 1e-6;
+        bad += fabs((double)pf_horizon_bidir_product(l, v) - (double)l) > 1e-6;
+        /* between the min (uncorrelated worst) and max fractions */
+        bad += (double)pf_horizon_bidir_tan(l, v, c) < (double)(mx / (long double)v) - 1e-6 ||
+               (double)pf_horizon_bidir_tan(l, v, c) > (double)(mn / (long double)v) + 1e-6;
+    }
+    PF_CHECK(bad == 0, "%d limit violations", bad);
+    PF_CHECK(worst <= 1e-5L, "eq. 28 vs formula %Lg", worst);
+    /* Fournier's product misses the hotspot */
+    PF_CHECK(pf_horizon_bidir_product(PF_R(0.5), PF_R(0.5)) == PF_R(0.5), "product");
+    /* counted on a horizon map: l = v gives exactly 1 (eq. 23) */
+    {
+        enum { W = 32 };
+        static pf_real hm[W * W], ang[W * W * 4];
+        int t, vis = 0, both = 0;
+        make_map(hm, W, W, 3u);
+        pf_horizon_map(hm, W, W, PF_R(1.0), 4, 16, PF_BORDER_WRAP, PF_HORIZON_ANGLES, 0, ang);
+        for (t = 0; t < W * W; ++t) {
+            int vv = ang[t * 4] < PF_R(0.3), vl = ang[t * 4] < PF_R(0.3);
+            vis += vv;
+            both += vv && vl;
+        }
+        PF_CHECK(vis > 0 && both == vis, "counted hotspot %d/%d", both, vis);
+        pf_test_note("eq. 28 vs long double: %.2Lg; counted hotspot %d/%d", worst, both, vis);
+    }
+}
+
+/* pf_horizon_visible_area against the bivariate-Gaussian expectation by quadrature over T. */
+static void test_horizon_visible_area_quadrature(void)
+{
+    long double worst = 0.0L;
+    int it, jt, kt;
+    for (it = 0; it <= 12; ++it)
+        for (jt = 0; jt <= 6; ++jt)
+            for (kt = 0; kt < 3; ++kt) {
+                long double tz = 0.1L * it, rho = -0.6L + 0.25L * jt, sdt = 0.05L + 0.12L * kt;
+                long double mt = 0.3L, ms = 0.1L, ss = 0.4L, phi = 0.7L;
+                long double wx = sinl(tz) * cosl(phi), wy = sinl(tz) * sinl(phi), wz = cosl(tz);
+                /* the mean slope along the view azimuth is ms: (mx, my) = ms (cos phi, sin phi) */
+                long double mx = ms * cosl(phi), my = ms * sinl(phi), e = atan2l(wz, sinl(tz));
+                long double sum = 0.0L, h, lo = mt - 12.0L * sdt, hi = e < mt + 12.0L * sdt ? e : mt + 12.0L * sdt, ref;
+                int i, n = 4000;
+                pf_real got;
+                pf_hdf_moments m = pf_hdf_moments_make((pf_real)mt, (pf_real)(mt * mt + sdt * sdt), (pf_real)(rho * ss * sdt + mt * ms));
+                got = pf_horizon_visible_area(pf_vec3_make((pf_real)wx, (pf_real)wy, (pf_real)wz), m, (pf_real)mx, (pf_real)my);
+                if (hi > lo) {
+                    h = (hi - lo) / n;
+                    for (i = 0; i <= n; ++i) {
+                        long double T = lo + h * i, z = (T - mt) / sdt;
+                        long double pdf = expl(-0.5L * z * z) / (sdt * sqrtl(2.0L * TPI));
+                        long double wgt = (i == 0 || i == n) ? 1.0L : ((i & 1) ? 4.0L : 2.0L);
+                        sum += wgt * pdf * (wz - sinl(tz) * (ms + rho * ss * z));
+                    }
+                    sum *= h / 3.0L;
+                }
+                ref = sum / (wz - sinl(tz) * ms);
+                if (ref > 2.0L) ref = 2.0L;
+                if (fabsl((long double)got - ref) > worst) worst = fabsl((long double)got - ref);
+            }
+    pf_test_note("visible area vs bivariate quadrature: max abs %.2Lg", worst);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-9L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-5L, "%Lg", worst);
+#endif
+    /* a flat map: horizon 0 everywhere, so every view above the plane sees everything */
+    {
+        enum { W = 8 };
+        static pf_real hm[W * W], pyr[(W * W * 4 / 3 + 4) * 24];
+        pf_real t[24];
+        pf_vec3 wo = pf_vec3_make(PF_R(0.8), PF_R(0.1), PF_R(0.3));
+        pf_horizon_azimuth az = pf_horizon_azimuth_of(wo, 8);
+        pf_hdf_moments m;
+        int c;
+        PF_CHECK(pf_horizon_pyramid(hm, W, W, PF_R(1.0), 8, 4, PF_BORDER_CLAMP, PF_HORIZON_MOMENTS, 0, pyr) == PF_OK, "rc");
+        for (c = 0; c < 24; ++c) t[c] = pyr[c];
+        m = pf_hdf_moments_lerp(pf_hdf_moments_make(t[3 * az.i0], t[3 * az.i0 + 1], t[3 * az.i0 + 2]),
+                                pf_hdf_moments_make(t[3 * az.i1], t[3 * az.i1 + 1], t[3 * az.i1 + 2]), az.f);
+        PF_CHECK(pf_horizon_visible_area(pf_vec3_normalize(wo), m, PF_R(0.0), PF_R(0.0)) == PF_R(1.0), "flat");
+        PF_CHECK(pf_horizon_masking(pf_vec3_normalize(wo), m, pf_slope_stats_make(0, 0, 0, 0, 0)) == PF_R(1.0), "flat masking");
+    }
+}
+
+static void test_horizon_azimuth_of(void)
+{
+    int n, i, bad = 0;
+    for (n = 1; n <= 16; n *= 2)
+        for (i = 0; i < n; ++i) {
+            long double f = 0.3L, phi = 2.0L * TPI * (i + f) / n;
+            pf_horizon_azimuth a = pf_horizon_azimuth_of(pf_vec3_make((pf_real)cosl(phi), (pf_real)sinl(phi), PF_R(0.5)), n);
+            bad += a.i0 != i || a.i1 != (i + 1) % n || fabsl((long double)a.f - f) > 1e-4L;
+        }
+    PF_CHECK(bad == 0, "%d wrong", bad);
+    PF_CHECK(pf_horizon_azimuth_of(pf_vec3_make(0, 0, 1), 8).i0 == 0, "zenith");
+    PF_CHECK(pf_horizon_azimuth_of(pf_vec3_make((pf_real)NAN, 0, 1), 8).i0 == 0, "nan");
+}
+
+
+/* The Legendre struct: the getter returns each member (0 outside 0 .. 7), lerp mixes them. */
+static void test_horizon_legendre_struct(void)
+{
+    pf_hdf_legendre a = pf_hdf_legendre_make(1, 2, 3, 4, 5, 6, 7, 8), b = pf_hdf_legendre_make(8, 7, 6, 5, 4, 3, 2, 1);
+    pf_hdf_legendre m = pf_hdf_legendre_lerp(a, b, PF_R(0.25));
+    int j, bad = 0;
+    for (j = 0; j < 8; ++j) {
+        bad += pf_hdf_legendre_coeff(a, j) != PF_R(j + 1);
+        bad += fabs((double)pf_hdf_legendre_coeff(m, j) - (0.75 * (j + 1) + 0.25 * (8 - j))) > 1e-6;
+    }
+    bad += pf_hdf_legendre_coeff(a, -1) != PF_R(0.0) || pf_hdf_legendre_coeff(a, 8) != PF_R(0.0);
+    PF_CHECK(bad == 0, "%d wrong", bad);
+}
+
+/* ---------------------------------------------------------------- bad input */
+static void test_horizon_bad_input_writes_nothing(void)
+{
+    enum { W = 16, H = 12 };
+    static pf_real hm[W * H], out[W * H * 48];
+    int c, rc, bad = 0;
+    size_t i;
+    make_map(hm, W, H, 1u);
+#define FILL() for (i = 0; i < sizeof out / sizeof out[0]; ++i) out[i] = PF_R(-7.0)
+#define UNTOUCHED() do { for (i = 0; i < sizeof out / sizeof out[0]; ++i) bad += out[i] != PF_R(-7.0); } while (0)
+#define EXPECT(call, code) do { FILL(); rc = (call); PF_CHECK(rc == (code), "%s: rc %d", #call, rc); UNTOUCHED(); } while (0)
+    EXPECT(pf_horizon_map(NULL, W, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, 0, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, 0, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 0, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 0, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(0.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(NAN), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(INFINITY), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, 7, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, 9, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_LEGENDRE, 0, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_LEGENDRE, 9, out), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, NULL), PF_ERR_ARG);
+    EXPECT(pf_horizon_map(hm, (int)PF_MAX_SIDE + 1, H, PF_R(1.0), 4, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_SIZE);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), (int)PF_MAX_SIDE + 1, 8, PF_BORDER_WRAP, PF_HORIZON_ANGLES, 0, out), PF_ERR_SIZE);
+    EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), (int)PF_MAX_SIDE / 2, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_SIZE);
+    EXPECT(pf_horizon_pyramid(hm, W, H, PF_R(1.0), 0, 8, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+    /* NaN or infinite heights anywhere, even the last texel */
+    for (c = 0; c < 3; ++c) {
+        pf_real keep = hm[W * H - 1];
+        hm[W * H - 1] = c == 0 ? PF_R(NAN) : (c == 1 ? PF_R(INFINITY) : -PF_R(INFINITY));
+        EXPECT(pf_horizon_map(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_CLAMP, PF_HORIZON_ANGLES, 0, out), PF_ERR_ARG);
+        EXPECT(pf_horizon_pyramid(hm, W, H, PF_R(1.0), 4, 8, PF_BORDER_CLAMP, PF_HORIZON_MOMENTS, 0, out), PF_ERR_ARG);
+        hm[W * H - 1] = keep;
+    }
+    PF_CHECK(bad == 0, "%d values written on error", bad);
+    PF_CHECK(pf_horizon_channels(PF_HORIZON_MOMENTS, 8, 0) == 24 && pf_horizon_channels(PF_HORIZON_LEGENDRE, 4, 6) == 24 &&
+             pf_horizon_channels(PF_HORIZON_ANGLES, 0, 0) == 0 && pf_horizon_channels(5, 4, 0) == 0, "channels");
+#undef FILL
+#undef UNTOUCHED
+#undef EXPECT
+}
+
+/* Exact-size buffers between guard pages: the builders stay inside them (odd sizes, both borders,
+   every kind). */
+static void test_horizon_guarded_buffers(void)
+{
+    static const int sz[4][2] = { { 1, 1 }, { 1, 7 }, { 5, 3 }, { 13, 9 } };
+    int s, kind, b, ran = 0;
+    for (s = 0; s < 4; ++s)
+        for (kind = 0; kind < 3; ++kind)
+            for (b = 0; b < 2; ++b) {
+                int w = sz[s][0], h = sz[s][1], n = 8, k = kind == PF_HORIZON_LEGENDRE ? 5 : 0;
+                int c = pf_horizon_channels(kind, n, k);
+                size_t hb = (size_t)w * h * sizeof(pf_real), mb = (size_t)w * h * c * sizeof(pf_real);
+                size_t pb = (size_t)pf_mip_texel_count(w, h) * c * sizeof(pf_real);
+                pf_real *hm = (pf_real *)pf_test_guarded_alloc(hb), *m = (pf_real *)pf_test_guarded_alloc(mb);
+                pf_real *p = (pf_real *)pf_test_guarded_alloc(pb);
+                int i;
+                if (!hm || !m || !p) {
+                    pf_test_note("guarded mappings unavailable: skipped");
+                    pf_test_guarded_free(hm, hb);
+                    pf_test_guarded_free(m, mb);
+                    pf_test_guarded_free(p, pb);
+                    return;
+                }
+                for (i = 0; i < w * h; ++i) hm[i] = (pf_real)sin(0.7 * i);
+                PF_CHECK(pf_horizon_map(hm, w, h, PF_R(1.0), n, 40, b, kind, k, m) == PF_OK, "map");
+                PF_CHECK(pf_horizon_pyramid(hm, w, h, PF_R(1.0), n, 40, b, kind, k, p) == PF_OK, "pyramid");
+                for (i = 0; i < w * h * c; ++i) PF_CHECK(pf_test_finite(m[i]) && m[i] == p[i], "texel %d", i);
+                pf_test_guarded_free(hm, hb);
+                pf_test_guarded_free(m, mb);
+                pf_test_guarded_free(p, pb);
+                ++ran;
+            }
+    pf_test_note("%d guarded runs", ran);
+}
+
+/* ---------------------------------------------------------------- edge (also under -ffast-math) */
+static void edge_horizon_evaluators_finite(void)
+{
+    static const pf_real v[] = { PF_R(0), PF_R(1e-30), PF_R(-1e-30), PF_R(0.5), PF_R(-0.5), PF_R(1), PF_R(-1), PF_R(1.5),
+                                 PF_R(-1.5), PF_R(3.2), PF_R(1e10), PF_R(-1e10), PF_R(1e30) };
+    const int nv = (int)(sizeof v / sizeof v[0]);
+    int a, b, c, bad = 0;
+    for (a = 0; a < nv; ++a)
+        for (b = 0; b < nv; ++b)
+            for (c = 0; c < nv; ++c) {
+                pf_hdf_moments m = pf_hdf_moments_make(v[a], v[b], v[c]);
+                pf_vec3 w = pf_vec3_make(v[a], v[b], v[c]);
+                pf_real r[7];
+                int q;
+                pf_hdf_legendre L = pf_hdf_legendre_make(v[a], 0, 0, v[b], 0, 0, 0, 0);
+                r[0] = pf_horizon_visibility_gauss(m, v[c]);
+                r[1] = pf_horizon_visibility_ramp(m, v[c]);
+                r[2] = pf_horizon_visibility_legendre(L, 8, pf_clamp(v[c], PF_R(-1.0), PF_R(1.0)));
+                r[3] = pf_horizon_bidir_tan(v[a], v[b], v[c]);
+                r[4] = pf_horizon_bidir_ashikhmin(v[a], v[b], v[c], PF_R(0.3));
+                r[5] = pf_horizon_visible_area(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), v[c]), v[a], v[b]);
+                r[6] = pf_horizon_masking(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), PF_R(0.01)),
+                                          pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)));
+                for (q = 0; q < 7; ++q) bad += !pf_test_bits_finite(r[q]) || r[q] < PF_R(0.0) || r[q] > PF_R(2.0);
+                bad += !pf_test_bits_finite(pf_horizon_legendre_coeff(a % 8, pf_clamp(v[b], PF_R(-1.0), PF_R(1.0))));
+                bad += !pf_test_bits_finite(pf_horizon_elevation(w));
+                bad += pf_horizon_azimuth_of(w, 16).i0 < 0 || pf_horizon_azimuth_of(w, 16).i0 > 15;
+            }
+    PF_CHECK(bad == 0, "%d non-finite or out-of-range results", bad);
+}
+
+int main(int argc, char **argv)
+{
+    PF_TEST_BEGIN(argc, argv);
+    PF_TEST_RUN(test_horizon_angles_vs_brute_march);
+    PF_TEST_RUN(test_horizon_angles_vs_continuous_surface);
+    PF_TEST_RUN(test_horizon_pyramid_is_footprint_mean);
+    PF_TEST_RUN(test_horizon_eq26_gauss_counting);
+    PF_TEST_RUN(test_horizon_legendre_vs_quadrature);
+    PF_TEST_RUN(test_horizon_eq26_legendre_counting);
+    PF_TEST_RUN(test_horizon_visibility_formulas);
+    PF_TEST_RUN(test_horizon_bidir_limits);
+    PF_TEST_RUN(test_horizon_visible_area_quadrature);
+    PF_TEST_RUN(test_horizon_azimuth_of);
+    PF_TEST_RUN(test_horizon_legendre_struct);
+    PF_TEST_RUN(test_horizon_bad_input_writes_nothing);
+    PF_TEST_RUN(test_horizon_guarded_buffers);
+    PF_TEST_RUN(edge_horizon_evaluators_finite);
+    return PF_TEST_END();
+}
