@@ -13,7 +13,11 @@
                                 n = 2/m^2 - 2 (pf_beckmann_to_blinn_phong).
      pf_leadr_specular          LEADR eq. 17, joint masking-shadowing (eq. 13), Fresnel on.
      pf_leadr_specular_masking  the same with masking only (LEADR sec. 6).
-   LEAN and Blinn-Phong are different models, not approximations of eq. 17 to a stated
+     textbook_lean_walter_specular  the specular term as usually shipped (issue 17): LEAN lobe
+                                of the unit half vector x Walter's rational G1 for both
+                                directions x Schlick / (4 cos_o), no guards; the CPU side of
+                                the GPU comparison in docs/beckmann.md.
+   LEAN, Blinn-Phong and the textbook row are different models, not approximations of eq. 17 to a stated
    accuracy: they get no accuracy columns (their distance to LEADR is a modelling question,
    answered on real surfaces by the report, not here).
 
@@ -59,10 +63,38 @@ static pf_real blinn_phong(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real n)
     return (n + PF_R(2.0)) * (PF_R(0.125) * PF_INV_PI) * PF_POW(c, n);
 }
 
+/* The specular term as usually shipped (issue 17's comparison row): the LEAN lobe of the unit
+   half vector, Walter et al. 2007's rational G1 for both directions (separable), Schlick, over
+   4 cos_o; no guards (it assumes both directions above the surface, as the table's are). */
+static pf_real tb_walter_g1(pf_vec3 w, pf_slope_stats s)
+{
+    pf_real var = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
+    pf_real nu = (w.z - w.x * s.mean_x - w.y * s.mean_y) / PF_SQRT(PF_R(2.0) * var);
+    return nu < PF_R(1.6) ? nu * (PF_R(3.535) + PF_R(2.181) * nu) / (PF_R(1.0) + nu * (PF_R(2.276) + PF_R(2.577) * nu))
+                          : PF_R(1.0);
+}
+
+static pf_real tb_lean_walter(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0)
+{
+    pf_vec3 h = pf_vec3_add(wo, wi);
+    pf_real il = PF_R(1.0) / PF_SQRT(pf_vec3_dot(h, h));
+    pf_real hx = h.x * il, hy = h.y * il, hz = h.z * il, iz = PF_R(1.0) / hz;
+    pf_real x = -hx * iz - s.mean_x, y = -hy * iz - s.mean_y;
+    pf_real det = s.var_x * s.var_y - s.cov_xy * s.cov_xy;
+    pf_real e = (s.var_y * x * x - PF_R(2.0) * s.cov_xy * x * y + s.var_x * y * y) / det;
+    pf_real z2 = hz * hz;
+    pf_real d = PF_EXP(PF_R(-0.5) * e) / (PF_R(2.0) * PF_PI * PF_SQRT(det) * z2 * z2);
+    pf_real c = hx * wi.x + hy * wi.y + hz * wi.z;
+    pf_real t = PF_R(1.0) - (c < PF_R(0.0) ? PF_R(0.0) : (c > PF_R(1.0) ? PF_R(1.0) : c));
+    pf_real f = f0 + (PF_R(1.0) - f0) * (t * t) * (t * t) * t;
+    return d * tb_walter_g1(wo, s) * tb_walter_g1(wi, s) * f / (PF_R(4.0) * wo.z);
+}
+
 #define IDX(x) ((int)(x))
 PFB_METHOD(lean, lean_lobe(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)]))
 PFB_METHOD(blinn, blinn_phong(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)], tab_n[IDX(x)]))
 PFB_METHOD(leadr_joint, pf_leadr_specular(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)], F0_BENCH))
+PFB_METHOD(tb_lean_walter, tb_lean_walter(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)], F0_BENCH))
 PFB_METHOD(leadr_masking, pf_leadr_specular_masking(tab_wo[IDX(x)], tab_wi[IDX(x)], tab_s[IDX(x)], F0_BENCH))
 
 /* ---------------------------------------------------------------- reference */
@@ -201,13 +233,15 @@ static const pfb_family families[] = {
       "the hemisphere, half mirrored about a micro-normal of the distribution\n"
       "grid: all 16384 table entries\n"
       "reference: long double eq. 17 written from the paper (explicit covariance inverse, "
-      "Lambda by erfcl and a continued fraction, trigonometric nu); LEAN and Blinn-Phong are "
-      "other models: cost only",
-      gen_index, grid_index, 4,
+      "Lambda by erfcl and a continued fraction, trigonometric nu); LEAN, Blinn-Phong and the "
+      "textbook LEAN x Walter G1(o) G1(i) x Schlick / (4 cos_o) (issue 17's comparison row, no "
+      "guards) are other models: cost only",
+      gen_index, grid_index, 5,
       { PFB_ENTRY("lean_lobe", lean, NULL, 0),
         PFB_ENTRY("blinn_phong_mesonormal", blinn, NULL, 0),
         PFB_ENTRY("pf_leadr_specular", leadr_joint, ref_joint, 0),
-        PFB_ENTRY("pf_leadr_specular_masking", leadr_masking, ref_masking, 0) } },
+        PFB_ENTRY("pf_leadr_specular_masking", leadr_masking, ref_masking, 0),
+        PFB_ENTRY("textbook_lean_walter_specular", tb_lean_walter, NULL, 0) } },
 };
 
 int main(int argc, char **argv)

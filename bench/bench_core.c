@@ -1,13 +1,19 @@
 /* bench_core.c - cost and accuracy of pf_core.h: pf_erfc and pf_erf against libm.
 
    Families
-     erfc   pf_erfc vs libm erfcf (float build) / erfc (double build), the baseline.
+     erfc   pf_erfc and its shader tier pf_erfc_fast vs libm erfcf (float build) / erfc
+            (double build), the baseline; Abramowitz & Stegun 7.1.26 (the shader formula the
+            fast tier replaces; bench/gpu/textbook.h) alongside.
      erf    pf_erf  vs libm erff / erf, the baseline.
    Reference: glibc erfcl / erfl in long double (64-bit significand). Errors in ulps of pf_real.
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 
+#include "gpu/textbook.h" /* Abramowitz & Stegun 7.1.26, the shader baseline (issue 17) */
+
 PFB_METHOD(pf_erfc, pf_erfc(x))
+PFB_METHOD(pf_erfc_fast, pf_erfc_fast(x))
+PFB_METHOD(as_7_1_26, pf_textbook_erfc_as(x))
 PFB_METHOD(libm_erfc, PFB_LIBM_ERFC(x))
 PFB_METHOD(pf_erf, pf_erf(x))
 PFB_METHOD(libm_erf, PFB_LIBM_ERF(x))
@@ -89,12 +95,14 @@ static size_t grid_erfc(pf_real *a, pf_real *b, pf_real *c) { return grid_fill(a
 static size_t grid_erf(pf_real *a, pf_real *b, pf_real *c) { return grid_fill(a, b, c, -6.0, 6.0); }
 
 static const pfb_family families[] = {
-    { "erfc", 1, { "x", NULL }, 1,
+    { "erfc", 1, { "x", NULL }, 3,
       "timing inputs: x, 3/4 uniform on [-3, 10], 1/4 log-uniform |x| in [1e-6, 1] with random sign (seeded)\n"
       ERFC_GRID_NOTE "\n"
       "reference: glibc erfcl (long double); ulps of pf_real; relative error only where erfc(x) is a normal pf_real",
-      gen_erfc, grid_erfc, 2,
+      gen_erfc, grid_erfc, 4,
       { PFB_ENTRY("pf_erfc", pf_erfc, ref_erfc, 1),
+        PFB_ENTRY("pf_erfc_fast", pf_erfc_fast, ref_erfc, 1),
+        PFB_ENTRY("as_7_1_26", as_7_1_26, ref_erfc, 1),
         PFB_ENTRY("libm_erfc" PFB_LIBM_SUFFIX, libm_erfc, ref_erfc, 1) } },
     { "erf", 1, { "x", NULL }, 1,
       "timing inputs: x, 3/4 uniform on [-4, 4], 1/4 log-uniform |x| in [1e-6, 1] with random sign (seeded)\n"

@@ -32,8 +32,9 @@ echo "error against the brute-force reference pooled over every sample of the re
 echo "positions, views, lights): sqrt(sum (f - ref)^2 / sum ref^2); see"
 echo "[the ground truth on your map](#ground-truth-on-your-map). The first three regimes use the"
 echo "in-footprint reference (occluders inside the pixel footprint only: what a filtered model can"
-echo "represent); the last uses the full reference (every occluder of the height field: what a renderer"
-echo "without the resolved geometry would show). When no method meets a target the cell says *none*"
+echo "represent); the last two use the full reference (every occluder of the height field: what a renderer"
+echo "without the resolved geometry would show; at 1-16 texels most occlusion comes from outside the"
+echo "footprint, which only the horizon-map methods see). When no method meets a target the cell says *none*"
 echo "and names the most accurate method with its error: on this surface the target needs more than a"
 echo "filtered formula (the actual geometry, more samples, or a different model)."
 else
@@ -47,7 +48,9 @@ echo "lights): sqrt(sum (f - ref)^2 / sum ref^2); see"
 echo "[ground truth](#ground-truth-on-synthetic-microsurfaces) for the corpus. The first five"
 echo "regimes use the in-footprint reference (occluders inside the pixel footprint only: what a"
 echo "filtered model can represent; shadows cast from outside the footprint are the resolved"
-echo "geometry's job); the last uses the full reference (every occluder of the height field)."
+echo "geometry's job); the last two use the full reference (every occluder of the height field; at"
+echo "1-16 texels most occlusion comes from outside the footprint, which only the horizon-map"
+echo "methods see). Below each task's table, every shader method with its error in each regime."
 echo "When no method meets a target the cell says *none* and names the most accurate method with"
 echo "its error: the honest answer, and where a scene needs more than a filtered formula (the"
 echo "actual geometry, more samples, or a different model). For your own surface, \`make bench MAP=...\`"
@@ -76,19 +79,21 @@ else
                 if (!(c[1] in cfp) || c[2] + 0 >= cfp[c[1]]) { cfp[c[1]] = c[2] + 0; cns[c[1]] = c[3] + 0; cx[c[1]] = c[8] + 0 }
             }
             if (mode == "map") {
-                nreg = 4
+                nreg = 5
                 rname[1] = "your map, 256-4096 texels, views 0-60 deg"
                 rname[2] = "your map, 256-4096 texels, views 0-85 deg"
                 rname[3] = "your map, 1-16 texels, views 0-60 deg"
                 rname[4] = "your map, 256-4096 texels, views 0-60 deg, full reference"
+                rname[5] = "your map, 1-16 texels, views 0-75 deg, full reference"
             } else {
-                nreg = 6
+                nreg = 7
                 rname[1] = "fine Gaussian (36-145 features per footprint), 1024-4096 texels, views 0-60 deg"
                 rname[2] = "Gaussian, 256-4096 texels, views 0-85 deg"
                 rname[3] = "Gaussian, 1-16 texels, views 0-60 deg"
                 rname[4] = "peaked (slope kurtosis ~5, like photographed textures), 256-4096 texels, views 0-60 deg"
                 rname[5] = "non-Gaussian (peaked, ridges, craters, tiles), 256-4096 texels, views 0-60 deg"
                 rname[6] = "Gaussian, 256-4096 texels, views 0-60 deg, full reference"
+                rname[7] = "every kind, 1-16 texels, views 0-75 deg, full reference"
             }
             ntgt = 4; tgt[1] = 0.10; tgt[2] = 0.03; tgt[3] = 0.01; tgt[4] = 0.001
         }
@@ -110,6 +115,7 @@ else
                     if (r == 2) inr = local && fp >= 256
                     if (r == 3) inr = local && fp <= 16 && view <= 60
                     if (r == 4) inr = !local && fp >= 256 && view <= 60
+                    if (r == 5) inr = !local && fp <= 16 && view <= 75
                 } else {
                     if (r == 1) inr = local && kind == "gaussian_fine" && fp >= 1024 && view <= 60
                     if (r == 2) inr = local && gauss && fp >= 256
@@ -117,6 +123,7 @@ else
                     if (r == 4) inr = local && kind == "peaked" && fp >= 256 && view <= 60
                     if (r == 5) inr = local && !gauss && fp >= 256 && view <= 60
                     if (r == 6) inr = !local && gauss && fp >= 256 && view <= 60
+                    if (r == 7) inr = !local && fp <= 16 && view <= 75
                 }
                 if (!inr) continue
                 k = task SUBSEP meth SUBSEP r
@@ -154,6 +161,20 @@ else
                         else printf " - |"
                     }
                     printf "\n"
+                }
+                # every candidate of the task: its error in each regime and its cost
+                printf "\nEvery shader method of the task (relative L2 error per regime, same columns; cost as above):\n\n| method |"
+                for (r = 1; r <= nreg; r++) printf " %s |", rname[r]
+                printf " ns | x LEADR |\n|---|"
+                for (r = 1; r <= nreg; r++) printf "--:|"
+                printf "--:|--:|\n"
+                for (i = 1; i <= n; i++) {
+                    printf "| `%s` |", ms[i]
+                    for (r = 1; r <= nreg; r++) {
+                        k = task SUBSEP ms[i] SUBSEP r
+                        if (k in ssr && ssr[k] > 0) printf " %s |", fmt(sqrt(sse[k] / ssr[k])); else printf " - |"
+                    }
+                    if (ms[i] in cns) printf " %.0f | %.2f |\n", cns[ms[i]], cx[ms[i]]; else printf " - | - |\n"
                 }
             }
         }' "$err"

@@ -44,6 +44,13 @@
                Smith's G1 = 1/(1 + Lambda_o)). smith_g1_exact = pf_beckmann_g1 on the
                footprint's slope stats, smith_g1_fast = pf_g1_beckmann_fast(pf_smith_nu),
                smith_g1_walter = pf_g1_beckmann_walter(pf_smith_nu), no_masking = 1.
+               horizon_masking_n16, horizon_masking_n32 = pf_horizon_masking (pf_horizon.h:
+               Smith's G1 times the visible projected area of the footprint's horizon
+               distribution) from an HDF-moment pyramid of n = 16 resp. 32 azimuths built per
+               kind by pf_horizon_pyramid (march HOR_STEPS texels, periodic; build time per kind
+               on stderr), the two stored azimuths around wo's fetched (6 channels) and mixed
+               by pf_hdf_moments_lerp; they see occluders outside the footprint, so the full
+               reference is theirs (docs/horizon.md: n = 32 meets 0.05 at 16 texels).
      specular  reference: narrow Beckmann base lobe (deviation BASE_SIGMA) per texel, Smith
                G2 of that lobe, V_o V_i by marching, f0 = 1. leadr_joint = pf_leadr_specular,
                leadr_masking = pf_leadr_specular_masking (base variance BASE_SIGMA^2 added by
@@ -52,11 +59,21 @@
                Cook-Torrance lobe (height-correlated Smith G2) around the normalized average
                normal with roughness pf_toksvig_beckmann_m(sqrt(2) BASE_SIGMA, Toksvig
                variance), times max(0, n.wi) (the engine form), naive_mip_normal = the same
-               lobe with the base roughness only.
+               lobe with the base roughness only. vmf_m1, vmf_m2, vmf_m4, vmf_m8 = the multi-lobe
+               BRDF of pf_vmf.h (Wu et al. 2019 eqs. 4-5): m vMF lobes per texel of a lobe
+               pyramid fitted by EM from the finest normals of each texel's footprint
+               (pf_vmf_pyramid_from_normals, VMF_ITER iterations at most; the fit time per kind
+               is printed on stderr), fetched as m RGBA texels, each lobe's Beckmann lobe in
+               slope space with BASE_SIGMA^2 added, Smith G of the mixture's slope mean and
+               covariance (pf_vmf_sum_specular); vmf_m4_mix_smith, vmf_m8_mix_smith = the same
+               with the mixture's exact Smith Lambda (pf_vmf_sum_specular_mixture).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
-               lambert_macro = max(0, wi.z)/pi.
+               lambert_macro = max(0, wi.z)/pi. leadr_gg_matched3_horizon_n32 = leadr_gg_matched3
+               times pf_horizon_visible_area toward wo (as pf_horizon_masking multiplies Smith)
+               and toward wi (capped at 1), n = 32: our combination, not a formula of the
+               module or the papers (docs/horizon.md lists horizon diffuse as not done).
      oracles   (specular and diffuse; they read every texel, so they are not shader methods)
                oracle_histogram_no_vis = the reference with every texel visible (the exact
                slope histogram, no masking/shadowing), oracle_histogram_smith = that times the
@@ -110,6 +127,8 @@
 #include "pf_toksvig.h"
 #include "pf_gaussgrid.h"
 #include "pf_height.h"
+#include "pf_vmf.h"
+#include "pf_horizon.h"
 #include "pf_microsurface.h"
 #include "pf_maps.h"
 
@@ -118,7 +137,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define NMETH 7
+#define NMETH 13
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
@@ -141,7 +160,7 @@ static pfmap_stats map_stats;
 static const char *map_path = NULL;
 static const char *kname(int kind) { return kind == KIND_MAP ? "map" : pfm_kind_name(kind); }
 /* methods that read every texel (not shader methods: no cost row, not candidates) */
-static int is_oracle(int t, int k) { return (t == 1 || t == 2) && k >= 5; }
+static int is_oracle(int t, int k) { return (t == 1 || t == 2) && (k == 5 || k == 6); }
 
 static const double view_deg[NVIEW] = { 0, 15, 30, 45, 60, 70, 75, 80, 85 };
 static const char *task_name[NTASK] = { "masking", "specular", "diffuse", "colour_ramp", "colour_bands" };
@@ -149,15 +168,16 @@ static const char *task_title[NTASK] = { "Masking G1", "Specular (narrow Beckman
                                          "Diffuse (Lambertian base)",
                                          "Height-correlated colour, ramp map",
                                          "Height-correlated colour, banded map" };
-static const int task_nmeth[NTASK] = { 4, 7, 7, 4, 4 };
+static const int task_nmeth[NTASK] = { 6, 13, 8, 4, 4 };
 static const char *meth_name[NTASK][NMETH] = {
-    { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", NULL, NULL, NULL },
+    { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", "horizon_masking_n16", "horizon_masking_n32",
+      NULL, NULL, NULL, NULL, NULL, NULL, NULL },
     { "leadr_joint", "leadr_masking", "lean", "toksvig", "naive_mip_normal", "oracle_histogram_smith",
-      "oracle_histogram_no_vis" },
+      "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith" },
     { "leadr_gg_matched3", "leadr_gg_matched5", "leadr_gg_hermite3", "lambert_mesonormal", "lambert_macro",
-      "oracle_histogram_smith", "oracle_histogram_no_vis" },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL },
+      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", NULL, NULL, NULL, NULL, NULL },
+    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
+    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
 };
 
 /* ---------------------------------------------------------------- settings */
@@ -268,12 +288,30 @@ static pf_real cmap_filter(const cmap *m, pf_real mean, pf_real dev)
 }
 
 /* ---------------------------------------------------------------- the library's view of a map */
+/* the multi-lobe specular methods (pf_vmf.h): m lobes per texel, fitted by EM from the finest
+   normals of each texel's footprint, VMF_ITER iterations at most */
+#define NVMF 4
+#define VMF_ITER 24
+#define K_VMF 7 /* first vmf_m* method of the specular task; then vmf_m4_mix_smith, vmf_m8_mix_smith */
+#define NVMF_METH (NVMF + 2)
+static const int vmf_lobes[NVMF] = { 1, 2, 4, 8 };
+/* the horizon-map masking methods (pf_horizon.h): HDF moment pyramids (E[T], E[T^2], E[S T]
+   per azimuth) with hor_n[i] stored azimuths, march bounded to HOR_STEPS texels (docs/horizon.md:
+   64 and 128 give the same errors to +-0.001 at n = 16) */
+#define NHOR 2
+#define HOR_STEPS 64
+#define K_HOR 4 /* first horizon method of the masking task */
+static const int hor_n[NHOR] = { 16, 32 };
 typedef struct lib_maps {
     int w, h;
     pf_real *slope;  /* 5-moment pyramid */
     pf_real *normal; /* average-normal pyramid */
     pf_real *height; /* (E[h], E[h^2]) pyramid, h centered */
     pf_real *attr[2];/* (E[a], E[a^2]) pyramids of the two colour attributes */
+    pf_real *vmf[NVMF]; /* vMF lobe pyramids (pf_vmf.h), vmf_lobes[i] lobes per texel */
+    double vmf_fit_seconds[NVMF];
+    pf_real *hor[NHOR]; /* horizon HDF-moment pyramids (pf_horizon.h), hor_n[i] azimuths */
+    double hor_seconds[NHOR];
     double *attr_d[2]; /* per-texel attributes in double (the reference's) */
     cmap cm[2];
     double mean_h, sd_h;
@@ -304,6 +342,30 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
         nr[3 * t + 1] = m.y;
         nr[3 * t + 2] = m.z;
     }
+    for (k = 0; k < NVMF; ++k) {
+        double t0 = now_ns();
+        L->vmf[k] = (pf_real *)xmalloc((size_t)tc * 4 * (size_t)vmf_lobes[k] * sizeof(pf_real));
+        if (pf_vmf_pyramid_from_normals(nr, NULL, w, h, vmf_lobes[k], VMF_ITER, L->vmf[k]) != PF_OK) {
+            fprintf(stderr, "microsurface: pf_vmf_pyramid_from_normals failed\n");
+            exit(1);
+        }
+        L->vmf_fit_seconds[k] = (now_ns() - t0) * 1e-9;
+    }
+    fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8: %.2f %.2f %.2f %.2f s\n", w, h,
+            L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3]);
+    for (k = 0; k < NHOR; ++k) {
+        double t0 = now_ns();
+        int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
+        L->hor[k] = (pf_real *)xmalloc((size_t)tc * (size_t)C * sizeof(pf_real));
+        if (pf_horizon_pyramid(hr, w, h, PF_R(s->texel), hor_n[k], HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0,
+                               L->hor[k]) != PF_OK) {
+            fprintf(stderr, "microsurface: pf_horizon_pyramid failed\n");
+            exit(1);
+        }
+        L->hor_seconds[k] = (now_ns() - t0) * 1e-9;
+    }
+    fprintf(stderr, "microsurface: horizon pyramids %d x %d, n = %d, %d (march %d texels): %.2f %.2f s\n", w, h,
+            hor_n[0], hor_n[1], HOR_STEPS, L->hor_seconds[0], L->hor_seconds[1]);
     L->normal = (pf_real *)xmalloc((size_t)tc * 3 * sizeof(pf_real));
     pf_normal_pyramid_from_normals(nr, w, h, L->normal);
     L->height = (pf_real *)xmalloc((size_t)tc * 2 * sizeof(pf_real));
@@ -326,6 +388,7 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
 
 static void lib_maps_free(lib_maps *L)
 {
+    int k;
     free(L->slope);
     free(L->normal);
     free(L->height);
@@ -333,6 +396,8 @@ static void lib_maps_free(lib_maps *L)
     free(L->attr[1]);
     free(L->attr_d[0]);
     free(L->attr_d[1]);
+    for (k = 0; k < NVMF; ++k) free(L->vmf[k]);
+    for (k = 0; k < NHOR; ++k) free(L->hor[k]);
 }
 
 /* ---------------------------------------------------------------- the compared methods */
@@ -380,6 +445,22 @@ static pf_real colour_visible(const cmap *cm, pf_scalar_moments hm, pf_real lo, 
                                              pf_scalar_moments_deviation(hm), PF_R(0.0), PF_R(0.0));
     return cmap_filter(cm, d.mean, d.dev);
 }
+/* The HDF moments toward w from horizon pyramid i at texel (x0/n, y0/n) of level log2(n): the
+   two stored azimuths around w's (6 channels fetched), mixed by pf_hdf_moments_lerp */
+static pf_hdf_moments horizon_hdf(const lib_maps *L, int i, int x0, int y0, int n, pf_vec3 w)
+{
+    const int W = L->w, H = L->h, nh = hor_n[i], C = 3 * nh;
+    const pf_real *tx = L->hor[i] + (pf_mip_level_offset(W, H, ilog2(n)) + (long long)(y0 / n) * (W / n) + x0 / n) * C;
+    pf_horizon_azimuth az = pf_horizon_azimuth_of(w, nh);
+    pf_hdf_moments h0 = pf_hdf_moments_make(tx[3 * az.i0], tx[3 * az.i0 + 1], tx[3 * az.i0 + 2]);
+    pf_hdf_moments h1 = pf_hdf_moments_make(tx[3 * az.i1], tx[3 * az.i1 + 1], tx[3 * az.i1 + 2]);
+    return pf_hdf_moments_lerp(h0, h1, az.f);
+}
+static pf_real horizon_area(const lib_maps *L, int i, int x0, int y0, int n, pf_vec3 w, pf_slope_stats s0)
+{
+    return pf_horizon_visible_area(w, horizon_hdf(L, i, x0, y0, n, w), s0.mean_x, s0.mean_y);
+}
+
 /* ---------------------------------------------------------------- one method = fetch + evaluation
    What a shader does for a footprint: fetch one texel of level log2(n) of the pyramids the
    method needs (a bilinear sample at its centre reads exactly that texel), then evaluate.
@@ -399,10 +480,25 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
         s0 = pf_slope_moments_stats(m, PF_R(0.0));
         if (k == 0) return pf_beckmann_g1(wo, s0);
+        if (k >= K_HOR) return pf_horizon_masking(wo, horizon_hdf(L, k - K_HOR, x0, y0, n, wo), s0);
         nu = pf_smith_nu(wo, s0);
         return k == 1 ? pf_g1_beckmann_fast(nu) : pf_g1_beckmann_walter(nu);
     }
     if (t == T_SPEC) {
+        if (k >= K_VMF) { /* the lobes of texel (x0/n, y0/n) of level log2(n): m RGBA fetches */
+            const int p = k - K_VMF < NVMF ? k - K_VMF : k - K_VMF - NVMF + 2, mix = k - K_VMF >= NVMF;
+            const int m = vmf_lobes[p];
+            long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(n)) + (long long)(y0 / n) * (W / n) + x0 / n;
+            const pf_real *tx = L->vmf[p] + id * 4 * m;
+            pf_vmf_sum sum = pf_vmf_sum_zero();
+            int j;
+            for (j = 0; j < m; ++j) { /* padding lobes (amp 0) add nothing */
+                pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
+                sum = pf_vmf_sum_add(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+                if (mix) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+            }
+            return mix ? pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0)) : pf_vmf_sum_specular(sum, wo, wi, PF_R(F0));
+        }
         if (k == 3 || k == 4) /* Toksvig, naive: the average-normal pyramid */
             return toksvig_spec(pf_normal_avg_sample(L->normal, W, H, lod, u, v, PF_BORDER_WRAP), wo, wi, k == 3);
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
@@ -416,6 +512,10 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
         s0 = pf_slope_moments_stats(m, PF_R(0.0));
         if (k == 3) return pf_max(pf_vec3_dot(pf_beckmann_mesonormal(s0), wi), PF_R(0.0)) * PF_INV_PI;
+        if (k == 7) /* ours, not from the module: LEADR's grid times the horizon's visible-area
+                       ratios toward the view (as in pf_horizon_masking) and the light (capped at 1) */
+            return pf_gg_diffuse_directional(pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3), wi) *
+                   horizon_area(L, 1, x0, y0, n, wo, s0) * pf_saturate(horizon_area(L, 1, x0, y0, n, wi, s0));
         return pf_gg_diffuse_directional(
             pf_gg_grid_make(wo, s0, k == 2 ? PF_GG_HERMITE : PF_GG_MATCHED, k == 1 ? 5 : 3), wi);
     }
@@ -662,9 +762,10 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
                         }
                         g2 = (double)pf_beckmann_masking_shadowing(wo, wi, s0);
                         if (first) {
-                            for (k = 0; k < 4; ++k) fm[k] = (double)eval_method(&L, T_MASK, k, x0, y0, n, wo, wi);
+                            for (k = 0; k < task_nmeth[T_MASK]; ++k)
+                                fm[k] = (double)eval_method(&L, T_MASK, k, x0, y0, n, wo, wi);
                             for (r = 0; r < NREF; ++r) refs[r] = sh[r].masking;
-                            cell_add(&cells[T_MASK][si][vi], refs, fm, 4);
+                            cell_add(&cells[T_MASK][si][vi], refs, fm, task_nmeth[T_MASK]);
                             if (vi == 4) {
                                 for (r = 0; r < NREF; ++r) ci->mask_sum[r] += sh[r].masking;
                                 ci->mask_n++;
@@ -678,13 +779,15 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
                         for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_SPEC, k, x0, y0, n, wo, wi);
                         fm[5] = sh[2].spec * g2;
                         fm[6] = sh[2].spec;
+                        for (k = K_VMF; k < K_VMF + NVMF_METH; ++k) fm[k] = (double)eval_method(&L, T_SPEC, k, x0, y0, n, wo, wi);
                         for (r = 0; r < NREF; ++r) refs[r] = sh[r].spec;
-                        cell_add(&cells[T_SPEC][si][vi], refs, fm, 7);
+                        cell_add(&cells[T_SPEC][si][vi], refs, fm, K_VMF + NVMF_METH);
                         for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
                         fm[5] = sh[2].diffuse * g2;
                         fm[6] = sh[2].diffuse;
+                        fm[7] = (double)eval_method(&L, T_DIFF, 7, x0, y0, n, wo, wi);
                         for (r = 0; r < NREF; ++r) refs[r] = sh[r].diffuse;
-                        cell_add(&cells[T_DIFF][si][vi], refs, fm, 7);
+                        cell_add(&cells[T_DIFF][si][vi], refs, fm, 8);
                         if (sh[0].joint > 1e-9) {
                             int c;
                             for (c = 0; c < 2; ++c) {
@@ -907,6 +1010,30 @@ static double pooled(int kind, int r, int t, int k, int s_lo, int s_hi, int v_lo
     return r2 > 0 ? sqrt(d2 / r2) : -1.0;
 }
 
+/* the same over every kind of the run */
+static int run_kinds[NKIND + 1], n_run_kinds = 0;
+static double pooled_all(int r, int t, int k, int s_lo, int s_hi, int v_lo, int v_hi)
+{
+    double d2 = 0, r2 = 0;
+    int s, v, ko;
+    for (ko = 0; ko < n_run_kinds; ++ko)
+        for (s = s_lo; s <= s_hi; ++s)
+            for (v = v_lo; v <= v_hi; ++v) {
+                const stat *st = &stats[run_kinds[ko]][r][t][k][s][v];
+                if (!st->valid) continue;
+                d2 += st->sum_d2;
+                r2 += st->sum_r2;
+            }
+    return r2 > 0 ? sqrt(d2 / r2) : -1.0;
+}
+
+/* error-against-cost regimes: (footprint sizes, reference, footprint size of the cost) */
+#define NEC 2
+static const int ec_lo[NEC] = { 0, 4 }, ec_hi[NEC] = { 2, NSIZE - 1 }, ec_ref[NEC] = { R_FULL, R_BOX };
+static const char *ec_name[NEC] = { "small", "large" };
+static const char *ec_title[NEC] = { "footprints of 1-16 texels, full reference, cost at 16 texels",
+                                     "footprints of 256-4096 texels, in-footprint reference, cost at 4096 texels" };
+
 static void fmt_err(char *buf, size_t n, double e) /* buf: at least 16 bytes */
 {
     if (e < 0) snprintf(buf, n, "-");
@@ -924,8 +1051,8 @@ static const char *fmt_pair(char *buf, size_t n, int kind, int t, int k, int s_l
     return buf;
 }
 
-/* the kinds of this run, in display order: the corpus, or the user's map alone */
-static int run_kinds[NKIND + 1], n_run_kinds = 0;
+/* the kinds of this run, in display order (run_kinds, n_run_kinds above): the corpus, or the
+   user's map alone */
 
 static void write_errors_csv(const settings *S)
 {
@@ -1090,7 +1217,8 @@ static void make_charts(const settings *S)
     {
         static const char *shown[] = { "brute_force_march_and_shade", "brute_force_box_march_and_shade",
                                        "brute_force_shade_only", "brute_force_float_shade", "leadr_joint", "toksvig",
-                                       "leadr_gg_matched3", "smith_g1_exact", "height_visible" };
+                                       "leadr_gg_matched3", "smith_g1_exact", "height_visible", "horizon_masking_n32",
+                                       "vmf_m4", "vmf_m8" };
         int ns = (int)(sizeof shown / sizeof shown[0]), i;
         for (s = 0; s < NSIZE; ++s) {
             x[s] = (double)(1 << (2 * s));
@@ -1104,6 +1232,36 @@ static void make_charts(const settings *S)
         chart(S, "microsurface_cost", map_path ? "Cost per footprint: brute force vs filtered (your map, view 60 deg)"
                                                : "Cost per footprint: brute force vs filtered (gaussian kind, view 60 deg)",
               "footprint (texels, log)", "median ns per footprint (log)", 1, ns, 0.0);
+    }
+    /* error against cost: one point per shader method (a column each, one row each), error
+       pooled over every kind of the run and views 0-75 deg, cost from the cost section */
+    for (t = 0; t < NTASK; ++t) {
+        int e, j;
+        if (t == T_RAMP) continue; /* the colour methods are timed with the banded map */
+        for (e = 0; e < NEC; ++e) {
+            int n = 0, cs = e == 0 ? 2 : NSIZE - 1;
+            for (k = 0; k < task_nmeth[t] && n < 16; ++k) {
+                int c = cost_find(meth_name[t][k]);
+                if (is_oracle(t, k) || c < 0) continue;
+                cols[n] = meth_name[t][k];
+                x[n] = cost[c].med[cs] > 0.0 ? cost[c].med[cs] : 1e-3;
+                ++n;
+            }
+            for (k = 0, j = 0; k < task_nmeth[t] && j < n; ++k) {
+                int i;
+                if (is_oracle(t, k) || cost_find(meth_name[t][k]) < 0) continue;
+                for (i = 0; i < n; ++i) y[j * n + i] = -1.0;
+                y[j * n + j] = pooled_all(ec_ref[e], t, k, ec_lo[e], ec_hi[e], 0, POOL_VIEW_HI);
+                ++j;
+            }
+            snprintf(name, sizeof name, "microsurface_errcost_%s_%s", task_name[t], ec_name[e]);
+            snprintf(dat, sizeof dat, "%s.dat", name);
+            write_dat(S, dat, n, cols, n, x, y);
+            snprintf(title, sizeof title, "%s: error against cost, %s (every kind, views 0-75 deg)", task_name[t],
+                     ec_title[e]);
+            chart(S, name, title, "median ns per footprint, fetch included (log)", "relative L2 error (log)", 1, n,
+                  YMIN);
+        }
     }
 }
 
@@ -1198,6 +1356,17 @@ static void write_cost_section(FILE *f, const settings *S)
         fprintf(f, " %.3g |\n", cost[c].med[TOP] / cost[c_leadr].med[TOP]);
     }
     fprintf(f, "\n![cost per footprint](microsurface_cost.svg)\n");
+    fprintf(f, "\nError against cost, every shader method of each task (one point each; relative L2 error "
+               "pooled over %s and views 0-75 degrees): small footprints (1-16 texels) against the full "
+               "reference, where occlusion from outside the footprint dominates (the horizon-map masking "
+               "methods' regime), and large ones (256-4096 texels) against the in-footprint reference.\n\n",
+            map_path ? "your map" : "every kind");
+    for (c = 0; c < NTASK; ++c) {
+        if (c == T_RAMP) continue;
+        for (s = 0; s < NEC; ++s)
+            fprintf(f, "![%s: error against cost, %s](microsurface_errcost_%s_%s.svg)\n", task_name[c], ec_title[s],
+                    task_name[c], ec_name[s]);
+    }
 }
 
 static void write_md(const settings *S, double total_s)
@@ -1281,13 +1450,26 @@ static void write_md(const settings *S, double total_s)
                "of the visible area at grazing views, and errors of that order there are the "
                "reference's, not the method's.\n");
     fprintf(f, "\nMethods: masking: `pf_beckmann_g1` (exact), `pf_g1_beckmann_fast`, `pf_g1_beckmann_walter` "
-               "on the footprint's slope statistics, and no masking (G1 = 1). Specular: `pf_leadr_specular` "
+               "on the footprint's slope statistics, no masking (G1 = 1), and the horizon-map masking of "
+               "`pf_horizon.h` (`horizon_masking_n16`, `horizon_masking_n32`: `pf_horizon_masking`, Smith's G1 "
+               "times the footprint's visible projected area estimated from the filtered horizon "
+               "distribution of the two stored azimuths around the view's, n = 16 or 32 azimuths, HDF moment "
+               "pyramids built per kind by `pf_horizon_pyramid` with a %d-texel march; docs/horizon.md): they "
+               "see the bumps outside the footprint, so their reference is the full one. Specular: `pf_leadr_specular` "
                "(joint masking-shadowing), `pf_leadr_specular_masking`, LEAN (P22 at the half vector's slope, "
                "no masking, Jacobian or projected area), Toksvig (Cook-Torrance Beckmann lobe around the "
                "normalized average normal, roughness widened by `pf_toksvig_beckmann_m`), the naive "
-               "mip-mapped normal (same lobe, base roughness only). Diffuse: `pf_gg_diffuse_directional` "
+               "mip-mapped normal (same lobe, base roughness only), and the multi-lobe BRDF of `pf_vmf.h` "
+               "(Wu et al. 2019 eqs. 4-5; docs/vmf.md): `vmf_m1` .. `vmf_m8` fetch m vMF lobes per texel "
+               "of a lobe pyramid fitted by EM, each lobe a Beckmann lobe in slope space with the base "
+               "roughness added, Smith G of the mixture's slope mean and covariance; "
+               "`vmf_m4_mix_smith`, `vmf_m8_mix_smith` use the mixture's exact Smith Lambda instead. "
+               "Diffuse: `pf_gg_diffuse_directional` "
                "(LEADR eq. 21) with the matched grid N = 3, 5 and Gauss-Hermite N = 3; Lambert on the "
-               "mesonormal; Lambert on the macro normal. Two oracles (not shader methods: they read every "
+               "mesonormal; Lambert on the macro normal; `leadr_gg_matched3_horizon_n32`, the matched grid times "
+               "the horizon map's visible-area ratios (`pf_horizon_visible_area`, n = 32) toward the view and "
+               "toward the light (capped at 1): an ad-hoc combination of ours, measured here, not a formula "
+               "of the module. Two oracles (not shader methods: they read every "
                "texel) split the specular and diffuse errors into their causes: `oracle_histogram_no_vis` "
                "is the reference with every texel visible (the footprint's exact slope histogram, no "
                "masking or shadowing: its error is the visibility alone), `oracle_histogram_smith` is that "
@@ -1298,10 +1480,35 @@ static void write_md(const settings *S, double total_s)
                "`pf_colormap_filter`; normalized, i.e. without the mean-visibility factor of Heitz et al. "
                "2014 eq. 13, because the reference is a normalized mean), the same filter without "
                "visibility (Gaussian heights, Lambda = 0), the mip-mapped colour, and the colour at the "
-               "mean height.\n");
+               "mean height.\n", HOR_STEPS);
     /* ---- key numbers */
     fprintf(f, "\n**Key numbers** (relative L2 error pooled over views 0-75 degrees, *in-footprint / full* "
                "reference; the tables below have the rest):\n\n");
+    {
+        char a[16], b[16], c[16];
+        fprintf(f, "- masking at 16 texels against the **full** reference (occlusion by bumps outside the "
+                   "footprint), `horizon_masking_n32` / `horizon_masking_n16` / `pf_beckmann_g1`:");
+        for (ko = 0; ko < NKIND; ++ko) {
+            kind = kind_order[ko];
+            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_MASK, K_HOR + 1, 2, 2, 0, VH));
+            fmt_err(b, sizeof b, pooled(kind, R_FULL, T_MASK, K_HOR, 2, 2, 0, VH));
+            fmt_err(c, sizeof c, pooled(kind, R_FULL, T_MASK, 0, 2, 2, 0, VH));
+            fprintf(f, "%s %s %s / %s / %s", ko ? ";" : "", pfm_kind_name(kind), a, b, c);
+        }
+        fmt_err(a, sizeof a, pooled_all(R_BOX, T_MASK, K_HOR + 1, TOP, TOP, 0, VH));
+        fmt_err(b, sizeof b, pooled_all(R_BOX, T_MASK, 0, TOP, TOP, 0, VH));
+        fprintf(f, ". At 4096 texels against the in-footprint reference, every kind pooled: `horizon_masking_n32` "
+                   "%s, `pf_beckmann_g1` %s.\n", a, b);
+        fprintf(f, "- diffuse at 16 texels against the **full** reference, `leadr_gg_matched3_horizon_n32` / "
+                   "`leadr_gg_matched3`:");
+        for (ko = 0; ko < NKIND; ++ko) {
+            kind = kind_order[ko];
+            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_DIFF, 7, 2, 2, 0, VH));
+            fmt_err(b, sizeof b, pooled(kind, R_FULL, T_DIFF, 0, 2, 2, 0, VH));
+            fprintf(f, "%s %s %s / %s", ko ? ";" : "", pfm_kind_name(kind), a, b);
+        }
+        fprintf(f, ".\n");
+    }
     fprintf(f, "- `gaussian_fine` (L = %g texels, ~%.0f correlation areas per 4096-texel footprint), 4096 "
                "texels: masking `pf_beckmann_g1` %s (no masking %s); specular `pf_leadr_specular` %s, "
                "Toksvig %s, LEAN %s, naive mip-mapped normal %s, the exact slope histogram with the same "

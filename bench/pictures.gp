@@ -1,21 +1,25 @@
-# bench/pictures.gp - one picture of bench/pictures.c: 3 x 2 panels (reference, LEADR, naive;
-# footprint side, LEADR error, naive error), each with its title and its numbered colour bar,
+# bench/pictures.gp - one picture of bench/pictures.c: ncols x 2 panels (reference, LEADR, vMF
+# m = 8, naive; footprint side, LEADR error, vMF error, naive error; ncols = 3 without the vMF
+# column), each with its title and its numbered colour bar,
 # every image panel drawn 1:1 (one data value per output pixel).
 # Called by pictures.c as  gnuplot DIR/pic_NAME.gpv bench/pictures.gp ; the .gpv file sets:
-#   datf        six float32 planes of w x h (bottom row first), NaN = no surface: radiance of
-#               the reference, LEADR, naive; footprint side (texels); error of LEADR, naive (%)
+#   datf        2 ncols float32 planes of w x h (bottom row first), NaN = no surface: radiance of
+#               the reference and the ncols - 1 methods; footprint side (texels); the methods'
+#               errors (%)
+#   ncols       panels per row (default 3)
 #   outf        the PNG to write;  w, h  panel size in pixels
 #   expo, lmax  display curve (1 - exp(-expo L))^(1/2.2) of the shaded panels; their colour bar
 #               runs from L = 0 to lmax
 #   bg          background colour of the shaded panels ("#rrggbb")
 #   errlo, errhi  error colour scale (%, log);  fplo, fphi  footprint colour scale (texels, log)
-#   ttl, note   figure title and the line under the panels;  t0 .. t5  panel titles
+#   ttl, note   figure title and the line under the panels;  t0 .. t(2 ncols - 1)  panel titles
 set encoding utf8
+if (!exists("ncols")) ncols = 3
 
 # layout in output pixels: a column is the image plus the colour bar, its numbers and label
 pad = 12; gap = 20; cbgap = 8; cbw = 14; cbspace = cbgap + cbw + 62
 figt = 48; tith = 42; noteh = 62
-Wp = 2 * pad + 3 * (w + cbspace) + 2 * gap    # the panels' width
+Wp = 2 * pad + ncols * (w + cbspace) + (ncols - 1) * gap    # the panels' width
 W = Wp > 960 ? Wp : 960                        # at least the note's width
 xo = (W - Wp) / 2                              # panels centred
 H = figt + 2 * (tith + h) + gap + noteh
@@ -56,9 +60,9 @@ do for [i = 1 : 127] {
 }
 greypal = greypal . sprintf(", 1 %.6g %.6g %.6g", vtop, vtop, vtop)
 
-do for [k = 0 : 5] {
-    c = k % 3
-    r = k / 3
+do for [k = 0 : 2 * ncols - 1] {
+    c = k % ncols
+    r = k / ncols
     x0 = xo + pad + c * (w + cbspace + gap)
     y0 = figt + tith + r * (h + tith + gap)
     set lmargin at screen sx(x0)
@@ -69,8 +73,8 @@ do for [k = 0 : 5] {
     set title value(sprintf("t%d", k)) offset 0, -0.4
     # what shows through where the data are NaN (no surface)
     set object 1 rectangle from graph 0, 0 to graph 1, 1 behind fillstyle solid noborder \
-        fillcolor rgb (k < 3 ? bg : "#606060")
-    if (k < 3) {
+        fillcolor rgb (k < ncols ? bg : "#606060")
+    if (k < ncols) {
         eval "set palette defined (" . greypal . ")"
         unset logscale cb
         set cbrange [0 : lmax]
@@ -80,7 +84,7 @@ do for [k = 0 : 5] {
     } else {
         set logscale cb
         set format cb "%g"
-        if (k == 3) {
+        if (k == ncols) {
             # viridis
             set palette defined (0 "#440154", 1 "#3b528b", 2 "#21918c", 3 "#5ec962", 4 "#fde725")
             set cbrange [fplo : fphi]

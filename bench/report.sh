@@ -79,7 +79,7 @@ Environment lighting: Gauss-grid node sets|gaussgrid/specular_env
 Toksvig|toksvig/toksvig_lobe
 Height fits: visible height, height visibility|height/visible_height_mean height/visible_height_dev height/height_visibility
 Colour filtering|height/colormap
-Shadow-map tests|shadow/lookup
+Shadow-map tests|shadow/lookup shadow/vs_textbook_vsm shadow/vs_textbook_vsm_bleed shadow/vs_textbook_evsm2 shadow/vs_textbook_evsm4 shadow/vs_textbook_msm
 Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
 
 {

@@ -30,7 +30,8 @@
      slope (-n.x/n.z, -n.y/n.z) = (dh/dx, dh/dy) for a height field h; the mesonormal is
      (-E[x], -E[y], 1)/norm. pf_leadr_specular returns the reflected radiance for unit light
      radiance, the light's cosine included (a classic BRDF times cos theta_i); directions on or
-     below the macrosurface or the mean plane give 0, never NaN.
+     below the macrosurface, and a light on or below the mean plane, give 0, never NaN; a view
+     below the mean plane but above the macrosurface sees the facets that face it.
 
    CONFIGURATION
      PF_BECKMANN_MIN_VAR   smallest slope variance pf_slope_moments_stats adds (default 1e-6)
@@ -39,7 +40,12 @@
    oracles, bench/bench_beckmann.c the timings)
      D, P22: relative error a few eps times the condition number (1 + q/2)(1 + 1/(1 - r^2) + ...)
      of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
-     LEADR specular costs about 2.5-3.5x a LEAN lobe on a CPU (see the bench).
+     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh; issue 17): pf_beckmann_d 31
+     ops, branch-free (the LEAN lobe as shipped, for a unit half vector and no guards: 27);
+     pf_leadr_specular 108 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
+     with the exact G1 of pf_smith.h, not Walter's 3e-3 rational. Every guard is a floor or a
+     cap applied once, and one select replaces the early returns for directions below the
+     surface. On a CPU the LEADR specular costs about 2.5-3.5x a LEAN lobe (see the bench).
 
    SOURCES
      Dupuy, Heitz, Iehl, Poulin, Neyret, Ostromoukhov 2013, "Linear Efficient Antialiased
@@ -240,30 +246,71 @@ PF_DEF pf_real pf_beckmann_p22(pf_real x, pf_real y, pf_slope_stats s0)
     return pfi_beckmann_gauss(q, det) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det);
 }
 
+/* Lean evaluation of D (issue 17: close to the LEAN lobe's cost, robustness kept). Floors
+   and caps, each applied once:
+   - the variances clamped to [PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL] as in P22 (a
+     determinant floor alone would keep det > 0 but flatten a degenerate axis: q/det along it
+     would lose the other variance's scale);
+   - det = max(var_x var_y - c_xy^2, PFI_BECKMANN_DET_MIN): > 0, so 1/sqrt(det) is finite (at
+     most 1.4e18 in float, 1e148 in double) whatever the covariance (singular or
+     indefinite: read as the narrowest Gaussian the type holds along the bad direction);
+   - the exponent q/det is clamped to [0, PFI_BECKMANN_QDET_CAP]: an indefinite covariance
+     (q < 0) cannot overflow exp, and at the cap exp(-cap/2) is 0 in pf_real, so the cap
+     changes no result; a NaN q (inf - inf in the form, slopes near PF_REAL_MAX) reads as 0
+     (C, CUDA; GLSL: the GPU's clamp, see pf_core.h);
+   - 1/cos^2 = 1 + |slope|^2 is capped at 1e9 (the micro-normal within 0.002 deg of the
+     horizon, where D is already 0 unless the mean slope is near 3e4): its square times the
+     peak stays finite (1e18 x 1.4e18 / (2 pi) in float).
+   1/(2 pi) rides in the exponent (exp(ln(1/(2 pi)) - q/(2 det))): one multiply less. */
+#ifdef PF_DOUBLE
+#  define PFI_BECKMANN_DET_MIN PF_R(8.9e-296)  /* 4 eps (1e-140)^2, as the variance floor gave */
+#  define PFI_BECKMANN_QDET_CAP PF_R(3000.0)   /* exp(-1500) = 0 in double */
+#else
+#  define PFI_BECKMANN_DET_MIN PF_R(4.8e-37)   /* 4 eps (1e-15)^2 */
+#  define PFI_BECKMANN_QDET_CAP PF_R(400.0)    /* exp(-200) = 0 in float */
+#endif
+#define PFI_LN_INV_2PI PF_R(-1.83787706640934548356065947281123527)
+
+/* 1/sqrt(x): GLSL's inversesqrt (one instruction), else 1/PF_SQRT(x). */
+#ifdef PF_GLSL
+PF_DEF pf_real pfi_beckmann_rsqrt(pf_real x) { return inversesqrt(x); }
+#else
+PF_DEF pf_real pfi_beckmann_rsqrt(pf_real x) { return PF_R(1.0) / PF_SQRT(x); }
+#endif
+
+/* D for m.z > 0 (the caller tests it), times exp(ln_scale - ln(2 pi)): see pf_beckmann_d. A
+   constant factor of the caller rides in the exponent for free (ln_scale = 0: D itself). */
+PF_DEF pf_real pfi_beckmann_d_up(pf_vec3 m, pf_slope_stats s, pf_real ln_scale)
+{
+    pf_real iz = PF_R(1.0) / m.z;
+    pf_real sx = m.x * iz, sy = m.y * iz;         /* minus the slope of m */
+    pf_real X = sx + s.mean_x, Y = sy + s.mean_y; /* minus (slope - mean): q is even */
+    pf_real r2 = pf_min(sx * sx + (sy * sy + PF_R(1.0)), PF_R(1.0e9)); /* 1/cos^2; NaN -> cap (C) */
+    /* the variance floor keeps q/det a Gaussian's exponent when a variance is tiny (the
+       determinant floor alone would flatten a degenerate axis); the ceiling keeps
+       var_x var_y finite */
+    pf_real vx = pfi_clamp_nan_lo(s.var_x, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real vy = pfi_clamp_nan_lo(s.var_y, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real det = pf_max(vx * vy - s.cov_xy * s.cov_xy, PFI_BECKMANN_DET_MIN);
+    /* adj(Sigma) quadratic form: var_y X^2 - 2 c X Y + var_x Y^2; c Y first: c near PF_REAL_MAX
+       with Y = 0 gives 0, not (-2 c = -inf) * 0 */
+    pf_real q = X * (vy * X + (s.cov_xy * Y) * PF_R(-2.0)) + vx * Y * Y;
+    pf_real rs = pfi_beckmann_rsqrt(det);
+    pf_real e = pfi_clamp_nan_lo(q * rs * rs, PF_R(0.0), PFI_BECKMANN_QDET_CAP);
+    return PF_EXP(PF_R(-0.5) * e + (PFI_LN_INV_2PI + ln_scale)) * r2 * r2 * rs;
+}
+
 /* Normal distribution function D(w_m) = P22(slope(w_m)) / cos^4 theta_m (Dupuy et al. 2013
    eq. 10), per unit solid angle, normalized so that integral D(w_m) (w_m . w_g) dw_m = 1.
-   w_m need not be unit length: with slope (-m.x/m.z, -m.y/m.z), the quadratic form is written
-   over m.z^2 and 1/cos^4 = (|m|^2/m.z^2)^2, so no square root or normalization is needed.
-   m.z <= 0 (a micro-normal facing down, which a height field cannot have) gives 0. The factor
-   |m|^2/m.z^2 is capped at 1e9 (m within 0.002 deg of the horizon), where the Gaussian factor
-   is already 0 unless the mean slope is near 3e4, so D stays finite. Finite and >= 0 for
-   every finite statistics and every m with m.z^2 finite (m.z below 1.8e19 in float, 1.3e154
-   in double; a longer m gives inf/inf = NaN: normalize it first). */
-PF_DEF pf_real pf_beckmann_d(pf_vec3 m, pf_slope_stats s0)
+   w_m need not be unit length: the slope is (-m.x/m.z, -m.y/m.z) and 1/cos^2 = 1 + |slope|^2.
+   m.z <= 0 (a micro-normal facing down, which a height field cannot have) gives 0. Any
+   finite statistics: see the floors above. Finite and >= 0 for every finite m and
+   statistics. Cost: within 1.1x of the LEAN lobe on a GPU,
+   branch-free (docs/beckmann.md). */
+PF_DEF pf_real pf_beckmann_d(pf_vec3 m, pf_slope_stats s)
 {
-    pf_slope_stats s = pfi_beckmann_floor(s0);
-    pf_real z2, det, X, Y, q, r2;
-    if (!(m.z > PF_R(0.0))) return PF_R(0.0);
-    z2 = m.z * m.z;
-    det = pfi_beckmann_det(s);
-    /* m.z * (slope - mean) */
-    X = -m.x - s.mean_x * m.z;
-    Y = -m.y - s.mean_y * m.z;
-    q = s.var_y * X * X - PF_R(2.0) * s.cov_xy * X * Y + s.var_x * Y * Y;
-    /* exp(-q / (2 det z2)); z2 and det z2 floored so nothing divides by 0 (D is then 0) */
-    r2 = pf_min(m.x * m.x + m.y * m.y + z2, PF_R(1.0e9) * z2) / pf_max(z2, PF_REAL_MIN);
-    return pfi_beckmann_gauss(q, pf_max(det * z2, PF_REAL_MIN)) * r2 * r2 *
-           (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det);
+    pf_real d = pfi_beckmann_d_up(m, s, PF_R(0.0));
+    return m.z > PF_R(0.0) ? d : PF_R(0.0);
 }
 
 /* The mesonormal (Dupuy et al. 2013 eq. 11): the unit normal of the mean plane,
@@ -303,6 +350,29 @@ PF_DEF pf_real pf_beckmann_masking_shadowing(pf_vec3 wo, pf_vec3 wi, pf_slope_st
     return pf_g2_beckmann(pf_smith_nu(wo, s), pf_smith_nu(wi, s));
 }
 
+/* P(w) = E[max(0, w.z - x w.x - y w.y)], the projected area toward w of the facets that face
+   it, per unit macrosurface area: the P_o of pfi_leadr_specular's comment (the positive part
+   of a normal variable of mean A = the eq. 1 area and deviation sqrt(var_w)),
+       P = max(A, 0) + sqrt(2 var_w) m Lambda(m),   m = |A| / sqrt(2 var_w),
+   = A (1 + Lambda(w)) above the mean plane (Smith), > 0 below it. m Lambda(m) is formed
+   without the division of pf_lambda_beckmann (m < 2: exp(-m^2) K(m) / (2 sqrt(pi)), finite
+   at m = 0), so P is accurate to a few ulp at every A, with no cancellation below the mean
+   plane (unlike the G1 form pfi_leadr_specular uses). Zero deviation along w (or NaN
+   statistics): max(A, 0). For the evaluators that fold G / A_o into 1 / (P_o + A_o+ Lambda_i)
+   (pf_gaussgrid.h, pf_vmf.h). w need not be unit length. */
+PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
+{
+    pf_real a = w.z - s.mean_x * w.x - s.mean_y * w.y;
+    pf_real var2 = PF_R(2.0) * (w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy);
+    pf_real sd = PF_SQRT(pfi_clamp_nan_lo(var2, PF_R(0.0), PF_R(0.25) * PF_REAL_MAX));
+    pf_real front = pf_max(a, PF_R(0.0)), m, t;
+    if (!(sd > PF_R(1.0e-12) * PF_FABS(a))) return front;
+    m = PF_FABS(a) / sd;
+    t = m < PF_R(2.0) ? pf_exp_neg_sq(m) * pfi_smith_k(m) * (PF_R(0.5) * PF_INV_SQRT_PI)
+                      : m * pf_lambda_beckmann(m);
+    return front + sd * t;
+}
+
 /* ---------------------------------------------------------------- specular BRDF
    Schlick's Fresnel approximation F = f0 + (1 - f0) (1 - cos)^5, cos = w_h . w_i clamped to
    [0, 1]. f0 = 1 gives exactly 1 (Fresnel off). */
@@ -324,24 +394,76 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    (4 cos theta_o)); multiply by the light's radiance (directional) or intensity / distance^2
    (point), not by any further cosine.
    w_o, w_i: unit vectors in the tangent frame of the macrosurface (w_g = +z). Returns 0, never
-   NaN, when either direction is on or below the macrosurface or the mesosurface. Fresnel uses
-   w_h . w_i = sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off. */
+   NaN, when either direction is on or below the macrosurface, or the light on or below the
+   mesosurface (Lambda_i = inf: the mean plane shadows everything, Dupuy et al. 2013 after
+   eq. 15). A view above the macrosurface but on or below the mesosurface is not culled: it
+   sees the facets that face it (below). Fresnel uses w_h . w_i =
+   sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
+
+   Projected area of the facets facing the view (the pic_plane fix, issue 15 item 6). Eq. 17
+   divides by the signed projected area A_o of the mean plane (eq. 1), and G = 0 when A_o <= 0:
+   LEADR renders displaced geometry, where such a patch faces away and is backface-culled
+   (sec. 4.3). On a flat macrosurface (normal or bump mapping) nothing else covers the pixel,
+   and A_o <= 0 happens at grazing views wherever a footprint's mean tilt exceeds the view's
+   elevation; the bench's brute force (bench/pictures.c) lights those pixels. The fix rewrites
+   G / A_o with P_o = E[max(0, w_o.z - x w_o.x - y w_o.y)], the projected area toward w_o of
+   the facets that face it, which for Gaussian slopes and nu = A_o / sqrt(2 var_o) is
+       P_o = max(A_o, 0) + sqrt(2 var_o) |nu| Lambda(|nu|)                  (our derivation)
+   (the mean of the positive part of a normal variable), i.e. A_o (1 + Lambda_o) above the
+   mean plane: Smith's normalization. Then G / A_o = 1 / (P_o + A_o Lambda_i): the radiance of
+   the facets facing the viewer averaged over their projected area, times the fraction that is
+   lit, which tends to 1 as A_o -> 0 (only the highest points are seen). That form is eq. 17
+   exactly where A_o > 0, continuous through A_o = 0, and below keeps its limit (A_o counted
+   as 0). Below the mean plane P_o comes from G1 as (|nu|/G1(|nu|) - |nu|) sqrt(2 var_o), which
+   cancels as G1 -> 1: measured relative error of the result in float 3e-6 at nu = -0.5, 2e-5
+   at -1, 2e-4 at -1.5, 2e-3 at -2, 3% at -2.5, 50% at -3 (double: <= 7e-11 down to -3). The
+   grazing views of a flat macrosurface sit at nu > -0.5 (bench/pictures.c). Exact at any nu,
+   for one exp and a branch more: P_o = max(A_o, 0) + sqrt(2 var_o) |nu| pf_lambda_beckmann(|nu|). */
+/* nu of direction w (pf_smith_nu) given its projected area (the numerator), for the lean
+   BRDF: the variance along w is clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] (normal
+   incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's tests, and
+   the square root is a reciprocal one. area <= 0 is left to the caller (it returns 0). */
+PF_DEF pf_real pfi_leadr_nu(pf_vec3 w, pf_real area, pf_real vx2, pf_real vy2, pf_real c4)
+{
+    /* 2 (w.x^2 var_x + w.y^2 var_y + 2 w.x w.y c), from 2 var_x, 2 var_y, 4 c (shared by wo, wi) */
+    pf_real var2 = w.x * (w.x * vx2 + w.y * c4) + w.y * (w.y * vy2);
+    return area * pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+}
+
 PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
                                   int masking_only)
 {
     pf_real area_o = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
     pf_real area_i = wi.z - s.mean_x * wi.x - s.mean_y * wi.y;
-    pf_real g, d, f;
-    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(area_o > PF_R(0.0)) ||
-        !(area_i > PF_R(0.0)))
-        return PF_R(0.0);
+    pf_real vx2 = PF_R(2.0) * s.var_x, vy2 = PF_R(2.0) * s.var_y, c4 = PF_R(4.0) * s.cov_xy;
+    /* 1/sqrt(2 var_o) as in pfi_leadr_nu, kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
+    pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
+                                                       PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    pf_real nu_o = area_o * rs_o; /* signed: < 0 when the view is below the mean plane */
+    pf_real nu_a = pf_max(PF_FABS(nu_o), PF_R(1.0e-20));
+    /* P_o, the projected area of the facets facing the view (see the comment above):
+       A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
+       (1 + Lambda(-nu) = -Lambda(nu)); nu floored at 1e-20, where nu / G1(nu) is its limit
+       1/(2 sqrt(pi)) to rounding */
+    pf_real front = (nu_a / pf_g1_beckmann(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    pf_real g, d, t, v;
+    /* eq. 17's G / A_o = 1 / (P_o + A_o Lambda_i) (Smith: P_o = A_o (1 + Lambda_o)), with A_o
+       counted as 0 below the mean plane (see above); masking only: 1 / P_o */
     if (masking_only != 0)
-        g = pf_g1_beckmann(pf_smith_nu(wo, s));
+        g = PF_R(1.0) / front;
     else
-        g = pf_g2_beckmann(pf_smith_nu(wo, s), pf_smith_nu(wi, s));
-    d = pf_beckmann_d(pf_vec3_add(wo, wi), s);
-    f = pf_fresnel_schlick(f0, PF_SQRT(pf_max(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi), PF_R(0.0))));
-    return f * d * g / (PF_R(4.0) * area_o);
+        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) *
+                                 (PF_R(1.0) / pf_g1_beckmann(pfi_leadr_nu(wi, area_i, vx2, vy2, c4)) - PF_R(1.0)));
+    /* both directions above the macrosurface: the half vector's z > 0, as pfi_beckmann_d_up needs */
+    /* the 1/4 of eq. 17 rides in D's exponent: ln(1/4) */
+    d = pfi_beckmann_d_up(pf_vec3_add(wo, wi), s, PF_R(-1.38629436111989061883446424291635313));
+    /* Schlick (pf_fresnel_schlick) with cos = w_h . w_i = sqrt((1 + w_o . w_i)/2), clamped once */
+    t = PF_R(1.0) - PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi)));
+    v = (f0 + (PF_R(1.0) - f0) * ((t * t) * (t * t) * t)) * d * g;
+    /* one select for the conditions (both directions above the macrosurface, the light above
+       the mean plane, some facet facing the view: P_o is 0 in pf_real once G1(|nu_o|) rounds
+       to 1, nu_o below -3.3 in float); the values computed for the other case are discarded */
+    return pf_min(pf_min(wo.z, wi.z), pf_min(area_i, front)) > PF_R(0.0) ? v : PF_R(0.0);
 }
 
 /* LEADR specular with joint masking-shadowing (eq. 17). See pfi_leadr_specular. */

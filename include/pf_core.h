@@ -28,7 +28,8 @@
      pf_vec3 w = pf_vec3_normalize(pf_vec3_make(PF_R(0.3), PF_R(0.1), PF_R(1.0)));
 
    FUNCTIONS
-     pf_erfc(x), pf_erf(x)        complementary error function and error function
+     pf_erfc(x), pf_erf(x)        complementary error function and error function (<= 2 ulp)
+     pf_erfc_fast(x)              shader tier of erfc: A&S 7.1.26's cost, relative error 5.4e-6
      pf_exp_neg_sq(x)             exp(-x*x) without the rounding error of x*x (Gaussians)
      pf_min(a,b) pf_max(a,b) pf_clamp(x,lo,hi) pf_saturate(x) pf_sq(x)
      pf_vec2_make  pf_vec2_dot
@@ -110,6 +111,9 @@ typedef float pf_real;
 #endif
 
 /* ---------------------------------------------------------------- math, one macro per function */
+#if defined(PF_SIN) || defined(PF_COS)
+#  define PFI_USER_TRIG 1 /* the user mapped sin/cos: PFI_SINPI/PFI_COSPI below go through them */
+#endif
 #if defined(PF_GLSL)
 #  ifndef PF_SQRT
 #    define PF_SQRT(x) sqrt(x)
@@ -174,13 +178,58 @@ typedef float pf_real;
 #  endif
 #endif
 
+/* sin(pi x) and cos(pi x), for arguments the caller has already bounded (pf_csm_sum_begin).
+   CUDA's sinpif/cospif reduce the argument exactly; its sinf/cosf carry a Payne-Hanek path for
+   huge arguments written in FP64, which the float device build must not contain (make
+   portability, nvcc-float). Elsewhere, and when PF_SIN/PF_COS are user-mapped, sin(PF_PI x). */
+#if defined(__CUDACC__) && !defined(PF_GLSL) && !defined(PFI_USER_TRIG)
+#  define PFI_SINPI(x) PFI_LIBM(sinpi)(x)
+#  define PFI_COSPI(x) PFI_LIBM(cospi)(x)
+#else
+#  define PFI_SINPI(x) PF_SIN(PF_PI * (x))
+#  define PFI_COSPI(x) PF_COS(PF_PI * (x))
+#endif
+
 /* ---------------------------------------------------------------- scalar helpers */
-/* Written with comparisons, not fminf/fmaxf: no libm call, same result in GLSL and CUDA.
-   pf_max(x, 0) with x NaN returns 0 here (the comparison is false), a useful sanitizer. */
-PF_DEF pf_real pf_min(pf_real a, pf_real b) { return a < b ? a : b; }
-PF_DEF pf_real pf_max(pf_real a, pf_real b) { return a > b ? a : b; }
-PF_DEF pf_real pf_clamp(pf_real x, pf_real lo, pf_real hi) { return x < lo ? lo : (x > hi ? hi : x); }
+/* C and C++: written with comparisons, not fminf/fmaxf (no libm call; x86 compiles them to
+   one minss/maxss). pf_max(x, 0) with x NaN returns 0 (the comparison is false), a useful
+   sanitizer: the library puts the value that may be NaN first. pf_clamp(NaN, lo, hi) is NaN.
+   GLSL and CUDA: the native min/max/clamp, one instruction each where the comparison form
+   compiled to a compare and a select (issue 17). CUDA's fminf/fmaxf return the non-NaN
+   operand, so every pf_max(x, c) above stays a sanitizer there, and pf_clamp(NaN, lo, hi) is
+   lo. GLSL leaves the operand returned for a NaN to the implementation (GLSL.std.450 FMin:
+   one of the two), as it leaves NaN comparisons themselves; the hardware of the main vendors
+   returns the non-NaN operand. Finite inputs give the same result everywhere; pf_clamp needs
+   lo <= hi (GLSL's clamp is undefined otherwise), which every caller in the library meets.
+   One definition each (the bodies differ through PFI_MIN/PFI_MAX/PFI_CLAMP), so that the
+   portability generator and the fuzz coverage see every function once. */
+#if defined(PF_GLSL)
+#  define PFI_MIN(a, b) min(a, b)
+#  define PFI_MAX(a, b) max(a, b)
+#  define PFI_CLAMP(x, lo, hi) clamp(x, lo, hi)
+#elif defined(__CUDACC__)
+#  define PFI_MIN(a, b) PFI_LIBM(fmin)(a, b)
+#  define PFI_MAX(a, b) PFI_LIBM(fmax)(a, b)
+#  define PFI_CLAMP(x, lo, hi) PFI_LIBM(fmin)(PFI_LIBM(fmax)(x, lo), hi)
+#else
+#  define PFI_MIN(a, b) ((a) < (b) ? (a) : (b))
+#  define PFI_MAX(a, b) ((a) > (b) ? (a) : (b))
+#  define PFI_CLAMP(x, lo, hi) ((x) < (lo) ? (lo) : ((x) > (hi) ? (hi) : (x)))
+#endif
+PF_DEF pf_real pf_min(pf_real a, pf_real b) { return PFI_MIN(a, b); }
+PF_DEF pf_real pf_max(pf_real a, pf_real b) { return PFI_MAX(a, b); }
+PF_DEF pf_real pf_clamp(pf_real x, pf_real lo, pf_real hi) { return PFI_CLAMP(x, lo, hi); }
 PF_DEF pf_real pf_saturate(pf_real x) { return pf_clamp(x, PF_R(0.0), PF_R(1.0)); }
+/* clamp(x, lo, hi) that also sanitizes: a NaN x gives lo in C and CUDA (max first: pf_max's
+   comparison is false for NaN), one native clamp in GLSL. lo <= hi. */
+PF_DEF pf_real pfi_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
+{
+#ifdef PF_GLSL
+    return clamp(x, lo, hi);
+#else
+    return pf_min(pf_max(x, lo), hi);
+#endif
+}
 PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
 
 /* ---------------------------------------------------------------- erfc / erf
@@ -214,21 +263,45 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
    and Dekker's low parts would be lost); where the result itself is subnormal exp is called
    with the argument shifted by 40 (double: 300) and the result scaled by exp(-40) instead.
    All this needs IEEE arithmetic evaluated in the type itself (FLT_EVAL_METHOD 0, not x87)
-   and no value-changing optimisation; FMA contraction by the compiler does no harm. Under
-   -ffast-math the split may be simplified away: results stay finite and in range, with a
-   few ulp more error. */
+   and no reassociation. FMA contraction by the compiler does no harm: every split is
+   (a + 2^k a) - 2^k a, whose only product is exact, and every other product in an exact
+   step is exact, so fusing it changes nothing (measured: <= 1.51 ulp with
+   -ffp-contract=fast -mfma; the Veltkamp form c - (c - 4097 a) reached 2.09). In GLSL the
+   exact steps are `precise` (PFI_EXACT), which forbids both contraction and simplification
+   there. Under -ffast-math the split may be simplified away: results stay finite and in
+   range, with a few ulp more error. */
 
 
-/* Veltkamp split: the high half (12 resp. 26 significant bits) of a, so that products of
-   halves are exact. The constant is 2^12 + 1 (float) or 2^27 + 1 (double). */
+/* PFI_EXACT marks the variables of the error-free steps below (splits, exact products and
+   their residuals). In GLSL it is `precise` (SPIR-V NoContraction): a shader compiler may
+   otherwise contract them into FMAs or simplify (a + s) - s to a, which is exact algebra and
+   wrong arithmetic. C and CUDA need nothing: the splits are written so that contraction
+   cannot change them (below), and C compilers do not reassociate without -ffast-math. */
+#ifdef PF_GLSL
+#  define PFI_EXACT precise
+#else
+#  define PFI_EXACT
+#endif
+
+/* The high half of a: a rounded to 12 (float) or 26 (double) significant bits, so that
+   products of halves (and of a half and a <= 12-bit number) are exact; a - pfi_split_hi(a)
+   is exact and has 12 (26) bits too. Written as (a + s) - s with s = 2^12 a (2^27 a): the
+   only product is by a power of two, exact, so FMA contraction (fma(a, 2^12, a),
+   fma(-a, 2^12, t)) computes the same values as separate operations. (Veltkamp's
+   c - (c - a), c = 4097 a, is not: contracted to fma(4097, a, -a) it returns a itself, no
+   split, and the error-free products downstream lose bits: pf_erfc reached 2.09 ulp with
+   -ffp-contract=fast -mfma, issue 17.) t = fl(a + s) = fl(4097 a) is Veltkamp's c, and
+   t - s = a + (t - 4097 a) is exact, a multiple of 2^12 ulp(a). */
 PF_DEF pf_real pfi_split_hi(pf_real a)
 {
 #ifdef PF_DOUBLE
-    pf_real c = PF_R(134217729.0) * a;
+    PFI_EXACT pf_real s = PF_R(134217728.0) * a;
 #else
-    pf_real c = PF_R(4097.0) * a;
+    PFI_EXACT pf_real s = PF_R(4096.0) * a;
 #endif
-    return c - (c - a);
+    PFI_EXACT pf_real t = a + s;
+    PFI_EXACT pf_real h = t - s;
+    return h;
 }
 
 /* pf_exp_neg_sq(x) = exp(-x*x), any real x, without the error of rounding x*x first:
@@ -238,10 +311,10 @@ PF_DEF pf_real pfi_split_hi(pf_real a)
 PF_DEF pf_real pf_exp_neg_sq(pf_real x)
 {
     pf_real xc = pf_min(PF_FABS(x), PF_R(64.0)); /* exp(-4096) = 0; keeps the split finite */
-    pf_real xh = pfi_split_hi(xc);
-    pf_real xl = xc - xh;
-    pf_real p = xc * xc;
-    pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PFI_EXACT pf_real xh = pfi_split_hi(xc);
+    PFI_EXACT pf_real xl = xc - xh;
+    PFI_EXACT pf_real p = xc * xc;
+    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     pf_real e = PF_EXP(-p);
     return e - e * b;
 }
@@ -272,16 +345,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
 {
 #ifdef PF_DOUBLE
     pf_real xc = pf_min(PF_R(27.25), x);
-    pf_real c2 = PF_R(268435457.0) * xc; /* 2^28 + 1: x to 25 bits */
+    PFI_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
 #else
     pf_real xc = pf_min(PF_R(10.125), x);
-    pf_real c2 = PF_R(16385.0) * xc;     /* 2^14 + 1: x to 10 bits */
+    PFI_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
 #endif
-    pf_real xh = pfi_split_hi(xc);
-    pf_real xl = xc - xh;
+    PFI_EXACT pf_real xh = pfi_split_hi(xc);
+    PFI_EXACT pf_real xl = xc - xh;
     /* x*x = p + b exactly */
-    pf_real p = xc * xc;
-    pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PFI_EXACT pf_real p = xc * xc;
+    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     /* exp(-p): scaled by 2^64, or, where the result is subnormal (float x > 9.27, double
        x > 26.57), computed as exp(sh - p) and scaled by exp(-sh); sh - p is exact. */
 #ifdef PF_DOUBLE
@@ -297,16 +370,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     /* 1/(x + A) = wh/(1 + s): dh = xs + A is exact with <= 14 (double 28) bits, wh = 1/dh
        rounded to 9 (23) bits, so wh*dh and r = 1 - wh*dh are exact, |s| < 2^-8. Then
        exp(-b)/(x + A) = wh (1 + g), g = (1 - b)/(1 + s) - 1. */
-    pf_real xs = c2 - (c2 - xc);
+    PFI_EXACT pf_real xs = (xc + c2) - c2;
     pf_real dh = xs + PF_R(0.625);
     pf_real cw = PF_R(1.0) / dh;
 #ifdef PF_DOUBLE
-    pf_real wc = PF_R(1073741825.0) * cw; /* 2^30 + 1 */
+    PFI_EXACT pf_real wc = PF_R(1073741824.0) * cw; /* 2^30 */
 #else
-    pf_real wc = PF_R(32769.0) * cw;      /* 2^15 + 1 */
+    PFI_EXACT pf_real wc = PF_R(32768.0) * cw;      /* 2^15 */
 #endif
-    pf_real wh = wc - (wc - cw);
-    pf_real r = PF_R(1.0) - wh * dh;
+    PFI_EXACT pf_real wh = (cw + wc) - wc;
+    PFI_EXACT pf_real r = PF_R(1.0) - wh * dh;
     pf_real sv = (xc - xs) * wh - r;
     pf_real s3 = sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv))); /* s/(1 + s) */
     pf_real g = -b - (PF_R(1.0) - b) * s3;
@@ -364,6 +437,8 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     kh = PF_R(0.625) * wh;
     kl = wh * (y + g * (PF_R(0.625) + y));
     e1h = pfi_split_hi(e1);
+    /* not PFI_EXACT: a shader compiler that refactors this sum (kh (e1h + (e1 - e1h))) makes
+       one rounding more, 1/2 ulp; `precise` here cost 16 SPIR-V ops */
     return (e1h * kh + ((e1 - e1h) * kh + e1 * kl)) * sc;
 }
 
@@ -373,6 +448,8 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
    Measured error against long double erfcl (docs/core.md has the table and the method):
      float:  <= 1.83 ulp where the result is normal (every float of [0, 10.125] and the
              negative half checked), <= 1.24 x 2^-149 absolute where it is subnormal;
+             with FMA contraction (-ffp-contract=fast -mfma): <= 1.84 ulp (every float of
+             [2^-20, 10.125]);
      double: <= 1.75 ulp (dense random sampling and grids), <= 1.10 x 2^-1074 subnormal.
    For x < 0, erfc = 2 - erfc(-x), whose result is >= 1 and keeps the bound. */
 PF_DEF pf_real pf_erfc(pf_real x)
@@ -400,6 +477,33 @@ PF_DEF pf_real pf_erf(pf_real x)
     if (ax < PF_R(1.0)) return x + pfi_erf_minus_x(x); /* odd as written; keeps -0 */
     e = PF_R(1.0) - pfi_erfc_big(ax);
     return x < PF_R(0.0) ? -e : e;
+}
+
+/* pf_erfc_fast(x): the shader tier of erfc, at the cost of Abramowitz & Stegun 7.1.26 (one
+   reciprocal, a degree-6 polynomial, one exp; no branch) but with a RELATIVE error bound.
+   A&S's t (a1 + .. + a5 t^4) exp(-x^2) has 1.5e-7 absolute error, which is all of erfc in the
+   tail: its polynomial tends to a1/(p x) = 0.778/x where exp(x^2) erfc(x) ~ 0.564/x, 38% off
+   (40% at x = 9). Here erfc(x) = exp(-x^2) z N(z), z = 1/(|x| + 2), where N = exp(x^2)
+   erfc(x) (x + 2) is flat (0.56 .. 1.13) and fitted as a polynomial in z minimizing the
+   relative error on 0 <= x <= 10.1 (float erfc underflows at 10.06; for larger x, exp(-x^2)
+   is 0 and N stays finite): fit error 1.39e-6 (bench/fit/fit_erfc.py fast). x < 0:
+   2 - erfc(-x). Measured max relative error (tests/test_core.c, against erfcl):
+       float:  <= 2e-6 + 6e-8 x^2 where the result is normal (the x^2 term is the rounding
+               of x*x inside exp, up to 2^-24 x^2): max 5.4e-6 (x = 8.2), 2.2e-6 for |x| <= 3;
+       double: <= 1.4e-6 (the fit).
+   Range [0, 2]; erfc(+inf) = 0, erfc(-inf) = 2, NaN -> NaN. Use pf_erfc where results are
+   compared or accumulated (2 ulp); this tier where erfc feeds a shaded colour. */
+PF_DEF pf_real pf_erfc_fast(pf_real x)
+{
+    pf_real ax = PF_FABS(x);
+    /* z N(z) = sum c_k z^(k+1) written in w = a z, a = c_6^(1/7) = 1.41338098, where it is
+       monic: w (d_0 + w (d_1 + .. + w (d_5 + w))), d_k = c_k / a^(k+1) (one multiply fewer) */
+    pf_real w = PF_R(1.41338098) / (ax + PF_R(2.0));
+    pf_real zn = w * (PF_R(0.399507642) + w * (PF_R(0.555906117) + w * (PF_R(0.796956718) + w * (PF_R(0.154429927) +
+                 w * (PF_R(2.20325756) + w * (PF_R(-2.85892963) + w))))));
+    pf_real e = PF_EXP(-ax * ax) * zn;
+    pf_real reflected = PF_R(2.0) - e;
+    return x < PF_R(0.0) ? reflected : e; /* a select of two values: no branch */
 }
 
 /* PF_ERFC_END */

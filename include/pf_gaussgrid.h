@@ -58,10 +58,13 @@
      has slope (-n.x/n.z, -n.y/n.z) and slope (x, y) has micro-normal (-x, -y, 1)/norm. wo and
      light directions are unit vectors. Results are radiance for unit light (a directional
      light of irradiance 1 at normal incidence; an environment of radiance L). The normalization
-     (w_nbar.w_g)/(w_nbar.w_o) of eqs. 19, 21 is folded into the sample weights; a view on or
-     below the mesosurface gives 0. Masking uses pf_g1_beckmann (exact) and the joint term
-     1/(1 + Lambda_o + Lambda_i) of eq. 13 through pf_smith_joint, so a reflected direction
-     below the mesosurface gets weight exactly 0. Out-of-range N is clamped to
+     (w_nbar.w_g)/(w_nbar.w_o) of eqs. 19, 21 and the view's masking are folded into the
+     sample weights as 1/P_o, P_o the projected area of the facets facing the view (as
+     pf_leadr_specular: see pf_gg_grid_make); a view on or below the macrosurface gives 0, a
+     view below the mesosurface sees the facets facing it. Masking uses pf_g1_beckmann
+     (exact) and the joint term 1/(1 + Lambda_o + Lambda_i) of eq. 13, as 1/(1 + G1_o
+     Lambda_i) per light, so a reflected direction below the mesosurface gets weight exactly
+     0. Out-of-range N is clamped to
      [1, PF_GG_MAX_N]; an unknown set reads as PF_GG_UNIFORM; an index outside the grid gives
      a sample of weight 0. sigma = 0 collapses every sample onto the mean slope; |r| = 1 is
      fine. No allocation, no I/O, no globals; every PF_DEF function is pointer-free. The one
@@ -88,6 +91,7 @@
 
 #ifndef PF_GLSL
 #  include "pf_smith.h"
+#  include "pf_beckmann.h"
 #endif
 
 /* ---------------------------------------------------------------- node sets */
@@ -393,15 +397,29 @@ PF_STRUCT_BEGIN(pf_gg_grid)
     pf_real sigma_y;      /* sqrt(var_y) */
     pf_real corr;         /* r = cov / (sigma_x sigma_y), in [-1, 1] (0 if a sigma is 0) */
     pf_real corr_c;       /* sqrt(1 - r^2) */
-    pf_real inv_proj;     /* (w_nbar.w_g)/(w_nbar.w_o) = 1/(wo.z - wo.x E[x] - wo.y E[y]) (eq. 1), 0 at or below the mesosurface */
-    pf_real g1_o;         /* 1/(1 + Lambda(wo)) (eq. 13 with one direction) */
+    pf_real inv_proj;     /* 1/P_o, P_o = E[max(0, wo.z - x wo.x - y wo.y)] the projected area of the facets facing wo
+                             (pfi_beckmann_facing_area) = A_o (1 + Lambda(wo)) above the mesosurface; 0 at or below the
+                             macrosurface (see pf_gg_grid_make) */
+    pf_real g1_o;         /* 1/(1 + Lambda(wo)) (eq. 13 with one direction), = A_o / P_o; 0 at or below the mesosurface */
     int node_set;         /* PF_GG_UNIFORM, PF_GG_HERMITE or PF_GG_MATCHED */
     int n;                /* nodes per axis, in [1, PF_GG_MAX_N] */
 PF_STRUCT_END(pf_gg_grid)
 
 /* Per-pixel setup: Cholesky factor of the covariance (LEADR sec. 5.1; a negative variance
    counts as 0, |r| is clamped to 1), the view's masking and the projected-area normalization.
-   wo must be a unit vector in the tangent frame. */
+   wo must be a unit vector in the tangent frame.
+   Normalization, as pf_leadr_specular (see the comment above pfi_leadr_specular in
+   pf_beckmann.h): eqs. 19-21 divide by A_o = w_nbar.w_o / w_nbar.w_g and multiply by
+   G = 1/(1 + Lambda_o + Lambda_i), which is 0 / 0 when the view is at or below the
+   mesosurface (A_o <= 0) yet above the macrosurface, where a flat (bump- or normal-mapped)
+   macrosurface still shows the facets facing the view. The grid folds the view's masking
+   into the normalization instead: G / A_o = (1 / P_o) / (1 + (A_o / P_o) Lambda_i) with
+   P_o = A_o (1 + Lambda_o) above the mesosurface (so A_o / P_o = G1(wo) = g1_o) and P_o > 0,
+   g1_o = 0 below it. Hence inv_proj = 1/P_o and the per-light factor pfi_gg_shadowing =
+   1/(1 + g1_o Lambda_i) (the shadowing of the visible facets, G2/G1), identical to eq. 13
+   above the mesosurface, finite and continuous through A_o = 0 and Smith's limit below it
+   (only the highest facets are seen, and they are lit). A view at or below the macrosurface
+   (wo.z <= 0), or one so far below the mesosurface that P_o < 1e-30, gets inv_proj = 0. */
 PF_DEF pf_gg_grid pf_gg_grid_make(pf_vec3 wo, pf_slope_stats s, int node_set, int n)
 {
     pf_gg_grid g;
@@ -410,14 +428,14 @@ PF_DEF pf_gg_grid pf_gg_grid_make(pf_vec3 wo, pf_slope_stats s, int node_set, in
     pf_real sxy = sx * sy;
     /* min before max: a NaN covariance becomes r = 1 (finite samples), not NaN */
     pf_real r = sxy > PF_R(0.0) ? pf_max(pf_min(s.cov_xy / sxy, PF_R(1.0)), PF_R(-1.0)) : PF_R(0.0);
-    pf_real den = wo.z - wo.x * s.mean_x - wo.y * s.mean_y;
+    pf_real facing = pfi_beckmann_facing_area(wo, s);
     g.wo = wo;
     g.stats = s;
     g.sigma_x = sx;
     g.sigma_y = sy;
     g.corr = r;
     g.corr_c = PF_SQRT(pf_max(PF_R(1.0) - r * r, PF_R(0.0)));
-    g.inv_proj = den > PF_R(1.0e-30) ? PF_R(1.0) / den : PF_R(0.0);
+    g.inv_proj = wo.z > PF_R(0.0) && facing > PF_R(1.0e-30) ? PF_R(1.0) / facing : PF_R(0.0);
     g.g1_o = pf_g1_beckmann(pf_smith_nu(wo, s));
     g.node_set = node_set;
     g.n = pfi_gg_clamp_n(n);
@@ -433,7 +451,8 @@ PF_STRUCT_BEGIN(pf_gg_sample)
     pf_real slope_y;  /* E[y] + sigma_y (r p_j + sqrt(1 - r^2) p_k) */
     pf_real weight;   /* W_j W_k (the N^2 weights sum to 1) */
     pf_vec3 normal;   /* micro-normal (-x, -y, 1)/norm (eq. 11 applied to the sample) */
-    pf_real proj;     /* <w_n, w_o>/(w_n.w_g) * (w_nbar.w_g)/(w_nbar.w_o) = max(0, wo.z - x wo.x - y wo.y) * inv_proj */
+    pf_real proj;     /* <w_n, w_o>/(w_n.w_g) / P_o = max(0, wo.z - x wo.x - y wo.y) * inv_proj: the masked eq. 19/21 weight
+                         (the visible normals' density; its expectation is 1) */
     pf_real cell;     /* u_j u_k, u_j = W_j / phi(p_j): the sample's area in the standard-normal plane */
 PF_STRUCT_END(pf_gg_sample)
 
@@ -477,6 +496,18 @@ PF_DEF pf_gg_sample pf_gg_sample_at(pf_gg_grid g, int i)
     return smp;
 }
 
+/* 1/(1 + G1(wo) Lambda_i) = G1_i / (G1_i + G1_o (1 - G1_i)), the joint masking-shadowing of
+   eq. 13 divided by G1(wo) (pf_smith_joint(g1_o, g1_i) / g1_o), which pf_gg_grid_make's
+   inv_proj = 1/P_o leaves to each light: see there. 1 when g1_o = 0 (a view below the
+   mesosurface sees only the highest facets), 0 when g1_i = 0 (a light below it), never 0/0;
+   in [0, 1] for G1s in [0, 1]. */
+PF_DEF pf_real pfi_gg_shadowing(pf_real g1_o, pf_real g1_i)
+{
+    pf_real b = pf_min(pf_max(g1_i, PF_R(0.0)), PF_R(1.0)); /* NaN -> 0 */
+    pf_real a = pf_min(pf_max(g1_o, PF_R(0.0)), PF_R(1.0));
+    return b > PF_R(0.0) ? b / (b + a * (PF_R(1.0) - b)) : PF_R(0.0);
+}
+
 /* |d w_i / d slope| = 4 |w_n.w_o| |w_n.w_g|^3 (LEADR sec. 5.2): reflection about w_n
    (4 |w_n.w_o|) times the slope-to-normal Jacobian cos^3. */
 PF_DEF pf_real pf_gg_jacobian(pf_vec3 wn, pf_vec3 wo)
@@ -487,7 +518,8 @@ PF_DEF pf_real pf_gg_jacobian(pf_vec3 wn, pf_vec3 wo)
 /* ---------------------------------------------------------------- environment (sec. 5.2) */
 PF_STRUCT_BEGIN(pf_gg_env_sample)
     pf_vec3 dir;         /* reflected direction w_i = 2 (w_n.w_o) w_n - w_o (eq. 18) */
-    pf_real weight;      /* W <w_n,w_o>/(w_n.w_g) (w_nbar.w_g)/(w_nbar.w_o) / (1 + Lambda_o + Lambda_i) (eq. 22 without L and F) */
+    pf_real weight;      /* W <w_n,w_o>/(w_n.w_g) (w_nbar.w_g)/(w_nbar.w_o) / (1 + Lambda_o + Lambda_i) (eq. 22 without L and F),
+                            written W proj / (1 + G1_o Lambda_i) (pf_gg_grid_make) */
     pf_real cos_d;       /* w_n.w_o = w_n.w_i clamped to [0, 1]: the angle for the Fresnel term F */
     pf_real solid_angle; /* alpha = J * A: the sample's solid angle around dir, for the LOD */
 PF_STRUCT_END(pf_gg_env_sample)
@@ -506,7 +538,7 @@ PF_DEF pf_gg_env_sample pf_gg_env_sample_at(pf_gg_grid g, int i)
     pf_real c = pf_vec3_dot(smp.normal, g.wo);
     pf_real smax = pf_max(g.sigma_x, g.sigma_y);
     e.dir = pf_vec3_sub(pf_vec3_scale(smp.normal, PF_R(2.0) * c), g.wo);
-    e.weight = smp.weight * smp.proj * pf_smith_joint(g.g1_o, pf_g1_beckmann(pf_smith_nu(e.dir, g.stats)));
+    e.weight = smp.weight * smp.proj * pfi_gg_shadowing(g.g1_o, pf_g1_beckmann(pf_smith_nu(e.dir, g.stats)));
     /* clamped to [0, 1]: w_n . w_o of two unit vectors rounds up to 1 + 2 ulp near normal
        incidence (the sweep found 1.00000024); max first, so NaN gives 0 */
     e.cos_d = pf_min(pf_max(c, PF_R(0.0)), PF_R(1.0));
@@ -617,18 +649,24 @@ PF_DEF pf_real pf_sh9_irradiance(pf_sh9 sh, pf_vec3 n)
 
 /* LEADR algorithm 2, one directional light: its irradiance e weighted by the joint
    masking-shadowing 1/(1 + Lambda_o + Lambda_i) of eq. 20 (0 when dir is below the
-   mesosurface), then projected. */
+   mesosurface), then projected. The view's masking G1(wo) is in the grid's normalization
+   (inv_proj = 1/P_o, pf_gg_grid_make), so the weight here is their ratio 1/(1 + G1_o
+   Lambda_i) (pfi_gg_shadowing): the same product, and defined for a view below the
+   mesosurface. */
 PF_DEF pf_sh9 pf_gg_sh9_add_light(pf_sh9 sh, pf_gg_grid g, pf_vec3 dir, pf_real e)
 {
-    pf_real v = pf_smith_joint(g.g1_o, pf_g1_beckmann(pf_smith_nu(dir, g.stats)));
+    pf_real v = pfi_gg_shadowing(g.g1_o, pf_g1_beckmann(pf_smith_nu(dir, g.stats)));
     return pf_sh9_add_directional(sh, dir, e * v);
 }
 
 /* LEADR algorithm 2, environment: precomputed coefficients weighted by the masking
-   1/(1 + Lambda_o) alone (LEADR's approximation: the environment's shadowing is ignored). */
+   1/(1 + Lambda_o) alone (LEADR's approximation: the environment's shadowing is ignored).
+   That masking is the grid's normalization inv_proj = 1/P_o (pf_gg_grid_make), so the
+   coefficients are added unscaled (scale 1; 0 for a grid whose view sees nothing, inv_proj =
+   0, whose diffuse is 0 whatever the SH holds). */
 PF_DEF pf_sh9 pf_gg_sh9_add_environment(pf_sh9 sh, pf_gg_grid g, pf_sh9 env)
 {
-    return pf_sh9_add_scaled(sh, env, g.g1_o);
+    return pf_sh9_add_scaled(sh, env, g.inv_proj > PF_R(0.0) ? PF_R(1.0) : PF_R(0.0));
 }
 
 /* ---------------------------------------------------------------- rough diffuse (sec. 4.5, 5.3) */
@@ -672,13 +710,15 @@ PF_DEF pf_vec3 pf_gg_diffuse_sh_rgb(pf_gg_grid g, pf_sh9 sh_r, pf_sh9 sh_g, pf_s
 
 /* Eq. 21 under one directional light from unit direction wi, with no SH: the irradiance of
    the light on a micro-normal is exactly <w_n, w_i> / (1 + Lambda_o + Lambda_i) (eq. 20), so
-       I = (1/pi) G(o, i) sum W proj max(0, w_n . w_i),   G = 1/(1 + Lambda_o + Lambda_i).
+       I = (1/pi) (G / A_o) sum W <w_n,w_o>/(w_n.w_g) max(0, w_n . w_i),
+   G / A_o = 1/(1 + Lambda_o + Lambda_i) / A_o = inv_proj / (1 + G1_o Lambda_i) (pf_gg_grid_make).
    Radiance per unit irradiance of the light (at normal incidence) and unit albedo; 0 when
-   the light or the view is at or below the mesosurface. Free of the SH error (up to 9%). */
+   the light is at or below the mesosurface or the view at or below the macrosurface (a
+   view below the mesosurface sees the facets facing it). Free of the SH error (up to 9%). */
 PF_DEF pf_real pf_gg_diffuse_directional(pf_gg_grid g, pf_vec3 wi)
 {
     pf_real acc = PF_R(0.0);
-    pf_real v = pf_smith_joint(g.g1_o, pf_g1_beckmann(pf_smith_nu(wi, g.stats)));
+    pf_real v = pfi_gg_shadowing(g.g1_o, pf_g1_beckmann(pf_smith_nu(wi, g.stats)));
     int j, k;
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);

@@ -33,12 +33,13 @@
      texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
                      pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
                      pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
+                     pf_csm_pair_make, _from_depth (convolution shadow maps);
                      pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
-     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm (slope moments:
+     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm, csm_pair (slope moments:
                      pf_beckmann.h; pf_vec3: pf_core.h)
      reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
                      T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
-                     evsm_moments, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
+                     evsm_moments, csm_pair, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
                      pf_mip_next_size, pf_mip_weights3 (odd sizes)
      ESM log space   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
                      pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
@@ -111,7 +112,8 @@ PF_STRUCT_BEGIN(pf_depth_moments2)
     pf_real m1, m2;
 PF_STRUCT_END(pf_depth_moments2)
 
-/* Four power moments E[z], E[z^2], E[z^3], E[z^4] (moment shadow maps, Peters & Klein 2015). */
+/* Four power moments of the reversed depth u = 1 - z: E[u], E[u^2], E[u^3], E[u^4] (moment
+   shadow maps, Peters & Klein 2015; reversed for fp32 precision near the far plane). */
 PF_STRUCT_BEGIN(pf_depth_moments4)
     pf_real m1, m2, m3, m4;
 PF_STRUCT_END(pf_depth_moments4)
@@ -138,9 +140,11 @@ PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real 
 /* VSM texel: (z, z^2). */
 PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
 { return pf_depth_moments2_make(z, z * z); }
-/* MSM texel: (z, z^2, z^3, z^4). */
+/* MSM texel: powers of the reversed depth u = 1 - z, (u, u^2, u^3, u^4): fp32 keeps them to
+   2^-24 relative near the far plane, where z-powers lose the differences MSM needs (issue 17;
+   pf_shadow.h's MSM section). */
 PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
-{ pf_real z2 = z * z; return pf_depth_moments4_make(z, z2, z2 * z, z2 * z2); }
+{ pf_real u = PF_R(1.0) - z, u2 = u * u; return pf_depth_moments4_make(u, u2, u2 * u, u2 * u2); }
 /* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
    c <= PF_EVSM_EXP_MAX_F32 (or _F16 for 16-bit storage) so the squares stay finite. */
 PF_DEF pf_real pf_evsm_warp_pos(pf_real z, pf_real c)
@@ -185,6 +189,31 @@ PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
 { return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2); }
 PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
 { return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
+
+/* ---- convolution shadow maps (CSM; Annen et al. 2007, Bruneton & Neyret 2012 eqs. 36-37)
+   The Fourier basis of the depth test (pf_shadow.h, CSM section): harmonic k = 1..M of depth
+   z is the pair (cos(c_k z), sin(c_k z)), c_k = (2k - 1) pi. A texel of M harmonics holds 2M
+   values (the constant term of the series is implicit: its filtered value is the sum of the
+   filter's weights, 1); they are stored two harmonics per pf_csm_pair, one RGBA texel:
+   pair j holds harmonics 2j + 1 and 2j + 2. Every value is in [-1, 1] and linear in the
+   depth distribution, so any filter averages it. */
+PF_STRUCT_BEGIN(pf_csm_pair)
+    pf_real cos_a, sin_a, cos_b, sin_b;
+PF_STRUCT_END(pf_csm_pair)
+
+PF_DEF pf_csm_pair pf_csm_pair_make(pf_real cos_a, pf_real sin_a, pf_real cos_b, pf_real sin_b)
+{ pf_csm_pair m; m.cos_a = cos_a; m.sin_a = sin_a; m.cos_b = cos_b; m.sin_b = sin_b; return m; }
+/* Pair j (0-based) of depth z: frequencies (4j + 1) pi and (4j + 3) pi (j < 0 reads as 0). */
+PF_DEF pf_csm_pair pf_csm_pair_from_depth(pf_real z, int pair)
+{
+    pf_real fa = PF_R(4.0) * PF_R(pair < 0 ? 0 : pair) + PF_R(1.0);
+    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PFI_SINPI: pf_core.h) */
+    return pf_csm_pair_make(PFI_COSPI(pa), PFI_SINPI(pa), PFI_COSPI(pb), PFI_SINPI(pb));
+}
+PF_DEF pf_csm_pair pf_csm_pair_add(pf_csm_pair a, pf_csm_pair b)
+{ return pf_csm_pair_make(a.cos_a + b.cos_a, a.sin_a + b.sin_a, a.cos_b + b.cos_b, a.sin_b + b.sin_b); }
+PF_DEF pf_csm_pair pf_csm_pair_scale(pf_csm_pair a, pf_real w)
+{ return pf_csm_pair_make(w * a.cos_a, w * a.sin_a, w * a.cos_b, w * a.sin_b); }
 
 /* ---------------------------------------------------------------- scalar-map moments
    E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After filtering
@@ -303,6 +332,7 @@ PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_mome
 #define PFI_MOM_MIDPOINTS(V)                                                                   \
     { return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d)); }
 PFI_MOM_STAMP(pf_evsm_moments, pf_evsm_moments, PFI_MOM_MIDPOINTS)
+PFI_MOM_STAMP(pf_csm_pair, pf_csm_pair, PFI_MOM_BOX) /* CSM: values in [-1, 1], no overflow */
 
 /* ---------------------------------------------------------------- ESM in log space
    An ESM texel stores l = c z, not exp(c z) (which overflows float for c z > 88.7). A reduction
@@ -440,8 +470,13 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
 #define PF_DEPTH_VSM 0     /* [2] z, z^2                                 pf_depth_moments2 */
 #define PF_DEPTH_EVSM2 1   /* [2] p, p^2, p = exp(c_pos (2z - 1))        pf_depth_moments2 */
 #define PF_DEPTH_EVSM4 2   /* [4] p, p^2, n, n^2, n = -exp(-c_neg (2z-1)) pf_evsm_moments */
-#define PF_DEPTH_MSM 3     /* [4] z, z^2, z^3, z^4                       pf_depth_moments4 */
+#define PF_DEPTH_MSM 3     /* [4] u, u^2, u^3, u^4, u = 1 - z            pf_depth_moments4 */
 #define PF_DEPTH_ESM_LOG 4 /* [1] c_pos z, reduced with log-sum-exp      pf_esm_log_* */
+/* CSM, M = 4, 8, 16 harmonics: [2M] cos(c_k z), sin(c_k z), c_k = (2k - 1) pi, k = 1..M, in
+   that order (M/2 pf_csm_pair texels; pf_shadow_csm) */
+#define PF_DEPTH_CSM4 5
+#define PF_DEPTH_CSM8 6
+#define PF_DEPTH_CSM16 7
 
 /* More levels than any int-sized map has (2^31 texels on a side gives 32). */
 #define PF_MIP_MAX_LEVELS 32
@@ -707,6 +742,8 @@ PF_CPU_DEF int pf_depth_moment_channels(int kind)
 {
     if (kind == PF_DEPTH_VSM || kind == PF_DEPTH_EVSM2) return 2;
     if (kind == PF_DEPTH_EVSM4 || kind == PF_DEPTH_MSM) return 4;
+    if (kind == PF_DEPTH_CSM4 || kind == PF_DEPTH_CSM8 || kind == PF_DEPTH_CSM16)
+        return 8 << (kind - PF_DEPTH_CSM4); /* 2M */
     return kind == PF_DEPTH_ESM_LOG ? 1 : 0;
 }
 
@@ -715,6 +752,16 @@ PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] 
 PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
 PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
 PF_CPU_DEF void pfi_put_v3(pf_real *t, pf_vec3 m) { t[0] = m.x; t[1] = m.y; t[2] = m.z; }
+/* The 2M CSM basis values of depth z (M = nc / 2), through the shader constructor so that
+   CPU and GPU texels agree. */
+PF_CPU_DEF void pfi_put_csm(pf_real *t, pf_real z, int nc)
+{
+    int j;
+    for (j = 0; 4 * j < nc; ++j) {
+        pf_csm_pair p = pf_csm_pair_from_depth(z, j);
+        t[4 * j] = p.cos_a; t[4 * j + 1] = p.sin_a; t[4 * j + 2] = p.cos_b; t[4 * j + 3] = p.sin_b;
+    }
+}
 
 PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
 {
@@ -773,6 +820,9 @@ PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h,
             for (i = 0; i < w; ++i) pfi_put_evsm(o + 4 * i, pf_evsm_moments_from_depth(z[i], c_pos, c_neg));
             break;
         case PF_DEPTH_MSM: for (i = 0; i < w; ++i) pfi_put_d4(o + 4 * i, pf_depth_moments4_from_depth(z[i])); break;
+        case PF_DEPTH_CSM4: case PF_DEPTH_CSM8: case PF_DEPTH_CSM16:
+            for (i = 0; i < w; ++i) pfi_put_csm(o + (long long)nc * i, z[i], nc);
+            break;
         default: for (i = 0; i < w; ++i) o[i] = pf_esm_log_from_depth(z[i], c_pos); break;
         }
         pfi_mip_push_row(&c, 0, r);

@@ -26,7 +26,8 @@
      slope statistics  pf_slope_stats_make, pf_slope_stats_from_moments, pf_slope_along,
                        pf_smith_nu, pf_smith_nu_iso
      Beckmann          pf_lambda_beckmann, pf_g1_beckmann            exact (see below)
-                       pf_lambda_beckmann_fast, pf_g1_beckmann_fast  ours: 1.04e-4, branch-free
+                       pf_g1_beckmann_fast       ours: 1.04e-4, branch-free
+                       pf_lambda_beckmann_fast   ours: relative error 2e-6 (+ 6e-8 nu^2), exp-based
                        pf_lambda_beckmann_walter, pf_g1_beckmann_walter  Walter et al. 2007, 3.1e-3
      GGX               pf_lambda_ggx, pf_g1_ggx (anisotropic, from the direction vector),
                        pf_lambda_ggx_iso, pf_g1_ggx_iso (from cos theta)
@@ -46,9 +47,11 @@
      PF_REAL_MAX) can give NaN in pf_smith_nu and its callers (docs/stability.md counts them).
 
    ACCURACY AND COST (measured; docs/smith.md has the tables, bench/bench_smith.c the timings)
-     pf_g1_beckmann        float: one (5,5) rational, max rel. error 2.7e-7 (bound 1e-6);
-                           double: 4e-16. Lambda: <= 5 ulp in float and double.
+     pf_g1_beckmann        float: one (4,5) rational and a clamp, no branch, max rel. error
+                           6.3e-7 (bound 1e-6); double: 4e-16. Lambda: <= 5 ulp in float and double.
      pf_g1_beckmann_fast   max rel. error 1.04e-4 (30x below Walter), branch-free.
+     pf_lambda_beckmann_fast  max rel. error 2e-6 + 6e-8 nu^2 (float), branch-free.
+     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh): docs/smith.md.
 
    SOURCES
      Smith 1967; Walter, Marschner, Li, Torrance 2007 (Beckmann rational, GGX Lambda);
@@ -242,23 +245,36 @@ PF_DEF pf_real pf_lambda_beckmann(pf_real nu)
    Float: H is one (5,5) rational on [0, 3.3] (fit error 1.1e-7; 1 - G1(3.3) = 6.5e-8) - the
    'exact' float path, no exp, no erfc. Double: from K and F above. Measured max relative
    error in docs/smith.md. */
+/* x clamped to [0, hi], NaN to 0: one clamp in GLSL; max first elsewhere (the comparison form
+   and CUDA's fmaxf both turn NaN into 0). */
+#ifdef PF_GLSL
+#  define PFI_SMITH_CLAMP0(x, hi) clamp(x, 0.0, hi)
+#else
+#  define PFI_SMITH_CLAMP0(x, hi) pf_min(pf_max(x, PF_R(0.0)), hi)
+#endif
+
 PF_DEF pf_real pf_g1_beckmann(pf_real nu)
 {
-    if (!(nu > PF_R(0.0))) return PF_R(0.0);
 #ifdef PF_DOUBLE
+    if (!(nu > PF_R(0.0))) return PF_R(0.0);
     if (nu < PF_R(2.0)) {
         pf_real a = PF_R(2.0) * PF_SQRT_PI * nu;
         return a / (a + pf_exp_neg_sq(nu) * pfi_smith_k(nu));
     }
     return PF_R(1.0) / (PF_R(1.0) + pf_lambda_beckmann(nu));
 #else
-    /* (5,5) rational with a monic denominator (one multiply fewer than Q(0) = 1); it
-       overshoots 1 by up to 3.6e-7 near nu = 3.15, hence the clamp. */
-    if (nu >= PF_R(3.3)) return PF_R(1.0);
-    return pf_min(nu * (PF_R(68.95202637) + nu * (PF_R(-13.55777359) + nu * (PF_R(20.14739227) +
-                  nu * (PF_R(-1.794222593) + nu * (PF_R(1.511243582) + nu * PF_R(-0.02977806516)))))) /
-                  (PF_R(19.45100594) + nu * (PF_R(30.6516571) + nu * (PF_R(18.35183144) + nu * (PF_R(5.766758919) +
-                  nu * (PF_R(1.897940636) + nu))))), PF_R(1.0));
+    {
+        /* nu P4(nu) / Q5(nu) with a monic Q5, nu clamped to [0, 3.1] (0 for nu <= 0 and NaN;
+           beyond 3.1, 1 - G1 < 2.8e-7 and the fit, pulled to G1 = 1 at 3.1, serves): fit
+           error 4.7e-7 (bench/fit/fit_smith.py g1f). In float it evaluates to 1.0000001 at
+           3.1, so the min makes G1 exactly 1 there and beyond. One clamp, one min, no branch,
+           no exp. */
+        pf_real n = PFI_SMITH_CLAMP0(nu, PF_R(3.1));
+        return pf_min(n * (PF_R(36.41876602) + n * (PF_R(0.9635340571) + n * (PF_R(10.42804337) +
+               n * (PF_R(1.123634458) + n * PF_R(1.061310649))))) /
+               (PF_R(10.27353954) + n * (PF_R(18.48168564) + n * (PF_R(13.68897915) + n * (PF_R(5.850288868) +
+               n * (PF_R(1.95705688) + n))))), PF_R(1.0));
+    }
 #endif
 }
 
@@ -303,19 +319,27 @@ PF_DEF pf_real pf_g1_beckmann_fast(pf_real nu)
            n * PF_R(-0.07668278205)))) / (PF_R(1.133668816) + n * (PF_R(1.815881917) + n));
 }
 
-/* Lambda of the fast tier, 1/G1_fast - 1 = (Q2 - nu P3) / (nu P3) below 2.2 and 0 beyond
-   (like Walter's form; G1_fast there is 0.9999 and the difference is within the bound).
-   Its error is stated in G1 terms: |dLambda| / (1 + Lambda) <= 1.1e-4, an absolute, not
-   relative, bound for small Lambda. */
+/* Lambda of the fast tier: relative accuracy at shader cost (issue 17), the Lambda analogue
+   of pf_erfc_fast. Lambda = exp(-nu^2) K(nu) / (2 sqrt(pi) nu) (see the exact path above),
+   and K(nu) (nu + 2.5)^2 / (2 sqrt(pi)) is flat (0.5 .. 0.16), so with z = 1/(nu + 2.5)
+       Lambda = exp(-nu^2) z^2 L(z) / nu,
+   L a degree-7 polynomial fitted in relative error on 0 <= nu <= 10.5 (fit error 1.6e-6,
+   bench/fit/fit_smith.py lambda_fast), written in w = 1.81024396 z where z^2 L is monic. No
+   branch (one select for nu <= 0 and NaN, PF_LAMBDA_MAX as everywhere), no cancellation, and
+   the tail keeps its relative accuracy (Walter's form and the earlier rational fast tier
+   returned 0 past 1.6 / 2.2, where Lambda is still 1.8e-3 / 8.2e-5).
+   Measured max relative error (tests/test_smith.c, against the quadrature of the definition):
+   float <= 2e-6 + 6e-8 nu^2 (the second term the rounding of nu*nu inside exp); double
+   <= 1.7e-6. Underflows to 0 past nu ~ 10 (float). */
+#define PFI_LAMBDA_FAST_NU_MIN PF_R(2.8209761e-31) /* Lambda(nu) <= PF_LAMBDA_MAX above it */
 PF_DEF pf_real pf_lambda_beckmann_fast(pf_real nu)
 {
-    pf_real p;
-    if (!(nu > PF_R(0.5) * PF_INV_SQRT_PI / PF_LAMBDA_MAX)) return PF_LAMBDA_MAX;
-    if (nu >= PF_R(2.2)) return PF_R(0.0);
-    p = nu * (PF_R(4.018333074) + nu * (PF_R(-0.6657327309) + nu * (PF_R(0.5771723645) +
-        nu * PF_R(-0.07668278205))));
-    return pf_min(pf_max((PF_R(1.133668816) + nu * (PF_R(1.815881917) + nu)) / p - PF_R(1.0), PF_R(0.0)),
-                  PF_LAMBDA_MAX);
+    pf_real n = pf_max(nu, PFI_LAMBDA_FAST_NU_MIN); /* NaN -> the minimum; selected away below */
+    pf_real w = PF_R(1.81024396) / (n + PF_R(2.5));
+    pf_real p = PF_R(0.0428032763) + w * (PF_R(0.125360042) + w * (PF_R(0.153485239) + w * (PF_R(0.790205717) +
+                w * (PF_R(-1.16572356) + w * (PF_R(3.68183589) + w * (PF_R(-3.4192481) + w))))));
+    pf_real lam = PF_EXP(-n * n) * ((w * w) * p) / n;
+    return nu > PFI_LAMBDA_FAST_NU_MIN ? lam : PF_LAMBDA_MAX;
 }
 
 /* ---------------------------------------------------------------- GGX (Trowbridge-Reitz)

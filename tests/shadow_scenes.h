@@ -68,6 +68,7 @@ static const int shs_sizes[SHS_N_SIZES] = { 2, 4, 8, 16 };
 
 typedef struct shs_lookup {
     int scene, size, receiver;
+    int x0, y0;         /* the footprint's first texel (column, row) in the scene's map */
     pf_real d;          /* receiver depth */
     long double truth;  /* fraction of the footprint's texels with z >= d */
     pf_real z_centre;   /* depth of the centre texel (what an unfiltered 1-tap test reads) */
@@ -183,6 +184,8 @@ SHS_FN void shs_footprint(const pf_real *zt, int scene, int k, int x0, int y0, s
             s_esm += expl((long double)pf_esm_log_from_depth(zt[y * SHS_N + x], SHS_ESM_C) - lmax);
     base.scene = scene;
     base.size = k;
+    base.x0 = x0;
+    base.y0 = y0;
     base.z_centre = zt[(y0 + k / 2) * SHS_N + x0 + k / 2];
     base.vsm = pf_depth_moments2_make((pf_real)(s_v1 / n), (pf_real)(s_v2 / n));
     base.evsm2 = pf_depth_moments2_make((pf_real)(s_e1 / n), (pf_real)(s_e2 / n));

@@ -895,7 +895,14 @@ static void edge_directions(void)
     PF_CHECK(pf_leadr_specular(below, up, s, PF_R(1.0)) == zero, "view below the horizon");
     PF_CHECK(pf_leadr_specular_masking(up, below, s, PF_R(1.0)) == zero, "masking: light below");
     PF_CHECK(pf_leadr_specular(up, under_meso, s, PF_R(1.0)) == zero, "light below the mesosurface");
-    PF_CHECK(pf_leadr_specular_masking(under_meso, up, s, PF_R(1.0)) == zero, "view below the mesosurface");
+    /* a view below the mesosurface but above the macrosurface sees the facets facing it (the
+       pic_plane regression, tests/test_moments.c): positive, finite */
+    PF_CHECK(pf_leadr_specular_masking(under_meso, up, s, PF_R(1.0)) > zero &&
+                 finite_nonneg(pf_leadr_specular_masking(under_meso, up, s, PF_R(1.0))),
+             "view below the mesosurface");
+    PF_CHECK(pf_leadr_specular(under_meso, up, s, PF_R(1.0)) > zero &&
+                 finite_nonneg(pf_leadr_specular(under_meso, up, s, PF_R(1.0))),
+             "view below the mesosurface, joint");
     PF_CHECK(finite_nonneg(pf_leadr_specular(graze, up, s, PF_R(1.0))), "grazing view");
     PF_CHECK(finite_nonneg(pf_leadr_specular(up, graze, s, PF_R(1.0))), "grazing light");
     PF_CHECK(finite_nonneg(pf_leadr_specular(graze, graze, s, PF_R(1.0))), "grazing both");
@@ -1017,6 +1024,68 @@ static void edge_fresnel(void)
     }
 }
 
+/* Lean D (issue 17): one select for m.z <= 0, floors applied once. m.z <= 0 gives exactly 0;
+   tiny, subnormal and huge components give finite values >= 0; and a covariance with one
+   variance 0 is still the Gaussian of the other axis along the degenerate line (the variance
+   floor, not only a determinant floor: with det floored alone, q/det along that line lost
+   the 1/var_y scale and D came out flat). Oracle for the last: the ratio of D at two slopes on
+   the line, exp(-(y1^2 - y0^2) / (2 var_y)) (cos0 / cos1)^4, in long double. */
+static void edge_beckmann_d_lean(void)
+{
+    static const double zs[] = { 0.0, -0.0, -1e-30, -1.0, 1e-40, 1e-30, 1e-19, 1.0, 1e19 };
+    static const double xs[] = { 0.0, 1.0, -3.0, 1e-30, 1e30, -3e38 };
+    pf_slope_stats s = pf_slope_stats_make(PF_R(0.1), PF_R(-0.2), PF_R(0.3), PF_R(0.2), PF_R(0.1));
+    pf_slope_stats hc = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(1.0), PF_R(1.0), PF_REAL_MAX);
+    pf_slope_stats line = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.1), PF_R(0.0));
+    long double worst = 0;
+    int i, j, k;
+    for (i = 0; i < (int)(sizeof zs / sizeof zs[0]); ++i)
+        for (j = 0; j < (int)(sizeof xs / sizeof xs[0]); ++j)
+            for (k = 0; k < (int)(sizeof xs / sizeof xs[0]); ++k) {
+                pf_vec3 m = pf_vec3_make((pf_real)xs[j], (pf_real)xs[k], (pf_real)zs[i]);
+                pf_real a = pf_beckmann_d(m, s), b = pf_beckmann_d(m, hc);
+                PF_CHECK(finite_nonneg(a) && finite_nonneg(b), "D(%g %g %g) = %g, %g (cov near MAX)", xs[j], xs[k], zs[i],
+                         (double)a, (double)b);
+                if (!(zs[i] > 0.0)) PF_CHECK(a == PF_R(0.0) && b == PF_R(0.0), "D below the horizon: %g %g", (double)a, (double)b);
+            }
+    for (i = 1; i <= 8; ++i) {
+        long double y = 0.1L * i, c0 = 1.0L, c1 = 1.0L / sqrtl(1.0L + y * y);
+        long double want = expl(-(y * y) / (2.0L * 0.1L)) * powl(c0 / c1, 4.0L);
+        long double got = (long double)pf_beckmann_d(pf_vec3_make(PF_R(0.0), -(pf_real)y, PF_R(1.0)), line) /
+                          (long double)pf_beckmann_d(pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0)), line);
+        long double e = fabsl(got / want - 1.0L);
+        if (e > worst) worst = e;
+    }
+    pf_test_note("degenerate axis: ratio error %.3g", (double)worst);
+    PF_CHECK(worst <= 64.0L * PF_TEST_EPS, "D along a degenerate axis is not the other axis' Gaussian: %.3g", (double)worst);
+}
+
+/* Lean LEADR specular at the degenerate directions: normal incidence (nu = inf: G1 = 1) and
+   zero variances given directly (both nu huge), where the joint and the masking-only terms
+   are both exactly 1, so the two BRDFs agree to the bit; the light or the view on or below the
+   macrosurface or the mean plane gives exactly 0. */
+static void edge_leadr_lean(void)
+{
+    pf_slope_stats z0 = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    pf_slope_stats z1 = pf_slope_stats_make(PF_R(0.2), PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    pf_vec3 up = pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
+    int i;
+    for (i = 0; i < 12; ++i) {
+        pf_real t = PF_R(0.12) * (pf_real)i;
+        pf_vec3 wi = pf_vec3_make(PF_SIN(t), PF_R(0.0), PF_COS(t));
+        pf_real a = pf_leadr_specular(up, wi, z0, PF_R(0.04)), b = pf_leadr_specular_masking(up, wi, z0, PF_R(0.04));
+        pf_real c = pf_leadr_specular(wi, up, z1, PF_R(0.5)), d = pf_leadr_specular_masking(wi, up, z1, PF_R(0.5));
+        PF_CHECK(finite_nonneg(a) && a == b, "zero variance, view up, light %d: %g vs masking %g", i, (double)a, (double)b);
+        PF_CHECK(finite_nonneg(c) && c == d, "zero variance, mean slope, light up, view %d: %g vs %g", i, (double)c, (double)d);
+    }
+    PF_CHECK(pf_leadr_specular(up, pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0)), z0, PF_R(1.0)) == PF_R(0.0), "light at the horizon");
+    PF_CHECK(pf_leadr_specular(pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(-1.0)), up, z0, PF_R(1.0)) == PF_R(0.0), "view below");
+    /* mean slope 2 in x: (1, 0, 1)/sqrt2 is below the mean plane (area 1 - 2 < 0) */
+    PF_CHECK(pf_leadr_specular(up, pf_vec3_make(PF_R(0.7071), PF_R(0.0), PF_R(0.7071)),
+                               pf_slope_stats_make(PF_R(2.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)), PF_R(1.0)) == PF_R(0.0),
+             "light below the mean plane");
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1036,5 +1105,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_singular_covariance);
     PF_TEST_RUN(edge_fresnel);
     PF_TEST_RUN(edge_beckmann_huge_variance);
+    PF_TEST_RUN(edge_beckmann_d_lean);
+    PF_TEST_RUN(edge_leadr_lean);
     return PF_TEST_END();
 }

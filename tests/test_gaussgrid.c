@@ -485,8 +485,8 @@ static void test_specular_env_constant(void)
                     furnace += (long double)(sm.weight * sm.proj);
                 }
                 e[set][n] = fmaxl(e[set][n], pf_test_rel_error(sum, refs[i]));
-                /* white furnace without shadowing: sum W proj estimates 1 + Lambda_o */
-                furnace = furnace / (1.0L + lambda_ld(&c, c.wox, c.woy, c.woz));
+                /* white furnace without shadowing: proj = <w_n,w_o>/(w_n.w_g) / P_o, P_o = A_o (1 +
+                   Lambda_o) (the masked normalization of pf_gg_grid_make), so sum W proj estimates 1 */
                 if (set == PF_GG_UNIFORM && n == 5) furnace5 = fmaxl(furnace5, fabsl(furnace - 1.0L));
                 if (set == PF_GG_HERMITE && n == 3) furnace_h3 = fmaxl(furnace_h3, fabsl(furnace - 1.0L));
             }
@@ -494,7 +494,7 @@ static void test_specular_env_constant(void)
         }
         pf_test_note("%s: %s", set_name[set], buf);
     }
-    pf_test_note("unshadowed furnace (sum W proj / (1+Lambda_o) - 1): uniform 5x5 %.2e, hermite 3x3 %.2e",
+    pf_test_note("unshadowed furnace (sum W proj - 1): uniform 5x5 %.2e, hermite 3x3 %.2e",
                  (double)furnace5, (double)furnace_h3);
     PF_CHECK(e[PF_GG_UNIFORM][5] <= 0.05L, "LEADR 5x5 specular error %.3g", (double)e[0][5]);
     PF_CHECK(e[PF_GG_HERMITE][9] <= 0.07L, "Hermite 9x9 specular error %.3g", (double)e[1][9]);
@@ -679,8 +679,9 @@ static void test_diffuse_sh_vs_direct(void)
         worst_sh_ref = fmaxl(worst_sh_ref, pf_test_rel_error(via_sh, diffuse_refs[i]));
         worst_peak = fmaxl(worst_peak, fabsl(via_sh - direct) / peak);
         /* constant environment of radiance 1 (irradiance pi), masking only (algorithm 2):
-           I = G1_o (1/pi) sum W proj pi, exactly 1 for the exact integral, since
-           E[proj] = 1 + Lambda_o; the grid's deviation is its error on 1 + Lambda_o */
+           I = (1/pi) sum W proj pi, exactly 1 for the exact integral, since proj carries
+           1/P_o and E[max(0, w_o.z - x w_o.x - y w_o.y)] = P_o = A_o (1 + Lambda_o); the grid's
+           deviation is its error on P_o */
         for (set = 0; set < 3; set++) {
             pf_gg_grid gs = pf_gg_grid_make(cfg_wo(&c), cfg_stats(&c), set, furn_n[set]);
             pf_sh9 env = pf_gg_sh9_add_environment(pf_sh9_constant(PF_R(0.0)), gs, pf_sh9_constant(PF_R(1.0)));
@@ -695,6 +696,124 @@ static void test_diffuse_sh_vs_direct(void)
     PF_CHECK(worst_sh_direct >= 0.005L, "SH suspiciously exact (%.3g)", (double)worst_sh_direct);
     PF_CHECK(furn[0] <= 0.035L && furn[1] <= 0.02L && furn[2] <= 0.035L, "constant-environment furnace off by %.3g %.3g %.3g",
              (double)furn[0], (double)furn[1], (double)furn[2]);
+}
+
+/* ------------------------------------------------------------------ view below the mesosurface */
+
+/* The view below the footprint's mean plane but above the macrosurface (A_o < 0 < wo.z): eq.
+   17's G / A_o read as 1 / (P_o + max(A_o, 0) Lambda_i), P_o = E[max(0, w_o.z - x w_o.x - y
+   w_o.y)] (pf_leadr_specular; pf_gg_grid_make). The oracle integrates the slope plane in long
+   double: P_o itself (the facing facets' projected area, by quadrature, not from the closed
+   form pfi_beckmann_facing_area), then eq. 19's (environment env_poly, F = 1) and eq. 21's
+   numerators divided by it. Measured errors are the grids' (N = 9) quadrature errors: only the
+   tail of the slope density faces such a view, and the uniform and Hermite nodes resolve it
+   worst (at nu_o = -1.26: up to 13% and 29%, the matched grid 6%). */
+typedef struct below_ctx {
+    cfg c; /* first member: slope_integral passes &ctx.c, the integrands read the rest */
+    long double p_o, a_plus;
+} below_ctx;
+
+static long double facing_integrand(long double x, long double y, void *ctx)
+{
+    const cfg *c = (const cfg *)ctx;
+    long double po = c->woz - x * c->wox - y * c->woy;
+    return po > 0.0L ? po * p22(c, x, y) : 0.0L;
+}
+
+static long double below_specular_integrand(long double x, long double y, void *ctx)
+{
+    const below_ctx *b = (const below_ctx *)ctx;
+    const cfg *c = &b->c;
+    long double po = c->woz - x * c->wox - y * c->woy;
+    long double q, d, wix, wiy, wiz, li;
+    if (po <= 0.0L) return 0.0L;
+    q = 1.0L + x * x + y * y;
+    d = po / sqrtl(q);
+    wix = 2.0L * d * (-x) / sqrtl(q) - c->wox;
+    wiy = 2.0L * d * (-y) / sqrtl(q) - c->woy;
+    wiz = 2.0L * d / sqrtl(q) - c->woz;
+    li = lambda_ld(c, wix, wiy, wiz);
+    if (li >= HUGE_VALL) return 0.0L;
+    return po / (b->p_o + b->a_plus * li) * env_poly(wix, wiy, wiz) * p22(c, x, y);
+}
+
+static void test_gg_view_below_mean_plane(void)
+{
+    /* view (theta, phi), light (theta, phi), mean (mx, my), (sx, sy, r): A_o < 0 in each */
+    static const long double t[4][9] = {
+        { 1.30L, 0.0L, 0.5L, 3.0L, 0.50L, 0.0L, 0.35L, 0.35L, 0.0L },   /* nu_o ~ -0.3 */
+        { 1.20L, 0.3L, 0.7L, 2.5L, 0.45L, 0.25L, 0.30L, 0.20L, 0.5L },  /* anisotropic, correlated */
+        { 1.35L, -0.4L, 0.4L, 2.0L, 0.55L, -0.35L, 0.45L, 0.40L, -0.4L }, /* rough */
+        { 1.25L, 0.0L, 0.6L, 3.1L, 0.60L, 0.0L, 0.15L, 0.15L, 0.0L },   /* smooth: nu_o ~ -1 */
+    };
+    long double err_spec[3] = { 0.0L, 0.0L, 0.0L }, err_diff[3] = { 0.0L, 0.0L, 0.0L };
+    long double err_furn = 0.0L, err_sh_env = 0.0L, jump = 0.0L, nu_min = 0.0L, nu_max = -1.0e30L;
+    int i, set, ok;
+    for (i = 0; i < 4; i++) {
+        below_ctx b;
+        long double a_o, spec_ref, diff_ref, li, sd;
+        b.c = cfg_make(t[i][0], t[i][1], t[i][2], t[i][3], t[i][4], t[i][5], t[i][6], t[i][7], t[i][8]);
+        a_o = b.c.woz - b.c.wox * b.c.mx - b.c.woy * b.c.my;
+        sd = sqrtl(2.0L * (b.c.wox * b.c.wox * b.c.vx + b.c.woy * b.c.woy * b.c.vy + 2.0L * b.c.wox * b.c.woy * b.c.cxy));
+        nu_min = fminl(nu_min, a_o / sd);
+        nu_max = fmaxl(nu_max, a_o / sd);
+        PF_CHECK(a_o < 0.0L && b.c.woz > 0.0L, "config %d is not below the mean plane (A_o = %.3Lg)", i, a_o);
+        b.p_o = slope_integral(facing_integrand, &b.c, 1e-11L, &ok);
+        PF_CHECK(ok && b.p_o > 0.0L, "P_o reference %d (%.3Lg)", i, b.p_o);
+        b.a_plus = 0.0L;
+        spec_ref = slope_integral(below_specular_integrand, &b.c, 1e-10L, &ok); /* divided by P_o inside */
+        PF_CHECK(ok && spec_ref > 0.0L, "specular reference %d", i);
+        li = lambda_ld(&b.c, b.c.wix, b.c.wiy, b.c.wiz);
+        PF_CHECK(li < HUGE_VALL, "light %d below the mean plane", i);
+        /* below the mean plane the light's Lambda drops out: (1/pi) int po pi / P_o */
+        diff_ref = slope_integral(diffuse_integrand, &b.c, 1e-11L, &ok) / (PF_TEST_PI * b.p_o);
+        PF_CHECK(ok && diff_ref > 0.0L, "diffuse reference %d", i);
+        for (set = 0; set < 3; set++) {
+            pf_gg_grid g = pf_gg_grid_make(cfg_wo(&b.c), cfg_stats(&b.c), set, 9);
+            long double sum = 0.0L, furnace = 0.0L;
+            int k;
+            pf_sh9 env;
+            for (k = 0; k < pf_gg_grid_count(g); k++) {
+                pf_gg_sample sm = pf_gg_sample_at(g, k);
+                pf_gg_env_sample e = pf_gg_env_sample_at(g, k);
+                sum += (long double)e.weight * env_poly((long double)e.dir.x, (long double)e.dir.y, (long double)e.dir.z);
+                furnace += (long double)(sm.weight * sm.proj);
+            }
+            err_spec[set] = fmaxl(err_spec[set], pf_test_rel_error(sum, spec_ref));
+            err_diff[set] = fmaxl(err_diff[set], pf_test_rel_error((long double)pf_gg_diffuse_directional(g, cfg_wi(&b.c)), diff_ref));
+            err_furn = fmaxl(err_furn, fabsl(furnace - 1.0L));
+            /* the SH environment path: a constant environment of radiance 1 gives exactly 1 */
+            env = pf_gg_sh9_add_environment(pf_sh9_constant(PF_R(0.0)), g, pf_sh9_constant(PF_R(1.0)));
+            err_sh_env = fmaxl(err_sh_env, fabsl((long double)pf_gg_diffuse_sh(g, env) - 1.0L));
+        }
+    }
+    /* continuity through the mean plane: the view tilted across A_o = 0 (config 0's mean and
+       roughness), specular environment sum just above vs just below */
+    {
+        cfg c = cfg_make(1.30L, 0.0L, 0.5L, 3.0L, 0.0L, 0.0L, 0.35L, 0.35L, 0.0L);
+        long double side[2];
+        int s2, k;
+        for (s2 = 0; s2 < 2; s2++) {
+            /* mean slope wo.z / wo.x (1 -/+ 1e-3): A_o = +/- 1e-3 wo.z */
+            pf_real mx = (pf_real)((long double)cfg_wo(&c).z / (long double)cfg_wo(&c).x * (s2 == 0 ? 0.999L : 1.001L));
+            pf_gg_grid g = pf_gg_grid_make(cfg_wo(&c), pf_slope_stats_make(mx, PF_R(0.0), PF_R(0.1225), PF_R(0.1225), PF_R(0.0)),
+                                           PF_GG_MATCHED, 9);
+            side[s2] = 0.0L;
+            for (k = 0; k < pf_gg_grid_count(g); k++) side[s2] += (long double)pf_gg_env_sample_at(g, k).weight;
+        }
+        jump = pf_test_rel_error(side[1], side[0]);
+    }
+    pf_test_note("nu_o in [%.2Lf, %.2Lf], N = 9, max rel err vs quadrature: specular env uniform %.2Le hermite %.2Le matched "
+                 "%.2Le; diffuse (one light) %.2Le %.2Le %.2Le; unshadowed furnace |sum W proj - 1| %.2Le; SH constant env "
+                 "%.2Le; env sum across A_o = 0 (+/- 1e-3 wo.z): rel jump %.2Le",
+                 nu_min, nu_max, err_spec[0], err_spec[1], err_spec[2], err_diff[0], err_diff[1], err_diff[2], err_furn,
+                 err_sh_env, jump);
+    PF_CHECK(err_spec[PF_GG_UNIFORM] <= 0.15L && err_spec[PF_GG_HERMITE] <= 0.32L && err_spec[PF_GG_MATCHED] <= 0.07L,
+             "specular env below the mean plane: %.3Lg %.3Lg %.3Lg", err_spec[0], err_spec[1], err_spec[2]);
+    PF_CHECK(err_diff[PF_GG_UNIFORM] <= 0.15L && err_diff[PF_GG_HERMITE] <= 0.3L && err_diff[PF_GG_MATCHED] <= 0.065L,
+             "diffuse below the mean plane: %.3Lg %.3Lg %.3Lg", err_diff[0], err_diff[1], err_diff[2]);
+    PF_CHECK(err_furn <= 0.28L && err_sh_env <= 0.28L, "furnace below the mean plane %.3Lg, SH %.3Lg", err_furn, err_sh_env);
+    PF_CHECK(jump <= 0.01L, "env sum jumps by %.3Lg across the mean plane", jump);
 }
 
 /* LEADR sec. 6: the centered isotropic rough diffuse BRDF corresponds to Oren-Nayar's.
@@ -1004,6 +1123,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_env_geometry);
     PF_TEST_RUN(test_sh_irradiance);
     PF_TEST_RUN(test_diffuse_sh_vs_direct);
+    PF_TEST_RUN(test_gg_view_below_mean_plane);
     PF_TEST_RUN(test_oren_nayar);
     PF_TEST_RUN(edge_sigma_zero);
     PF_TEST_RUN(edge_degenerate_inputs);

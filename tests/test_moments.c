@@ -9,7 +9,9 @@
    - sampling against the GPU's bilinear formula evaluated here;
    - ESM log-space reductions against the direct exp(c z) averages;
    - height-map slopes against the analytic gradient of a sum of sinusoids, and the pyramid's
-     top against the gradient moments integrated over the domain (tests/pf_oracle.h).
+     top against the gradient moments integrated over the domain (tests/pf_oracle.h);
+   - LEADR shading of trilinear samples whose mean plane hides the view (the pic_plane
+     regression) against eq. 17 and a 2D quadrature of the facets facing the view.
    The same bodies run in float, double, C++ and under sanitizers (every buffer is allocated
    with its exact size, so AddressSanitizer sees any read out of bounds); edge_* tests also run
    under -ffast-math. Issue 19 (memory safety of the pointer-taking functions): every
@@ -1526,6 +1528,135 @@ static void test_esm_log_mean_nan_weight(void)
     PF_CHECK(!pf_test_finite(pf_esm_log_weighted_mean(l, w, 6)), "a NaN log of positive weight must propagate");
 }
 
+/* ---------------------------------------------------------------- LEADR from a trilinear sample
+   Issue 15 item 6 (bench/pictures.c, pic_plane): LEADR returned 0 at lit pixels of the plane,
+   black dashes in the middle distance. These are the trilinear moments fetched at two of them
+   (pixels (317, 65) and (244, 71) of the 400 x 250 picture, lod 5.61 and 4.96), with the
+   pixels' view and light. The footprint's mean slope tilts its mean plane above the grazing
+   view (A_o = w_o.z - E[x] w_o.x - E[y] w_o.y = -0.022 and -0.0005 at w_o.z = 0.069 and
+   0.089), while the reference, a box of texels of the flat macrosurface whose own mean plane
+   the view clears, sees the facets facing the viewer; pf_leadr_specular culled A_o <= 0, as
+   LEADR sec. 4.3 does for displaced geometry. The oracle: eq. 17, F D G2 / (4 A_o) with Smith's
+   Lambda in closed form, where A_o > 0; on and below the mean plane, the radiance of the facets
+   that face the viewer, F D / (4 P_o), P_o = E[max(0, w_o.z - x w_o.x - y w_o.y)] integrated
+   over the slope Gaussian (2D quadrature), whose identity P_o = A_o (1 + Lambda_o) above the
+   mean plane is checked too. A sweep of view elevations through the mean plane (light fixed)
+   must never give 0 and must follow the oracle on both sides. */
+typedef struct { long double mx, my, vx, vy, c, wx, wy, wz; } front_area_ctx;
+
+static front_area_ctx front_area_make(pf_slope_stats s, long double wx, long double wy, long double wz)
+{
+    front_area_ctx f;
+    f.mx = (long double)s.mean_x; f.my = (long double)s.mean_y;
+    f.vx = (long double)s.var_x; f.vy = (long double)s.var_y; f.c = (long double)s.cov_xy;
+    f.wx = wx; f.wy = wy; f.wz = wz;
+    return f;
+}
+
+static long double front_area_integrand(long double x, long double y, void *ctx)
+{
+    const front_area_ctx *f = (const front_area_ctx *)ctx;
+    long double a = f->wz - x * f->wx - y * f->wy;
+    return a > 0.0L ? a * pf_oracle_normal2_pdf(x - f->mx, y - f->my, f->vx, f->vy, f->c) : 0.0L;
+}
+
+static int front_area_ypoints(long double x, long double *pts, int max_points, void *ctx)
+{
+    const front_area_ctx *f = (const front_area_ctx *)ctx;
+    if (max_points < 2) return 0;
+    pts[0] = (f->wz - x * f->wx) / f->wy; /* the kink, facets seen edge-on (w.y != 0 here) */
+    pts[1] = f->my;
+    return 2;
+}
+
+/* P by quadrature; *ok = 0 when it did not converge. */
+static long double front_area_quad(front_area_ctx f, int *ok)
+{
+    pf_oracle_2d pb = pf_oracle_2d_make(front_area_integrand, &f, -HUGE_VALL, HUGE_VALL, -HUGE_VALL, HUGE_VALL);
+    pf_oracle_result r;
+    pb.xpoints = &f.mx;
+    pb.nxpoints = 1;
+    pb.ypoints = front_area_ypoints;
+    pb.epsrel = 1e-13L;
+    r = pf_oracle_integrate_2d(&pb);
+    *ok = r.converged;
+    return r.value;
+}
+
+static long double front_area_nu(front_area_ctx f, long double area)
+{
+    return area / sqrtl(2.0L * (f.wx * f.wx * f.vx + f.wy * f.wy * f.vy + 2.0L * f.wx * f.wy * f.c));
+}
+
+/* The oracle radiance (f0 = 1: no Fresnel) and the signed area A_o; *ok = 0 if the quadrature
+   failed. */
+static long double leadr_view_oracle(pf_slope_stats s, pf_vec3 wo, pf_vec3 wi, int masking_only,
+                                     long double *area_o, int *ok)
+{
+    front_area_ctx f = front_area_make(s, (long double)wo.x, (long double)wo.y, (long double)wo.z);
+    front_area_ctx g = front_area_make(s, (long double)wi.x, (long double)wi.y, (long double)wi.z);
+    long double hx = f.wx + g.wx, hy = f.wy + g.wy, hz = f.wz + g.wz;
+    long double d, ai = g.wz - g.mx * g.wx - g.my * g.wy;
+    *area_o = f.wz - f.mx * f.wx - f.my * f.wy;
+    d = pf_oracle_normal2_pdf(-hx / hz - f.mx, -hy / hz - f.my, f.vx, f.vy, f.c) *
+        powl((hx * hx + hy * hy + hz * hz) / (hz * hz), 2.0L); /* LEADR eq. 10 */
+    *ok = 1;
+    if (*area_o <= 0.0L) return d / (4.0L * front_area_quad(f, ok));
+    return d / (4.0L * *area_o * (1.0L + pf_oracle_lambda_beckmann(front_area_nu(f, *area_o)) +
+                                  (masking_only ? 0.0L : pf_oracle_lambda_beckmann(front_area_nu(g, ai)))));
+}
+
+static void test_leadr_trilinear_view_below_mean_plane(void)
+{
+    static const float mom[2][5] = {
+        {-0.0535610877f, -0.0782404244f, 0.152933627f, 0.161369681f, 0.00774230994f},
+        {-0.01597175f, -0.088464804f, 0.127252787f, 0.113091312f, 0.0144015793f}};
+    static const float view[2][3] = {{-0.319446981f, -0.945094228f, 0.0689238086f},
+                                     {-0.126992688f, -0.987906158f, 0.0889620781f}};
+    pf_vec3 wi = pf_vec3_make(PF_R(0.163175911), PF_R(0.925416589), PF_R(0.342020154));
+    long double worst_below = 0.0L, worst_above = 0.0L, worst_ident = 0.0L;
+    int px, k, mo, zeros = 0, below = 0, quad_ok = 1, ok;
+    for (px = 0; px < 2; ++px) {
+        pf_slope_stats s = pf_slope_moments_stats(
+            pf_slope_moments_make((pf_real)mom[px][0], (pf_real)mom[px][1], (pf_real)mom[px][2],
+                                  (pf_real)mom[px][3], (pf_real)mom[px][4]), PF_R(0.01));
+        long double az = atan2l((long double)view[px][1], (long double)view[px][0]);
+        long double el0 = asinl((long double)view[px][2]);
+        front_area_ctx f = front_area_make(s, 0.3L, -0.9L, 0.3L);
+        long double a = f.wz - f.mx * f.wx - f.my * f.wy, p = front_area_quad(f, &ok), e;
+        /* the quadrature against Smith's normalization above the mean plane */
+        quad_ok &= ok;
+        e = fabsl(p - a * (1.0L + pf_oracle_lambda_beckmann(front_area_nu(f, a)))) / p;
+        if (!(e <= worst_ident)) worst_ident = e;
+        /* the pixel's own view, then elevations 1 to 9.5 degrees at its azimuth */
+        for (k = -1; k < 18; ++k) {
+            long double el = k < 0 ? el0 : (1.0L + 0.5L * k) * PF_TEST_PI / 180.0L, area, want;
+            pf_vec3 wo = pf_vec3_make((pf_real)(cosl(el) * cosl(az)), (pf_real)(cosl(el) * sinl(az)),
+                                      (pf_real)sinl(el));
+            for (mo = 0; mo < 2; ++mo) {
+                pf_real got = mo ? pf_leadr_specular_masking(wo, wi, s, PF_R(1.0))
+                                 : pf_leadr_specular(wo, wi, s, PF_R(1.0));
+                want = leadr_view_oracle(s, wo, wi, mo, &area, &ok);
+                quad_ok &= ok;
+                zeros += !(got > PF_R(0.0));
+                e = fabsl((long double)got - want) / want;
+                if (area <= 0.0L) {
+                    below++;
+                    if (!(e <= worst_below)) worst_below = e; /* NaN counts as the worst */
+                } else if (!(e <= worst_above))
+                    worst_above = e;
+            }
+        }
+    }
+    pf_test_note("%d of 76 below the mean plane, %d zeros; rel. error %.2Lg below, %.2Lg above; "
+                 "quadrature vs A (1 + Lambda) %.1Lg", below, zeros, worst_below, worst_above, worst_ident);
+    PF_CHECK(quad_ok && worst_ident <= 1e-12L, "oracle: quadrature %d, identity %Lg", quad_ok, worst_ident);
+    PF_CHECK(below >= 20, "the sweep must cross the mean plane (%d below)", below);
+    PF_CHECK(zeros == 0, "%d views above the macrosurface returned 0", zeros);
+    PF_CHECK(worst_below <= 32.0L * PF_TEST_EPS, "below the mean plane: %Lg", worst_below);
+    PF_CHECK(worst_above <= 32.0L * PF_TEST_EPS, "above the mean plane: %Lg", worst_above);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1555,5 +1686,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_esm_log_mean_tiny_share);
     PF_TEST_RUN(test_esm_log_mean_nan_weight);
     PF_TEST_RUN(test_issue19_build_near_max_finite);
+    PF_TEST_RUN(test_leadr_trilinear_view_below_mean_plane);
     return PF_TEST_END();
 }

@@ -35,13 +35,14 @@ typedef struct dist_moments {
 
 static dist_moments moments_of(const dist *p)
 {
-    long double v[4] = { 0, 0, 0, 0 }, e[2] = { 0, 0 }, q[4] = { 0, 0, 0, 0 }, lmax = -HUGE_VALL, s = 0;
+    long double v[4] = { 0, 0, 0, 0 }, mu[4] = { 0, 0, 0, 0 }, e[2] = { 0, 0 }, q[4] = { 0, 0, 0, 0 }, lmax = -HUGE_VALL, s = 0;
     dist_moments r;
     int i;
     for (i = 0; i < p->n; ++i) {
-        long double z = p->z[i], w = p->w[i], zs = 2.0L * z - 1.0L;
+        long double z = p->z[i], w = p->w[i], zs = 2.0L * z - 1.0L, u = 1.0L - z; /* MSM stores u */
         long double pp = expl((long double)CPOS * zs), nn = -expl(-(long double)CNEG * zs);
         v[0] += w * z; v[1] += w * z * z; v[2] += w * z * z * z; v[3] += w * z * z * z * z;
+        mu[0] += w * u; mu[1] += w * u * u; mu[2] += w * u * u * u; mu[3] += w * u * u * u * u;
         e[0] += w * pp; e[1] += w * pp * pp;
         q[0] += w * pp; q[1] += w * pp * pp; q[2] += w * nn; q[3] += w * nn * nn;
         if ((long double)CESM * z > lmax && w > 0) lmax = (long double)CESM * z;
@@ -50,7 +51,7 @@ static dist_moments moments_of(const dist *p)
     r.vsm = pf_depth_moments2_make((pf_real)v[0], (pf_real)v[1]);
     r.evsm2 = pf_depth_moments2_make((pf_real)e[0], (pf_real)e[1]);
     r.evsm4 = pf_evsm_moments_make((pf_real)q[0], (pf_real)q[1], (pf_real)q[2], (pf_real)q[3]);
-    r.msm = pf_depth_moments4_make((pf_real)v[0], (pf_real)v[1], (pf_real)v[2], (pf_real)v[3]);
+    r.msm = pf_depth_moments4_make((pf_real)mu[0], (pf_real)mu[1], (pf_real)mu[2], (pf_real)mu[3]);
     r.esm_log = (pf_real)(lmax + logl(s));
     r.mean = v[0];
     return r;
@@ -309,6 +310,74 @@ static void test_msm_bounds_random(void)
 #else
     PF_CHECK(worst_lo <= 2e-3L && worst_hi <= 2e-3L, "bounds violated by %.3g / %.3g", (double)worst_lo, (double)worst_hi);
 #endif
+}
+
+/* Issue 17: two depths near the far plane, 1 (weight 0.45) and z1 (0.55), receiver at 1, the
+   default bias; the truth is 0.45 (brute force: the fraction of depths >= 1). With z-power
+   moments in fp32 the float upper bound read 0.4347, 0.4410, 0.9514, 0.0414 for these z1:
+   the moments' rounding swamped the depth difference. The reversed storage (u = 1 - z) keeps
+   it; both the stored moments and the reconstruction run through the library's own
+   constructor and weighted sum in pf_real, as a shader would. */
+static void test_msm_two_depth_far_plane(void)
+{
+    static const double z1s[4] = { 0.997, 0.999, 0.9999, 0.99999 };
+    long double worst = 0;
+    int i;
+    char buf[160] = "";
+    for (i = 0; i < 4; ++i) {
+        dist p = two_point(1.0L, 0.45L, (long double)z1s[i]);
+        pf_depth_moments4 m = pf_depth_moments4_add(
+            pf_depth_moments4_scale(pf_depth_moments4_from_depth((pf_real)p.z[0]), PF_R(0.45)),
+            pf_depth_moments4_scale(pf_depth_moments4_from_depth((pf_real)p.z[1]), PF_R(0.55)));
+        pf_real up = pf_shadow_msm(m, PF_R(1.0), ALPHA, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT);
+        long double err = fabsl((long double)up - lit_of(&p, 1.0L));
+        size_t len = strlen(buf);
+        snprintf(buf + len, sizeof buf - len, "%s%.5f: %.4f", i ? ", " : "", z1s[i], (double)up);
+        if (err > worst) worst = err;
+    }
+    pf_test_note("lit (truth 0.45) %s", buf);
+#ifdef PF_DOUBLE
+    /* the bias moves the sharp bound by a (coin_ge - truth) = 3e-5 x 0.05 */
+    PF_CHECK(worst <= 1e-6L + 0.05L * (long double)ALPHA, "two-depth footprint off by %.3g", (double)worst);
+#else
+    PF_CHECK(worst <= 0.05L, "two-depth footprint off by %.3g", (double)worst);
+#endif
+}
+
+/* Issue 17: footprints clustered at any depth, with spreads 1e-5 .. 0.1 (so that the fp32
+   moments lose the cluster's shape at some depths), receivers at a footprint depth or inside
+   the cluster. Where the moments cannot resolve the cluster the bound must err toward lit
+   (the conditioning-aware pivot floors), not fall below the truth: counted as falls of more
+   than 0.1 below brute force (the z-power storage with fixed floors had 958 in 200k here). */
+static void test_msm_clustered_falls(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x17c1u);
+    int i, k, falls = 0, n = 40000;
+    long double worst = 0;
+    for (i = 0; i < n; ++i) {
+        dist p;
+        long double sum = 0, c = (long double)pf_test_uniform(&r, 0.0, 1.0);
+        long double s = powl(10.0L, (long double)pf_test_uniform(&r, -5.0, -1.0)), dd;
+        dist_moments m;
+        pf_real d, up;
+        p.n = 2 + (int)(pf_test_rng_next(&r) % 5u);
+        for (k = 0; k < p.n; ++k) {
+            long double z = c + s * (long double)pf_test_uniform(&r, -1.0, 1.0);
+            p.z[k] = (long double)(pf_real)(z < 0 ? 0 : (z > 1 ? 1 : z));
+            p.w[k] = (long double)pf_test_uniform(&r, 0.05, 1.05);
+            sum += p.w[k];
+        }
+        for (k = 0; k < p.n; ++k) p.w[k] /= sum;
+        dd = pf_test_uniform(&r, 0.0, 1.0) < 0.5 ? p.z[pf_test_rng_next(&r) % (unsigned)p.n]
+                                                 : c + s * (long double)pf_test_uniform(&r, -1.0, 1.0);
+        d = (pf_real)(dd < 0 ? 0 : (dd > 1 ? 1 : dd));
+        m = moments_of(&p);
+        up = pf_shadow_msm(m.msm, d, ALPHA, PF_R(0.0));
+        if (lit_of(&p, (long double)d) - (long double)up > worst) worst = lit_of(&p, (long double)d) - (long double)up;
+        falls += lit_of(&p, (long double)d) - (long double)up > 0.1L;
+    }
+    pf_test_note("%d clustered footprints: %d fall > 0.1 below the truth, largest fall %.2g", n, falls, (double)worst);
+    PF_CHECK(falls == 0, "%d falls of more than 0.1 below the truth", falls);
 }
 
 /* Sharpness: a three-atom distribution with an atom at the receiver depth is the extremal
@@ -601,6 +670,480 @@ static void edge_shadow_monotone(void)
     PF_CHECK(worst[SHS_M_MSM] <= 1e-2L, "MSM increases by %.3g with d", (double)worst[SHS_M_MSM]);
 }
 
+/* ------------------------------------------------------------------ lean paths (issue 17) */
+
+/* EVSM's lean evaluation (no scaling, the minimum variance's slope taken at E[p] for the
+   positive warp and at w(d) for the negative one, the receiver-in-front test folded into
+   t = max(w - m1, 0)) against the documented semantics evaluated in long double on the same
+   stored moments: Chebyshev with the minimum variance mapped at whichever of w(d) and E[w] is
+   nearer 0, and read as at least PF_REAL_MIN. Tolerance: the rounding of m2 - m1^2 and of t (w carries the exp argument's
+   rounding, about c ulps) relative to var + t^2. Taking the slope at the wrong point moves
+   the bound by 4 c^2 v / (1 + 4 c^2 v) ~ 6e-3 at c = 40, far above it. */
+static long double evsm_oracle(long double m1, long double m2, long double w, long double c, long double v,
+                               long double *scale)
+{
+    long double a = fabsl(w) < fabsl(m1) ? fabsl(w) : fabsl(m1), k = 2.0L * c * a;
+    long double var = m2 - m1 * m1, mv = v * k * k, t = w - m1;
+    if (var < mv) var = mv;
+    /* the documented floor: a warped variance below the smallest normal is read as it (it
+       matters for the negative warp with c_neg > 30 near d = 1, warped values < 1e-17) */
+    if (var < (long double)PF_REAL_MIN) var = (long double)PF_REAL_MIN;
+    *scale = (fabsl(m2) + m1 * m1 + (c + 4.0L) * w * w + mv) / (var + t * t);
+    return t <= 0 ? 1.0L : var / (var + t * t);
+}
+
+static void test_evsm_lean_matches_chebyshev(void)
+{
+    static const double cs[] = { 1.0, 5.0, 20.0, 40.0, 44.0 };
+    pf_test_rng r = pf_test_rng_seed(0x1e4au);
+    long double worst = 0;
+    int i, j, n = 0;
+    for (i = 0; i < 3000; ++i) {
+        dist p = random_dist(&r);
+        long double cp = (long double)cs[i % 5], cn = (long double)cs[(i / 5) % 5];
+        long double v = i % 7 == 0 ? 0.0L : (long double)pf_test_log_uniform(&r, 1e-8, 1e-3);
+        long double q[4] = { 0, 0, 0, 0 };
+        pf_evsm_moments m;
+        for (j = 0; j < p.n; ++j) {
+            long double zs = 2.0L * p.z[j] - 1.0L, pp = expl(cp * zs), nn = -expl(-cn * zs);
+            q[0] += p.w[j] * pp; q[1] += p.w[j] * pp * pp; q[2] += p.w[j] * nn; q[3] += p.w[j] * nn * nn;
+        }
+        m = pf_evsm_moments_make((pf_real)q[0], (pf_real)q[1], (pf_real)q[2], (pf_real)q[3]);
+        for (j = 0; j <= 40; ++j) {
+            pf_real d = (pf_real)(j / 40.0);
+            long double zs = 2.0L * (long double)d - 1.0L, sp, sn, e;
+            long double lp = evsm_oracle((long double)m.pos1, (long double)m.pos2, expl(cp * zs), cp, v, &sp);
+            long double ln = evsm_oracle((long double)m.neg1, (long double)m.neg2, -expl(-cn * zs), cn, v, &sn);
+            long double got2 = (long double)pf_shadow_evsm2(pf_depth_moments2_make(m.pos1, m.pos2), d, (pf_real)cp, (pf_real)v, PF_R(0.0));
+            long double got4 = (long double)pf_shadow_evsm4(m, d, (pf_real)cp, (pf_real)cn, (pf_real)v, PF_R(0.0));
+            e = fabsl(got2 - lp) / (2.0L * PF_TEST_EPS * (sp + 1.0L));
+            if (e > worst) worst = e;
+            e = fabsl(got4 - (lp < ln ? lp : ln)) / (2.0L * PF_TEST_EPS * ((lp < ln ? sp : sn) + 1.0L));
+            if (e > worst) worst = e;
+            n += 2;
+        }
+    }
+    pf_test_note("%d values; worst error %.3g of the rounding bound 2 eps (1 + (m2 + m1^2 + (c + 4) w^2 + mv) / (var + t^2))",
+                 n, (double)worst);
+    PF_CHECK(worst <= 1.0L, "EVSM lean path off its long double Chebyshev by %.3g bounds", (double)worst);
+}
+
+/* Degenerate moments and parameters at the edges of their domains: point masses (E[z^2] =
+   E[z]^2, or a few ulps below), minimum variance 0, receivers a subnormal step behind the
+   occluder, huge minimum variances with EVSM's largest exponent, bleeding thresholds 0, 0.999,
+   1 and beyond: every value finite and in [0, 1], a receiver at or in front of a point mass
+   exactly 1 (t = 0 gives var / var), one clearly behind it 0 (to 1e-6) when min_variance = 0. */
+static void edge_shadow_degenerate(void)
+{
+    static const double zs[] = { 0.0, 1e-30, 0.25, 0.5, 0.999, 1.0 };
+    static const double steps[] = { -0.1, 0.0, 1e-40, 1e-30, 1e-20, 1e-7, 0.1 };
+    static const double bleeds[] = { 0.0, 0.3, 0.999, 1.0, 2.0, -1.0 };
+    static const double mvs[] = { 0.0, 1e-6, 1.0, 4294967296.0, 1e30 };
+    int i, j, k, b, n = 0, bad = 0;
+    for (i = 0; i < (int)(sizeof zs / sizeof zs[0]); ++i)
+        for (k = -2; k <= 0; ++k) {
+            pf_real z = (pf_real)zs[i];
+            pf_real z2 = z * z * (PF_R(1.0) + (pf_real)k * (pf_real)PF_TEST_EPS);
+            pf_depth_moments2 m = pf_depth_moments2_make(z, z2);
+            for (j = 0; j < (int)(sizeof steps / sizeof steps[0]); ++j) {
+                /* volatile: under -ffast-math the compiler would otherwise fold (z + step) - z
+                   inside the inlined test to step, while d itself rounds to z */
+                volatile pf_real dv = z + (pf_real)steps[j];
+                pf_real d = dv;
+                pf_real v0 = pf_shadow_vsm(m, d, PF_R(0.0), PF_R(0.0));
+                n++;
+                if (!in_unit(v0)) { bad++; PF_CHECK(0, "VSM point mass z %g d %g: %g", (double)z, (double)d, (double)v0); }
+                if (d <= z) PF_CHECK(v0 == PF_R(1.0), "VSM point mass, receiver in front: %g", (double)v0);
+                if ((long double)d - (long double)z >= 1e-7L && k == 0)
+                    PF_CHECK(v0 <= PF_R(1.0e-6), "VSM point mass z %g, receiver behind by %g: %g", (double)z,
+                             (double)((long double)d - (long double)z), (double)v0);
+                for (b = 0; b < (int)(sizeof bleeds / sizeof bleeds[0]); ++b) {
+                    int t;
+                    for (t = 0; t < (int)(sizeof mvs / sizeof mvs[0]); ++t) {
+                        pf_real mv = (pf_real)mvs[t], bl = (pf_real)bleeds[b];
+                        pf_real cmax = PF_EVSM_EXP_MAX_F32;
+                        pf_evsm_moments e = pf_evsm_moments_from_depth(z, cmax, cmax);
+                        pf_real vals[4];
+                        int u;
+                        vals[0] = pf_shadow_vsm(m, d, mv, bl);
+                        vals[1] = pf_shadow_evsm2(pf_depth_moments2_make(e.pos1, e.pos2), d, cmax, mv, bl);
+                        vals[2] = pf_shadow_evsm4(e, d, cmax, cmax, mv, bl);
+                        vals[3] = pf_shadow_chebyshev_upper(m.m1, m.m2, d, mv);
+                        for (u = 0; u < 4; ++u) {
+                            n++;
+                            if (!in_unit(vals[u])) {
+                                bad++;
+                                PF_CHECK(0, "test %d z %g d %g mv %g bleed %g: %g", u, (double)z, (double)d, (double)mv,
+                                         (double)bl, (double)vals[u]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    pf_test_note("%d values, %d outside [0, 1] or not finite", n, bad);
+}
+
+/* A NaN mean reads as an unknown footprint: lit; a NaN E[z^2] alone as the minimum variance (C semantics of the comparison-based min/max;
+   not an edge test, -ffast-math may drop it). A NaN bleeding threshold reads as 0. */
+static void test_shadow_nan_inputs(void)
+{
+    pf_real nan = (pf_real)NAN;
+    pf_depth_moments2 a = pf_depth_moments2_make(nan, PF_R(0.25)), b = pf_depth_moments2_make(PF_R(0.5), nan);
+    pf_evsm_moments e = pf_evsm_moments_make(nan, nan, nan, nan);
+    pf_real v[5];
+    v[0] = pf_shadow_vsm(a, PF_R(0.7), MINVAR, PF_R(0.0));
+    v[1] = pf_shadow_vsm(b, PF_R(0.7), MINVAR, PF_R(0.0));
+    v[2] = pf_shadow_evsm2(a, PF_R(0.7), CPOS, MINVAR, PF_R(0.0));
+    v[3] = pf_shadow_evsm4(e, PF_R(0.7), CPOS, CNEG, MINVAR, PF_R(0.0));
+    v[4] = pf_shadow_chebyshev_upper(nan, PF_R(0.25), PF_R(0.7), MINVAR);
+    PF_CHECK(v[0] == PF_R(1.0) && v[2] == PF_R(1.0) && v[3] == PF_R(1.0) && v[4] == PF_R(1.0) && in_unit(v[1]),
+             "NaN moments: %g %g %g %g %g (want 1, and [0, 1] for a NaN E[z^2] alone: the minimum variance)",
+             (double)v[0], (double)v[1], (double)v[2], (double)v[3], (double)v[4]);
+    PF_CHECK(in_unit(pf_shadow_vsm(pf_depth_moments2_make(PF_R(0.3), PF_R(0.1)), PF_R(0.7), MINVAR, nan)),
+             "NaN bleeding threshold");
+}
+
+/* ------------------------------------------------------------------ CSM (helper L, issue 16)
+   Oracles: the Fourier coefficients of the period-2 step by quadrature, brute-force lit
+   fractions, and cosl/sinl of the depths (never the library's constructor). */
+#define CSM_PI 3.14159265358979323846264338327950288L
+
+/* The filtered basis of a discrete distribution, harmonics 1..2 npairs, from cosl/sinl in
+   long double, rounded to pf_real (fp32 storage in the float build). */
+static void csm_values_of(const dist *p, int npairs, pf_real *v)
+{
+    int i, k;
+    for (k = 0; k < 4 * npairs; ++k) v[k] = 0;
+    for (k = 0; k < 2 * npairs; ++k) {
+        long double c = 0, s = 0, f = (2.0L * (k + 1) - 1.0L) * CSM_PI;
+        for (i = 0; i < p->n; ++i) {
+            c += p->w[i] * cosl(f * p->z[i]);
+            s += p->w[i] * sinl(f * p->z[i]);
+        }
+        v[2 * k] = (pf_real)c;
+        v[2 * k + 1] = (pf_real)s;
+    }
+}
+static pf_csm_pair csm_pair_at(const pf_real *v, int j) { return pf_csm_pair_make(v[4 * j], v[4 * j + 1], v[4 * j + 2], v[4 * j + 3]); }
+static pf_csm_moments csm_moments_of(const pf_real *v)
+{
+    pf_csm_moments m;
+    m.p0 = csm_pair_at(v, 0); m.p1 = csm_pair_at(v, 1); m.p2 = csm_pair_at(v, 2); m.p3 = csm_pair_at(v, 3);
+    m.p4 = csm_pair_at(v, 4); m.p5 = csm_pair_at(v, 5); m.p6 = csm_pair_at(v, 6); m.p7 = csm_pair_at(v, 7);
+    return m;
+}
+/* The raw series (no sharpening, no clamp) of `terms` harmonics through the streaming API. */
+static long double csm_raw(const pf_real *v, int terms, pf_real d, pf_real offset)
+{
+    pf_csm_sum a = pf_csm_sum_begin(d, offset);
+    int k;
+    for (k = 0; k < terms; ++k) a = pf_csm_sum_add_harmonic(a, v[2 * k], v[2 * k + 1]);
+    return (long double)a.value;
+}
+
+/* Eq. 36 for one depth: the library's series against the truncated Fourier series of the
+   step whose coefficients come from quadrature over one period (composite Simpson on (0, 1),
+   where the period-2 step is 1; it is 0 on (-1, 0)): a0/2 + sum_{n=1..2M} a_n cos(n pi x) +
+   b_n sin(n pi x), even n included (quadrature finds them 0: the library omits them). */
+static void test_csm_fourier_coefficients(void)
+{
+    enum { NQ = 4096, NH = 32 };
+    long double a[NH + 1], b[NH + 1], worst = 0, worst_even = 0, worst_coef = 0;
+    int n, q, i, j, t;
+    static const int terms[3] = { 4, 8, 16 };
+    for (n = 0; n <= NH; ++n) {
+        long double sa = 0, sb = 0, h = 1.0L / NQ;
+        for (q = 0; q <= NQ; ++q) {
+            long double x = q * h, wq = (q == 0 || q == NQ) ? 1.0L : ((q & 1) ? 4.0L : 2.0L);
+            sa += wq * cosl(n * CSM_PI * x);
+            sb += wq * sinl(n * CSM_PI * x);
+        }
+        a[n] = sa * h / 3.0L; /* (1/L) integral over the period, L = 1 */
+        b[n] = sb * h / 3.0L;
+    }
+    for (n = 1; n <= NH; ++n) {
+        long double e = (n & 1) ? fabsl(b[n] - 2.0L / (n * CSM_PI)) : fabsl(b[n]);
+        if (!(n & 1) && fabsl(b[n]) > worst_even) worst_even = fabsl(b[n]);
+        if (fabsl(a[n]) > worst_even) worst_even = fabsl(a[n]);
+        if ((n & 1) && e > worst_coef) worst_coef = e;
+    }
+    for (i = 0; i <= 20; ++i)
+        for (j = 0; j <= 20; ++j)
+            for (t = 0; t < 3; ++t) {
+                dist p;
+                pf_real v[64], d = (pf_real)(j / 20.0), off = (pf_real)(0.003 * (i % 4));
+                long double x, ref = a[0] / 2.0L, got;
+                p.n = 1;
+                p.z[0] = (long double)(pf_real)(i / 20.0);
+                p.w[0] = 1;
+                csm_values_of(&p, terms[t] / 2, v);
+                x = p.z[0] - (long double)d + (long double)off;
+                if (!(x > -1.0L && x < 1.0L)) continue; /* the documented domain */
+                for (n = 1; n <= 2 * terms[t]; ++n) ref += a[n] * cosl(n * CSM_PI * x) + b[n] * sinl(n * CSM_PI * x);
+                got = csm_raw(v, terms[t], d, off);
+                if (fabsl(got - ref) > worst) worst = fabsl(got - ref);
+            }
+    pf_test_note("quadrature: odd b_n - 2/(n pi) <= %.2g, even and cosine coefficients <= %.2g; single depth, "
+                 "M = 4, 8, 16: |series - quadrature series| <= %.2g", (double)worst_coef, (double)worst_even, (double)worst);
+    PF_CHECK(worst_coef <= 1e-9L && worst_even <= 1e-9L, /* Simpson, h = 1/4096, n <= 32 */ "quadrature coefficients %.3g %.3g", (double)worst_coef,
+             (double)worst_even);
+    /* float: phases up to 31 pi rounded to 2^-24 relative (1e-5 rad), summed over 16 terms;
+       double: the quadrature coefficients' own error (3.6e-11) summed over 32 of them */
+    PF_CHECK(worst <= (sizeof(pf_real) == sizeof(float) ? 2e-5L : 2e-9L), "series off the quadrature series by %.3g",
+             (double)worst);
+}
+
+/* Convergence with M on two-depth footprints (z0 with weight f, z1): for a receiver at
+   distance >= delta from both depths (and x = z - d inside (-1 + delta, 1 - delta)), Abel
+   summation bounds the tail of the series by 2 / (pi (2M + 1) sin(pi delta)) per depth, so
+   the plain series (scale 1, offset 0) is within that of the brute-force lit fraction. */
+static void test_csm_convergence(void)
+{
+    static const int Ms[6] = { 2, 4, 8, 16, 32, 64 };
+    long double worst[6] = { 0, 0, 0, 0, 0, 0 }, delta = 0.05L;
+    pf_test_rng r = pf_test_rng_seed(0xc5a1u);
+    int i, j, k, ok = 1;
+    char buf[200] = "";
+    for (i = 0; i < 400; ++i) {
+        /* one draw per statement: argument evaluation order is unspecified in C */
+        long double z0 = (long double)pf_test_uniform(&r, 0.05, 0.5), f = (long double)pf_test_uniform(&r, 0.1, 0.9);
+        long double z1 = (long double)pf_test_uniform(&r, 0.5, 0.95);
+        dist p = two_point(z0, f, z1);
+        pf_real v[256];
+        csm_values_of(&p, 32, v);
+        for (j = 0; j <= 100; ++j) {
+            pf_real d = (pf_real)(j / 100.0);
+            long double truth = lit_of(&p, (long double)d);
+            if (fabsl((long double)d - p.z[0]) < delta || fabsl((long double)d - p.z[1]) < delta) continue;
+            if (fabsl(p.z[0] - (long double)d) > 1 - delta || fabsl(p.z[1] - (long double)d) > 1 - delta) continue;
+            for (k = 0; k < 6; ++k) {
+                long double e = fabsl(csm_raw(v, Ms[k], d, PF_R(0.0)) - truth);
+                if (e > worst[k]) worst[k] = e;
+            }
+        }
+    }
+    for (k = 0; k < 6; ++k) {
+        long double bound = 2.0L / (CSM_PI * (2 * Ms[k] + 1) * sinl(CSM_PI * delta)) + 64.0L * Ms[k] * PF_TEST_EPS;
+        size_t len = strlen(buf);
+        snprintf(buf + len, sizeof buf - len, "%sM=%d %.2g (bound %.2g)", k ? ", " : "", Ms[k], (double)worst[k],
+                 (double)bound);
+        if (!(worst[k] <= bound)) ok = 0;
+        if (k > 0 && !(worst[k] < worst[k - 1])) ok = 0;
+    }
+    pf_test_note("two depths, receivers >= 0.05 from both: max |series - truth| %s", buf);
+    PF_CHECK(ok, "CSM series does not converge within the Abel bound: %s", buf);
+}
+
+/* The pyramid (pf_depth_pyramid_from_depths, PF_DEPTH_CSM4/8/16, even and odd sizes): the
+   1 x 1 top holds the mean over the map of cos/sin((2k - 1) pi z) computed with cosl/sinl
+   (the polyphase box gives every texel the same weight), and an even level's texel the mean
+   of its 2 x 2 block; the stamped reduce2x2 agrees with it. */
+static void test_csm_pyramid_average(void)
+{
+    static const int kinds[3] = { PF_DEPTH_CSM4, PF_DEPTH_CSM8, PF_DEPTH_CSM16 };
+    static const int ws[2] = { 8, 7 }, hs[2] = { 6, 5 };
+    pf_test_rng r = pf_test_rng_seed(0xc5a2u);
+    long double worst_top = 0, worst_box = 0, worst_stamp = 0;
+    int t, s, i, k, x, y;
+    for (t = 0; t < 3; ++t)
+        for (s = 0; s < 2; ++s) {
+            int w = ws[s], h = hs[s], nc = pf_depth_moment_channels(kinds[t]);
+            long long total = pf_mip_texel_count(w, h), top = pf_mip_level_offset(w, h, pf_mip_level_count(w, h) - 1);
+            pf_real z[56], *pyr = (pf_real *)malloc(sizeof(pf_real) * (size_t)(total * nc));
+            if (!pyr) abort();
+            PF_CHECK(nc == 8 << t, "kind %d has %d channels", kinds[t], nc);
+            for (i = 0; i < w * h; ++i) z[i] = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+            PF_CHECK(pf_depth_pyramid_from_depths(z, w, h, kinds[t], PF_R(0.0), PF_R(0.0), pyr) == PF_OK, "build");
+            for (k = 0; k < nc; ++k) {
+                long double f = (2.0L * (k / 2 + 1) - 1.0L) * CSM_PI, m = 0;
+                for (i = 0; i < w * h; ++i) m += (k & 1) ? sinl(f * (long double)z[i]) : cosl(f * (long double)z[i]);
+                m /= (long double)(w * h);
+                if (fabsl((long double)pyr[top * nc + k] - m) > worst_top) worst_top = fabsl((long double)pyr[top * nc + k] - m);
+            }
+            if (s == 0) /* level 1 of 8 x 6 is 4 x 3: each texel the mean of a 2 x 2 block of level 0 */
+                for (y = 0; y < 3; ++y)
+                    for (x = 0; x < 4; ++x) {
+                        const pf_real *l1 = pyr + (w * h + y * 4 + x) * nc;
+                        for (k = 0; k < nc; ++k) {
+                            long double m = 0;
+                            int a, b;
+                            for (b = 0; b < 2; ++b)
+                                for (a = 0; a < 2; ++a) m += (long double)pyr[((2 * y + b) * w + 2 * x + a) * nc + k];
+                            if (fabsl((long double)l1[k] - m / 4) > worst_box) worst_box = fabsl((long double)l1[k] - m / 4);
+                        }
+                        for (k = 0; 4 * k < nc; ++k) {
+                            const pf_real *t00 = pyr + ((2 * y) * w + 2 * x) * nc + 4 * k;
+                            pf_csm_pair q = pf_csm_pair_reduce2x2(
+                                pf_csm_pair_make(t00[0], t00[1], t00[2], t00[3]),
+                                pf_csm_pair_make(t00[nc], t00[nc + 1], t00[nc + 2], t00[nc + 3]),
+                                pf_csm_pair_make(t00[w * nc], t00[w * nc + 1], t00[w * nc + 2], t00[w * nc + 3]),
+                                pf_csm_pair_make(t00[(w + 1) * nc], t00[(w + 1) * nc + 1], t00[(w + 1) * nc + 2], t00[(w + 1) * nc + 3]));
+                            long double e = fabsl((long double)q.cos_a - (long double)l1[4 * k]) + fabsl((long double)q.sin_a - (long double)l1[4 * k + 1])
+                                          + fabsl((long double)q.cos_b - (long double)l1[4 * k + 2]) + fabsl((long double)q.sin_b - (long double)l1[4 * k + 3]);
+                            if (e > worst_stamp) worst_stamp = e;
+                        }
+                    }
+            free(pyr);
+        }
+    pf_test_note("top texel vs cosl/sinl mean %.2g; level-1 texel vs 2x2 mean %.2g; stamp reduce2x2 vs pyramid %.2g",
+                 (double)worst_top, (double)worst_box, (double)worst_stamp);
+    /* the basis of phases up to 31 pi: the argument's rounding, 31 pi x 2^-24 ~ 6e-6 in float */
+    PF_CHECK(worst_top <= (sizeof(pf_real) == sizeof(float) ? 1.5e-5L : 1e-13L), "top texel off by %.3g", (double)worst_top);
+    PF_CHECK(worst_box <= 8.0L * PF_TEST_EPS, "2x2 box off by %.3g", (double)worst_box);
+    PF_CHECK(worst_stamp <= 16.0L * PF_TEST_EPS, "stamp differs by %.3g", (double)worst_stamp);
+}
+
+/* Degenerate and out-of-range inputs: all-zero moments (no weight: the series reads 1/2),
+   moments far outside [-1, 1], receivers outside [0, 1], scales 0 .. 1e30 and negative,
+   offsets, terms from -5 to 100: every value finite and in [0, 1]. */
+static void edge_csm_degenerate(void)
+{
+    static const double ds[] = { -1.0, 0.0, 1e-30, 0.3, 0.5, 0.999, 1.0, 2.0 };
+    static const double scales[] = { 0.0, 1.0, 4.0, 1e30, -1.0 };
+    static const double vals[] = { 0.0, 1.0, -1.0, 1e30, -1e30, 3.0e38 };
+    static const int terms[] = { -5, 0, 1, 4, 7, 16, 100 };
+    int a, b, c, t, n = 0, bad = 0, zero_half = 1;
+    for (a = 0; a < (int)(sizeof vals / sizeof vals[0]); ++a) {
+        pf_real v[64];
+        pf_csm_moments m;
+        int k;
+        for (k = 0; k < 64; ++k) v[k] = (pf_real)((k & 1) ? -vals[a] : vals[a]);
+        m = csm_moments_of(v);
+        for (b = 0; b < (int)(sizeof ds / sizeof ds[0]); ++b)
+            for (c = 0; c < (int)(sizeof scales / sizeof scales[0]); ++c)
+                for (t = 0; t < (int)(sizeof terms / sizeof terms[0]); ++t) {
+                    pf_real lit = pf_shadow_csm(m, (pf_real)ds[b], terms[t], (pf_real)scales[c],
+                                                PF_SHADOW_CSM_OFFSET_DEFAULT(16));
+                    n++;
+                    if (!in_unit(lit)) {
+                        bad++;
+                        PF_CHECK(0, "CSM value %g at moments %g d %g scale %g terms %d", (double)lit, vals[a], ds[b],
+                                 scales[c], terms[t]);
+                    }
+                    if (a == 0 && scales[c] >= 0 && scales[c] < 1e29 && lit != PF_R(0.5)) zero_half = 0;
+                }
+    }
+    pf_test_note("%d values, %d outside [0, 1] or not finite; all-zero moments read 1/2: %s", n, bad, zero_half ? "yes" : "no");
+    PF_CHECK(zero_half, "all-zero CSM moments do not read 1/2");
+}
+
+/* NaN moments (C semantics: clamped to -1 by the comparison-based clamp; not an edge test). */
+static void test_csm_nan_inputs(void)
+{
+    pf_real v[64], lit;
+    int k;
+    for (k = 0; k < 64; ++k) v[k] = (pf_real)NAN;
+    lit = pf_shadow_csm(csm_moments_of(v), PF_R(0.5), 16, PF_SHADOW_CSM_SCALE_DEFAULT, PF_SHADOW_CSM_OFFSET_DEFAULT(16));
+    PF_CHECK(in_unit(lit), "NaN CSM moments give %g", (double)lit);
+}
+
+/* The shadow lookup family's scenes (tests/shadow_scenes.h) at M = 4, 8, 16 with the default
+   scale and offset, the moments built from cosl/sinl of the stored depths: mean abs error and
+   mean leak bounds (measured + 15% + 5e-4), and the documented finding that CSM up to 16
+   terms stays above EVSM-4's mean error on every scene. */
+static void test_csm_scenes(void)
+{
+    static const double bound_csm[3] = { 0.13, 0.089, 0.069 };
+    shs_lookup *L = (shs_lookup *)malloc(sizeof(shs_lookup) * SHS_LOOKUPS_PER_SCENE);
+    double *zd = (double *)malloc(sizeof(double) * SHS_N * SHS_N);
+    long double *basis = (long double *)malloc(sizeof(long double) * SHS_N * SHS_N * 32);
+    shs_stats all[3], ev;
+    int s, i, t, x, y;
+    char buf[400] = "";
+    if (!L || !zd || !basis) abort();
+    memset(all, 0, sizeof all);
+    memset(&ev, 0, sizeof ev);
+    for (s = 0; s < SHS_N_SCENES; ++s) {
+        shs_stats sc[3], sev;
+        memset(sc, 0, sizeof sc);
+        memset(&sev, 0, sizeof sev);
+        shs_scene_lookups(s, L);
+        shs_make_scene(s, zd);
+        for (i = 0; i < SHS_N * SHS_N; ++i) /* each texel's basis, of its depth as stored */
+            for (t = 0; t < 16; ++t) {
+                long double z = (long double)(pf_real)zd[i], f = (2.0L * t + 1.0L) * CSM_PI;
+                basis[32 * i + 2 * t] = cosl(f * z);
+                basis[32 * i + 2 * t + 1] = sinl(f * z);
+            }
+        for (i = 0; i < SHS_LOOKUPS_PER_SCENE; ++i) {
+            pf_real v[64];
+            pf_csm_moments m;
+            int k = L[i].size, h;
+            for (h = 0; h < 16; ++h) { /* E[cos], E[sin] of harmonic h + 1 over the texels */
+                long double c = 0, sn = 0;
+                for (y = L[i].y0; y < L[i].y0 + k; ++y)
+                    for (x = L[i].x0; x < L[i].x0 + k; ++x) {
+                        c += basis[32 * (y * SHS_N + x) + 2 * h];
+                        sn += basis[32 * (y * SHS_N + x) + 2 * h + 1];
+                    }
+                v[2 * h] = (pf_real)(c / (long double)(k * k));
+                v[2 * h + 1] = (pf_real)(sn / (long double)(k * k));
+            }
+            m = csm_moments_of(v);
+            for (t = 0; t < 3; ++t) {
+                int M = 4 << t;
+                long double got = (long double)pf_shadow_csm(m, L[i].d, M, PF_SHADOW_CSM_SCALE_DEFAULT,
+                                                             PF_SHADOW_CSM_OFFSET_DEFAULT(M));
+                shs_stats_add(&sc[t], got, L[i].truth);
+                shs_stats_add(&all[t], got, L[i].truth);
+            }
+            shs_stats_add(&sev, (long double)shs_eval(SHS_M_EVSM4, &L[i]), L[i].truth);
+            shs_stats_add(&ev, (long double)shs_eval(SHS_M_EVSM4, &L[i]), L[i].truth);
+        }
+        {
+            size_t len = strlen(buf);
+            snprintf(buf + len, sizeof buf - len, "%s%s (%ld): csm4 %.4f csm8 %.4f csm16 %.4f evsm4 %.4f", s ? "; " : "",
+                     shs_scene_names[s], sc[0].n, (double)shs_mean_err(&sc[0]), (double)shs_mean_err(&sc[1]),
+                     (double)shs_mean_err(&sc[2]), (double)shs_mean_err(&sev));
+        }
+        PF_CHECK(sc[0].n > 0 && shs_mean_err(&sc[2]) > shs_mean_err(&sev), "%s: CSM-16 %.4f not above EVSM-4 %.4f",
+                 shs_scene_names[s], (double)shs_mean_err(&sc[2]), (double)shs_mean_err(&sev));
+    }
+    pf_test_note("mean abs error: %s; all: csm4 %.4f csm8 %.4f csm16 %.4f (leak %.4f %.4f %.4f) evsm4 %.4f", buf, (double)shs_mean_err(&all[0]), (double)shs_mean_err(&all[1]), (double)shs_mean_err(&all[2]),
+                 (double)shs_mean_leak(&all[0]), (double)shs_mean_leak(&all[1]), (double)shs_mean_leak(&all[2]),
+                 (double)shs_mean_err(&ev));
+    for (t = 0; t < 3; ++t)
+        PF_CHECK(shs_mean_err(&all[t]) <= (long double)bound_csm[t], "CSM-%d mean error %.4f > %.3f", 4 << t,
+                 (double)shs_mean_err(&all[t]), bound_csm[t]);
+    PF_CHECK(shs_mean_err(&all[2]) < shs_mean_err(&all[1]) && shs_mean_err(&all[1]) < shs_mean_err(&all[0]),
+             "CSM error does not fall with M");
+    free(L);
+    free(zd);
+    free(basis);
+}
+/* pf_shadow_csm (unrolled, 8 pairs) equals the streamed series of the same `terms` harmonics,
+   bit for bit, for terms 1..16; terms <= 0 reads as 1 and terms > 16 as 16 (documented). */
+static void test_csm_terms_match_stream(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0xc5a3u);
+    int i, t, k, bad = 0;
+    for (i = 0; i < 200; ++i) {
+        dist p = random_dist(&r);
+        pf_real v[64], d = (pf_real)pf_test_uniform(&r, 0.0, 1.0), sc = (pf_real)pf_test_uniform(&r, 1.0, 4.0);
+        pf_real off = (pf_real)pf_test_uniform(&r, 0.0, 0.02);
+        pf_csm_moments m;
+        csm_values_of(&p, 8, v);
+        m = csm_moments_of(v);
+        for (t = -2; t <= 20; ++t) {
+            int n = t < 1 ? 1 : (t > 16 ? 16 : t);
+            pf_csm_sum a = pf_csm_sum_begin(d, off);
+            for (k = 0; k < n; ++k) a = pf_csm_sum_add_harmonic(a, v[2 * k], v[2 * k + 1]);
+            if (pf_shadow_csm(m, d, t, sc, off) != pf_csm_sum_lit(a, sc)) bad++;
+        }
+        { /* pairs: pf_csm_sum_add is two add_harmonic calls */
+            pf_csm_sum a = pf_csm_sum_begin(d, off), b = a;
+            for (k = 0; k < 8; ++k) {
+                a = pf_csm_sum_add(a, csm_pair_at(v, k));
+                b = pf_csm_sum_add_harmonic(pf_csm_sum_add_harmonic(b, v[4 * k], v[4 * k + 1]), v[4 * k + 2], v[4 * k + 3]);
+            }
+            if (a.value != b.value) bad++;
+        }
+    }
+    PF_CHECK(bad == 0, "%d mismatches between pf_shadow_csm and the streamed series", bad);
+}
+/* ------------------------------------------------------------------ end of CSM */
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -609,6 +1152,8 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_chebyshev_upper_bound_random);
     PF_TEST_RUN(test_msm_bounds_random);
     PF_TEST_RUN(test_msm_bounds_sharp);
+    PF_TEST_RUN(test_msm_two_depth_far_plane);
+    PF_TEST_RUN(test_msm_clustered_falls);
     PF_TEST_RUN(test_chebyshev_scale_free);
     PF_TEST_RUN(test_reduce_bleeding);
     PF_TEST_RUN(test_scene_boxes);
@@ -618,5 +1163,15 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_scene_layers_02);
     PF_TEST_RUN(edge_shadow_finite);
     PF_TEST_RUN(edge_shadow_monotone);
+    PF_TEST_RUN(test_evsm_lean_matches_chebyshev);
+    PF_TEST_RUN(edge_shadow_degenerate);
+    PF_TEST_RUN(test_shadow_nan_inputs);
+    PF_TEST_RUN(test_csm_fourier_coefficients);
+    PF_TEST_RUN(test_csm_convergence);
+    PF_TEST_RUN(test_csm_pyramid_average);
+    PF_TEST_RUN(edge_csm_degenerate);
+    PF_TEST_RUN(test_csm_nan_inputs);
+    PF_TEST_RUN(test_csm_scenes);
+    PF_TEST_RUN(test_csm_terms_match_stream);
     return PF_TEST_END();
 }

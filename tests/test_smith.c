@@ -222,6 +222,35 @@ static void test_g1_fast_and_walter(void)
     PF_CHECK(mw.err >= 10.0L * mf.err, "fast tier only %.1fx better than Walter", (double)(mw.err / mf.err));
 }
 
+/* pf_lambda_beckmann_fast (issue 17): RELATIVE error against the quadrature of Smith's
+   definition wherever Lambda is a normal number, nu from 1e-6 to the underflow, against the
+   bound its comment states: float 2e-6 + 6e-8 nu^2 (the rounding of nu*nu inside exp),
+   double 1.7e-6. Walter's form is 100% off past 1.6 (it returns 0); recorded alongside. */
+static void test_lambda_fast_relative(void)
+{
+    pf_test_max m = pf_test_max_init();
+    long double worst_excess = -1.0L, at_excess = 0, walter_tail = 0;
+    int i;
+    for (i = 0; i <= 6000; i++) {
+        pf_real nu = i < 1000 ? (pf_real)powl(10.0L, -6.0L + 6.0L * (long double)i / 1000.0L)
+                              : (pf_real)(1.0L + 9.0L * (long double)(i - 1000) / 5000.0L);
+        long double ref = lambda_ref((long double)nu), e, bound;
+        if (!(ref >= (long double)PF_REAL_MIN)) continue;
+        e = pf_test_rel_error((long double)pf_lambda_beckmann_fast(nu), ref);
+#ifdef PF_DOUBLE
+        bound = 1.7e-6L;
+#else
+        bound = 2e-6L + 6e-8L * (long double)nu * (long double)nu;
+#endif
+        pf_test_max_update(&m, e, (long double)nu);
+        if (e - bound > worst_excess) { worst_excess = e - bound; at_excess = (long double)nu; }
+        if ((long double)nu > 1.7L && (long double)nu < 1.8L)
+            walter_tail = pf_test_rel_error((long double)pf_lambda_beckmann_walter(nu), ref);
+    }
+    pf_test_note("max rel %.3g at nu=%.4g (Walter at nu = 1.8: %.3g)", (double)m.err, (double)m.at, (double)walter_tail);
+    PF_CHECK(worst_excess <= 0.0L, "fast Lambda exceeds its bound by %.3Lg at nu=%.6Lg", worst_excess, at_excess);
+}
+
 /* The published Walter form goes negative on [1.5482, 1.6); ours must not. */
 static void test_walter_clamped(void)
 {
@@ -775,6 +804,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_lambda_beckmann_quadrature);
     PF_TEST_RUN(test_g1_beckmann_quadrature);
     PF_TEST_RUN(test_g1_fast_and_walter);
+    PF_TEST_RUN(test_lambda_fast_relative);
     PF_TEST_RUN(test_walter_clamped);
     PF_TEST_RUN(test_noncentered_1d);
     PF_TEST_RUN(test_noncentered_2d);

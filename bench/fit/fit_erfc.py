@@ -1,6 +1,10 @@
 """Fit the coefficients of pf_erfc / pf_erf (include/pf_core.h).
 
-usage: python3 bench/fit/fit_erfc.py float|double      (needs mpmath only)
+usage: python3 bench/fit/fit_erfc.py float|double|fast (needs mpmath only)
+
+fast: the shader tier pf_erfc_fast (issue 17): N = exp(x^2) erfc(x) (x + 2) as a degree-6
+polynomial in z = 1/(x + 2), relative minimax on 0 <= x <= 10.1, float coefficients rounded
+one at a time; printed also in w = a z, a = c6^(1/7), where z N is monic (the header's form).
 
 Two approximations are fitted, both minimising the maximum RELATIVE error:
 
@@ -27,6 +31,18 @@ import remez
 from remez import mp, fit, max_rel_err, to_float32, to_float64
 
 prec = sys.argv[1] if len(sys.argv) > 1 else 'float'
+if prec == 'fast':
+    mp.mp.dps = 30
+    A2, XM = mp.mpf(2), mp.mpf('10.1')
+    def Nfast(z):
+        x = 1 / z - A2
+        return mp.exp(x * x) * mp.erfc(x) * (x + A2)
+    c, (e, at) = remez.fit_rounded(Nfast, 1 / (XM + A2), 1 / A2, 6, rnd=to_float32, npts=120, iters=50)
+    a = to_float32(c[6] ** (mp.mpf(1) / 7))
+    print('/* pf_erfc_fast N(z), degree 6: max relative fit error %s */' % mp.nstr(e, 3))
+    print('  c_k:', ', '.join('%.9g' % float(c[k]) for k in range(7)))
+    print('  a = %.9g; d_k = c_k / a^(k+1):' % float(a), ', '.join('%.9g' % float(to_float32(c[k] / a ** (k + 1))) for k in range(7)))
+    sys.exit(0)
 if prec == 'float':
     mp.mp.dps = 40
     rnd, fmt = to_float32, '%.9g'

@@ -52,7 +52,7 @@ def best_cutoff(m, n, cuts):
     return best
 
 if __name__ == "__main__":
-    what = sys.argv[1:] or ["fast", "g1f", "kf", "kd"]
+    what = sys.argv[1:] or ["fast", "g1f", "kf", "kd", "lambda_fast"]
     if "fast" in what:
         # Branch-free tier: nu is clamped to [0, c] and the fit at c serves every nu beyond,
         # so it is also fitted toward G1 = 1 at c (an extra target point H = 1/c).
@@ -61,8 +61,26 @@ if __name__ == "__main__":
             show("G1 fast tier H(3,2) on [0, %s], clamped beyond (divide P, Q by Q's last coefficient "
                  "for the header's monic form)" % nstr(c, 3), p, q, e, 10)
     if "g1f" in what:
-        tot, c, p, q = best_cutoff(5, 5, [3.1, 3.2, 3.3, 3.4])
-        show("G1 float path H(5,5) on [0, %.3f]" % c, p, q, tot, 10)
+        # issue 17: H(4,5) on [0, 3.1], pulled toward G1 = 1 at the clamp (the header divides
+        # P and Q by Q's last coefficient for its monic form); fit 4.66e-7, tail 2.78e-7
+        c = mpf("3.1")
+        e, p, q = fit(H, 0, c, 4, 5, count=160, iters=40, extra=[(c, 1 / c)])
+        show("G1 float path H(4,5) on [0, 3.1], clamped beyond", p, q, e, 12)
+    if "lambda_fast" in what:
+        # issue 17: Lambda = exp(-nu^2) z^2 L(z) / nu, z = 1/(nu + 2.5), L = K (nu + 2.5)^2 /
+        # (2 sqrt(pi)) a degree-7 polynomial, relative minimax on 0 <= nu <= 10.5, float
+        # coefficients rounded one at a time (remez.fit_rounded); the header writes z^2 L in
+        # w = a z, a = c7^(1/9), where it is monic (prints a and the d_k = c_k / a^(k+2))
+        import remez
+        A, XM = mpf("2.5"), mpf("10.5")
+        def Lz(z):
+            nu = 1 / z - A
+            return K(nu) * (nu + A) ** 2 / (2 * sqrt(pi))
+        remez.mp.dps = 30
+        cs, (e, at) = remez.fit_rounded(Lz, 1 / (XM + A), 1 / A, 7, rnd=remez.to_float32, npts=100, iters=40)
+        a = remez.to_float32(cs[7] ** (mpf(1) / 9))
+        print("/* Lambda fast tier L(z), degree 7: max relative fit error %s */" % nstr(e, 3))
+        print("  a = %.9g; d_k:" % float(a), ", ".join("%.9g" % float(remez.to_float32(cs[k] / a ** (k + 2))) for k in range(8)))
     if "kf" in what:
         e, p, q = fit(K, 0, 2, 4, 4, count=150, iters=40)
         show("float K(4,4) on [0,2]", p, q, e, 10)

@@ -44,6 +44,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 #include "pf_calls.h"
+#include "pf_horizon.h"
 
 /* The checks compute in long double on purpose (independent references): the float build's
    -Wdouble-promotion, meant for library code, is silenced for this header only. */
@@ -569,7 +570,8 @@ static void pfb_d_mip_layout(pfc_ctx *c)
     got = pf_mip_texel_count(w, h);
     if (got != want_total) pfb_fail(PFB_VALUE, "pf_mip_texel_count = %lld, want %lld", got, want_total);
     {
-        int kind = pfb_int(c, -1, 6), want = kind == 0 || kind == 1 ? 2 : (kind == 2 || kind == 3 ? 4 : (kind == 4 ? 1 : 0));
+        int kind = pfb_int(c, -1, 9), want = kind == 0 || kind == 1 ? 2 : (kind == 2 || kind == 3 ? 4 : (kind == 4 ? 1 : 0));
+        if (kind >= PF_DEPTH_CSM4 && kind <= PF_DEPTH_CSM16) want = 8 << (kind - PF_DEPTH_CSM4); /* CSM: 2M */
         if (pf_depth_moment_channels(kind) != want)
             pfb_fail(PFB_VALUE, "pf_depth_moment_channels(%d) = %d, want %d", kind, pf_depth_moment_channels(kind), want);
     }
@@ -690,6 +692,9 @@ static int pfb_depth_channels(int kind)
     case PF_DEPTH_VSM: case PF_DEPTH_EVSM2: return 2;
     case PF_DEPTH_EVSM4: case PF_DEPTH_MSM: return 4;
     case PF_DEPTH_ESM_LOG: return 1;
+    case PF_DEPTH_CSM4: return 8;
+    case PF_DEPTH_CSM8: return 16;
+    case PF_DEPTH_CSM16: return 32;
     default: return 0;
     }
 }
@@ -708,7 +713,7 @@ static void pfb_d_pyramid_from(pfc_ctx *c, int which)
     pf_real *in, *out;
     if (which == 0) {
         pfc_u32 u = pfc_next(c);
-        kind = PFC_R(u) < 14 ? (int)(PFC_B(u) % 5u) : pfb_int(c, -2, 8);
+        kind = PFC_R(u) < 14 ? (int)(PFC_B(u) % 8u) : pfb_int(c, -2, 10);
         cpos = kind == PF_DEPTH_ESM_LOG ? pfc_mag(PFC_B(pfc_next(c)), -4, 12) : PF_R(44.0) * pfc_unif(PFC_B(pfc_next(c)));
         cneg = PF_R(44.0) * pfc_unif(PFC_B(pfc_next(c)));
         pfb_setcall("%s(%s, %d, %d, %d, %a, %a, %s)", fn, null == 1 ? "NULL" : "depths", w, h, kind, (double)cpos,
@@ -1405,6 +1410,182 @@ static void pfb_d_hermite(pfc_ctx *c)
     if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
 }
 
+/* ---------------------------------------------------------------- pf_masks.h */
+/* pf_masks_samples (0), pf_masks_table_words (1), pf_masks_table_build (2), pf_masks_table_fetch
+   (3). Tables are int words: they are mapped as reals and the int array placed so that it ends
+   exactly at the guard page (or starts at it); ints outside it in the mapping are canaries too. */
+#define PFB_MASK_CANARY 0x5A5A5A5A
+static int *pfb_map_ints(long long nints, int at_start)
+{
+    long long nr = (nints * 4 + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    pf_real *p = pfb_map(nr < 1 ? 1 : nr, at_start);
+    int *q;
+    long long k, tot = (nr < 1 ? 1 : nr) * (long long)sizeof(pf_real) / 4;
+    if (!p) return 0;
+    q = (int *)(void *)p;
+    /* canaries in the table (small ones: huge fetch tables stay untouched zero pages) and in
+       the pad int a double build's rounding leaves */
+    for (k = 0; k < tot; ++k) {
+        if (nints > 4 * pfb_work_cap && k >= 64 && k < tot - 64) k = tot - 64;
+        q[k] = PFB_MASK_CANARY;
+    }
+    return at_start ? q : q + (tot - nints);
+}
+static long long pfb_masks_words_ref(int n, int nt, int nv)
+{
+    if (n < 1 || n > 128 || nt < 1 || nv < 2 || nt > 32768 || nv > 32768) return 0;
+    return (long long)nt * nv * ((n + 31) / 32);
+}
+static int pfb_mask_shape(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c);
+    if (PFC_R(u) < 7) return PF_MASKS_SQUARE;
+    if (PFC_R(u) < 14) return PF_MASKS_DISK;
+    return pfb_int(c, -2, 5);
+}
+static int pfb_mask_inside(int shape, pf_real x, pf_real y)
+{
+    long double lim = 0.5L + 1e-4L;
+    if (!pfb_finite(x) || !pfb_finite(y)) return 0;
+    if (shape == PF_MASKS_DISK) return (long double)x * x + (long double)y * y <= lim * lim;
+    return fabsl((long double)x) <= lim && fabsl((long double)y) <= lim;
+}
+static void pfb_d_masks(pfc_ctx *c, int which)
+{
+    int shape = pfb_mask_shape(c), n = pfb_int(c, 1, 130), nt = pfb_int(c, 1, 9), nv = pfb_int(c, 2, 9);
+    int null = pfb_null(c, 2), at_start = PFC_R(pfc_next(c)) < 4, rc, k;
+    int shape_ok = shape == PF_MASKS_SQUARE || shape == PF_MASKS_DISK, n_ok = n >= 1 && n <= 128;
+    long long words = pfb_masks_words_ref(n, nt, nv);
+    if (which == 0) { /* samples */
+        pf_real *xy;
+        pfb_setcall("pf_masks_samples(%d, %d, 7, %s)", shape, n, null ? "NULL" : "xy");
+        if (!shape_ok || !n_ok || null) {
+            pf_real *b[1];
+            b[0] = null ? 0 : pfb_small();
+            rc = pf_masks_samples(shape, n, 7, b[0]);
+            pfb_rc_check(rc, PFB_A_ARG, "pf_masks_samples");
+            pfb_check_untouched(b, 1);
+            return;
+        }
+        /* the construction costs ~n^2: above 32 samples in 1 call of 8 (fuzzer throughput) */
+        if (n > 32 && (pfc_next(c) & 7u) != 0u) return;
+        xy = pfb_map(2LL * n, at_start);
+        if (!xy) return;
+        pfb_fill_canary(xy, 2LL * n);
+        if (pfb_t) pfb_t->run += 1;
+        rc = pf_masks_samples(shape, n, 7, xy);
+        if (!pfb_rc_check(rc, PFB_A_OK, "pf_masks_samples")) return;
+        pfb_check_written(xy, 2LL * n, "xy", 1);
+        for (k = 0; k < n; ++k)
+            if (!pfb_mask_inside(shape, xy[2 * k], xy[2 * k + 1])) {
+                pfb_fail(PFB_VALUE, "sample %d (%a, %a) outside the footprint", k, (double)xy[2 * k], (double)xy[2 * k + 1]);
+                break;
+            }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    }
+    if (which == 1) { /* table words */
+        long long got = pf_masks_table_words(n, nt, nv);
+        pfb_setcall("pf_masks_table_words(%d, %d, %d)", n, nt, nv);
+        if (got != words) pfb_fail(PFB_VALUE, "= %lld, expected %lld", got, words);
+        return;
+    }
+    if (which == 2) { /* build */
+        pfb_expect ex = {0, 0, 0};
+        int bad_sample = PFC_R(pfc_next(c)) == 0, *table;
+        pf_real *xy;
+        if (!shape_ok || null) ex.arg = 1;
+        if (!n_ok || nt < 1 || nv < 2) ex.small = 1;
+        if (nt > 32768 || nv > 32768) ex.size = 1;
+        pfb_setcall("pf_masks_table_build(%d, %d, %d, %s, %d, %s)", shape, nt, nv, null == 1 ? "NULL" : "xy", n,
+                    null == 2 ? "NULL" : "table");
+        if (pfb_allowed(ex) != PFB_A_OK) {
+            pf_real *b[2];
+            b[0] = null == 1 ? 0 : pfb_small();
+            b[1] = null == 2 ? 0 : pfb_small();
+            rc = pf_masks_table_build(shape, nt, nv, b[0], n, (int *)(void *)b[1]);
+            pfb_rc_check(rc, pfb_allowed(ex), "pf_masks_table_build");
+            pfb_check_untouched(b, 2);
+            return;
+        }
+        if (words * 4 / (long long)sizeof(pf_real) > pfb_work_cap) return;
+        xy = pfb_map(2LL * n, !at_start);
+        table = pfb_map_ints(words, at_start);
+        if (!xy || !table) return;
+        for (k = 0; k < n; ++k) { /* points of the footprint from the draws; one bad on request */
+            pf_real x = pfc_unif(pfc_next(c)) - PF_R(0.5), y = pfc_unif(pfc_next(c)) - PF_R(0.5);
+            if (shape == PF_MASKS_DISK) { x *= PF_R(0.7); y *= PF_R(0.7); }
+            xy[2 * k] = x;
+            xy[2 * k + 1] = y;
+        }
+        if (bad_sample) xy[2 * (int)(pfc_next(c) % (pfc_u32)n) + (int)(pfc_next(c) & 1u)] = pfb_coord(c, PF_R(0.6), PF_R(1e6));
+        if (pfb_t) pfb_t->run += 1;
+        rc = pf_masks_table_build(shape, nt, nv, xy, n, table);
+        {
+            int any_bad = 0;
+            for (k = 0; k < n; ++k) any_bad |= !pfb_mask_inside(shape, xy[2 * k], xy[2 * k + 1]);
+            if (any_bad) {
+                long long q;
+                pfb_rc_check(rc, PFB_A_ARG, "pf_masks_table_build");
+                for (q = 0; q < words; ++q)
+                    if (table[q] != PFB_MASK_CANARY) { pfb_fail(PFB_WROTE, "table[%lld] written on error", q); break; }
+                if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+                return;
+            }
+        }
+        if (!pfb_rc_check(rc, PFB_A_OK, "pf_masks_table_build")) return;
+        {
+            int W = (n + 31) / 32, i, j, w;
+            for (i = 0; i < nt; ++i)
+                for (j = 0; j < nv; ++j)
+                    for (w = 0; w < W; ++w) {
+                        int used = n - 32 * w >= 32 ? 32 : n - 32 * w;
+                        pfc_u32 m = (pfc_u32)table[((long long)i * nv + j) * W + w];
+                        pfc_u32 lowmask = used == 32 ? 0xFFFFFFFFu : ((1u << used) - 1u);
+                        pfc_u32 prev = j > 0 ? (pfc_u32)table[((long long)i * nv + j - 1) * W + w] : 0u;
+                        if ((m & ~lowmask) != 0u) { pfb_fail(PFB_VALUE, "mask (%d, %d) word %d: unused bits set", i, j, w); return; }
+                        if (j == 0 && m != 0u) { pfb_fail(PFB_VALUE, "mask (%d, 0) not empty", i); return; }
+                        if (j == nv - 1 && m != lowmask) { pfb_fail(PFB_VALUE, "mask (%d, %d) not full", i, j); return; }
+                        if ((prev & ~m) != 0u) { pfb_fail(PFB_VALUE, "mask (%d, %d) does not grow with v", i, j); return; }
+                    }
+        }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    }
+    { /* fetch */
+        int idx = pfb_int(c, 0, 40), W = n_ok ? (n + 31) / 32 : 0, *table = 0;
+        long long q;
+        pf_mask m;
+        pfb_setcall("pf_masks_table_fetch(%s, %d, %d, %d, %d)", null ? "NULL" : "table", nt, nv, idx, n);
+        if (words > 0 && !null) {
+            if (words * 4 / (long long)sizeof(pf_real) > PFB_MAX_REALS / 2) return;
+            pfb_fresh = 1;
+            table = pfb_map_ints(words, at_start);
+            if (!table) return;
+            if (words * 4 / (long long)sizeof(pf_real) <= pfb_work_cap)
+                for (q = 0; q < words; ++q) table[q] = (int)(q * 40503 % 2147483647);
+            else
+                for (q = 0; q < words; ++q) if (q < 64 || q >= words - 64) table[q] = (int)(q * 40503 % 2147483647); else break;
+        }
+        m = pf_masks_table_fetch(table, nt, nv, idx, n);
+        if (words == 0 || null || idx < 0 || (long long)idx >= (long long)nt * nv) {
+            if (m.w0 || m.w1 || m.w2 || m.w3) pfb_fail(PFB_VALUE, "bad input gave a non-empty mask");
+            return;
+        }
+        {
+            int want[4] = {0, 0, 0, 0}, w;
+            for (w = 0; w < W; ++w) {
+                long long at = (long long)idx * W + w;
+                want[w] = table[at];
+            }
+            if (m.w0 != want[0] || m.w1 != want[1] || m.w2 != want[2] || m.w3 != want[3])
+                pfb_fail(PFB_VALUE, "fetched words differ from the table's");
+        }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+    }
+}
+static void pfb_w_masks(pfc_ctx *c, int which) { pfb_d_masks(c, which); }
+
 /* ---------------------------------------------------------------- the table of drivers */
 typedef struct pfb_entry {
     const char *name;   /* the function(s) checked, space-separated (tests/fuzz/coverage.sh reads them) */
@@ -1419,6 +1600,522 @@ static void pfb_w_table_size(pfc_ctx *c, int a) { (void)a; pfb_d_table_size(c); 
 static void pfb_w_table_build(pfc_ctx *c, int a) { (void)a; pfb_d_table_build(c); }
 static void pfb_w_table_lookup(pfc_ctx *c, int a) { (void)a; pfb_d_table_lookup(c); }
 static void pfb_w_hermite(pfc_ctx *c, int a) { (void)a; pfb_d_hermite(c); }
+
+/* ---------------------------------------------------------------- pf_horizon.h */
+/* pf_horizon_channels (which 2), pf_horizon_map (0), pf_horizon_pyramid (1). Accepted builds run
+   with at most 64 march steps (the march costs max_steps per texel and azimuth at the highest
+   texel); 1 accepted draw in 8 puts a NaN or an infinity in the heights: PF_ERR_ARG, nothing
+   written. */
+static void pfb_d_horizon(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_horizon_map", "pf_horizon_pyramid", "pf_horizon_channels" };
+    const char *fn = fns[which];
+    int w = pfb_int(c, 1, 24), h = pfb_int(c, 1, 24), naz = pfb_int(c, 1, 16), steps = pfb_int(c, 1, 20);
+    pfc_u32 ku = pfc_next(c);
+    int kind = PFC_R(ku) < 5 ? PF_HORIZON_ANGLES : (PFC_R(ku) < 10 ? PF_HORIZON_MOMENTS : (PFC_R(ku) < 15 ? PF_HORIZON_LEGENDRE : pfb_int(c, -2, 5)));
+    int k = pfb_int(c, 1, 8), border = pfb_border(c), null = pfb_null(c, 2), at_start = PFC_R(pfc_next(c)) < 4;
+    pf_real sp = pfb_coord(c, PF_R(0.1), PF_R(4.0));
+    pfc_u32 bad_u = pfc_next(c);
+    int bad_height = PFC_R(bad_u) < 2, rc, allowed;
+    long long per = kind == PF_HORIZON_ANGLES ? 1 : (kind == PF_HORIZON_MOMENTS ? 3 : (kind == PF_HORIZON_LEGENDRE ? k : -1));
+    long long nc = -1, nh = -1, nout = -1;
+    pfb_expect ex = { 0, 0, 0 };
+    pf_real *hm, *out;
+    if (per < 1 || per > PF_HORIZON_LEGENDRE_MAX) per = -1;
+    if (which == 2) {
+        long long want = (per < 1 || naz < 1 || naz > PFB_MAX_SIDE || per * naz > PFB_MAX_SIDE) ? 0 : per * naz;
+        pfb_setcall("pf_horizon_channels(%d, %d, %d)", kind, naz, k);
+        if (pf_horizon_channels(kind, naz, k) != want)
+            pfb_fail(PFB_VALUE, "pf_horizon_channels = %d, expected %lld", pf_horizon_channels(kind, naz, k), want);
+        return;
+    }
+    pfb_setcall("%s(%s, %d, %d, %a, %d, %d, %d, %d, %d, %s)", fn, null == 1 ? "NULL" : "heights", w, h, (double)sp, naz,
+                steps, border, kind, k, null == 2 ? "NULL" : "out");
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    pfb_side(&ex, naz, 1);
+    pfb_side(&ex, steps, 1);
+    if (!(sp > 0 && sp <= PF_REAL_MAX)) ex.arg = 1;
+    if (!pfb_border_ok(border) || per < 0) ex.arg = 1;
+    if (!ex.small && !ex.size && per > 0) {
+        nc = per * naz;
+        nh = pfb_mul(w, h);
+        if (nc > PFB_MAX_SIDE) ex.size = 1;
+        else {
+            nout = which ? pfb_pyr_reals(w, h, nc) : pfb_mul(nh, nc);
+            if (nh < 0 || nout < 0) ex.size = 1;
+        }
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        rc = which ? pf_horizon_pyramid(b[0], w, h, sp, naz, steps, border, kind, k, b[1])
+                   : pf_horizon_map(b[0], w, h, sp, naz, steps, border, kind, k, b[1]);
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 2);
+        return;
+    }
+    if (nout > pfb_work_cap || steps > 64) return;
+    hm = pfb_map(nh, at_start);
+    out = pfb_map(nout, !at_start);
+    if (!hm || !out) return;
+    pfb_fill(c, hm, nh, 20);
+    pfb_fill_canary(out, nout);
+    if (bad_height) {
+        hm[(long long)(PFC_B(bad_u) % (pfc_u32)nh)] = (PFC_B(bad_u) & 1u) ? pfc_from_bits(0x7FC00000u) : -pfc_from_bits(0x7F800000u);
+        allowed = PFB_A_ARG;
+    }
+    if (pfb_t) pfb_t->run += 1;
+    rc = which ? pf_horizon_pyramid(hm, w, h, sp, naz, steps, border, kind, k, out)
+               : pf_horizon_map(hm, w, h, sp, naz, steps, border, kind, k, out);
+    if (!pfb_rc_check(rc, allowed, fn)) return;
+    if (bad_height) {
+        if (pfb_count_changed(out, nout)) pfb_fail(PFB_WROTE, "%lld reals written on a non-finite height", pfb_count_changed(out, nout));
+        return;
+    }
+    pfb_check_written(out, nout, "out", 1);
+    if (kind == PF_HORIZON_ANGLES) {
+        long long i;
+        for (i = 0; i < nh * nc; ++i)
+            if (!(out[i] >= -PF_R(1.5707964) && out[i] <= PF_R(1.5707964))) {
+                pfb_fail(PFB_VALUE, "angle %lld = %a outside [-pi/2, pi/2]", i, (double)out[i]);
+                break;
+            }
+    }
+    if (which) pfb_check_levels(out, w, h, (int)nc, 0, fn);
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_vmf.h */
+/* pf_vmf_fit_normals (which 0), pf_vmf_pyramid_from_normals (1), the layout functions (2),
+   pf_vmf_mixture_from_texel (3). Accepted fits and pyramids run on at most 64 normals with at
+   most 4 EM iterations; normals and weights over every regime (zero, negative, NaN and
+   infinite weights, zero and huge normals): the fit may then find no usable normal
+   (PF_ERR_ARG, one flat lobe), which the contract allows; pyramids always return PF_OK. */
+static int pfb_vmf_pow2(long long n) { return n >= 1 && n <= PFB_MAX_SIDE && (n & (n - 1)) == 0; }
+static void pfb_vmf_check_mixture(const pf_vmf_mixture *m, int lobes, const char *fn)
+{
+    long double sum = 0;
+    int k;
+    if (m->count < 1 || m->count > lobes) { pfb_fail(PFB_VALUE, "%s: %d lobes, asked %d", fn, m->count, lobes); return; }
+    for (k = 0; k < m->count; ++k) {
+        const pf_vmf_lobe *l = &m->lobe[k];
+        if (!pfb_finite(l->amp) || !pfb_finite(l->kappa) || !pfb_finite(l->mu.x) || !pfb_finite(l->mu.y) || !pfb_finite(l->mu.z)) {
+            pfb_fail(PFB_NONFINITE, "%s: lobe %d not finite", fn, k);
+            return;
+        }
+        if (!(l->amp >= 0 && l->kappa >= PF_VMF_KAPPA_MIN && l->kappa <= PF_VMF_KAPPA_MAX && l->mu.z >= 0) ||
+            fabsl((long double)l->mu.x * l->mu.x + (long double)l->mu.y * l->mu.y + (long double)l->mu.z * l->mu.z - 1.0L) > 1e-4L)
+            pfb_fail(PFB_VALUE, "%s: lobe %d out of range", fn, k);
+        sum += l->amp;
+    }
+    if (fabsl(sum - 1.0L) > 1e-4L) pfb_fail(PFB_VALUE, "%s: amplitudes sum to %Lg", fn, sum);
+}
+static void pfb_d_vmf(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_vmf_fit_normals", "pf_vmf_pyramid_from_normals", "pf_vmf_pyramid_level_count",
+                                       "pf_vmf_mixture_from_texel" };
+    const char *fn = fns[which];
+    int lobes = pfb_int(c, 1, 8), iters = pfb_int(c, 0, 4), null = pfb_null(c, 2), at_start = PFC_R(pfc_next(c)) < 4;
+    int use_w = PFC_R(pfc_next(c)) < 8, rc, allowed;
+    pfb_expect ex = { 0, 0, 0 };
+    if (which == 2) { /* layout against the driver's own arithmetic */
+        int w = pfb_int(c, 1, 64), h = pfb_int(c, 1, 64), level = pfb_int(c, 0, 12);
+        int ok = pfb_vmf_pow2(w) && pfb_vmf_pow2(h);
+        long long lc = ok ? pfb_levels(w, h) : 0, off = ok && level >= 0 ? pfb_offset(w, h, level) : -1;
+        pfb_setcall("pf_vmf_pyramid_level_count/offset/texel_count(%d, %d, %d)", w, h, level);
+        if (pf_vmf_pyramid_level_count(w, h) != lc || pf_vmf_pyramid_level_offset(w, h, level) != off ||
+            pf_vmf_pyramid_texel_count(w, h) != (ok ? pfb_offset(w, h, 64) : 0))
+            pfb_fail(PFB_VALUE, "layout: count %d (want %lld), offset %lld (want %lld)", pf_vmf_pyramid_level_count(w, h), lc,
+                     pf_vmf_pyramid_level_offset(w, h, level), off);
+        return;
+    }
+    if (which == 3) {
+        int n = lobes < 1 ? 1 : (lobes > PF_VMF_MAX_LOBES ? PF_VMF_MAX_LOBES : lobes);
+        pf_real *t = null ? 0 : pfb_map(4LL * n, at_start);
+        pf_vmf_mixture m;
+        int k;
+        pfb_setcall("pf_vmf_mixture_from_texel(%s, %d)", t ? "texel" : "NULL", lobes);
+        if (t) pfb_fill(c, t, 4LL * n, 4);
+        m = pf_vmf_mixture_from_texel(t, lobes);
+        if (m.count < 0 || m.count > n || (!t && m.count != 0)) pfb_fail(PFB_VALUE, "%d lobes from %d", m.count, n);
+        for (k = 0; k < m.count && k < PF_VMF_MAX_LOBES; ++k)
+            if (!(m.lobe[k].amp > 0) || !pfb_finite(m.lobe[k].mu.z) || !(m.lobe[k].kappa >= PF_VMF_KAPPA_MIN))
+                pfb_fail(PFB_VALUE, "lobe %d of the texel out of range", k);
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    }
+    if (null) ex.arg = 1;
+    if (lobes < 1 || lobes > PF_VMF_MAX_LOBES || iters < 0) ex.arg = 1;
+    if (which == 0) {
+        long long n = pfb_int(c, 1, 64), nn = pfb_mul(n, 3);
+        pf_vmf_mixture m;
+        pf_real *nr, *wt = 0;
+        pfb_setcall("pf_vmf_fit_normals(%s, %s, %lld, %d, %d, %s)", null == 1 ? "NULL" : "normals", use_w ? "weights" : "NULL",
+                    n, lobes, iters, null == 2 ? "NULL" : "out");
+        if (n < 1) ex.small = 1;
+        else if (nn < 0) ex.size = 1;
+        allowed = pfb_allowed(ex);
+        if (allowed != PFB_A_OK) {
+            pf_real *b[2];
+            b[0] = null == 1 ? 0 : pfb_small();
+            b[1] = use_w ? pfb_small() : 0;
+            rc = pf_vmf_fit_normals(b[0], b[1], n, lobes, iters, null == 2 ? 0 : &m);
+            pfb_rc_check(rc, allowed, fn);
+            pfb_check_untouched(b, 2);
+            return;
+        }
+        if (nn > pfb_work_cap || iters > 8) return;
+        nr = pfb_map(nn, at_start);
+        if (use_w) wt = pfb_map(n, !at_start);
+        if (!nr || (use_w && !wt)) return;
+        pfb_fill(c, nr, nn, 2);
+        if (use_w) pfb_fill_weights(c, wt, n);
+        if (pfb_t) pfb_t->run += 1;
+        rc = pf_vmf_fit_normals(nr, wt, n, lobes, iters, &m);
+        if (!pfb_rc_check(rc, PFB_A_OK | PFB_A_ARG, fn)) return;
+        pfb_vmf_check_mixture(&m, rc == PF_OK ? lobes : 1, fn);
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    } else {
+        int w = pfb_int(c, 1, 8), h = pfb_int(c, 1, 8);
+        long long nn = -1, nout = -1, texels;
+        pf_real *nr, *wt = 0, *out;
+        long long t;
+        pfb_setcall("pf_vmf_pyramid_from_normals(%s, %s, %d, %d, %d, %d, %s)", null == 1 ? "NULL" : "normals",
+                    use_w ? "weights" : "NULL", w, h, lobes, iters, null == 2 ? "NULL" : "pyr");
+        pfb_side(&ex, w, 1);
+        pfb_side(&ex, h, 1);
+        if (!ex.small && !ex.size) {
+            if (!pfb_vmf_pow2(w) || !pfb_vmf_pow2(h)) ex.arg = 1;
+            else {
+                nn = pfb_mul(pfb_mul(w, h), 3);
+                nout = lobes >= 1 && lobes <= PF_VMF_MAX_LOBES ? pfb_pyr_reals(w, h, 4LL * lobes) : 0;
+                if (nn < 0 || nout < 0) ex.size = 1;
+            }
+        }
+        allowed = pfb_allowed(ex);
+        if (allowed != PFB_A_OK) {
+            pf_real *b[3];
+            b[0] = null == 1 ? 0 : pfb_small();
+            b[1] = use_w ? pfb_small() : 0;
+            b[2] = null == 2 ? 0 : pfb_small();
+            rc = pf_vmf_pyramid_from_normals(b[0], b[1], w, h, lobes, iters, b[2]);
+            pfb_rc_check(rc, allowed, fn);
+            pfb_check_untouched(b, 3);
+            return;
+        }
+        if (nout > pfb_work_cap || nn > 3 * 64 || iters > 8) return;
+        nr = pfb_map(nn, at_start);
+        if (use_w) wt = pfb_map(nn / 3, !at_start);
+        out = pfb_map(nout, !at_start);
+        if (!nr || !out || (use_w && !wt)) return;
+        pfb_fill(c, nr, nn, 2);
+        if (use_w) pfb_fill_weights(c, wt, nn / 3);
+        pfb_fill_canary(out, nout);
+        if (pfb_t) pfb_t->run += 1;
+        rc = pf_vmf_pyramid_from_normals(nr, wt, w, h, lobes, iters, out);
+        if (!pfb_rc_check(rc, PFB_A_OK, fn)) return;
+        pfb_check_written(out, nout, "pyr", 1);
+        texels = nout / (4LL * lobes);
+        for (t = 0; t < texels; ++t) {
+            pf_vmf_mixture m = pf_vmf_mixture_from_texel(out + t * 4 * lobes, lobes);
+            if (m.count < 1) { pfb_fail(PFB_VALUE, "texel %lld has no lobe", t); break; }
+        }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+    }
+}
+
+/* pf_vmf_downsample_slopes (which 0), pf_vmf_downsample_scratch_size (1). Accepted solves run
+   on at most pfb_work_cap reals with at most 40 iterations; heights over every regime of
+   pfb_fill (constant, zero, up to 2^20), one of them NaN or infinite in 1 draw of 8 (then
+   PF_ERR_ARG and nothing written); scratch mapped at exactly the documented size (the
+   scratch_len passed may be larger), so a touch past it faults. Outputs: every coarse texel
+   written and finite, the mean pinned to the fine map's, iterations in [0, max_iter]. */
+static long long pfb_ds_need(long long w, long long h, long long f)
+{
+    if (w < 1 || h < 1 || w > PFB_MAX_SIDE || h > PFB_MAX_SIDE || f < 1 || w % f || h % f || pfb_mul(w, h) < 0) return 0;
+    return pfb_mul(pfb_mul(w / f, h / f), 6) < 0 ? 0 : pfb_mul(pfb_mul(w / f, h / f), 6);
+}
+static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
+{
+    const char *fn = "pf_vmf_downsample_slopes";
+    int w = pfb_int(c, 1, 16), h = pfb_int(c, 1, 16), f = pfb_int(c, 1, 4), border = pfb_border(c), null = pfb_null(c, 3);
+    int max_iter = pfb_int(c, 0, 40), at_start = PFC_R(pfc_next(c)) < 4, rc, allowed, it = -7;
+    pf_real reg = pfb_coord(c, PF_R(0.0), PF_R(0.1)), tol = pfb_coord(c, PF_R(0.0), PF_R(1e-3)), res = PF_R(-7.0);
+    pfc_u32 lu = pfc_next(c), bad_u = pfc_next(c);
+    long long need, slen, nf = -1, nc = -1;
+    pfb_expect ex = { 0, 0, 0 };
+    pf_real *hm, *out, *scr;
+    if (which == 1) {
+        long long want = pfb_ds_need(w, h, f);
+        pfb_setcall("pf_vmf_downsample_scratch_size(%d, %d, %d)", w, h, f);
+        if (pf_vmf_downsample_scratch_size(w, h, f) != want)
+            pfb_fail(PFB_VALUE, "scratch size %lld, want %lld", pf_vmf_downsample_scratch_size(w, h, f), want);
+        return;
+    }
+    need = pfb_ds_need(w, h, f);
+    switch (PFC_R(lu) % 4u) { /* scratch_len: exact, larger, one short, anything */
+    case 0: slen = need; break;
+    case 1: slen = need + (long long)(PFC_B(lu) % 9u); break;
+    case 2: slen = need - 1; break;
+    default: slen = pfb_ll(c); break;
+    }
+    pfb_setcall("%s(%s, %d, %d, %d, %d, %a, %d, %a, %s, %s, %lld)", fn, null == 1 ? "NULL" : "fine", w, h, f, border,
+                (double)reg, max_iter, (double)tol, null == 2 ? "NULL" : "coarse", null == 3 ? "NULL" : "scratch", slen);
+    if (null) ex.arg = 1;
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (f < 1) ex.small = 1;
+    if (!pfb_border_ok(border) || !(reg >= 0 && reg <= PF_R(1.0e6)) || max_iter < 0 || !(tol >= 0 && tol <= PF_REAL_MAX))
+        ex.arg = 1;
+    if (!ex.small && !ex.size) {
+        nf = pfb_mul(w, h);
+        if (nf < 0) ex.size = 1;
+        else if (w % f || h % f) ex.arg = 1;
+        else {
+            nc = pfb_mul(w / f, h / f);
+            if (pfb_mul(nc, 6) < 0) ex.size = 1;
+            else if (slen < need) ex.arg = 1;
+        }
+    }
+    allowed = pfb_allowed(ex);
+    if (allowed != PFB_A_OK) {
+        pf_real *b[3];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        b[2] = null == 3 ? 0 : pfb_small();
+        rc = pf_vmf_downsample_slopes(b[0], w, h, f, border, reg, max_iter, tol, b[1], b[2], slen, &it, &res);
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 3);
+        if (it != -7 || res != PF_R(-7.0)) pfb_fail(PFB_WROTE, "iters/residual written on error");
+        return;
+    }
+    if (nf > pfb_work_cap || need > pfb_work_cap || max_iter > 40) return;
+    hm = pfb_map(nf, at_start);
+    out = pfb_map(nc, !at_start);
+    scr = pfb_map(need, at_start);
+    if (!hm || !out || !scr) return;
+    pfb_fill(c, hm, nf, 20);
+    if (PFC_R(bad_u) < 2) hm[PFC_B(bad_u) % (pfc_u32)nf] = pfc_from_bits(PFC_R(bad_u) ? 0x7F800000u : 0x7FC00000u);
+    pfb_fill_canary(out, nc);
+    if (pfb_t) pfb_t->run += 1;
+    rc = pf_vmf_downsample_slopes(hm, w, h, f, border, reg, max_iter, tol, out, scr, slen, &it, &res);
+    if (PFC_R(bad_u) < 2) {
+        pfb_rc_check(rc, PFB_A_ARG, fn);
+        if (pfb_count_changed(out, nc) || it != -7) pfb_fail(PFB_WROTE, "rejected NaN/inf heights but wrote");
+    } else if (pfb_rc_check(rc, PFB_A_OK, fn)) {
+        long double mf = 0, mc = 0, mx = 0;
+        long long i;
+        pfb_check_written(out, nc, "coarse", 1);
+        for (i = 0; i < nf; ++i) {
+            mf += hm[i];
+            if (fabsl((long double)hm[i]) > mx) mx = fabsl((long double)hm[i]);
+        }
+        for (i = 0; i < nc; ++i) mc += out[i];
+        if (fabsl(mc / nc - mf / nf) > 1e-3L * mx) pfb_fail(PFB_VALUE, "mean %Lg, fine mean %Lg", mc / nc, mf / nf);
+        if (it < 0 || it > max_iter || !pfb_finite(res) || res < 0) pfb_fail(PFB_VALUE, "%d iterations, residual %a", it, (double)res);
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* ---------------------------------------------------------------- pf_vmf.h: scaling function
+   (helper J) pf_vmf_effective_brdf (which 0), pf_vmf_scale_patch (1), the size queries (2),
+   pf_vmf_scale_factor (3), pf_vmf_scale_lookup (4). Accepted patch calls run on maps of at most
+   16 x 16 with nt, np <= 3 and n <= 8; heights finite, or one NaN/inf (then PF_ERR_ARG or, when
+   it lies outside the patch and its ring, PF_OK). The byte scratch of pf_vmf_scale_patch is
+   mapped as whole pf_reals (at most sizeof(pf_real) - 1 bytes of slack before the guard). */
+static long long pfb_scale_count(long long nt, long long np)
+{
+    long long d;
+    if (nt < 2 || np < 2) return 0;
+    d = pfb_mul(pfb_mul(2, nt), np - 1);
+    d = d < 0 ? -1 : pfb_mul(d, d);
+    return d < 0 ? 0 : d;
+}
+static long long pfb_scale_cells(long long nt, long long np)
+{
+    long long c = (nt < 2 || np < 2) ? -1 : pfb_mul(pfb_mul(nt, nt), np);
+    return c < 0 ? 0 : c;
+}
+static long long pfb_scale_vis(long long nt, long long np, long long n)
+{
+    long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pfb_mul(pfb_mul(2, nt), np - 1);
+    d = d < 0 ? -1 : pfb_mul(pfb_mul(d, n), n);
+    return d < 0 ? 0 : d;
+}
+static void pfb_d_vmf_scale(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_vmf_effective_brdf", "pf_vmf_scale_patch", "pf_vmf_scale_sample_count",
+                                       "pf_vmf_scale_factor", "pf_vmf_scale_lookup" };
+    const char *fn = fns[which];
+    pfb_expect ex = { 0, 0, 0 };
+    int allowed, rc, at_start = PFC_R(pfc_next(c)) < 4;
+    if (which == 2) {
+        int nt = pfb_int(c, 0, 8), np = pfb_int(c, 0, 8), n = pfb_int(c, 0, 64);
+        pfb_setcall("pf_vmf_scale_sample_count/cell_count/vis_bytes(%d, %d, %d)", nt, np, n);
+        if (pf_vmf_scale_sample_count(nt, np) != pfb_scale_count(nt, np) || pf_vmf_scale_cell_count(nt, np) != pfb_scale_cells(nt, np) ||
+            pf_vmf_scale_vis_bytes(nt, np, n) != pfb_scale_vis(nt, np, n))
+            pfb_fail(PFB_VALUE, "sizes %lld %lld %lld, want %lld %lld %lld", pf_vmf_scale_sample_count(nt, np),
+                     pf_vmf_scale_cell_count(nt, np), pf_vmf_scale_vis_bytes(nt, np, n), pfb_scale_count(nt, np),
+                     pfb_scale_cells(nt, np), pfb_scale_vis(nt, np, n));
+        return;
+    }
+    if (which == 4) {
+        int nt = pfb_int(c, 2, 5), np = pfb_int(c, 2, 5), null = pfb_null(c, 1);
+        long long cells = pfb_scale_cells(nt, np), i;
+        pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+        pf_real tm = pfb_coord(c, PF_R(0.1), PF_R(1.5)), *tab = 0, got;
+        long double lo = 1, hi = 1;
+        pfb_setcall("%s(%s, %d, %d, %a, dirs)", fn, null ? "NULL" : "table", nt, np, (double)tm);
+        if (!null && cells > 0 && cells <= pfb_work_cap) {
+            tab = pfb_map(cells, at_start);
+            if (!tab) return;
+            pfb_fill(c, tab, cells, 10);
+            lo = hi = tab[0];
+            for (i = 0; i < cells; ++i) {
+                if (tab[i] < lo) lo = tab[i];
+                if (tab[i] > hi) hi = tab[i];
+            }
+        }
+        got = pf_vmf_scale_lookup(tab, nt, np, tm, wo, wi);
+        if (!pfb_finite(got) || got < lo - 1e-5L * (fabsl(lo) + fabsl(hi) + 1) || got > hi + 1e-5L * (fabsl(lo) + fabsl(hi) + 1))
+            pfb_fail(PFB_VALUE, "lookup %a outside the table's range [%Lg, %Lg]", (double)got, lo, hi);
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    }
+    if (which == 3) {
+        int patches = pfb_int(c, 1, 4), nt = pfb_int(c, 2, 3), np = pfb_int(c, 2, 3), iters = pfb_int(c, 1, 6);
+        int null = pfb_null(c, 5), no_err = PFC_R(pfc_next(c)) < 2;
+        long long cnt = pfb_scale_count(nt, np), cells = pfb_scale_cells(nt, np), ns = -1, nsc = -1;
+        pf_real *b[6];
+        pfb_setcall("%s(fe, fl, %d, %d, %d, %d, T, S, scratch, %s) null %d", fn, patches, nt, np, iters, no_err ? "NULL" : "err", null);
+        if (null || patches < 1 || nt < 2 || np < 2 || iters < 1) ex.arg = 1;
+        if (!ex.arg) {
+            ns = pfb_mul(cnt, patches);
+            nsc = pfb_mul(pfb_mul(cells, patches), 2);
+            if (cnt == 0 || cells == 0 || ns < 0 || nsc < 0) ex.size = 1;
+        }
+        allowed = pfb_allowed(ex);
+        if (allowed != PFB_A_OK) {
+            pf_real *pool[4], *q[6];
+            int k;
+            /* 4 pool buffers (pfb_small's limit), the last two pointers reuse two of them */
+            for (k = 0; k < 4; ++k) pool[k] = pfb_small();
+            for (k = 0; k < 6; ++k) q[k] = null == k + 1 ? 0 : pool[k % 4];
+            rc = pf_vmf_scale_factor(q[0], q[1], patches, nt, np, iters, q[2], q[3], q[4], no_err ? 0 : q[5]);
+            pfb_rc_check(rc, allowed, fn);
+            pfb_check_untouched(pool, 4);
+            return;
+        }
+        if (ns > pfb_work_cap || nsc > pfb_work_cap || iters > 64) return; /* cost ~ iterations */
+        b[0] = pfb_map(ns, at_start);
+        b[1] = pfb_map(ns, !at_start);
+        b[2] = pfb_map(patches, at_start);
+        b[3] = pfb_map(cells, !at_start);
+        b[4] = pfb_map(nsc, at_start);
+        b[5] = no_err ? 0 : pfb_map(3, !at_start);
+        if (!b[0] || !b[1] || !b[2] || !b[3] || !b[4] || (!no_err && !b[5])) return;
+        pfb_fill(c, b[0], ns, 6);
+        pfb_fill(c, b[1], ns, 6);
+        pfb_fill_canary(b[2], patches);
+        pfb_fill_canary(b[3], cells);
+        if (b[5]) pfb_fill_canary(b[5], 3);
+        if (pfb_t) pfb_t->run += 1;
+        rc = pf_vmf_scale_factor(b[0], b[1], patches, nt, np, iters, b[2], b[3], b[4], b[5]);
+        if (pfb_rc_check(rc, PFB_A_OK, fn)) {
+            pfb_check_written(b[2], patches, "T", 1);
+            pfb_check_written(b[3], cells, "S", 1);
+            if (b[5]) pfb_check_written(b[5], 3, "err", 1);
+        }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        return;
+    }
+    {
+        /* 0: pf_vmf_effective_brdf, 1: pf_vmf_scale_patch */
+        int w = pfb_int(c, 1, 16), h = pfb_int(c, 1, 16), n = pfb_int(c, 0, 8), x0 = pfb_int(c, -20, 20), y0 = pfb_int(c, -20, 20);
+        int lobes = pfb_int(c, 1, 8), iters = pfb_int(c, 0, 4), masking = pfb_int(c, 0, 2), nt = pfb_int(c, 2, 3), np = pfb_int(c, 2, 3);
+        int null = pfb_null(c, which ? 5 : 2);
+        pf_real texel = pfb_coord(c, PF_R(0.25), PF_R(2.0)), sigma = pfb_coord(c, PF_R(0.02), PF_R(0.5));
+        pf_real tm = pfb_coord(c, PF_R(0.2), PF_R(1.5)), f0 = pfc_u01(c), out = PF_R(-7.0);
+        pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+        pfc_u32 bad_u = pfc_next(c);
+        long long nh = -1, nn = -1, cnt = pfb_scale_count(nt, np), vb = pfb_scale_vis(nt, np, n), vr;
+        pf_real *b[5];
+        if (which == 0)
+            pfb_setcall("%s(%s, %d, %d, %a, %d, %d, %d, dirs, %a, %a, %s)", fn, null == 1 ? "NULL" : "heights", w, h, (double)texel, x0,
+                        y0, n, (double)sigma, (double)f0, null == 2 ? "NULL" : "&out");
+        else
+            pfb_setcall("%s(heights, %d, %d, %a, %d, %d, %d, %d, %d, %a, %a, %d, %d, %d, %a, ...) null %d", fn, w, h, (double)texel, x0,
+                        y0, n, lobes, iters, (double)sigma, (double)f0, masking, nt, np, (double)tm, null);
+        if (null || n < 1 || !(texel > 0 && texel < PF_REAL_MAX) || !(sigma > 0 && sigma < PF_R(1.0e15))) ex.arg = 1;
+        if (which == 1 && (lobes < 1 || lobes > 8 || iters < 0 || nt < 2 || np < 2 || masking < 0 || masking > 2 ||
+                           !(tm > 0 && tm < PF_R(1.5707963))))
+            ex.arg = 1;
+        pfb_side(&ex, w, 1);
+        pfb_side(&ex, h, 1);
+        if (!ex.small && !ex.size) {
+            nh = pfb_mul(w, h);
+            if (nh < 0) ex.size = 1;
+            else if (n > w || n > h) ex.arg = 1;
+        }
+        if (which == 1 && !ex.arg && !ex.small && !ex.size) {
+            nn = pfb_mul(pfb_mul(n, n), 3);
+            if (cnt == 0 || vb == 0 || nn < 0) ex.size = 1;
+        }
+        allowed = pfb_allowed(ex);
+        if (allowed != PFB_A_OK) {
+            int k;
+            for (k = 0; k < 4; ++k) b[k] = pfb_small();
+            b[4] = b[3]; /* 4 pool buffers (pfb_small's limit): f_eff and f_lobes share one */
+            if (which == 0) {
+                rc = pf_vmf_effective_brdf(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, null == 2 ? 0 : &out);
+                if (null != 2 && out != PF_R(0.0)) pfb_fail(PFB_WROTE, "*out %a on error, documented 0", (double)out);
+            } else
+                rc = pf_vmf_scale_patch(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm,
+                                        null == 2 ? 0 : b[1], null == 3 ? 0 : (unsigned char *)(void *)b[2], null == 4 ? 0 : b[3],
+                                        null == 5 ? 0 : b[4]);
+            pfb_rc_check(rc, allowed, fn);
+            pfb_check_untouched(b, 4);
+            return;
+        }
+        vr = (vb + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+        if (nh > pfb_work_cap || (which == 1 && (cnt > pfb_work_cap || vr > pfb_work_cap || iters > 64))) return;
+        b[0] = pfb_map(nh, at_start);
+        if (!b[0]) return;
+        pfb_fill(c, b[0], nh, 4);
+        if (PFC_R(bad_u) < 2) b[0][PFC_B(bad_u) % (pfc_u32)nh] = pfc_from_bits(PFC_R(bad_u) ? 0x7F800000u : 0x7FC00000u);
+        if (pfb_t) pfb_t->run += 1;
+        if (which == 0) {
+            rc = pf_vmf_effective_brdf(b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, &out);
+            if (pfb_rc_check(rc, PFC_R(bad_u) < 2 ? PFB_A_OK | PFB_A_ARG : PFB_A_OK, fn)) {
+                if (rc == PF_OK && (!pfb_finite(out) || out < 0)) pfb_fail(PFB_NONFINITE, "out %a", (double)out);
+                if (rc != PF_OK && out != PF_R(0.0)) pfb_fail(PFB_WROTE, "*out %a on error", (double)out);
+            }
+        } else {
+            b[1] = pfb_map(nn, !at_start);
+            b[2] = pfb_map(vr, at_start);
+            b[3] = pfb_map(cnt, !at_start);
+            b[4] = pfb_map(cnt, at_start);
+            if (!b[1] || !b[2] || !b[3] || !b[4]) return;
+            pfb_fill_canary(b[3], cnt);
+            pfb_fill_canary(b[4], cnt);
+            rc = pf_vmf_scale_patch(b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm, b[1],
+                                    (unsigned char *)(void *)b[2], b[3], b[4]);
+            if (pfb_rc_check(rc, PFC_R(bad_u) < 2 ? PFB_A_OK | PFB_A_ARG : PFB_A_OK, fn) && rc == PF_OK) {
+                long long i;
+                pfb_check_written(b[3], cnt, "f_eff", 1);
+                pfb_check_written(b[4], cnt, "f_lobes", 1);
+                for (i = 0; i < cnt; ++i)
+                    if (b[3][i] < 0 || b[4][i] < 0) { pfb_fail(PFB_VALUE, "sample %lld negative", i); break; }
+            }
+        }
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+    }
+}
 
 static const pfb_entry pfb_table[] = {
     { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
@@ -1450,6 +2147,24 @@ static const pfb_entry pfb_table[] = {
     { "pf_colormap_table_build", "height", pfb_w_table_build, 0 },
     { "pf_colormap_table_lookup", "height", pfb_w_table_lookup, 0 },
     { "pf_gg_hermite_generate", "gaussgrid", pfb_w_hermite, 0 },
+    { "pf_masks_samples", "masks", pfb_w_masks, 0 },
+    { "pf_masks_table_words", "masks", pfb_w_masks, 1 },
+    { "pf_masks_table_build", "masks", pfb_w_masks, 2 },
+    { "pf_masks_table_fetch", "masks", pfb_w_masks, 3 },
+    { "pf_horizon_map", "horizon", pfb_d_horizon, 0 },
+    { "pf_horizon_pyramid", "horizon", pfb_d_horizon, 1 },
+    { "pf_horizon_channels", "horizon", pfb_d_horizon, 2 },
+    { "pf_vmf_fit_normals", "vmf", pfb_d_vmf, 0 },
+    { "pf_vmf_pyramid_from_normals", "vmf", pfb_d_vmf, 1 },
+    { "pf_vmf_pyramid_level_count pf_vmf_pyramid_level_offset pf_vmf_pyramid_texel_count", "vmf", pfb_d_vmf, 2 },
+    { "pf_vmf_mixture_from_texel", "vmf", pfb_d_vmf, 3 },
+    { "pf_vmf_downsample_slopes", "vmf", pfb_d_vmf_downsample, 0 },
+    { "pf_vmf_downsample_scratch_size", "vmf", pfb_d_vmf_downsample, 1 },
+    { "pf_vmf_effective_brdf", "vmf", pfb_d_vmf_scale, 0 },
+    { "pf_vmf_scale_patch", "vmf", pfb_d_vmf_scale, 1 },
+    { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf", pfb_d_vmf_scale, 2 },
+    { "pf_vmf_scale_factor", "vmf", pfb_d_vmf_scale, 3 },
+    { "pf_vmf_scale_lookup", "vmf", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

@@ -37,6 +37,9 @@
 #include "pf_shadow.h"
 #include "pf_gaussgrid.h"
 #include "pf_height.h"
+#include "pf_horizon.h"
+#include "pf_masks.h"
+#include "pf_vmf.h"
 
 typedef unsigned int pfc_u32;
 typedef unsigned long long pfc_u64;
@@ -674,6 +677,7 @@ static void pfc_f_pf_saturate(pfc_ctx *c) { pfc_01(c, pf_saturate(pfc_sym(c, 100
 static void pfc_f_pf_sq(pfc_ctx *c) { pfc_ge0(c, pf_sq(pfc_sym(c, 60))); }
 static void pfc_f_pf_exp_neg_sq(pfc_ctx *c) { pfc_01(c, pf_exp_neg_sq(pfc_sym(c, 12))); }
 static void pfc_f_pf_erfc(pfc_ctx *c) { pfc_in(c, pf_erfc(pfc_sym(c, 12)), PF_R(0.0), PF_R(2.0)); }
+static void pfc_f_pf_erfc_fast(pfc_ctx *c) { pfc_in(c, pf_erfc_fast(pfc_sym(c, 12)), PF_R(0.0), PF_R(2.0)); }
 static void pfc_f_pf_erf(pfc_ctx *c) { pfc_in(c, pf_erf(pfc_sym(c, 12)), PF_R(-1.0), PF_R(1.0)); }
 static void pfc_f_pf_vec2_make(pfc_ctx *c) { pfc_out_vec2(c, pf_vec2_make(pfc_sym(c, 60), pfc_sym(c, 60))); }
 static void pfc_f_pf_vec2_dot(pfc_ctx *c)
@@ -1214,6 +1218,101 @@ static void pfc_f_pf_shadow_msm(pfc_ctx *c)
     pfc_01(c, pf_shadow_msm(m, d, a, db));
 }
 
+/* ---- CSM (helper L, issue 16): pf_moments.h pairs, pf_shadow.h series */
+/* The pair j of a two-depth mixture (all zero in 1 of 16 regimes: an empty footprint). */
+static pf_csm_pair pfc_csm_pair(pfc_ctx *c, int j)
+{
+    pf_real z0 = pfc_u01(c), z1 = pfc_u01(c), t = pfc_u01(c);
+    pfc_u32 u = pfc_next(c);
+    if (c->raw) return pf_csm_pair_make(z0, z1, t, pfc_from_bits(u));
+    if (PFC_R(u) == 0) return pf_csm_pair_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    return pf_csm_pair_add(pf_csm_pair_scale(pf_csm_pair_from_depth(z0, j), PF_R(1.0) - t),
+                           pf_csm_pair_scale(pf_csm_pair_from_depth(z1, j), t));
+}
+static pf_csm_pair pfc_csm1(pfc_ctx *c) { return pfc_csm_pair(c, pfc_int(c, 0, 7)); }
+static void pfc_out_csm(pfc_ctx *c, pf_csm_pair m)
+{ pfc_out(c, m.cos_a); pfc_out(c, m.sin_a); pfc_out(c, m.cos_b); pfc_out(c, m.sin_b); }
+static void pfc_f_pf_csm_pair_make(pfc_ctx *c) { pfc_out_csm(c, pfc_csm1(c)); }
+static void pfc_f_pf_csm_pair_from_depth(pfc_ctx *c)
+{
+    pf_real z = pfc_u01(c);
+    pf_csm_pair p = pf_csm_pair_from_depth(z, pfc_int(c, -1, 40));
+    pfc_in(c, p.cos_a, PF_R(-1.0), PF_R(1.0)); pfc_in(c, p.sin_a, PF_R(-1.0), PF_R(1.0));
+    pfc_in(c, p.cos_b, PF_R(-1.0), PF_R(1.0)); pfc_in(c, p.sin_b, PF_R(-1.0), PF_R(1.0));
+}
+static void pfc_f_pf_csm_pair_add(pfc_ctx *c) { pf_csm_pair a = pfc_csm1(c); pfc_out_csm(c, pf_csm_pair_add(a, pfc_csm1(c))); }
+static void pfc_f_pf_csm_pair_scale(pfc_ctx *c) { pf_csm_pair a = pfc_csm1(c); pfc_out_csm(c, pf_csm_pair_scale(a, pfc_u01(c))); }
+static void pfc_f_pf_csm_pair_lerp(pfc_ctx *c) { pf_csm_pair a = pfc_csm1(c), b = pfc_csm1(c); pfc_out_csm(c, pf_csm_pair_lerp(a, b, pfc_u01(c))); }
+static void pfc_f_pf_csm_pair_reduce2x2(pfc_ctx *c)
+{
+    pf_csm_pair a = pfc_csm1(c), b = pfc_csm1(c), d = pfc_csm1(c), e = pfc_csm1(c);
+    pfc_out_csm(c, pf_csm_pair_reduce2x2(a, b, d, e));
+}
+static void pfc_f_pf_csm_pair_reduce3(pfc_ctx *c)
+{
+    pf_csm_pair a = pfc_csm1(c), b = pfc_csm1(c), d = pfc_csm1(c);
+    pfc_out_csm(c, pf_csm_pair_reduce3(a, b, d, pfc_w3(c)));
+}
+static void pfc_f_pf_csm_pair_reduce3x3(pfc_ctx *c)
+{
+    pf_csm_pair t[9];
+    pf_vec3 wx, wy;
+    int i;
+    for (i = 0; i < 9; ++i) t[i] = pfc_csm1(c);
+    wx = pfc_w3(c); wy = pfc_w3(c);
+    pfc_out_csm(c, pf_csm_pair_reduce3x3(t[0], t[1], t[2], t[3], t[4], t[5], t[6], t[7], t[8], wx, wy));
+}
+static void pfc_f_pf_csm_pair_accumulate(pfc_ctx *c) { pf_csm_pair a = pfc_csm1(c), b = pfc_csm1(c); pfc_out_csm(c, pf_csm_pair_accumulate(a, b, pfc_u01(c))); }
+static void pfc_f_pf_csm_pair_bilinear(pfc_ctx *c)
+{
+    pf_csm_pair a = pfc_csm1(c), b = pfc_csm1(c), d = pfc_csm1(c), e = pfc_csm1(c);
+    pf_real fx = pfc_u01(c), fy = pfc_u01(c);
+    pfc_out_csm(c, pf_csm_pair_bilinear(a, b, d, e, fx, fy));
+}
+/* A series after `terms` harmonics of one footprint (pairs of the same mixture regime). */
+static pf_csm_sum pfc_csm_sum(pfc_ctx *c, pf_real d, pf_real offset, int terms)
+{
+    pf_csm_sum a = pf_csm_sum_begin(d, offset);
+    int j;
+    for (j = 0; 2 * j < terms; ++j) a = pf_csm_sum_add(a, pfc_csm_pair(c, j));
+    return a;
+}
+static void pfc_out_csm_sum(pfc_ctx *c, pf_csm_sum a)
+{
+    pfc_out(c, a.value); pfc_in(c, a.cos_k, PF_R(-1.01), PF_R(1.01)); pfc_in(c, a.sin_k, PF_R(-1.01), PF_R(1.01));
+    pfc_in(c, a.cos_step, PF_R(-1.01), PF_R(1.01)); pfc_in(c, a.sin_step, PF_R(-1.01), PF_R(1.01)); pfc_out(c, a.freq);
+}
+static void pfc_f_pf_csm_sum_begin(pfc_ctx *c) { pf_real d = pfc_u01(c); pfc_out_csm_sum(c, pf_csm_sum_begin(d, pfc_u01(c))); }
+static void pfc_f_pf_csm_sum_make(pfc_ctx *c)
+{
+    pf_real d = pfc_u01(c), o = pfc_u01(c);
+    pf_csm_sum a = pf_csm_sum_begin(d, o);
+    pfc_out_csm_sum(c, pf_csm_sum_make(a.value, a.cos_k, a.sin_k, a.cos_step, a.sin_step, a.freq));
+}
+static void pfc_f_pf_csm_sum_add_harmonic(pfc_ctx *c)
+{
+    pf_real d = pfc_u01(c), o = pfc_u01(c), cz = pfc_sym(c, 0);
+    pfc_out_csm_sum(c, pf_csm_sum_add_harmonic(pf_csm_sum_begin(d, o), cz, pfc_sym(c, 0)));
+}
+static void pfc_f_pf_csm_sum_add(pfc_ctx *c)
+{
+    pf_real d = pfc_u01(c), o = pfc_u01(c);
+    pfc_out_csm_sum(c, pfc_csm_sum(c, d, o, 2 * pfc_int(c, 1, 16)));
+}
+static void pfc_f_pf_csm_sum_lit(pfc_ctx *c)
+{
+    pf_real d = pfc_u01(c), o = pfc_sym(c, -3), s = pfc_sym(c, 4);
+    pfc_01(c, pf_csm_sum_lit(pfc_csm_sum(c, d, o, 2 * pfc_int(c, 1, 16)), s));
+}
+static void pfc_f_pf_shadow_csm(pfc_ctx *c)
+{
+    pf_csm_moments m;
+    pf_real d = pfc_sym(c, 1), o = pfc_sym(c, -3), s = pfc_sym(c, 4);
+    m.p0 = pfc_csm_pair(c, 0); m.p1 = pfc_csm_pair(c, 1); m.p2 = pfc_csm_pair(c, 2); m.p3 = pfc_csm_pair(c, 3);
+    m.p4 = pfc_csm_pair(c, 4); m.p5 = pfc_csm_pair(c, 5); m.p6 = pfc_csm_pair(c, 6); m.p7 = pfc_csm_pair(c, 7);
+    pfc_01(c, pf_shadow_csm(m, d, pfc_int(c, -2, 20), s, o));
+}
+
 /* ---- gaussgrid */
 static void pfc_f_pf_gg_node(pfc_ctx *c)
 {
@@ -1428,7 +1527,363 @@ static void pfc_f_pf_transfer_slope_stats(pfc_ctx *c)
     pf_slope_moments m = pfc_moments(c);
     pfc_psd_stats(c, pf_transfer_slope_stats(t, m.ex, m.ey, m.exx, m.eyy, m.exy));
 }
+/* ---- horizon */
+static pf_hdf_moments pfc_hdf(pfc_ctx *c)
+{
+    pf_real mu = pfc_sym(c, 1), sd = pfc_u01(c) * PF_R(1.6);
+    return pf_hdf_moments_make(mu, mu * mu + sd * sd, pfc_sym(c, 4));
+}
+static pf_hdf_legendre pfc_hdfl(pfc_ctx *c)
+{
+    pf_real a[8];
+    int j;
+    for (j = 0; j < 8; ++j) a[j] = pf_horizon_legendre_coeff(j, PF_R(2.0) * pfc_u01(c) - PF_R(1.0));
+    return pf_hdf_legendre_make(a[0], a[1], a[2], a[3], a[4], a[5], a[6], a[7]);
+}
+static void pfc_f_pf_hdf_moments_make(pfc_ctx *c) { pf_hdf_moments m = pfc_hdf(c); pfc_out(c, m.m1); pfc_out(c, m.m2); pfc_out(c, m.ms); }
+static void pfc_f_pf_hdf_moments_lerp(pfc_ctx *c) { pf_hdf_moments a = pfc_hdf(c), b = pfc_hdf(c); pf_hdf_moments m = pf_hdf_moments_lerp(a, b, pfc_u01(c)); pfc_out(c, m.m1); pfc_ge0(c, m.m2); pfc_out(c, m.ms); }
+static void pfc_f_pf_hdf_legendre_make(pfc_ctx *c) { pfc_out(c, pfc_hdfl(c).c7); }
+static void pfc_f_pf_hdf_legendre_coeff(pfc_ctx *c) { pf_hdf_legendre l = pfc_hdfl(c); pfc_out(c, pf_hdf_legendre_coeff(l, pfc_int(c, -2, 10))); }
+static void pfc_f_pf_hdf_legendre_lerp(pfc_ctx *c) { pf_hdf_legendre a = pfc_hdfl(c), b = pfc_hdfl(c); pfc_out(c, pf_hdf_legendre_lerp(a, b, pfc_u01(c)).c3); }
+static void pfc_f_pf_horizon_azimuth_of(pfc_ctx *c)
+{
+    pf_vec3 w = pfc_dir(c);
+    int n = pfc_int(c, 1, 64);
+    pf_horizon_azimuth a = pf_horizon_azimuth_of(w, n);
+    pfc_01(c, a.f);
+    pfc_flag(c, a.i0 < 0 || a.i0 >= n || a.i1 < 0 || a.i1 >= n);
+}
+static void pfc_f_pf_horizon_elevation(pfc_ctx *c) { pfc_in(c, pf_horizon_elevation(pfc_dir(c)), -PF_R(1.5708), PF_R(1.5708)); }
+static void pfc_f_pf_horizon_visibility_ramp(pfc_ctx *c) { pf_hdf_moments m = pfc_hdf(c); pfc_01(c, pf_horizon_visibility_ramp(m, pfc_sym(c, 1))); }
+static void pfc_f_pf_horizon_visibility_gauss(pfc_ctx *c) { pf_hdf_moments m = pfc_hdf(c); pfc_01(c, pf_horizon_visibility_gauss(m, pfc_sym(c, 1))); }
+static void pfc_f_pf_horizon_visibility_legendre(pfc_ctx *c) { pf_hdf_legendre l = pfc_hdfl(c); int k = pfc_int(c, 0, 9); pfc_01(c, pf_horizon_visibility_legendre(l, k, pfc_cos(c))); }
+static void pfc_f_pf_horizon_legendre_basis(pfc_ctx *c) { int j = pfc_int(c, 0, 8); pfc_in(c, pf_horizon_legendre_basis(j, pfc_cos(c)), -PF_R(3.0), PF_R(3.0)); }
+static void pfc_f_pf_horizon_legendre_coeff(pfc_ctx *c) { int j = pfc_int(c, 0, 8); pfc_in(c, pf_horizon_legendre_coeff(j, pfc_cos(c)), -PF_R(2.0), PF_R(2.0)); }
+static void pfc_f_pf_horizon_bidir_product(pfc_ctx *c) { pf_real l = pfc_u01(c); pfc_01(c, pf_horizon_bidir_product(l, pfc_u01(c))); }
+static void pfc_f_pf_horizon_bidir_tan(pfc_ctx *c) { pf_real l = pfc_u01(c), v = pfc_u01(c); pfc_01(c, pf_horizon_bidir_tan(l, v, pfc_cos(c))); }
+static void pfc_f_pf_horizon_bidir_ashikhmin(pfc_ctx *c) { pf_real l = pfc_u01(c), v = pfc_u01(c), k = pfc_cos(c); pfc_01(c, pf_horizon_bidir_ashikhmin(l, v, k, pfc_u01(c))); }
+static void pfc_f_pf_horizon_visible_area(pfc_ctx *c) { pf_vec3 w = pfc_dir(c); pf_hdf_moments m = pfc_hdf(c); pf_real mx = pfc_sym(c, 2); pfc_in(c, pf_horizon_visible_area(w, m, mx, pfc_sym(c, 2)), PF_R(0.0), PF_R(2.0)); }
+static void pfc_f_pf_horizon_masking(pfc_ctx *c) { pf_vec3 w = pfc_dir(c); pf_hdf_moments m = pfc_hdf(c); pfc_01(c, pf_horizon_masking(w, m, pfc_stats(c, 0))); }
+
+
+/* ---- masks */
+/* A 32-bit word as an int, bit pattern kept, without the implementation-defined conversion. */
+static int pfc_word(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c);
+    int w;
+    switch (u & 7u) {
+    case 0: u = 0u; break;
+    case 1: u = 0xFFFFFFFFu; break;
+    case 2: u = 0x80000000u; break;
+    default: break;
+    }
+    w = u <= 0x7FFFFFFFu ? (int)u : -(int)(0xFFFFFFFFu - u) - 1;
+    pfc_keep(c, (pf_real)w);
+    return w;
+}
+static pf_mask pfc_mask(pfc_ctx *c)
+{
+    int a = pfc_word(c), b = pfc_word(c), d = pfc_word(c), e = pfc_word(c);
+    return pf_mask_make(a, b, d, e);
+}
+static int pfc_bit(pf_mask m, int k)
+{
+    int w = k < 32 ? m.w0 : (k < 64 ? m.w1 : (k < 96 ? m.w2 : m.w3));
+    return (int)(((pfc_u32)w >> (k & 31)) & 1u);
+}
+static int pfc_grid_clamp(int n, int lo) { return n < lo ? lo : (n > PF_MASKS_MAX_GRID ? PF_MASKS_MAX_GRID : n); }
+static void pfc_out_mask(pfc_ctx *c, pf_mask m)
+{
+    pfc_out(c, (pf_real)m.w0); pfc_out(c, (pf_real)m.w1); pfc_out(c, (pf_real)m.w2); pfc_out(c, (pf_real)m.w3);
+}
+static void pfc_f_pf_mask_params_make(pfc_ctx *c)
+{
+    pf_real t = pfc_sym(c, 100), v = pfc_sym(c, 100);
+    pf_mask_params p = pf_mask_params_make(t, v);
+    pfc_out(c, p.theta); pfc_out(c, p.v);
+}
+static void pfc_f_pf_mask_make(pfc_ctx *c)
+{
+    int a = pfc_word(c), b = pfc_word(c), d = pfc_word(c), e = pfc_word(c);
+    pf_mask m = pf_mask_make(a, b, d, e);
+    pfc_out_mask(c, m);
+    pfc_flag(c, m.w0 != a || m.w1 != b || m.w2 != d || m.w3 != e);
+}
+static void pfc_f_pf_masks_v_max(pfc_ctx *c) { pfc_in(c, pf_masks_v_max(pfc_int(c, -2, 3)), PF_R(0.5), PF_R(0.7072)); }
+static void pfc_f_pf_masks_params_from_plane(pfc_ctx *c)
+{
+    pf_real nx = pfc_sym(c, 100), ny = pfc_sym(c, 100), nz = pfc_sym(c, 100);
+    pf_real d = pfc_sym(c, 100), w = pfc_sym(c, 100), dz = pfc_sym(c, 100);
+    pf_mask_params p = pf_masks_params_from_plane(pf_vec3_make(nx, ny, nz), d, w, dz);
+    pfc_in(c, p.theta, -PF_R(3.1416), PF_R(3.1416));
+    pfc_in(c, p.v, -PF_MASKS_V_CLAMP, PF_MASKS_V_CLAMP);
+}
+static void pfc_f_pf_masks_grid_theta(pfc_ctx *c)
+{
+    int n = pfc_int(c, -3, 40000), i = pfc_int(c, 0, pfc_grid_clamp(n, 1) - 1);
+    pfc_in(c, pf_masks_grid_theta(i, n), PF_R(0.0), PF_R(6.2832));
+}
+static void pfc_f_pf_masks_grid_v(pfc_ctx *c)
+{
+    int n = pfc_int(c, -3, 40000), j = pfc_int(c, 0, pfc_grid_clamp(n, 2) - 1), shape = pfc_int(c, 0, 1);
+    pf_real vm = pf_masks_v_max(shape) * (PF_R(1.0) + PF_R(4.0) * PF_REAL_EPSILON);
+    pfc_in(c, pf_masks_grid_v(j, n, shape), -vm, vm);
+}
+static void pfc_f_pf_masks_index(pfc_ctx *c)
+{
+    pf_real t = pfc_sym(c, 100), v = pfc_sym(c, 100);
+    int shape = pfc_int(c, -1, 2), nt = pfc_int_any(c), nv = pfc_int_any(c);
+    int idx = pf_masks_index(pf_mask_params_make(t, v), shape, nt, nv);
+    pfc_out(c, (pf_real)idx);
+    pfc_flag(c, idx < 0 || idx >= pfc_grid_clamp(nt, 1) * pfc_grid_clamp(nv, 2));
+}
+static void pfc_f_pf_masks_words(pfc_ctx *c)
+{
+    int n = pfc_int(c, -40, 200), w = pf_masks_words(n);
+    pfc_out(c, (pf_real)w);
+    pfc_flag(c, w != (n < 1 || n > 128 ? 0 : (n + 31) / 32));
+}
+static void pfc_f_pf_masks_popcount(pfc_ctx *c)
+{
+    int w = pfc_word(c), k, n = 0;
+    for (k = 0; k < 32; ++k) n += (int)(((pfc_u32)w >> k) & 1u);
+    pfc_out(c, (pf_real)pf_masks_popcount(w));
+    pfc_flag(c, pf_masks_popcount(w) != n);
+}
+static void pfc_f_pf_masks_count(pfc_ctx *c)
+{
+    pf_mask m = pfc_mask(c);
+    int k, n = 0;
+    for (k = 0; k < 128; ++k) n += pfc_bit(m, k);
+    pfc_out(c, (pf_real)pf_masks_count(m));
+    pfc_flag(c, pf_masks_count(m) != n);
+}
+static void pfc_f_pf_masks_coverage(pfc_ctx *c)
+{
+    pf_mask m = pfc_mask(c);
+    pfc_01(c, pf_masks_coverage(m, pfc_int(c, -3, 200)));
+}
+static void pfc_masks_binary(pfc_ctx *c, int op)
+{
+    pf_mask a = pfc_mask(c), b = pfc_mask(c), r;
+    int k, bad = 0;
+    r = op == 0 ? pf_masks_union(a, b) : (op == 1 ? pf_masks_intersection(a, b) : pf_masks_difference(a, b));
+    for (k = 0; k < 128; ++k) {
+        int x = pfc_bit(a, k), y = pfc_bit(b, k);
+        bad |= pfc_bit(r, k) != (op == 0 ? (x | y) : (op == 1 ? (x & y) : (x & !y)));
+    }
+    pfc_out_mask(c, r);
+    pfc_flag(c, bad);
+}
+static void pfc_f_pf_masks_union(pfc_ctx *c) { pfc_masks_binary(c, 0); }
+static void pfc_f_pf_masks_intersection(pfc_ctx *c) { pfc_masks_binary(c, 1); }
+static void pfc_f_pf_masks_difference(pfc_ctx *c) { pfc_masks_binary(c, 2); }
+static void pfc_f_pf_masks_complement(pfc_ctx *c)
+{
+    pf_mask a = pfc_mask(c), r;
+    int n = pfc_int(c, -40, 200), k, bad = 0;
+    r = pf_masks_complement(a, n);
+    for (k = 0; k < 128; ++k) bad |= pfc_bit(r, k) != (k < n ? !pfc_bit(a, k) : 0);
+    pfc_out_mask(c, r);
+    pfc_flag(c, bad);
+}
+static void pfc_f_pf_masks_visible_fraction(pfc_ctx *c)
+{
+    pf_mask a = pfc_mask(c), b = pfc_mask(c);
+    pfc_01(c, pf_masks_visible_fraction(a, b, pfc_int(c, -3, 200)));
+}
 /* ================================================================ the table */
+/* ---- vmf */
+/* kappa: 0, negative, tiny, huge, log-uniform over the documented range */
+static pf_real pfc_kappa(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c), b = PFC_B(u);
+    pf_real x;
+    if (!pfc_front(c, u, &x)) {
+        switch (PFC_R(u)) {
+        case 0: x = PF_R(0.0); break;
+        case 1: x = -pfc_mag(b, -20, 20); break;
+        case 2: x = pfc_mag(b, -60, -14); break;
+        case 3: x = pfc_mag(b, 17, 60); break;
+        default: x = pfc_mag(b, -14, 17); break;
+        }
+    }
+    return pfc_keep(c, x);
+}
+/* a lobe from the packed form: amplitude [0, 1], axis x, y in +-1.2 (beyond 1: rescaled) */
+static pf_vmf_lobe pfc_vmf_lobe(pfc_ctx *c)
+{
+    pf_real a = pfc_u01(c), x = PF_R(1.2) * pfc_sym(c, 0), y = PF_R(1.2) * pfc_sym(c, 0);
+    return pf_vmf_lobe_make(a, x, y, pfc_kappa(c));
+}
+static void pfc_out_lobe(pfc_ctx *c, pf_vmf_lobe l) { pfc_ge0(c, l.amp); pfc_out_vec3(c, l.mu); pfc_ge0(c, l.kappa); }
+/* a sum of 1-4 lobes for the directions wo, wi, with the masking terms */
+static pf_vmf_sum pfc_vmf_sum(pfc_ctx *c, pf_vec3 wo, pf_vec3 wi, pf_real bv, int vmf_form)
+{
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    int n = pfc_int(c, 1, 4), k;
+    for (k = 0; k < n; ++k) {
+        pf_vmf_lobe l = pfc_vmf_lobe(c);
+        s = vmf_form ? pf_vmf_sum_add_vmf(s, l, wo, wi, PF_R(100.0), bv) : pf_vmf_sum_add(s, l, wo, wi, bv);
+        s = pf_vmf_sum_add_masking(s, l, wo, wi, bv);
+    }
+    return s;
+}
+static void pfc_out_vmf_sum(pfc_ctx *c, pf_vmf_sum s)
+{
+    pfc_ge0(c, s.amp); pfc_ge0(c, s.ndf); pfc_out(c, s.ex); pfc_out(c, s.ey); pfc_ge0(c, s.exx); pfc_ge0(c, s.eyy);
+    pfc_out(c, s.exy); pfc_ge0(c, s.excess_o); pfc_ge0(c, s.excess_i);
+}
+static void pfc_f_pf_vmf_normalization(pfc_ctx *c) { pfc_ge0(c, pf_vmf_normalization(pfc_kappa(c))); }
+static void pfc_f_pf_vmf_mean_cosine(pfc_ctx *c) { pfc_01(c, pf_vmf_mean_cosine(pfc_kappa(c))); }
+static void pfc_f_pf_vmf_tangent_variance(pfc_ctx *c) { pfc_in(c, pf_vmf_tangent_variance(pfc_kappa(c)), PF_R(0.0), PF_R(0.334)); }
+static void pfc_f_pf_vmf_kappa_from_tangent_variance(pfc_ctx *c)
+{
+    pfc_in(c, pf_vmf_kappa_from_tangent_variance(pfc_var(c, 1)), PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX);
+}
+static void pfc_f_pf_vmf_lobe_eval(pfc_ctx *c)
+{
+    pf_vec3 mu = pfc_dir(c), w = pfc_dir(c);
+    pfc_ge0(c, pf_vmf_lobe_eval(mu, pfc_kappa(c), w));
+}
+static void pfc_f_pf_vmf_kappa_from_mean_length(pfc_ctx *c)
+{
+    pfc_in(c, pf_vmf_kappa_from_mean_length(pfc_u01(c)), PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX);
+}
+static void pfc_f_pf_vmf_convolve_kappa(pfc_ctx *c)
+{
+    pf_real a = pfc_kappa(c);
+    pfc_in(c, pf_vmf_convolve_kappa(a, pfc_kappa(c)), PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX);
+}
+static void pfc_f_pf_vmf_kappa_from_sigma(pfc_ctx *c) { pfc_in(c, pf_vmf_kappa_from_sigma(pfc_sym(c, 20)), PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX); }
+static void pfc_f_pf_vmf_lobe_slope_stats(pfc_ctx *c)
+{
+    pf_vmf_lobe l = pfc_vmf_lobe(c);
+    pf_slope_stats s = pf_vmf_lobe_slope_stats(l.mu, l.kappa, pfc_var(c, 1));
+    pfc_out_stats(c, s);
+    pfc_psd_stats(c, s);
+}
+static void pfc_f_pf_vmf_lobe_make(pfc_ctx *c)
+{
+    pf_real a = pfc_sym(c, 100), x = pfc_sym(c, 100), y = pfc_sym(c, 100);
+    pf_vmf_lobe l = pf_vmf_lobe_make(a, x, y, pfc_kappa(c));
+    pfc_out_lobe(c, l);
+    pfc_flag(c, PF_FABS(pf_vec3_dot(l.mu, l.mu) - PF_R(1.0)) > PF_R(1.0e-5));
+}
+static void pfc_f_pf_vmf_lobe_density(pfc_ctx *c) { pf_vmf_lobe l = pfc_vmf_lobe(c); pfc_ge0(c, pf_vmf_lobe_density(l, pfc_dir(c))); }
+static void pfc_f_pf_vmf_lobe_ndf(pfc_ctx *c)
+{
+    pf_vmf_lobe l = pfc_vmf_lobe(c);
+    pf_vec3 w = pfc_dir(c);
+    pfc_ge0(c, pf_vmf_lobe_ndf(l, w, pfc_kappa(c)));
+}
+static void pfc_f_pf_vmf_lobe_ndf_slope(pfc_ctx *c)
+{
+    pf_vmf_lobe l = pfc_vmf_lobe(c);
+    pf_vec3 w = pfc_dir(c);
+    pfc_ge0(c, pf_vmf_lobe_ndf_slope(l, w, pfc_var(c, 1)));
+}
+static void pfc_f_pf_vmf_lobe_area(pfc_ctx *c) { pf_vmf_lobe l = pfc_vmf_lobe(c); pfc_out(c, pf_vmf_lobe_area(l, pfc_dir(c))); }
+static void pfc_f_pf_vmf_lobe_excess(pfc_ctx *c)
+{
+    pf_vmf_lobe l = pfc_vmf_lobe(c);
+    pf_vec3 w = pfc_dir(c);
+    pfc_ge0(c, pf_vmf_lobe_excess(l, w, pfc_var(c, 1)));
+}
+static void pfc_f_pf_vmf_lambda(pfc_ctx *c)
+{
+    pf_real e = pfc_sym(c, 40);
+    pfc_in(c, pf_vmf_lambda(e, pfc_sym(c, 40)), PF_R(0.0), PF_LAMBDA_MAX);
+}
+static void pfc_f_pf_vmf_sum_zero(pfc_ctx *c) { pfc_out_vmf_sum(c, pf_vmf_sum_zero()); }
+static void pfc_f_pf_vmf_sum_add(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_out_vmf_sum(c, pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0));
+}
+static void pfc_f_pf_vmf_sum_add_vmf(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_out_vmf_sum(c, pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 1));
+}
+static void pfc_f_pf_vmf_sum_add_masking(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_lobe l = pfc_vmf_lobe(c);
+    pfc_out_vmf_sum(c, pf_vmf_sum_add_masking(pf_vmf_sum_zero(), l, wo, wi, pfc_var(c, 0)));
+}
+static void pfc_f_pf_vmf_sum_stats(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_slope_stats s = pf_vmf_sum_stats(pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0));
+    pfc_out_stats(c, s);
+    pfc_psd_stats(c, s);
+}
+static void pfc_f_pf_vmf_sum_g2(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_01(c, pf_vmf_sum_g2(pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0), wo, wi));
+}
+static void pfc_f_pf_vmf_sum_g2_mixture(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_01(c, pf_vmf_sum_g2_mixture(pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0), wo, wi));
+}
+static void pfc_f_pf_vmf_sum_g1_mixture(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_01(c, pf_vmf_sum_g1_mixture(pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0), wo));
+}
+static void pfc_f_pf_vmf_sum_specular(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_sum s = pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0);
+    pfc_ge0(c, pf_vmf_sum_specular(s, wo, wi, pfc_u01(c)));
+}
+static void pfc_f_pf_vmf_sum_specular_mixture(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_sum s = pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 1);
+    pfc_ge0(c, pf_vmf_sum_specular_mixture(s, wo, wi, pfc_u01(c)));
+}
+/* scaling function, shader side (helper J) */
+static void pfc_f_pf_vmf_sum_specular_unmasked(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_sum s = pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0);
+    pfc_ge0(c, pf_vmf_sum_specular_unmasked(s, wo, wi, pfc_u01(c)));
+}
+static void pfc_f_pf_vmf_scale_coords(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c), v = pf_vmf_scale_coords(wo, wi, pfc_sym(c, 4));
+    pfc_01(c, v.x);
+    pfc_01(c, v.y);
+    pfc_01(c, v.z);
+}
+static void pfc_f_pf_vmf_scale_texel_pos(pfc_ctx *c)
+{
+    pf_real u = pfc_sym(c, 20);
+    int n = pfc_int(c, -2, 64);
+    pfc_in(c, pf_vmf_scale_texel_pos(u, n), PF_R(0.0), n > 1 ? (pf_real)(n - 1) : PF_R(0.0));
+}
+static void pfc_f_pf_vmf_scale_trilinear(pfc_ctx *c)
+{
+    pf_real v[8], fx, fy, fz;
+    int k;
+    for (k = 0; k < 8; ++k) v[k] = pfc_u01(c);
+    fx = pfc_u01(c);
+    fy = pfc_u01(c);
+    fz = pfc_u01(c);
+    pfc_in(c, pf_vmf_scale_trilinear(v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], pf_vec3_make(fx, fy, fz)), PF_R(0.0),
+           PF_R(1.0) + PF_R(8.0) * PF_REAL_EPSILON);
+}
+static void pfc_f_pf_vmf_scale_apply(pfc_ctx *c)
+{
+    pf_real t = pfc_sym(c, 20), s = pfc_sym(c, 20);
+    pfc_ge0(c, pf_vmf_scale_apply(t, s, pfc_u01(c)));
+}
+
 #define PFC_E(mod, name, flags, dom, reg) { #name, #mod, pfc_f_##name, flags, dom, reg }
 #define PFC_LIN "finite texels of the type's range, convex weights"
 #define PFC_LINREG "linear (products and sums only): non-finite only when an input is already near overflow"
@@ -1442,6 +1897,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(core, pf_sq, 0, "+-[0, 2^60]", "overflows past sqrt(PF_REAL_MAX)"),
     PFC_E(core, pf_exp_neg_sq, PFC_WIDE, "every finite x", "|x| clamped at 64 (result 0); range [0, 1]"),
     PFC_E(core, pf_erfc, PFC_WIDE, "every finite x", "range [0, 2]; underflows to 0 past x = 10.06 (f) / 27.23 (d); subnormal results lose relative accuracy"),
+    PFC_E(core, pf_erfc_fast, PFC_WIDE, "every finite x", "range [0, 2]; shader tier: relative error 2e-6 + 6e-8 x^2 (float), 1.4e-6 (double)"),
     PFC_E(core, pf_erf, PFC_WIDE, "every finite x", "range [-1, 1]; relatively accurate down to subnormals"),
     PFC_E(core, pf_vec2_make, 0, "+-[0, 2^60]", "constructor"),
     PFC_E(core, pf_vec2_dot, 0, "+-[0, 2^30]", PFC_LINREG),
@@ -1464,7 +1920,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(smith, pf_lambda_beckmann_walter, PFC_WIDE, "every finite nu", "Walter rational: 3.1e-3 relative error in G1; clamped at 0 on [1.548, 1.6); PF_LAMBDA_MAX for nu <= 0"),
     PFC_E(smith, pf_g1_beckmann_walter, PFC_WIDE, "every finite nu", "0 for nu <= 0; 1 past 1.6"),
     PFC_E(smith, pf_g1_beckmann_fast, PFC_WIDE, "every finite nu", "1.05e-4 relative error; peaks at 0.99994 (never 1)"),
-    PFC_E(smith, pf_lambda_beckmann_fast, PFC_WIDE, "every finite nu", "error stated in G1 terms (absolute for small Lambda); 0 past 2.2"),
+    PFC_E(smith, pf_lambda_beckmann_fast, PFC_WIDE, "every finite nu", "relative error 2e-6 + 6e-8 nu^2 (float); PF_LAMBDA_MAX for nu <= 0; underflows past ~10"),
     PFC_E(smith, pf_lambda_ggx, PFC_WIDE, "any-length w, alpha >= 0", "PF_LAMBDA_MAX for w.z <= 0 and at grazing where t would overflow; t/2 past t = 1e18"),
     PFC_E(smith, pf_g1_ggx, PFC_WIDE, "any-length w, alpha >= 0", "0 for w.z <= 0; 2 w.z/u at extreme grazing (t > 1e18)"),
     PFC_E(smith, pf_lambda_ggx_iso, PFC_WIDE, "cos in [-1, 1], alpha >= 0", "as pf_lambda_ggx; cos clamped to 1"),
@@ -1492,7 +1948,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_beckmann_g1, PFC_WIDE, "any-length w, stats", "0 on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_masking_shadowing, PFC_WIDE, "any-length wo, wi, stats", "0 when either direction is on/below the mean plane"),
     PFC_E(beckmann, pf_fresnel_schlick, 0, "f0 in [0, 1], cos in [-1, 1]", "cos clamped to [0, 1]; f0 = 1 gives exactly 1"),
-    PFC_E(beckmann, pf_leadr_specular, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats (var >= 1e-6), f0 in [0, 1]", "0 on/below the macro- or mesosurface; peak of D ~ 1/(2 pi sqrt(det)) large for var -> 1e-6 (1.6e5)"),
+    PFC_E(beckmann, pf_leadr_specular, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats (var >= 1e-6), f0 in [0, 1]", "0 on/below the macrosurface or light on/below the mesosurface; peak of D ~ 1/(2 pi sqrt(det)) large for var -> 1e-6 (1.6e5)"),
     PFC_E(beckmann, pf_leadr_specular_masking, 0, "as pf_leadr_specular", "as pf_leadr_specular"),
     PFC_E(beckmann, pf_leadr_specular_point, 0, "unit wo, any-length to_light (zero, 2^+-40), stats, f0", "0 for a zero to_light; 1/|to_light|^2 falloff overflows for |to_light| < ~1e-19 (f)"),
     /* moments */
@@ -1591,6 +2047,22 @@ static const pfc_entry pfc_table[] = {
     PFC_E(shadow, pf_shadow_evsm4, PFC_WIDE, "as evsm2, both warps", "as evsm2"),
     PFC_E(shadow, pf_shadow_msm_bounds, PFC_WIDE, "moments of 2 depths (+ rounding, all-zero), d, bias in [0, 1], depth_bias +-1/16", "singular Hankel matrix (point mass, two atoms, depths 0/1): pivots floored, roots clamped to 1e4, divisions clamped"),
     PFC_E(shadow, pf_shadow_msm, PFC_WIDE, "as msm_bounds", "as msm_bounds"),
+    PFC_E(moments, pf_csm_pair_make, 0, "CSM pair of a two-depth mixture (or all zero)", "stores its arguments"),
+    PFC_E(moments, pf_csm_pair_from_depth, 0, "z in [0, 1], pair -1 .. 40", "cos/sin of (4j + 1) pi z, (4j + 3) pi z: in [-1, 1]"),
+    PFC_E(moments, pf_csm_pair_add, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_scale, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_lerp, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_reduce2x2, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_reduce3, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_reduce3x3, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_accumulate, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(moments, pf_csm_pair_bilinear, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),
+    PFC_E(shadow, pf_csm_sum_make, 0, "a begun series", "stores its arguments"),
+    PFC_E(shadow, pf_csm_sum_begin, PFC_WIDE, "d, offset in [0, 1]", "one cos/sin; the rotation by 2 pi e is a unit vector"),
+    PFC_E(shadow, pf_csm_sum_add_harmonic, PFC_WIDE, "filtered cos/sin of any finite value", "inputs clamped to [-1, 1]: bounded"),
+    PFC_E(shadow, pf_csm_sum_add, PFC_WIDE, "up to 32 harmonics of a two-depth mixture", "bounded: |value| <= 1/2 + sum 4/((2k - 1) pi)"),
+    PFC_E(shadow, pf_csm_sum_lit, PFC_WIDE, "a series, any finite scale", "clamped to [0, 1]"),
+    PFC_E(shadow, pf_shadow_csm, PFC_WIDE, "pairs of a two-depth mixture, d, offset, scale any finite, terms -2 .. 20", "terms clamped to [1, 16]; clamped to [0, 1]"),
     /* gaussgrid */
     PFC_E(gaussgrid, pf_gg_node, 0, "set in [-1, 3], n in [-2, 12], every int j", "n clamped to [1, 9]; unknown set read as uniform; j outside [0, n) gives 0 (range tested first: no int overflow)"),
     PFC_E(gaussgrid, pf_gg_weight, 0, "set, n as pf_gg_node, every int j", "0 outside [0, n)"),
@@ -1599,7 +2071,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(gaussgrid, pf_gg_uniform_node_any, 0, "n in [-2, 64], j in [-2, 66], lambda [0, 16]", "0 for n <= 1"),
     PFC_E(gaussgrid, pf_gg_uniform_weight_any, PFC_SLOW, "n in [-2, 64], j in [-2, 66], lambda [0, 16]", "n exps per call; 0 outside [0, n), 1 for n <= 1; exps relative to the central node: huge lambda leaves the central weights, far ones underflow to 0"),
     PFC_E(gaussgrid, pf_gg_uniform_variance_any, PFC_SLOW, "n in [-2, 64], lambda [0, 16]", "0 for n <= 0"),
-    PFC_E(gaussgrid, pf_gg_grid_make, 0, "unit wo (grazing, below), stats incl. singular/negative variance, any set, n in [-1, 12]", "negative variance read as 0, |r| clamped to 1; inv_proj = 0 at/below the mesosurface"),
+    PFC_E(gaussgrid, pf_gg_grid_make, 0, "unit wo (grazing, below), stats incl. singular/negative variance, any set, n in [-1, 12]", "negative variance read as 0, |r| clamped to 1; inv_proj = 0 at/below the macrosurface, 1/P_o (facing area) below the mesosurface"),
     PFC_E(gaussgrid, pf_gg_grid_count, 0, "grids as grid_make", "N^2 with N in [1, 9]"),
     PFC_E(gaussgrid, pf_gg_sample_at, 0, "grids, every int i", "index outside: weight 0"),
     PFC_E(gaussgrid, pf_gg_jacobian, 0, "unit wn, wo", "-"),
@@ -1640,6 +2112,72 @@ static const pfc_entry pfc_table[] = {
     PFC_E(height, pf_transfer_segment_moments, 0, "knots x0 <= x1 +-2^20, g +-2^10, mean, sigma", "x1 <= x0 gives zeros; E[g^2] clamped at 0 (cancellation); g'^2 = ((g1-g0)/(x1-x0))^2 huge for tiny segments, overflows past 1.8e19 (f)"),
     PFC_E(height, pf_transfer_height, PFC_WIDE, "segment moments", "dev clamped at 0 (cancellation E[g^2] - E[g]^2)"),
     PFC_E(height, pf_transfer_slope_stats, 0, "segment moments, filtered slope moments", "as pf_slope_stats_from_moments; products E[g'^2] E[x^2] overflow as their exact value"),
+    /* masks */
+    PFC_E(horizon, pf_hdf_moments_make, 0, "mean +-2, deviation [0, 1.6], E[S T] +-16", PFC_LINREG),
+    PFC_E(horizon, pf_hdf_moments_lerp, 0, PFC_LIN, PFC_LINREG),
+    PFC_E(horizon, pf_hdf_legendre_make, 0, "coefficients of a step", PFC_LINREG),
+    PFC_E(horizon, pf_hdf_legendre_coeff, 0, "index -2 .. 10", "0 outside 0 .. 7"),
+    PFC_E(horizon, pf_hdf_legendre_lerp, 0, PFC_LIN, PFC_LINREG),
+    PFC_E(horizon, pf_horizon_azimuth_of, 0, "unit directions, n 1 .. 64", "w_xy = 0 or NaN: index 0"),
+    PFC_E(horizon, pf_horizon_elevation, 0, "unit directions", "[-pi/2, pi/2]"),
+    PFC_E(horizon, pf_horizon_visibility_ramp, 0, "HDF moments, elevation +-2", "negative variance as 0; NaN gives 0"),
+    PFC_E(horizon, pf_horizon_visibility_gauss, 0, "HDF moments, elevation +-2", "erfc past 8 returned as 0"),
+    PFC_E(horizon, pf_horizon_visibility_legendre, 0, "step coefficients, k 0 .. 9, x in [-1, 1]", "k clamped to 1 .. 8; clamped to [0, 1]"),
+    PFC_E(horizon, pf_horizon_legendre_basis, 0, "j 0 .. 8, x in [-1, 1]", "|P^_j| <= sqrt(j + 1/2)"),
+    PFC_E(horizon, pf_horizon_legendre_coeff, 0, "j 0 .. 8, s in [-1, 1]", "integral of P^_j over [s, 1]"),
+    PFC_E(horizon, pf_horizon_bidir_product, 0, "fractions in [0, 1]", "V(l)"),
+    PFC_E(horizon, pf_horizon_bidir_tan, 0, "fractions in [0, 1], cos in [-1, 1]", "V(v) = 0 gives V(l)"),
+    PFC_E(horizon, pf_horizon_bidir_ashikhmin, 0, "fractions in [0, 1], cos, width [0, 1]", "width <= 0: beta 1 at l = v, else 0"),
+    PFC_E(horizon, pf_horizon_visible_area, 0, "unit directions, HDF moments, mean slopes +-4", "clamped to [0, 2]; 0 below the mean plane"),
+    PFC_E(horizon, pf_horizon_masking, 0, "unit directions, HDF moments, slope stats", "saturate(area ratio x pf_beckmann_g1)"),
+    PFC_E(masks, pf_mask_params_make, PFC_WIDE, "+-2^100", "constructor"),
+    PFC_E(masks, pf_mask_make, 0, "any 32-bit words", "constructor"),
+    PFC_E(masks, pf_masks_v_max, 0, "shape -2..3", "unknown shapes read as the square"),
+    PFC_E(masks, pf_masks_params_from_plane, PFC_WIDE, "normal, offset, width, depth +-2^100", "theta in [-pi, pi], v clamped to +-2; NaN -> theta 0, v -2 (empty)"),
+    PFC_E(masks, pf_masks_grid_theta, 0, "n -3..40000, i in [0, n)", "n clamped to [1, 32768]"),
+    PFC_E(masks, pf_masks_grid_v, 0, "n -3..40000, j in [0, n)", "n clamped to [2, 32768]"),
+    PFC_E(masks, pf_masks_index, PFC_WIDE, "theta, v +-2^100, any grid size", "index always inside the clamped table; NaN v -> empty row"),
+    PFC_E(masks, pf_masks_words, 0, "any int", "0 outside [1, 128]"),
+    PFC_E(masks, pf_masks_popcount, 0, "any word", "exact"),
+    PFC_E(masks, pf_masks_count, 0, "any mask", "exact"),
+    PFC_E(masks, pf_masks_coverage, 0, "any mask, n -3..200", "n < 1 gives 0; clamped to 1 when the mask has more bits than n"),
+    PFC_E(masks, pf_masks_union, 0, "any masks", "exact"),
+    PFC_E(masks, pf_masks_intersection, 0, "any masks", "exact"),
+    PFC_E(masks, pf_masks_difference, 0, "any masks", "exact"),
+    PFC_E(masks, pf_masks_complement, 0, "any mask, n -40..200", "n clamped to [0, 128]; bits past n are 0"),
+    PFC_E(masks, pf_masks_visible_fraction, 0, "any masks, n -3..200", "as coverage"),
+    /* vmf */
+    PFC_E(vmf, pf_vmf_normalization, 0, "kappa 0, < 0, 2^-60 .. 2^60", "kappa clamped to [1e-4, 1e5]"),
+    PFC_E(vmf, pf_vmf_mean_cosine, 0, "kappa as above", "series below 0.5 (f) / 0.1 (d)"),
+    PFC_E(vmf, pf_vmf_tangent_variance, 0, "kappa as above", "(1 - 1/k)/k past 10 (f) / 20 (d)"),
+    PFC_E(vmf, pf_vmf_kappa_from_tangent_variance, 0, "variance incl. negative", "48 bisection steps; clamped"),
+    PFC_E(vmf, pf_vmf_lobe_eval, 0, "unit (also below-horizon) axis and direction, kappa as above", "exponent capped at 80"),
+    PFC_E(vmf, pf_vmf_kappa_from_mean_length, 0, "r in [0, 1]", "r >= 1: kappa max"),
+    PFC_E(vmf, pf_vmf_convolve_kappa, 0, "two kappas as above", "clamped"),
+    PFC_E(vmf, pf_vmf_kappa_from_sigma, 0, "sigma +-2^20", "sigma^2 < 1e-5: kappa max"),
+    PFC_E(vmf, pf_vmf_lobe_slope_stats, 0, "packed lobe, base variance", "mu.z floored at 1e-3 (slopes <= 1e3)"),
+    PFC_E(vmf, pf_vmf_lobe_make, PFC_WIDE, "+-2^100", "axis rescaled onto the unit hemisphere; NaN -> 0"),
+    PFC_E(vmf, pf_vmf_lobe_density, 0, "packed lobe, unit direction", "as pf_vmf_lobe_eval"),
+    PFC_E(vmf, pf_vmf_lobe_ndf, 0, "packed lobe, unit direction, kappa_b", "0 for w.z <= 0; 1/w.z floored at 1e-6"),
+    PFC_E(vmf, pf_vmf_lobe_ndf_slope, 0, "packed lobe, unit direction, base variance", "0 below w.z = 1e-6; det floored at 1e-12"),
+    PFC_E(vmf, pf_vmf_lobe_area, 0, "packed lobe, unit direction", "mu.z floored at 1e-3"),
+    PFC_E(vmf, pf_vmf_lobe_excess, 0, "packed lobe, unit direction, base variance", "sd -> 0: max(-a, 0)"),
+    PFC_E(vmf, pf_vmf_lambda, 0, "+-2^40", "area <= 0: PF_LAMBDA_MAX"),
+    PFC_E(vmf, pf_vmf_sum_zero, 0, "-", "constructor"),
+    PFC_E(vmf, pf_vmf_sum_add, 0, "1-4 packed lobes, directions, base variance", "sums"),
+    PFC_E(vmf, pf_vmf_sum_add_vmf, 0, "1-4 packed lobes, directions, base variance, kappa_b 100", "sums"),
+    PFC_E(vmf, pf_vmf_sum_add_masking, 0, "packed lobe, directions, base variance", "sums"),
+    PFC_E(vmf, pf_vmf_sum_stats, 0, "sums of 1-4 lobes", "as pf_slope_stats_from_moments"),
+    PFC_E(vmf, pf_vmf_sum_g2, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
+    PFC_E(vmf, pf_vmf_sum_g2_mixture, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
+    PFC_E(vmf, pf_vmf_sum_g1_mixture, 0, "sums of 1-4 lobes, direction", "in [0, 1]"),
+    PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
+    PFC_E(vmf, pf_vmf_sum_specular_mixture, 0, "sums of 1-4 lobes (vMF form), directions, f0", ">= 0"),
+    PFC_E(vmf, pf_vmf_sum_specular_unmasked, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
+    PFC_E(vmf, pf_vmf_scale_coords, 0, "directions, theta_max +-2^4", "each coordinate in [0, 1]"),
+    PFC_E(vmf, pf_vmf_scale_texel_pos, 0, "u +-2^20, n in [-2, 64]", "in [0, max(n - 1, 0)]"),
+    PFC_E(vmf, pf_vmf_scale_trilinear, 0, "8 values and 3 fractions in [0, 1]", "in [0, 1] (rounding)"),
+    PFC_E(vmf, pf_vmf_scale_apply, 0, "T, S +-2^20, f [0, 1]", ">= 0"),
 };
 #define PFC_COUNT ((int)(sizeof pfc_table / sizeof pfc_table[0]))
 
