@@ -1599,7 +1599,10 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
     /* 1/sqrt(2 var_o) as in pfi_leadr_nu, kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
     pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
                                                        PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-    pf_real nu_o = area_o * rs_o; /* signed: < 0 when the view is below the mean plane */
+    /* signed: < 0 when the view is below the mean plane; floored at -64, where P_o is 0 in
+       pf_real anyway, so that -inf (huge mean slopes) gives P_o = 0, not inf - inf: the final
+       select must not rely on NaN ordering, which GPUs' native min does not keep */
+    pf_real nu_o = pf_max(area_o * rs_o, PF_R(-64.0));
     pf_real nu_a = pf_max(PF_FABS(nu_o), PF_R(1.0e-20));
     /* P_o, the projected area of the facets facing the view (see the comment above):
        A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
