@@ -146,7 +146,7 @@ static void test_horizon_pyramid_is_footprint_mean(void)
             long double sx = (ora_node(hm, W, W, i + 1, j, 1) - ora_node(hm, W, W, i - 1, j, 1)) / (2.0L * 0.5L);
             long double sy = (ora_node(hm, W, W, i, j + 1, 1) - ora_node(hm, W, W, i, j - 1, 1)) / (2.0L * 0.5L);
             for (a = 0; a < N; ++a) {
-                long double phi = 2.0L * TPI * a / N;
+                long double phi = 2.0L * TPI * a / (long double)N;
                 T[(j * W + i) * N + a] = ora_horizon(hm, W, W, i, j, phi, 0.5L, 1.0L, 16.0L, 1);
                 S[(j * W + i) * N + a] = sx * (a == 1 || a == 3 ? 0.0L : cosl(phi)) + sy * (a == 0 || a == 2 ? 0.0L : sinl(phi));
             }
@@ -199,17 +199,17 @@ static void test_horizon_eq26_gauss_counting(void)
     long double m1 = 0.0L, m2 = 0.0L, worst = 0.0L, worst_ramp = 0.0L;
     int t, k;
     for (t = 0; t < N; ++t) {
-        th[t] = 0.25L + 0.2L * inv_phi((t + 0.5L) / N);
+        th[t] = 0.25L + 0.2L * inv_phi((t + 0.5L) / (long double)N);
         m1 += th[t];
         m2 += th[t] * th[t];
     }
-    m1 /= N;
-    m2 /= N;
+    m1 /= (long double)N;
+    m2 /= (long double)N;
     for (k = -40; k <= 40; ++k) {
         long double e = 0.25L + 0.02L * k, count = 0.0L;
         pf_hdf_moments m = pf_hdf_moments_make((pf_real)m1, (pf_real)m2, PF_R(0.0));
         for (t = 0; t < N; ++t) count += th[t] < e;
-        count /= N;
+        count /= (long double)N;
         if (fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - count) > worst)
             worst = fabsl((long double)pf_horizon_visibility_gauss(m, (pf_real)e) - count);
         if (fabsl((long double)pf_horizon_visibility_ramp(m, (pf_real)e) - count) > worst_ramp)
@@ -317,7 +317,7 @@ static void test_horizon_eq26_legendre_counting(void)
                         }
                     }
     }
-    for (k = 1; k <= K; ++k) l2[k] = sqrtl(l2[k] / (16.0L * N * 101.0L));
+    for (k = 1; k <= K; ++k) l2[k] = sqrtl(l2[k] / (16.0L * (long double)N * 101.0L));
     pf_test_note("eq. 30 from filtered coefficients = mean of truncated steps to %.2Lg; RMS vs counted eq. 26: "
                  "k=2 %.3Lg, k=4 %.3Lg, k=8 %.3Lg", worst_lin, l2[2], l2[4], l2[8]);
     PF_CHECK(worst_lin <= 1e-4L, "linearity %Lg", worst_lin);

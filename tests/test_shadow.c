@@ -853,7 +853,7 @@ static void test_csm_fourier_coefficients(void)
     int n, q, i, j, t;
     static const int terms[3] = { 4, 8, 16 };
     for (n = 0; n <= NH; ++n) {
-        long double sa = 0, sb = 0, h = 1.0L / NQ;
+        long double sa = 0, sb = 0, h = 1.0L / (long double)NQ;
         for (q = 0; q <= NQ; ++q) {
             long double x = q * h, wq = (q == 0 || q == NQ) ? 1.0L : ((q & 1) ? 4.0L : 2.0L);
             sa += wq * cosl(n * CSM_PI * x);

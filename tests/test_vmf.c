@@ -1234,7 +1234,7 @@ static void test_scale_factor_separable(void)
              "worst %.3Le err %g %g", worst, (double)err[0], (double)err[2]);
     ratio = 0;
     for (x = 0; x < P; ++x) ratio += (long double)T[x];
-    PF_CHECK(fabsl(ratio / P - 1.0L) <= 10.0L * PF_TEST_EPS, "T mean %.17Lg", ratio / P);
+    PF_CHECK(fabsl(ratio / (long double)P - 1.0L) <= 10.0L * PF_TEST_EPS, "T mean %.17Lg", ratio / (long double)P);
     free(fe);
     free(fl);
     free(scr);
