@@ -379,10 +379,10 @@ PF_DEF pf_real pfi_erf_minus_x(pf_real x)
 PF_DEF pf_real pfi_erfc_big(pf_real x)
 {
 #ifdef PF_DOUBLE
-    pf_real xc = pf_min(PF_R(27.25), x);
+    pf_real xc = x > PF_R(27.25) ? PF_R(27.25) : x; /* not pf_min: CUDA's fmin drops a NaN */
     PFI_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
 #else
-    pf_real xc = pf_min(PF_R(10.125), x);
+    pf_real xc = x > PF_R(10.125) ? PF_R(10.125) : x; /* not pf_min: CUDA's fminf drops a NaN */
     PFI_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
 #endif
     PFI_EXACT pf_real xh = pfi_split_hi(xc);
@@ -3971,7 +3971,9 @@ PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, in
     int t;
     if (!log_space) {
         for (t = 0; t < n; ++t) s += w[t] * tap[t][k];
-        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
+        /* only +-inf is clamped: a NaN s is returned as is (CUDA's fmin/fmax clamp would
+           turn it into lo) */
+        return !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pfi_taps_clamp(s, tap, n, k);
     }
     for (t = 0; t < n; ++t)
         if (tap[t][k] > m) m = tap[t][k];
@@ -4367,7 +4369,7 @@ PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf
             continue;
         }
         s = (PF_R(1.0) - fl) * a + fl * c;
-        out[k] = s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c));
+        out[k] = !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c)); /* NaN as is */
     }
     return PF_OK;
 }
@@ -4595,7 +4597,12 @@ PF_DEF pf_horizon_azimuth pf_horizon_azimuth_of(pf_vec3 w, int n)
 /* Elevation of w above the tangent plane, radians in [-pi/2, pi/2] (w need not be unit). */
 PF_DEF pf_real pf_horizon_elevation(pf_vec3 w)
 {
-    return PF_ATAN2(w.z, PF_SQRT(w.x * w.x + w.y * w.y));
+    /* atan2 is scale-invariant: w is scaled to a largest component of 1 so that x^2 + y^2
+       cannot overflow (float |w| > 1.8e19), which made sqrt(inf) and, under -ffast-math
+       (sqrt as x * rsqrt(x)), NaN; the max with PF_REAL_MIN keeps w = 0 at atan2(0, 0) = 0 */
+    pf_real s = PF_R(1.0) / pf_max(pf_max(PF_FABS(w.x), PF_FABS(w.y)), pf_max(PF_FABS(w.z), PF_REAL_MIN));
+    pf_real x = w.x * s, y = w.y * s;
+    return PF_ATAN2(w.z * s, PF_SQRT(x * x + y * y));
 }
 
 /* ---------------------------------------------------------------- V_A(v) from two moments */
@@ -5699,8 +5706,12 @@ PF_DEF pf_real pf_shadow_reduce_bleeding(pf_real lit, pf_real threshold)
 PF_DEF pf_real pf_shadow_vsm(pf_depth_moments2 m, pf_real d, pf_real min_variance, pf_real bleed)
 {
     /* depths are in [0, 1]: m2 - m1^2 <= m2 is finite, so only the floor is needed; a NaN
-       moment gives var = the floor and t = 0 (C), lit 1 */
-    pf_real var = pf_max(m.m2 - m.m1 * m.m1, pf_max(min_variance, PF_REAL_MIN));
+       moment gives var = the floor and t = 0 (C), lit 1. m1^2 is rounded on its own (a
+       separate, PFI_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
+       rounding error of a stored point mass's m2 = fl(z^2) as a variance (~1e-8 in float at
+       z ~ 1), lighting receivers well behind it (clang's default -ffp-contract=on with FMA) */
+    PFI_EXACT pf_real m1sq = m.m1 * m.m1;
+    pf_real var = pf_max(m.m2 - m1sq, pf_max(min_variance, PF_REAL_MIN));
     return pfi_shadow_linstep(pfi_shadow_chebyshev_ratio(var, d - m.m1), bleed);
 }
 

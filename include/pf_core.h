@@ -344,10 +344,10 @@ PF_DEF pf_real pfi_erf_minus_x(pf_real x)
 PF_DEF pf_real pfi_erfc_big(pf_real x)
 {
 #ifdef PF_DOUBLE
-    pf_real xc = pf_min(PF_R(27.25), x);
+    pf_real xc = x > PF_R(27.25) ? PF_R(27.25) : x; /* not pf_min: CUDA's fmin drops a NaN */
     PFI_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
 #else
-    pf_real xc = pf_min(PF_R(10.125), x);
+    pf_real xc = x > PF_R(10.125) ? PF_R(10.125) : x; /* not pf_min: CUDA's fminf drops a NaN */
     PFI_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
 #endif
     PFI_EXACT pf_real xh = pfi_split_hi(xc);

@@ -601,7 +601,9 @@ PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, in
     int t;
     if (!log_space) {
         for (t = 0; t < n; ++t) s += w[t] * tap[t][k];
-        return s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pfi_taps_clamp(s, tap, n, k);
+        /* only +-inf is clamped: a NaN s is returned as is (CUDA's fmin/fmax clamp would
+           turn it into lo) */
+        return !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pfi_taps_clamp(s, tap, n, k);
     }
     for (t = 0; t < n; ++t)
         if (tap[t][k] > m) m = tap[t][k];
@@ -997,7 +999,7 @@ PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf
             continue;
         }
         s = (PF_R(1.0) - fl) * a + fl * c;
-        out[k] = s >= -PF_REAL_MAX && s <= PF_REAL_MAX ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c));
+        out[k] = !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c)); /* NaN as is */
     }
     return PF_OK;
 }

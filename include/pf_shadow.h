@@ -187,8 +187,12 @@ PF_DEF pf_real pf_shadow_reduce_bleeding(pf_real lit, pf_real threshold)
 PF_DEF pf_real pf_shadow_vsm(pf_depth_moments2 m, pf_real d, pf_real min_variance, pf_real bleed)
 {
     /* depths are in [0, 1]: m2 - m1^2 <= m2 is finite, so only the floor is needed; a NaN
-       moment gives var = the floor and t = 0 (C), lit 1 */
-    pf_real var = pf_max(m.m2 - m.m1 * m.m1, pf_max(min_variance, PF_REAL_MIN));
+       moment gives var = the floor and t = 0 (C), lit 1. m1^2 is rounded on its own (a
+       separate, PFI_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
+       rounding error of a stored point mass's m2 = fl(z^2) as a variance (~1e-8 in float at
+       z ~ 1), lighting receivers well behind it (clang's default -ffp-contract=on with FMA) */
+    PFI_EXACT pf_real m1sq = m.m1 * m.m1;
+    pf_real var = pf_max(m.m2 - m1sq, pf_max(min_variance, PF_REAL_MIN));
     return pfi_shadow_linstep(pfi_shadow_chebyshev_ratio(var, d - m.m1), bleed);
 }
 
