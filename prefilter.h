@@ -5006,7 +5006,7 @@ PF_CPU_DEF int pf_horizon_pyramid(const pf_real *heights, int w, int h, pf_real 
    with d_visible = d + mean_h + sigma_h * pf_visible_height(lambda_v).mean (pf_height.h;
    HN11 eq. 20 and sec. 4.4: the plane moved to the mean visible height).
    CPU side, once:
-     pf_real xy[2 * 64];  int *table = malloc(sizeof(int) * pf_masks_table_words(64, 64, 64));
+     pf_real xy[2 * 64];  int *table = <caller-owned, pf_masks_table_words(64, 64, 64) ints>;
      pf_masks_samples(PF_MASKS_SQUARE, 64, 1, xy);
      pf_masks_table_build(PF_MASKS_SQUARE, 64, 64, xy, 64, table);
 
