@@ -507,13 +507,16 @@ static pfb_range pfb_range_of(const pf_real *p, long long texels, int nc)
     return r;
 }
 /* every texel of levels >= 1 within level 0's range (a convex combination of it), to
-   rounding: tol relative to the largest magnitude, times the number of levels */
+   rounding: tol relative to the largest magnitude, times the number of levels, plus the
+   underflow of the weights applied before summing (0.25 * 2^-148 rounds to 0 in float: each
+   weighted term loses up to half the smallest subnormal, four terms per level) */
 static void pfb_check_levels(const pf_real *pyr, long long w, long long h, int nc, int log_space, const char *fn)
 {
     long long i, t0 = w * h, total = pfb_offset(w, h, 64);
     pfb_range r = pfb_range_of(pyr, t0, nc);
     /* log space: log(sum w exp(l - m)) has an absolute error of a few eps per level */
-    long double tol = (r.mag + (log_space ? 1 : 0)) * (long double)PF_REAL_EPSILON * 4.0L * (long double)pfb_levels(w, h);
+    long double tol = ((r.mag + (log_space ? 1 : 0)) * (long double)PF_REAL_EPSILON +
+                       (long double)PF_REAL_MIN * (long double)PF_REAL_EPSILON) * 4.0L * (long double)pfb_levels(w, h);
     int k;
     pfb_check_written(pyr, total * nc, "pyr", 1);
     for (i = t0; i < total; ++i)
