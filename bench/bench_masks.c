@@ -41,6 +41,7 @@
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_masks.h"
+#include "../tests/square_coverage.h"
 
 #define SHAPE PF_MASKS_SQUARE
 
@@ -108,34 +109,15 @@ PFB_METHOD(st_n64, pf_masks_visible_fraction(fetch_words(t64_64, (int)x, 2), fet
 PFB_METHOD(st_n128, pf_masks_visible_fraction(fetch_words(t128_64, (int)x, 4), fetch_words(t128_64, (int)y, 4), 128))
 
 /* ---------------------------------------------------------------- references (long double) */
-static int clip_poly(long double *px, long double *py, int n, long double c, long double s, long double v)
-{
-    long double qx[16], qy[16];
-    int m = 0, i;
-    for (i = 0; i < n; ++i) {
-        int j = (i + 1) % n;
-        long double a = px[i] * c + py[i] * s - v, b = px[j] * c + py[j] * s - v;
-        if (a <= 0.0L) { qx[m] = px[i]; qy[m] = py[i]; ++m; }
-        if ((a < 0.0L && b > 0.0L) || (a > 0.0L && b < 0.0L)) {
-            long double t = a / (a - b);
-            qx[m] = px[i] + t * (px[j] - px[i]);
-            qy[m] = py[i] + t * (py[j] - py[i]);
-            ++m;
-        }
-    }
-    for (i = 0; i < m; ++i) { px[i] = qx[i]; py[i] = qy[i]; }
-    return m;
-}
-
-/* area of the unit square inside nh half-planes */
+/* area of the unit square inside nh (1 or 2) half-planes (tests/square_coverage.h) */
 static long double sq_area(int nh, long double ta, long double va, long double tb, long double vb)
 {
-    long double px[16] = {-0.5L, 0.5L, 0.5L, -0.5L}, py[16] = {-0.5L, -0.5L, 0.5L, 0.5L}, a = 0.0L;
-    int n = 4, i;
-    n = clip_poly(px, py, n, cosl(ta), sinl(ta), va);
-    if (nh > 1 && n > 0) n = clip_poly(px, py, n, cosl(tb), sinl(tb), vb);
-    for (i = 0; i < n; ++i) a += px[i] * py[(i + 1) % n] - px[(i + 1) % n] * py[i];
-    return fabsl(a) * 0.5L;
+    long double t[2], v[2];
+    t[0] = ta;
+    v[0] = va;
+    t[1] = tb;
+    v[1] = vb;
+    return square_area(nh, t, v);
 }
 
 static long double ref_one(long double x, long double y, long double z) { (void)z; return sq_area(1, x, y, 0, 0); }

@@ -20,6 +20,7 @@
 #endif
 #include "pf_masks.h"
 #include "pf_test.h"
+#include "square_coverage.h" /* square_clip, square_area: the exact square coverage */
 
 /* The oracles compute in long double on purpose: -Wdouble-promotion, meant for library code, is
    silenced for the test code (the header above was compiled with it). */
@@ -43,37 +44,6 @@ static long double t_unif(void)
 }
 
 /* ------------------------------------------------------------------ exact areas (oracles) */
-
-/* Clip the convex polygon (px, py, n) by x c + y s <= v; returns the new count (<= n + 1). */
-static int clip_poly(long double *px, long double *py, int n, long double c, long double s, long double v)
-{
-    long double qx[16], qy[16];
-    int m = 0, i;
-    for (i = 0; i < n; ++i) {
-        int j = (i + 1) % n;
-        long double a = px[i] * c + py[i] * s - v, b = px[j] * c + py[j] * s - v;
-        if (a <= 0.0L) { qx[m] = px[i]; qy[m] = py[i]; ++m; }
-        if ((a < 0.0L && b > 0.0L) || (a > 0.0L && b < 0.0L)) {
-            long double t = a / (a - b);
-            qx[m] = px[i] + t * (px[j] - px[i]);
-            qy[m] = py[i] + t * (py[j] - py[i]);
-            ++m;
-        }
-    }
-    for (i = 0; i < m; ++i) { px[i] = qx[i]; py[i] = qy[i]; }
-    return m;
-}
-
-/* Fraction of the unit square [-1/2, 1/2]^2 inside every half-plane x cos t_k + y sin t_k <= v_k
-   (k < nh), by clipping and the shoelace formula. */
-static long double square_area(int nh, const long double *t, const long double *v)
-{
-    long double px[16] = {-0.5L, 0.5L, 0.5L, -0.5L}, py[16] = {-0.5L, -0.5L, 0.5L, 0.5L}, a = 0.0L;
-    int n = 4, k, i;
-    for (k = 0; k < nh && n > 0; ++k) n = clip_poly(px, py, n, cosl(t[k]), sinl(t[k]), v[k]);
-    for (i = 0; i < n; ++i) a += px[i] * py[(i + 1) % n] - px[(i + 1) % n] * py[i];
-    return fabsl(a) * 0.5L;
-}
 
 /* Fraction of the disk of radius 1/2 with x cos t + y sin t <= v: the circular segment
    R^2 (pi - acos(v / R)) + v sqrt(R^2 - v^2) over pi R^2. */
@@ -318,7 +288,7 @@ static void test_cone_trace_plane(void)
             /* exact: rays with x nx + y ny <= -nz (zi + 1/8 - z0), clipped with the raw coefficients */
             {
                 long double px[16] = {-0.5L, 0.5L, 0.5L, -0.5L}, py[16] = {-0.5L, -0.5L, 0.5L, 0.5L}, a = 0.0L;
-                int n = clip_poly(px, py, 4, nx, ny, -nz * (zi + 0.125L - z0)), q;
+                int n = square_clip(px, py, 4, nx, ny, -nz * (zi + 0.125L - z0)), q;
                 for (q = 0; q < n; ++q) a += px[q] * py[(q + 1) % n] - px[(q + 1) % n] * py[q];
                 exact = fabsl(a) * 0.5L;
             }
