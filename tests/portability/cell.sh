@@ -45,6 +45,14 @@ for src in tests/test_*.c; do
         *) failed=$((failed + 1)); bad="$bad $t:$c" ;;
         esac
     done
+    # and every known case of it that ran must still fail: a stale entry would hide a regression
+    for k in $known; do
+        case $k in "$t:"*) c=${k#"$t:"}
+            if [ "$c" != "*" ] && awk -v c="$c" '$1 == "ok" && $2 == c { f = 1 } END { exit !f }' "$out/$t.out"; then
+                bad="$bad $t:$c(listed as known but passes: remove it from the list)"
+            fi ;;
+        esac
+    done
     nf=$(echo "$res" | awk '{print $3}')
     [ "$rc" -ne 0 ] && [ "$nf" -eq 0 ] && bad="$bad $t(exit $rc)"
 done

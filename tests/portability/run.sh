@@ -511,8 +511,6 @@ ARM_KNOWN="$ARM_KNOWN,test_height:test_visible_height_exact_tier" # oracle statu
 ARM_KNOWN="$ARM_KNOWN,test_height:test_integer_lambda_expected_max" # checks a quadrature to 1e-17
 # Matrix cells that show a known defect of a module or its test, reported to the module's
 # owner; each entry names the case so nothing else in the cell may fail (docs/porting.md):
-FMA_KNOWN="test_core:test_erfc_grid,test_core:test_erfc_random"   # FMA contraction: erfc 2.1 ulp > 2.0 bound
-CLANG_DBL_KNOWN="test_height:test_noise_perturbed_heights"        # clang double: 1.3e-9 > 1e-9 + 64 eps
 CLANG_FAST_KNOWN="test_core:edge_erfc_special_values"   # fast-math: erfc(10.07) = 1e-45, not 0
 WC99="-pedantic -Wall -Wextra -Werror -Wdouble-promotion"
 WCXX="-Wall -Wextra -Werror"
@@ -522,11 +520,11 @@ O3G="-O3 -Wno-error=maybe-uninitialized"
 cell_list() {
     echo "arm-float full qemu-arm $ARM_KNOWN arm-linux-gnueabihf-gcc -std=c99 $WC99 -O2 -static"
     echo "mx-gcc-c11-O3 full - - gcc -std=c11 $WC99 $O3G"
-    echo "mx-gcc-c99-O0 full - - gcc -std=c99 $WC99 -O0"
-    echo "mx-clang-c99-O2-nocontract-dbl full - $CLANG_DBL_KNOWN clang -std=c99 $WC99 -O2 -ffp-contract=off -DPF_DOUBLE"
-    echo "mx-clang++-c++17-O3 full - - clang++ -x c++ -std=c++17 $WCXX -O3"
+    echo "mx-gcc-c99-O0 edge - - gcc -std=c99 $WC99 -O0"
+    echo "mx-clang-c99-O2-nocontract-dbl full - - clang -std=c99 $WC99 -O2 -ffp-contract=off -DPF_DOUBLE"
+    echo "mx-clang++-c++17-O3 edge - - clang++ -x c++ -std=c++17 $WCXX -O3"
     if [ "$PF_HAVE_FMA" = 1 ]; then
-        echo "mx-gcc-c99-O2-fma full - $FMA_KNOWN gcc -std=c99 $WC99 -O2 -mfma -ffp-contract=fast"
+        echo "mx-gcc-c99-O2-fma full - - gcc -std=c99 $WC99 -O2 -mfma -ffp-contract=fast"
         echo "mx-gcc-c11-O2-fma-nocontract edge - - gcc -std=c11 $WC99 -O2 -mfma -ffp-contract=off"
         echo "mx-clang++-c++11-O2-fma edge - - clang++ -x c++ -std=c++11 $WCXX -O2 -mfma"
     fi
