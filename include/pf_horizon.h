@@ -30,6 +30,8 @@
      pf_horizon_visible_area         the footprint's visible projected area over its mean
                                      projected area, from E[T], E[T^2], E[S T] (bivariate Gaussian)
      pf_horizon_masking              that times Smith's pf_beckmann_g1: the masking G1.
+     pf_horizon_lod_weight           the horizon term's weight by mip level (1 small, 0 large)
+     pf_horizon_masking_lod          pf_horizon_masking faded to Smith by that weight
 
    COMBINING WITH SMITH (measured: docs/horizon.md, bench/bench_horizon.c --masking).
    The bench's masking reference is the visible fraction of the footprint's front-facing
@@ -46,6 +48,25 @@
    occlusion twice. pf_horizon_visible_area estimates the ratio with (T, S) jointly Gaussian:
        E[V a] = c Phi(z) - sum_xy (E[S] Phi(z) - Cov(S, T)/sigma_T phi(z)),   z = (e - mu)/sigma_T
    with c = w.z and sum_xy the factor sin(zenith) of the slope term.
+
+   FADING BY LEVEL OF DETAIL (pf_horizon_lod_weight, pf_horizon_masking_lod; measured:
+   docs/horizon.md). The area ratio R is what the horizon adds to Smith, and it matters only
+   where viewing rays through the footprint end OUTSIDE it: texels within an occlusion length
+   l (the horizontal distance from a texel to what hides it, l ~ height deviation / tan e) of
+   the footprint's edge. That share of the footprint falls as l / n with the footprint's side
+   n, and with it the true 1 - R (over a large footprint every ray through it ends inside it:
+   the visible projected area equals the mean projected area). The bivariate-Gaussian
+   estimate of R does not share that limit: counted on the bench's seven surfaces, its mean
+   agrees with the true ratio to 0.002 at footprints of 1-16 texels (where 1 - R is 3-5%) but
+   stays 1.5-2.5% low at 256-4096 texels, where the true mean is 0.99-1.00 (the footprint's
+   HDF is a mixture of many local ones, and the texels that face away from the view, always
+   hidden, tie S to T non-linearly; a joint Gaussian cannot keep E[(1 - V) a] = 0). So the
+   horizon term helps while the footprint is small against l and the features, and from a few
+   feature sizes on its bias is larger than its signal. pf_horizon_masking_lod blends R
+   toward 1 by a weight that is 1 up to lod_full and 0 from lod_smith on (linear in lod: the
+   signal halves per level). Dividing R by the same estimate at the coarsest level (where the
+   truth is 1) removes the bias at 4096 texels but worsens 16-texel footprints on four kinds
+   (measured), so the fade is the evaluator.
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
@@ -83,7 +104,8 @@
      pf_hdf_moments_make, _lerp; pf_horizon_azimuth_of; pf_horizon_elevation;
      pf_horizon_visibility_ramp, _gauss, _legendre; pf_horizon_legendre_basis,
      pf_horizon_legendre_coeff; pf_hdf_legendre_make, _coeff, _lerp;
-     pf_horizon_bidir_product, _tan, _ashikhmin; pf_horizon_visible_area, pf_horizon_masking
+     pf_horizon_bidir_product, _tan, _ashikhmin; pf_horizon_visible_area, pf_horizon_masking,
+     pf_horizon_lod_weight, pf_horizon_masking_lod
    FUNCTIONS (CPU only, PF_CPU_DEF; compiled out under PF_GLSL)
      pf_horizon_channels, pf_horizon_map, pf_horizon_pyramid
 
@@ -384,6 +406,40 @@ PF_DEF pf_real pf_horizon_visible_area(pf_vec3 w, pf_hdf_moments m, pf_real mean
 PF_DEF pf_real pf_horizon_masking(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s)
 {
     return pf_saturate(pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) * pf_beckmann_g1(w, s));
+}
+
+/* ---------------------------------------------------------------- fading to Smith by footprint size
+   (see FADING BY LEVEL OF DETAIL above; measured: docs/horizon.md)
+   Weight of the horizon term at mip level lod: 1 for lod <= lod_full, 0 for lod >= lod_smith,
+   linear in lod between:  k = clamp((lod_smith - lod)/(lod_smith - lod_full), 0, 1).
+   lod is the level whose texel is the footprint (log2 of its side in texels; fractional
+   between levels). Edge inputs: a NaN lod or bound gives 0 (Smith alone, the statistical
+   answer); lod = -inf gives 1, +inf gives 0; lod_full >= lod_smith is a step at lod_smith;
+   lod_smith = +inf never fades (1 above lod_full as below). Measured choice for the bench's
+   512^2 maps (features of 3-16 texels): lod_full = 2, lod_smith = 6. */
+PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_smith)
+{
+    /* NaN fails the first comparison; an infinite lod is decided before the division */
+    if (!(lod < lod_smith)) return PF_R(0.0);
+    if (lod <= lod_full) return PF_R(1.0);
+    if (lod_smith > PF_REAL_MAX) return PF_R(1.0);
+    /* lod_full = -inf: finite / inf = 0; lod_full NaN: NaN, which the clamp takes to 0 */
+    return pfi_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
+}
+
+/* Masking G1 with the horizon term faded to Smith by footprint size:
+       G1 = clamp(G1_smith (k R + 1 - k), 0, 1),   k = pf_horizon_lod_weight(lod, lod_full, lod_smith),
+   R = pf_horizon_visible_area(w, m, mean slope), G1_smith = pf_beckmann_g1(w, s). k = 1 is
+   pf_horizon_masking exactly, k = 0 is pf_beckmann_g1 exactly (R is not evaluated then: the
+   shader may skip the HDF fetch above lod_smith). The same inputs and outputs as
+   pf_horizon_masking otherwise (0 for a view at or below the mean plane through R; NaN
+   moments: R = 0). */
+PF_DEF pf_real pf_horizon_masking_lod(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real lod, pf_real lod_full,
+                                      pf_real lod_smith)
+{
+    pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
+    pf_real r = k > PF_R(0.0) ? pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) : PF_R(1.0);
+    return pf_saturate(pf_beckmann_g1(w, s) * (k * r + (PF_R(1.0) - k)));
 }
 
 /* ================================================================ CPU only: building the maps */

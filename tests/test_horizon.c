@@ -465,6 +465,123 @@ static void test_horizon_visible_area_quadrature(void)
     }
 }
 
+/* pf_horizon_lod_weight against its piecewise definition in long double (an independent
+   transcription: 1 up to lod_full, 0 from lod_smith, the straight line between), its limits
+   and edge inputs. */
+static long double ora_lod_weight(long double lod, long double lo, long double hi)
+{
+    if (lod >= hi) return 0.0L;
+    if (lod <= lo) return 1.0L;
+    return 1.0L - (lod - lo) / (hi - lo);
+}
+static void test_horizon_lod_weight(void)
+{
+    static const pf_real bounds[][2] = { { PF_R(2.0), PF_R(6.0) }, { PF_R(0.0), PF_R(1.0) }, { PF_R(-3.0), PF_R(4.5) },
+                                         { PF_R(3.0), PF_R(3.25) } };
+    long double worst = 0.0L;
+    int b, i, bad = 0;
+    for (b = 0; b < 4; ++b)
+        for (i = -80; i <= 160; ++i) {
+            pf_real lod = PF_R(i) * PF_R(0.0625), lo = bounds[b][0], hi = bounds[b][1];
+            long double d = fabsl((long double)pf_horizon_lod_weight(lod, lo, hi) - ora_lod_weight(lod, lo, hi));
+            if (d > worst) worst = d;
+        }
+    pf_test_note("lod weight vs piecewise definition: max abs %.2Lg", worst);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-15L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-7L, "%Lg", worst);
+#endif
+    /* end points exact, halfway 0.5, monotone non-increasing */
+    bad += pf_horizon_lod_weight(PF_R(2.0), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(6.0), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(4.0), PF_R(2.0), PF_R(6.0)) != PF_R(0.5);
+    for (i = 0; i < 200; ++i)
+        bad += pf_horizon_lod_weight(PF_R(i + 1) * PF_R(0.04), PF_R(2.0), PF_R(6.0)) >
+               pf_horizon_lod_weight(PF_R(i) * PF_R(0.04), PF_R(2.0), PF_R(6.0));
+    /* edge inputs: negative lod (magnification) is the full horizon, NaN is Smith, infinities
+       the two ends; lod_full >= lod_smith a step; lod_smith = +inf never fades */
+    bad += pf_horizon_lod_weight(PF_R(-3.0), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(NAN), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), PF_R(NAN), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), PF_R(2.0), PF_R(NAN)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(-PF_R(INFINITY), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(INFINITY), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(4.0), PF_R(5.0), PF_R(3.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(2.9), PF_R(5.0), PF_R(3.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(1e30), PF_R(2.0), PF_R(INFINITY)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), -PF_R(INFINITY), PF_R(6.0)) != PF_R(0.0);
+    PF_CHECK(bad == 0, "%d limit or edge violations", bad);
+}
+
+/* pf_horizon_masking_lod: at weight 1 it is pf_horizon_masking bit for bit, at weight 0
+   pf_beckmann_g1 bit for bit; between, Smith's G1 times the blend of 1 and the area ratio,
+   the ratio taken from the bivariate-Gaussian quadrature (the oracle of
+   test_horizon_visible_area_quadrature) and the blend done in long double. */
+static long double ora_area_ratio(long double wx, long double wy, long double wz, long double mt, long double sdt,
+                                  long double mst, long double mx, long double my)
+{
+    long double r = sqrtl(wx * wx + wy * wy), e = atan2l(wz, r), rs = wx * mx + wy * my;
+    /* r Cov(S, T), S the slope along w's azimuth: r E[S T] - (r E[S]) E[T] */
+    long double ea = wz - rs, cov = r * mst - rs * mt, sum = 0.0L, h, lo, hi, ref;
+    int i, n = 4000;
+    lo = mt - 12.0L * sdt;
+    hi = e < mt + 12.0L * sdt ? e : mt + 12.0L * sdt;
+    if (hi > lo) {
+        h = (hi - lo) / n;
+        for (i = 0; i <= n; ++i) {
+            long double T = lo + h * i, z = (T - mt) / sdt;
+            long double pdf = expl(-0.5L * z * z) / (sdt * sqrtl(2.0L * TPI));
+            long double wgt = (i == 0 || i == n) ? 1.0L : ((i & 1) ? 4.0L : 2.0L);
+            /* E[a | T] = wz - (r E[S] + r Cov(S, T) z / sigma_T) */
+            sum += wgt * pdf * (wz - (rs + cov * z / sdt));
+        }
+        sum *= h / 3.0L;
+    }
+    ref = sum / ea;
+    return ref < 0.0L ? 0.0L : (ref > 2.0L ? 2.0L : ref);
+}
+static void test_horizon_masking_lod(void)
+{
+    pf_test_rng r;
+    long double worst = 0.0L;
+    int it, bad = 0;
+    r.state = 41u;
+    for (it = 0; it < 400; ++it) {
+        long double tz = pf_test_uniform(&r, 0.0, 1.3), phi = pf_test_uniform(&r, 0.0, 6.283);
+        long double mt = pf_test_uniform(&r, -0.2, 0.5), sdt = pf_test_uniform(&r, 0.05, 0.4);
+        long double mx = pf_test_uniform(&r, -0.2, 0.2), my = pf_test_uniform(&r, -0.2, 0.2);
+        long double rho = pf_test_uniform(&r, -0.7, 0.2), ss = 0.4L;
+        long double sal = mx * cosl(phi) + my * sinl(phi); /* E[S] along the azimuth */
+        long double mst = rho * ss * sdt + mt * sal;
+        pf_real lod = (pf_real)pf_test_uniform(&r, -1.0, 8.0);
+        pf_vec3 w = pf_vec3_make((pf_real)(sinl(tz) * cosl(phi)), (pf_real)(sinl(tz) * sinl(phi)), (pf_real)cosl(tz));
+        pf_hdf_moments m = pf_hdf_moments_make((pf_real)mt, (pf_real)(mt * mt + sdt * sdt), (pf_real)mst);
+        pf_slope_stats s = pf_slope_stats_make((pf_real)mx, (pf_real)my, PF_R(0.16), PF_R(0.12), PF_R(0.01));
+        pf_real k = pf_horizon_lod_weight(lod, PF_R(2.0), PF_R(6.0)), got = pf_horizon_masking_lod(w, m, s, lod, PF_R(2.0), PF_R(6.0));
+        long double g1 = (long double)pf_beckmann_g1(w, s), ratio, ref;
+        ratio = ora_area_ratio((long double)w.x, (long double)w.y, (long double)w.z, mt, sdt, mst, mx, my);
+        ref = g1 * ((long double)k * ratio + 1.0L - (long double)k);
+        if (ref > 1.0L) ref = 1.0L;
+        if (fabsl((long double)got - ref) > worst) worst = fabsl((long double)got - ref);
+        /* the two ends, bit for bit */
+        bad += pf_horizon_masking_lod(w, m, s, PF_R(1.0), PF_R(2.0), PF_R(6.0)) != pf_horizon_masking(w, m, s);
+        bad += pf_horizon_masking_lod(w, m, s, PF_R(7.0), PF_R(2.0), PF_R(6.0)) != pf_saturate(pf_beckmann_g1(w, s));
+        /* between the two ends */
+        {
+            pf_real a = pf_horizon_masking(w, m, s), b = pf_saturate(pf_beckmann_g1(w, s));
+            bad += got < pf_min(a, b) - PF_R(1e-6) || got > pf_max(a, b) + PF_R(1e-6);
+        }
+    }
+    pf_test_note("masking_lod vs Smith x blended quadrature ratio: max abs %.2Lg", worst);
+    PF_CHECK(bad == 0, "%d end-point or bracket violations", bad);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-9L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-5L, "%Lg", worst);
+#endif
+}
+
 static void test_horizon_azimuth_of(void)
 {
     int n, i, bad = 0;
@@ -597,6 +714,16 @@ static void edge_horizon_evaluators_finite(void)
                 r[6] = pf_horizon_masking(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), PF_R(0.01)),
                                           pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)));
                 for (q = 0; q < 7; ++q) bad += !pf_test_bits_finite(r[q]) || r[q] < PF_R(0.0) || r[q] > PF_R(2.0);
+                /* the lod fade: any lod and bounds (NaN, inf, negative), any direction (below
+                   the mean plane included) */
+                {
+                    pf_real k = pf_horizon_lod_weight(v[a], v[b], v[c]);
+                    pf_real g = pf_horizon_masking_lod(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), PF_R(0.01)),
+                                                       pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)),
+                                                       v[b], PF_R(2.0), PF_R(6.0));
+                    bad += !pf_test_bits_finite(k) || k < PF_R(0.0) || k > PF_R(1.0);
+                    bad += !pf_test_bits_finite(g) || g < PF_R(0.0) || g > PF_R(1.0);
+                }
                 bad += !pf_test_bits_finite(pf_horizon_legendre_coeff(a % 8, pf_clamp(v[b], PF_R(-1.0), PF_R(1.0))));
                 bad += !pf_test_bits_finite(pf_horizon_elevation(w));
                 bad += pf_horizon_azimuth_of(w, 16).i0 < 0 || pf_horizon_azimuth_of(w, 16).i0 > 15;
@@ -616,6 +743,8 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_horizon_visibility_formulas);
     PF_TEST_RUN(test_horizon_bidir_limits);
     PF_TEST_RUN(test_horizon_visible_area_quadrature);
+    PF_TEST_RUN(test_horizon_lod_weight);
+    PF_TEST_RUN(test_horizon_masking_lod);
     PF_TEST_RUN(test_horizon_azimuth_of);
     PF_TEST_RUN(test_horizon_legendre_struct);
     PF_TEST_RUN(test_horizon_bad_input_writes_nothing);

@@ -102,6 +102,17 @@ static void hz_mapped(hz_src *s)
     hz_check(HZ_FIN(r) && r >= PF_R(0.0) && r <= PF_R(2.0), "visible area", r);
     r = pf_horizon_masking(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0)));
     HZ_01(r, "masking");
+    {
+        /* the lod fade: lod in [-4, 12], bounds around the measured 2 and 6 (in either order) */
+        pf_real lod = hz_in(s, PF_R(-4.0), PF_R(12.0)), lo = hz_in(s, PF_R(0.0), PF_R(4.0)), hi = hz_in(s, PF_R(2.0), PF_R(8.0));
+        pf_real k = pf_horizon_lod_weight(lod, lo, hi);
+        HZ_01(k, "lod weight");
+        hz_check(!(lod <= lo && lod < hi) || k == PF_R(1.0), "lod weight below lod_full", k);
+        hz_check(!(lod >= hi) || k == PF_R(0.0), "lod weight above lod_smith", k);
+        r = pf_horizon_masking_lod(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0)), lod, lo, hi);
+        HZ_01(r, "masking lod");
+        if (k == PF_R(1.0)) hz_check(r == pf_horizon_masking(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0))), "masking lod at 1", r);
+    }
 }
 
 static volatile pf_real hz_sink;
@@ -121,6 +132,8 @@ static void hz_rawcalls(hz_src *s)
     hz_sink = pf_horizon_bidir_product(a, b) + pf_horizon_bidir_tan(a, b, c) + pf_horizon_bidir_ashikhmin(a, b, c, hz_raw(s));
     hz_sink = pf_horizon_visible_area(w, pf_hdf_moments_lerp(m, m, c), a, b);
     hz_sink = pf_horizon_masking(w, m, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)));
+    hz_sink = pf_horizon_lod_weight(a, b, c);
+    hz_sink = pf_horizon_masking_lod(w, m, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)), hz_raw(s), hz_raw(s), hz_raw(s));
 }
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);
