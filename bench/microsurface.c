@@ -76,7 +76,12 @@
                lambert_macro = max(0, wi.z)/pi. leadr_gg_matched3_horizon_n32 = leadr_gg_matched3
                times pf_horizon_visible_area toward wo (as pf_horizon_masking multiplies Smith)
                and toward wi (capped at 1), n = 32: our combination, not a formula of the
-               module or the papers (docs/horizon.md lists horizon diffuse as not done).
+               module or the papers. horizon_diffuse_n32 = pf_horizon_diffuse_directional
+               (pf_horizon.h): the same matched 3 x 3 grid with Smith's factor replaced by each
+               facet's horizon visibility toward wo and wi (the HDF conditioned on the facet's
+               slope, n = 32, two azimuths fetched per direction) joined by Tan et al.'s eq. 28;
+               horizon_diffuse_lod_n32 = pf_horizon_diffuse_lod, that faded to
+               leadr_gg_matched3 by mip level (HOR_LOD_FULL .. HOR_LOD_SMITH).
      oracles   (specular and diffuse; they read every texel, so they are not shader methods)
                oracle_histogram_no_vis = the reference with every texel visible (the exact
                slope histogram, no masking/shadowing), oracle_histogram_smith = that times the
@@ -190,14 +195,15 @@ static const char *task_title[NTASK] = { "Masking G1", "Specular (narrow Beckman
                                          "Diffuse (Lambertian base)",
                                          "Height-correlated colour, ramp map",
                                          "Height-correlated colour, banded map" };
-static const int task_nmeth[NTASK] = { 7, 13, 8, 4, 4 };
+static const int task_nmeth[NTASK] = { 7, 13, 10, 4, 4 };
 static const char *meth_name[NTASK][NMETH] = {
     { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", "horizon_masking_n16", "horizon_masking_n32",
       "horizon_masking_lod_n32", NULL, NULL, NULL, NULL, NULL, NULL },
     { "leadr_joint", "leadr_masking", "lean", "toksvig", "naive_mip_normal", "oracle_histogram_smith",
       "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith" },
     { "leadr_gg_matched3", "leadr_gg_matched5", "leadr_gg_hermite3", "lambert_mesonormal", "lambert_macro",
-      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", NULL, NULL, NULL, NULL, NULL },
+      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", "horizon_diffuse_n32",
+      "horizon_diffuse_lod_n32", NULL, NULL, NULL },
     { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
     { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
 };
@@ -542,6 +548,12 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
         s0 = pf_slope_moments_stats(m, PF_R(0.0));
         if (k == 3) return pf_max(pf_vec3_dot(pf_beckmann_mesonormal(s0), wi), PF_R(0.0)) * PF_INV_PI;
+        if (k == 8 || k == 9) { /* pf_horizon.h: the matched grid with the HDF's visibility per facet */
+            pf_gg_grid g = pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3);
+            pf_hdf_moments mo = horizon_hdf(L, 1, x0, y0, n, wo), mi = horizon_hdf(L, 1, x0, y0, n, wi);
+            if (k == 8) return pf_horizon_diffuse_directional(g, wi, mo, mi);
+            return pf_horizon_diffuse_lod(g, wi, mo, mi, lod, PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+        }
         if (k == 7) /* ours, not from the module: LEADR's grid times the horizon's visible-area
                        ratios toward the view (as in pf_horizon_masking) and the light (capped at 1) */
             return pf_gg_diffuse_directional(pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3), wi) *
@@ -815,9 +827,9 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
                         for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
                         fm[5] = sh[2].diffuse * g2;
                         fm[6] = sh[2].diffuse;
-                        fm[7] = (double)eval_method(&L, T_DIFF, 7, x0, y0, n, wo, wi);
+                        for (k = 7; k < task_nmeth[T_DIFF]; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
                         for (r = 0; r < NREF; ++r) refs[r] = sh[r].diffuse;
-                        cell_add(&cells[T_DIFF][si][vi], refs, fm, 8);
+                        cell_add(&cells[T_DIFF][si][vi], refs, fm, task_nmeth[T_DIFF]);
                         if (sh[0].joint > 1e-9) {
                             int c;
                             for (c = 0; c < 2; ++c) {
@@ -1501,7 +1513,11 @@ static void write_md(const settings *S, double total_s)
                "mesonormal; Lambert on the macro normal; `leadr_gg_matched3_horizon_n32`, the matched grid times "
                "the horizon map's visible-area ratios (`pf_horizon_visible_area`, n = 32) toward the view and "
                "toward the light (capped at 1): an ad-hoc combination of ours, measured here, not a formula "
-               "of the module. Two oracles (not shader methods: they read every "
+               "of the module; `horizon_diffuse_n32` (`pf_horizon_diffuse_directional`), the matched grid "
+               "with Smith's factor replaced by each grid facet's horizon visibility toward the view and the "
+               "light (the HDF conditioned on the facet's slope) joined by Tan et al.'s eq. 28, and "
+               "`horizon_diffuse_lod_n32` (`pf_horizon_diffuse_lod`), that faded to `leadr_gg_matched3` by "
+               "mip level like the masking. Two oracles (not shader methods: they read every "
                "texel) split the specular and diffuse errors into their causes: `oracle_histogram_no_vis` "
                "is the reference with every texel visible (the footprint's exact slope histogram, no "
                "masking or shadowing: its error is the visibility alone), `oracle_histogram_smith` is that "
@@ -1532,13 +1548,14 @@ static void write_md(const settings *S, double total_s)
         fmt_err(c, sizeof c, pooled_all(R_BOX, T_MASK, K_HOR_LOD, TOP, TOP, 0, VH));
         fprintf(f, ". At 4096 texels against the in-footprint reference, every kind pooled: `horizon_masking_n32` "
                    "%s, `horizon_masking_lod_n32` %s, `pf_beckmann_g1` %s.\n", a, c, b);
-        fprintf(f, "- diffuse at 16 texels against the **full** reference, `leadr_gg_matched3_horizon_n32` / "
-                   "`leadr_gg_matched3`:");
+        fprintf(f, "- diffuse at 16 texels against the **full** reference, `horizon_diffuse_n32` / "
+                   "`leadr_gg_matched3_horizon_n32` / `leadr_gg_matched3`:");
         for (ko = 0; ko < NKIND; ++ko) {
             kind = kind_order[ko];
             fmt_err(a, sizeof a, pooled(kind, R_FULL, T_DIFF, 7, 2, 2, 0, VH));
             fmt_err(b, sizeof b, pooled(kind, R_FULL, T_DIFF, 0, 2, 2, 0, VH));
-            fprintf(f, "%s %s %s / %s", ko ? ";" : "", pfm_kind_name(kind), a, b);
+            fmt_err(c, sizeof c, pooled(kind, R_FULL, T_DIFF, 8, 2, 2, 0, VH));
+            fprintf(f, "%s %s %s / %s / %s", ko ? ";" : "", pfm_kind_name(kind), c, a, b);
         }
         fprintf(f, ".\n");
     }
