@@ -4481,7 +4481,7 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    the visible projected area equals the mean projected area). The bivariate-Gaussian
    estimate of R does not share that limit: on the bench's seven surfaces its mean agrees with
    the true ratio's to 0.011 at footprints of 1-16 texels (where 1 - R is 2-5%) but stays
-   1-2.4% low at 1024-4096 texels, where the true mean is 0.995-1.003 (the footprint's
+   0.8-2.4% low at 1024-4096 texels, where the true mean is 0.991-1.007 (the footprint's
    HDF is a mixture of many local ones, and the texels that face away from the view, always
    hidden, tie S to T non-linearly; a joint Gaussian cannot keep E[(1 - V) a] = 0). So the
    horizon term helps while the footprint is small against l and the features, and from a few
@@ -4564,11 +4564,18 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      kinds, views 0-75 deg pooled, relative L2), 16-texel footprints: pf_horizon_masking 0.012-
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
-     than Smith (0.012-0.036): use it up to ~256 texels. Evaluators against long double: Gaussian
-     HDF 2.1e-6 abs (float), visible area 3.5e-7 abs (float). Cost: pf_horizon_visible_area ~5x
-     pf_beckmann_g1 in instructions (atan2, erfc, exp); the CPU march ~0.5 us per texel and
-     azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the highest texels always
-     march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
+     than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
+     0.012-0.039 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
+     (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
+     0.025-0.077 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
+     at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
+     abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
+     the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
+     pf_horizon_visible_area ~5x pf_beckmann_g1 in instructions (atan2, erfc, exp);
+     pf_horizon_diffuse_directional ~5500 instructions with the 3 x 3 grid (18 erfc) against
+     ~760 for pf_gg_diffuse_directional (callgrind, float, grid setup included); the CPU march
+     ~0.5 us per texel and azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the
+     highest texels always march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
