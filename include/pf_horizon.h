@@ -465,9 +465,8 @@ PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_
        G1 = clamp(G1_smith (k R + 1 - k), 0, 1),   k = pf_horizon_lod_weight(lod, lod_full, lod_smith),
    R = pf_horizon_visible_area(w, m, mean slope), G1_smith = pf_beckmann_g1(w, s). k = 1 is
    pf_horizon_masking exactly, k = 0 is pf_beckmann_g1 exactly (R is not evaluated then: the
-   shader may skip the HDF fetch above lod_smith). The same inputs and outputs as
-   pf_horizon_masking otherwise (0 for a view at or below the mean plane through R; NaN
-   moments: R = 0). */
+   shader may skip the HDF fetch above lod_smith). The same inputs as pf_horizon_masking; a
+   view at or below the mean plane or NaN moments give R = 0, hence (1 - k) G1_smith. */
 PF_DEF pf_real pf_horizon_masking_lod(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real lod, pf_real lod_full,
                                       pf_real lod_smith)
 {
