@@ -60,13 +60,13 @@
    the footprint's edge. That share of the footprint falls as l / n with the footprint's side
    n, and with it the true 1 - R (over a large footprint every ray through it ends inside it:
    the visible projected area equals the mean projected area). The bivariate-Gaussian
-   estimate of R does not share that limit: on the bench's seven surfaces its mean agrees with
-   the true ratio's to 0.011 at footprints of 1-16 texels (where 1 - R is 2-5%) but stays
-   0.8-2.4% low at 1024-4096 texels, where the true mean is 0.991-1.007 (the footprint's
-   HDF is a mixture of many local ones, and the texels that face away from the view, always
-   hidden, tie S to T non-linearly; a joint Gaussian cannot keep E[(1 - V) a] = 0). So the
-   horizon term helps while the footprint is small against l and the features, and from a few
-   feature sizes on its bias is larger than its signal. pf_horizon_masking_lod blends R
+   estimate of R does not share that limit: on the bench's seven surfaces (bench_horizon
+   --masking) its mean agrees with the true ratio's to 0.009 at 16-texel footprints (where
+   1 - R reaches 4.4%) but stays 1.0-2.4% low at 4096 texels, where the true mean is
+   0.991-1.003 (the footprint's HDF is a mixture of many local ones, and the texels that face
+   away from the view, always hidden, tie S to T non-linearly; a joint Gaussian cannot keep
+   E[(1 - V) a] = 0). So the horizon term helps while the footprint is small against l and
+   the features, and from a few feature sizes on its bias is larger than its signal. pf_horizon_masking_lod blends R
    toward 1 by a weight that is 1 up to lod_full and 0 from lod_smith on, linear in lod.
    Dividing R by the same estimate at the coarsest level (where the truth is 1) removes most
    of the bias at 4096 texels but worsens 16-texel footprints on five of the seven kinds
