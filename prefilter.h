@@ -4449,6 +4449,12 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      pf_horizon_visible_area         the footprint's visible projected area over its mean
                                      projected area, from E[T], E[T^2], E[S T] (bivariate Gaussian)
      pf_horizon_masking              that times Smith's pf_beckmann_g1: the masking G1.
+     pf_horizon_lod_weight           the horizon term's weight by mip level (1 small, 0 large)
+     pf_horizon_masking_lod          pf_horizon_masking faded to Smith by that weight
+   and the Lambertian diffuse of a footprint (see DIFFUSE):
+     pf_horizon_visibility_given_slope  V toward w of the facets of one slope (conditional HDF)
+     pf_horizon_diffuse_directional  LEADR's slope grid with that visibility per facet, eq. 28
+     pf_horizon_diffuse_lod          that faded to pf_gg_diffuse_directional by mip level
 
    COMBINING WITH SMITH (measured: docs/horizon.md, bench/bench_horizon.c --masking).
    The bench's masking reference is the visible fraction of the footprint's front-facing
@@ -4465,6 +4471,44 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    occlusion twice. pf_horizon_visible_area estimates the ratio with (T, S) jointly Gaussian:
        E[V a] = c Phi(z) - sum_xy (E[S] Phi(z) - Cov(S, T)/sigma_T phi(z)),   z = (e - mu)/sigma_T
    with c = w.z and sum_xy the factor sin(zenith) of the slope term.
+
+   FADING BY LEVEL OF DETAIL (pf_horizon_lod_weight, pf_horizon_masking_lod; measured:
+   docs/horizon.md). The area ratio R is what the horizon adds to Smith, and it matters only
+   where viewing rays through the footprint end OUTSIDE it: texels within an occlusion length
+   l (the horizontal distance from a texel to what hides it, l ~ height deviation / tan e) of
+   the footprint's edge. That share of the footprint falls as l / n with the footprint's side
+   n, and with it the true 1 - R (over a large footprint every ray through it ends inside it:
+   the visible projected area equals the mean projected area). The bivariate-Gaussian
+   estimate of R does not share that limit: on the bench's seven surfaces (bench_horizon
+   --masking) its mean agrees with the true ratio's to 0.009 at 16-texel footprints (where
+   1 - R reaches 4.4%) but stays 1.0-2.4% low at 4096 texels, where the true mean is
+   0.991-1.003 (the footprint's HDF is a mixture of many local ones, and the texels that face
+   away from the view, always hidden, tie S to T non-linearly; a joint Gaussian cannot keep
+   E[(1 - V) a] = 0). So the horizon term helps while the footprint is small against l and
+   the features, and from a few feature sizes on its bias is larger than its signal. pf_horizon_masking_lod blends R
+   toward 1 by a weight that is 1 up to lod_full and 0 from lod_smith on, linear in lod.
+   Dividing R by the same estimate at the coarsest level (where the truth is 1) removes most
+   of the bias at 4096 texels but worsens 16-texel footprints on five of the seven kinds
+   (gaussian_fine to 0.054: measured), so the fade is the evaluator.
+
+   DIFFUSE (pf_horizon_visibility_given_slope, pf_horizon_diffuse_directional, _lod; measured:
+   docs/horizon.md). LEADR's diffuse (eq. 21, pf_gg_diffuse_directional) integrates the
+   Lambertian cosine over the footprint's Gaussian slopes on a grid and multiplies by Smith's
+   1/(1 + Lambda_o + Lambda_i). Multiplying that by the horizon's area ratios toward the view
+   and the light (as the masking does) misses at 16-texel footprints on three of the bench's
+   seven kinds, and it still does with the ratios counted exactly on the horizon map: the
+   hidden texels are not a fair sample of the footprint's facets (those turned away from the
+   view or the light are hidden more often), so one common factor shades the grid's facets
+   wrongly. pf_horizon_diffuse_directional conditions instead: each grid facet of slope s gets
+   the HDF of the texels that share that slope, T | S = s under the joint Gaussian of (T, S)
+   whose covariance the stored E[S T] gives, hence its own V_o(s) and V_i(s); the two are
+   joined by Tan et al.'s eq. 28 (pf_horizon_bidir_tan: visible and lit = V_o B(V_i, V_o), V_o
+   at the hotspot), and the sum is normalized by the mean plane's projected area A_o (LEADR
+   eqs. 2-3). No Smith factor is left: the march starts one texel from the node, so the
+   horizon holds the footprint's own occluders as well as its neighbours'. At large
+   footprints the same bias as the masking's appears (the conditional Gaussians of a wide
+   mixture), so pf_horizon_diffuse_lod fades it to pf_gg_diffuse_directional with the same
+   weight.
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
@@ -4502,7 +4546,9 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      pf_hdf_moments_make, _lerp; pf_horizon_azimuth_of; pf_horizon_elevation;
      pf_horizon_visibility_ramp, _gauss, _legendre; pf_horizon_legendre_basis,
      pf_horizon_legendre_coeff; pf_hdf_legendre_make, _coeff, _lerp;
-     pf_horizon_bidir_product, _tan, _ashikhmin; pf_horizon_visible_area, pf_horizon_masking
+     pf_horizon_bidir_product, _tan, _ashikhmin; pf_horizon_visible_area, pf_horizon_masking,
+     pf_horizon_lod_weight, pf_horizon_masking_lod; pf_horizon_visibility_given_slope,
+     pf_horizon_diffuse_directional, pf_horizon_diffuse_lod
    FUNCTIONS (CPU only, PF_CPU_DEF; compiled out under PF_GLSL)
      pf_horizon_channels, pf_horizon_map, pf_horizon_pyramid
 
@@ -4518,23 +4564,33 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      kinds, views 0-75 deg pooled, relative L2), 16-texel footprints: pf_horizon_masking 0.012-
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
-     than Smith (0.012-0.036): use it up to ~256 texels. Evaluators against long double: Gaussian
-     HDF 2.1e-6 abs (float), visible area 3.5e-7 abs (float). Cost: pf_horizon_visible_area ~5x
-     pf_beckmann_g1 in instructions (atan2, erfc, exp); the CPU march ~0.5 us per texel and
-     azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the highest texels always
-     march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
+     than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
+     0.012-0.039 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
+     (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
+     0.025-0.077 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
+     at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
+     abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
+     the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
+     pf_horizon_visible_area ~5x pf_beckmann_g1 in instructions (atan2, erfc, exp);
+     pf_horizon_diffuse_directional ~3500 instructions with the 3 x 3 grid (18 pf_erfc_fast)
+     against ~800 for pf_gg_diffuse_directional (callgrind, float, grid setup included); the CPU march
+     ~0.5 us per texel and azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the
+     highest texels always march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
      1992 (HDF mean and deviation, the ramp, the product); Tan, Lin, Quan, Guo & Shum 2008
      (Gaussian HDF, eq. 28); Ashikhmin, Premoze & Shirley 2000 (the beta form);
      Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Smith 1967 and Dupuy et al.
-     2013 eqs. 1, 13 for the masking decomposition. */
+     2013 eqs. 1, 13 for the masking decomposition; Dupuy et al. 2013 (LEADR) eqs. 2-3 and 21
+     for the diffuse's slope grid and normalization. The lod fade and the slope-conditioned
+     HDF are ours (measured in bench/microsurface.c). */
 #ifndef PF_HORIZON_H
 #define PF_HORIZON_H
 
 #ifndef PF_GLSL
 /* pf_beckmann.h: above in this file */
+/* pf_gaussgrid.h: above in this file */
 /* pf_moments.h: above in this file */
 #endif
 
@@ -4803,6 +4859,154 @@ PF_DEF pf_real pf_horizon_visible_area(pf_vec3 w, pf_hdf_moments m, pf_real mean
 PF_DEF pf_real pf_horizon_masking(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s)
 {
     return pf_saturate(pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) * pf_beckmann_g1(w, s));
+}
+
+/* ---------------------------------------------------------------- fading to Smith by footprint size
+   (see FADING BY LEVEL OF DETAIL above; measured: docs/horizon.md)
+   Weight of the horizon term at mip level lod: 1 for lod <= lod_full, 0 for lod >= lod_smith,
+   linear in lod between:  k = clamp((lod_smith - lod)/(lod_smith - lod_full), 0, 1).
+   lod is the level whose texel is the footprint (log2 of its side in texels; fractional
+   between levels). Edge inputs: a NaN lod or bound gives 0 (Smith alone, the statistical
+   answer); lod = -inf gives 1, +inf gives 0; lod_full >= lod_smith is a step at lod_smith;
+   lod_smith = +inf never fades (1 above lod_full as below). Measured choice for the bench's
+   512^2 maps (features of 3-16 texels): lod_full = 2, lod_smith = 6. */
+PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_smith)
+{
+    /* NaN fails the first comparison; an infinite lod is decided before the division */
+    if (!(lod < lod_smith)) return PF_R(0.0);
+    if (lod <= lod_full) return PF_R(1.0);
+    if (lod_smith > PF_REAL_MAX) return PF_R(1.0);
+    /* lod_full = -inf: finite / inf = 0; lod_full NaN: NaN, which the clamp takes to 0 */
+    return pfi_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
+}
+
+/* Masking G1 with the horizon term faded to Smith by footprint size:
+       G1 = clamp(G1_smith (k R + 1 - k), 0, 1),   k = pf_horizon_lod_weight(lod, lod_full, lod_smith),
+   R = pf_horizon_visible_area(w, m, mean slope), G1_smith = pf_beckmann_g1(w, s). k = 1 is
+   pf_horizon_masking exactly, k = 0 is pf_beckmann_g1 exactly (R is not evaluated then: the
+   shader may skip the HDF fetch above lod_smith). The same inputs as pf_horizon_masking; a
+   view at or below the mean plane or NaN moments give R = 0, hence (1 - k) G1_smith. */
+PF_DEF pf_real pf_horizon_masking_lod(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real lod, pf_real lod_full,
+                                      pf_real lod_smith)
+{
+    pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
+    pf_real r = k > PF_R(0.0) ? pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) : PF_R(1.0);
+    return pf_saturate(pf_beckmann_g1(w, s) * (k * r + (PF_R(1.0) - k)));
+}
+
+/* ---------------------------------------------------------------- diffuse: LEADR's grid with horizon visibility
+   (see DIFFUSE above; measured: docs/horizon.md) */
+/* The conditional HDF of one direction, set up once per direction and evaluated per facet
+   slope: T given S = s is Gaussian, mean mu + beta (s - es), deviation sd. */
+PF_STRUCT_BEGIN(pfi_horizon_cond)
+    pf_real e;    /* elevation of the direction, radians */
+    pf_real dx;   /* unit horizontal direction (0, 0 for a vertical one) */
+    pf_real dy;
+    pf_real es;   /* E[S], S the facet slope along (dx, dy) */
+    pf_real mu;   /* E[T] */
+    pf_real beta; /* Cov(S, T)/Var(S) (0 when Var(S) is 0) */
+    pf_real sd;   /* sqrt(Var(T) - Cov(S, T)^2/Var(S)), >= 0; -1 for NaN moments (visibility 0) */
+PF_STRUCT_END(pfi_horizon_cond)
+
+PF_DEF pfi_horizon_cond pfi_horizon_cond_make(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s)
+{
+    pfi_horizon_cond c;
+    pf_real r = PF_SQRT(w.x * w.x + w.y * w.y), var = m.m2 - m.m1 * m.m1, vs, cov, vc;
+    c.e = pf_horizon_elevation(w);
+    /* r overflows to inf for |w| > 1e19 in float: the direction is then 0, finite */
+    c.dx = r > PF_R(0.0) ? w.x / r : PF_R(0.0);
+    c.dy = r > PF_R(0.0) ? w.y / r : PF_R(0.0);
+    c.es = s.mean_x * c.dx + s.mean_y * c.dy;
+    vs = s.var_x * c.dx * c.dx + s.var_y * c.dy * c.dy + PF_R(2.0) * s.cov_xy * c.dx * c.dy;
+    c.mu = m.m1;
+    c.beta = PF_R(0.0);
+    vc = pf_max(var, PF_R(0.0));
+    if (vs > PF_R(1e-12)) {
+        cov = m.ms - c.es * m.m1;
+        c.beta = cov / vs;
+        vc = pf_max(vc - cov * c.beta, PF_R(0.0));
+    }
+    c.sd = (var == var && m.ms == m.ms && c.e == c.e) ? PF_SQRT(vc) : PF_R(-1.0);
+    return c;
+}
+
+/* P(T < e | S = slope of (sx, sy) along the direction), the Gaussian CDF: pf_erfc, or with
+   fast != 0 the shader tier pf_erfc_fast (relative error 5.4e-6 in float; the diffuse, whose
+   result is a shaded colour, uses it). */
+PF_DEF pf_real pfi_horizon_cond_vis(pfi_horizon_cond c, pf_real sx, pf_real sy, int fast)
+{
+    pf_real mu = c.mu + c.beta * (sx * c.dx + sy * c.dy - c.es), z;
+    if (c.sd < PF_R(0.0)) return PF_R(0.0);
+    if (!(c.sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)))) return c.e >= mu ? PF_R(1.0) : PF_R(0.0);
+    /* a NaN z (NaN slope) becomes -12: not visible; beyond |z| = 12 Phi is 0 or 1 (and erfc's
+       tail would be subnormal) */
+    z = pfi_clamp_nan_lo((c.e - mu) / c.sd, PF_R(-12.0), PF_R(12.0));
+    if (!(z > PF_R(-12.0))) return PF_R(0.0);
+    if (!(z < PF_R(12.0))) return PF_R(1.0);
+    return PF_R(0.5) * (fast != 0 ? pf_erfc_fast(-z * PF_INV_SQRT2) : pf_erfc(-z * PF_INV_SQRT2));
+}
+
+/* Visibility toward w of the footprint's facets of slope (sx, sy): the horizon elevation T
+   and the facet's slope S along w's azimuth jointly Gaussian (E[T], E[T^2], E[S T] from m; E[S],
+   Var(S) from the slope stats s), so T given S = s is Gaussian with
+       mean  E[T] + Cov(S, T)/Var(S) (s - E[S]),   variance  Var(T) - Cov(S, T)^2/Var(S),
+   and V(s) = Phi((e - mean)/deviation): Tan et al.'s Gaussian HDF (eq. 26) of the texels that
+   share the facet's slope (ours: the conditioning). In [0, 1]; a vertical w gives 1 (above
+   every horizon), NaN moments or slopes 0; a zero conditional variance is the step. */
+PF_DEF pf_real pf_horizon_visibility_given_slope(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real sx, pf_real sy)
+{
+    return pfi_horizon_cond_vis(pfi_horizon_cond_make(w, m, s), sx, sy, 0);
+}
+
+/* Lambertian diffuse of the footprint under a directional light wi (unit albedo, radiance per
+   unit irradiance at normal incidence, as pf_gg_diffuse_directional), LEADR eq. 21's slope
+   grid g (pf_gg_grid_make(wo, stats, node set, N)) with the Smith factor replaced by the
+   horizon visibilities of each grid facet (pf_horizon_visibility_given_slope toward wo from
+   m_o, toward wi from m_i; the two stored azimuths around each direction mixed by
+   pf_hdf_moments_lerp), joined by Tan et al.'s eq. 28 (pf_horizon_bidir_tan, alpha =
+   (1 + wo.wi)/2: visible and lit = V_o bidir(V_i, V_o)):
+       I = (1/pi) (sum W a+ V_o B max(0, n.wi) / sum W a+ V_o) min(sum W a+ V_o / A_o, 2),
+   a = wo.z - x wo.x - y wo.y the facet's projected area, A_o = wo.z - E[x] wo.x - E[y] wo.y
+   the mean plane's; the first factor is the lit cosine over the visible facets, the second
+   the visible area ratio (clamped as pf_horizon_visible_area's). 0 when A_o <= 0 (the view
+   at or below the mean plane), wi.z <= 0, or nothing is visible. Cost: N^2 samples, two erfc
+   each (pf_erfc_fast, the shader tier: its 5.4e-6 relative error is far below the model's). */
+PF_DEF pf_real pf_horizon_diffuse_directional(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i)
+{
+    pf_vec3 wo = g.wo;
+    pf_real ao = wo.z - wo.x * g.stats.mean_x - wo.y * g.stats.mean_y, c = pf_vec3_dot(wo, wi);
+    pf_real vis = PF_R(0.0), lit = PF_R(0.0);
+    pfi_horizon_cond co = pfi_horizon_cond_make(wo, m_o, g.stats), ci = pfi_horizon_cond_make(wi, m_i, g.stats);
+    int j, k;
+    if (!(ao > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
+    for (j = 0; j < g.n; ++j) {
+        pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
+        for (k = 0; k < g.n; ++k) {
+            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+                                                   pf_gg_weight(g.node_set, g.n, k));
+            pf_real a = smp.weight * pf_max(wo.z - smp.slope_x * wo.x - smp.slope_y * wo.y, PF_R(0.0));
+            pf_real vo = pfi_horizon_cond_vis(co, smp.slope_x, smp.slope_y, 1);
+            pf_real vi = pfi_horizon_cond_vis(ci, smp.slope_x, smp.slope_y, 1);
+            vis += a * vo;
+            lit += a * vo * pf_horizon_bidir_tan(vi, vo, c) * pf_max(pf_vec3_dot(smp.normal, wi), PF_R(0.0));
+        }
+    }
+    if (!(vis > PF_R(0.0))) return PF_R(0.0);
+    /* lit <= vis: the first factor is in [0, 1]; a NaN ratio takes the min's 2 */
+    return lit / vis * pf_min(vis / ao, PF_R(2.0)) * PF_INV_PI;
+}
+
+/* pf_horizon_diffuse_directional faded to LEADR's pf_gg_diffuse_directional by mip level, as
+   pf_horizon_masking_lod: k I_horizon + (1 - k) I_leadr, k = pf_horizon_lod_weight(lod,
+   lod_full, lod_smith); each side evaluated only when its weight is not 0, so k = 1 and k = 0
+   are the two functions exactly. */
+PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real lod,
+                                      pf_real lod_full, pf_real lod_smith)
+{
+    pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
+    pf_real h = k > PF_R(0.0) ? pf_horizon_diffuse_directional(g, wi, m_o, m_i) : PF_R(0.0);
+    pf_real l = k < PF_R(1.0) ? pf_gg_diffuse_directional(g, wi) : PF_R(0.0);
+    return k * h + (PF_R(1.0) - k) * l;
 }
 
 /* ================================================================ CPU only: building the maps */

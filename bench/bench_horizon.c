@@ -19,8 +19,11 @@
      0-75 deg at azimuths 10 and 100 deg (bench/microsurface.c's protocol; views whose mean
      projected area is below 1/4 of a flat footprint's are skipped there and here), masking
      reference sum V a+ / sum a+ with the full march (and the in-footprint one at 4096), error
-     relative L2 pooled over the views. Also the CPU cost of pf_horizon_map for n = 4, 8, 16
-     and the evaluators' cost per footprint. Prints markdown tables. */
+     relative L2 pooled over the views. Also the mean over footprints and views of the area
+     ratio sum V a / sum a, estimated by pf_horizon_visible_area (the rows' n) and true (the
+     marched visibility): the argument of pf_horizon_masking_lod's fade (docs/horizon.md). Also
+     the CPU cost of pf_horizon_map for n = 4, 8, 16 and the evaluators' cost per footprint.
+     Prints markdown tables. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_horizon.h"
 #include <time.h>
@@ -161,7 +164,7 @@ static const char *meth_name[NMETH] = {
     "pf_horizon_masking n=8", "pf_horizon_masking n=16", "pf_horizon_masking n=16, V lerp",
     "oracle: counted horizon n=16 x area", "oracle: counted horizon n=16 x smith", "no_masking" };
 
-typedef struct acc { double d2[NMETH], r2; long n; } acc;
+typedef struct acc { double d2[NMETH], r2; long n; double r_est, r_true; } acc;
 
 static double now_s(void) { return pfb_now_ns() * 1e-9; }
 
@@ -201,6 +204,7 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
     unsigned char *vis = (unsigned char *)malloc(npix), *box = (unsigned char *)malloc(npix);
     static double res[PFM_KIND_COUNT][3][2][NMETH]; /* kind, size, ref, method */
     static int have[PFM_KIND_COUNT];
+    static double rmean[PFM_KIND_COUNT][3][2]; /* kind, size: mean estimated and true area ratio */
     double eval_ns = 0.0, smith_ns = 0.0;
     if (!hts || !slope || !p4 || !p8 || !p16 || !pl || !ang || !vis || !box) {
         fprintf(stderr, "bench_horizon: out of memory\n");
@@ -252,7 +256,7 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
                         pf_slope_stats s0;
                         pf_hdf_legendre L0, L1;
                         pf_hdf_moments m16;
-                        double f[NMETH], refs[2], cnt_num = 0.0, cnt_den = 0.0, g1;
+                        double f[NMETH], refs[2], cnt_num = 0.0, cnt_den = 0.0, g1, vis_num = 0.0;
                         pfm_shade sh;
                         int q;
                         sh = pfm_reference_shade(&s, vis, NULL, x0, y0, n, wd, wd, 0.0, 1.0);
@@ -302,7 +306,11 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
                                      (double)a16.f * ((double)ang[id * nbig + a16.i1] < (double)e);
                                 cnt_num += vt * at;
                                 cnt_den += at;
+                                vis_num += vis[id] ? at : 0.0; /* the marched visibility: the true ratio */
                             }
+                        /* the area ratio's mean, estimated (pf_horizon_visible_area) and true */
+                        A[si][0].r_est += (double)pf_horizon_visible_area(wo, m16, s0.mean_x, s0.mean_y);
+                        A[si][0].r_true += cnt_den > 0.0 ? vis_num / cnt_den : 0.0;
                         {
                             double front = sh.front_area * n * n;
                             f[9] = front > 0.0 ? cnt_num / front : 0.0;
@@ -329,6 +337,10 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
                 for (q = 0; q < NMETH; ++q)
                     res[kind][si][r][q] = A[si][r].r2 > 0.0 ? sqrt(A[si][r].d2[q] / A[si][r].r2) : -1.0;
             }
+        for (si = 0; si < nsz; ++si) {
+            rmean[kind][si][0] = A[si][0].n ? A[si][0].r_est / (double)A[si][0].n : -1.0;
+            rmean[kind][si][1] = A[si][0].n ? A[si][0].r_true / (double)A[si][0].n : -1.0;
+        }
         have[kind] = 1;
         fprintf(stderr, "bench_horizon: %s done (%.1f s), %ld samples at 16 texels\n", pfm_kind_name(kind),
                 now_s() - t0, A[0][0].n);
@@ -356,6 +368,27 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
                     printf("\n");
                 }
             }
+    }
+    /* the area ratio R = sum V a / sum a: its mean over footprints and views, estimated by
+       pf_horizon_visible_area (rows n=16 of this run) and counted with the marched visibility
+       (full reference). Docs/horizon.md's lod-fade argument: the two agree at small footprints
+       and part at large ones, where the truth tends to 1. */
+    printf("\n## mean area ratio sum V a / sum a over footprints and views 0-75: estimate (pf_horizon_visible_area, n = %d) / true (marched)\n\n| footprint |", nbig);
+    for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
+        if (have[kind_list[ki]]) printf(" %s |", pfm_kind_name(kind_list[ki]));
+    printf("\n|---|");
+    for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
+        if (have[kind_list[ki]]) printf("--:|");
+    printf("\n");
+    {
+        int si;
+        for (si = 0; si < nsz; ++si) {
+            printf("| %d texels |", sizes[si] * sizes[si]);
+            for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
+                if (have[kind_list[ki]])
+                    printf(" %.3f / %.3f |", rmean[kind_list[ki]][si][0], rmean[kind_list[ki]][si][1]);
+            printf("\n");
+        }
     }
     /* CPU cost of the maps, gaussian kind */
     {

@@ -51,6 +51,9 @@
                on stderr), the two stored azimuths around wo's fetched (6 channels) and mixed
                by pf_hdf_moments_lerp; they see occluders outside the footprint, so the full
                reference is theirs (docs/horizon.md: n = 32 meets 0.05 at 16 texels).
+               horizon_masking_lod_n32 = pf_horizon_masking_lod from the n = 32 pyramid: the
+               horizon term faded to Smith by mip level, whole up to level HOR_LOD_FULL (16
+               texels), none from HOR_LOD_SMITH (4096 texels) on.
      specular  reference: narrow Beckmann base lobe (deviation BASE_SIGMA) per texel, Smith
                G2 of that lobe, V_o V_i by marching, f0 = 1. leadr_joint = pf_leadr_specular,
                leadr_masking = pf_leadr_specular_masking (base variance BASE_SIGMA^2 added by
@@ -73,7 +76,12 @@
                lambert_macro = max(0, wi.z)/pi. leadr_gg_matched3_horizon_n32 = leadr_gg_matched3
                times pf_horizon_visible_area toward wo (as pf_horizon_masking multiplies Smith)
                and toward wi (capped at 1), n = 32: our combination, not a formula of the
-               module or the papers (docs/horizon.md lists horizon diffuse as not done).
+               module or the papers. horizon_diffuse_n32 = pf_horizon_diffuse_directional
+               (pf_horizon.h): the same matched 3 x 3 grid with Smith's factor replaced by each
+               facet's horizon visibility toward wo and wi (the HDF conditioned on the facet's
+               slope, n = 32, two azimuths fetched per direction) joined by Tan et al.'s eq. 28;
+               horizon_diffuse_lod_n32 = pf_horizon_diffuse_lod, that faded to
+               leadr_gg_matched3 by mip level (HOR_LOD_FULL .. HOR_LOD_SMITH).
      oracles   (specular and diffuse; they read every texel, so they are not shader methods)
                oracle_histogram_no_vis = the reference with every texel visible (the exact
                slope histogram, no masking/shadowing), oracle_histogram_smith = that times the
@@ -113,8 +121,12 @@
    OUTPUT (directory --out, default bench/out): microsurface_errors.csv, microsurface_cost.csv,
    microsurface.md (report fragment), microsurface_*.svg (gnuplot, bench/microsurface.gp; the
    .dat files it reads are deleted afterwards).
-   Usage: microsurface [--quick] [--out DIR] [--gp FILE] [--no-charts]; BENCH_QUICK=1 in the
-   environment also selects the quick mode (smaller map, fewer views, lights, positions). */
+   Usage: microsurface [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K,K..]; BENCH_QUICK=1
+   in the environment also selects the quick mode (smaller map, fewer views, lights, positions).
+   --kinds gaussian,ridges runs only the named kinds of the corpus (exact names, comma-separated;
+   for measuring a method on a few kinds; the other kinds' tables read "-", the cost section runs
+   on the gaussian kind as always, so that kind's maps are built too when it was not named; use
+   --no-charts with it). */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
@@ -158,6 +170,21 @@ static pfmap_info map_info;
 static pfmap_options map_opt;
 static pfmap_stats map_stats;
 static const char *map_path = NULL;
+static const char *only_kinds = NULL; /* --kinds: comma-separated kind names, NULL = all */
+static int kind_selected(int kind)
+{
+    const char *p = only_kinds, *name = pfm_kind_name(kind);
+    size_t n = strlen(name);
+    if (!p) return 1;
+    while (*p) {
+        const char *e = strchr(p, ',');
+        size_t len = e ? (size_t)(e - p) : strlen(p);
+        if (len == n && !strncmp(p, name, n)) return 1;
+        if (!e) break;
+        p = e + 1;
+    }
+    return 0;
+}
 static const char *kname(int kind) { return kind == KIND_MAP ? "map" : pfm_kind_name(kind); }
 /* methods that read every texel (not shader methods: no cost row, not candidates) */
 static int is_oracle(int t, int k) { return (t == 1 || t == 2) && (k == 5 || k == 6); }
@@ -168,14 +195,15 @@ static const char *task_title[NTASK] = { "Masking G1", "Specular (narrow Beckman
                                          "Diffuse (Lambertian base)",
                                          "Height-correlated colour, ramp map",
                                          "Height-correlated colour, banded map" };
-static const int task_nmeth[NTASK] = { 6, 13, 8, 4, 4 };
+static const int task_nmeth[NTASK] = { 7, 13, 10, 4, 4 };
 static const char *meth_name[NTASK][NMETH] = {
     { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", "horizon_masking_n16", "horizon_masking_n32",
-      NULL, NULL, NULL, NULL, NULL, NULL, NULL },
+      "horizon_masking_lod_n32", NULL, NULL, NULL, NULL, NULL, NULL },
     { "leadr_joint", "leadr_masking", "lean", "toksvig", "naive_mip_normal", "oracle_histogram_smith",
       "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith" },
     { "leadr_gg_matched3", "leadr_gg_matched5", "leadr_gg_hermite3", "lambert_mesonormal", "lambert_macro",
-      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", NULL, NULL, NULL, NULL, NULL },
+      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", "horizon_diffuse_n32",
+      "horizon_diffuse_lod_n32", NULL, NULL, NULL },
     { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
     { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
 };
@@ -301,6 +329,11 @@ static const int vmf_lobes[NVMF] = { 1, 2, 4, 8 };
 #define NHOR 2
 #define HOR_STEPS 64
 #define K_HOR 4 /* first horizon method of the masking task */
+#define K_HOR_LOD (K_HOR + NHOR) /* horizon_masking_lod_n32 */
+/* the lod fade of pf_horizon_masking_lod: the horizon term whole up to level HOR_LOD_FULL
+   (16 texels), Smith alone from HOR_LOD_SMITH (4096 texels) on (docs/horizon.md) */
+#define HOR_LOD_FULL 2.0
+#define HOR_LOD_SMITH 6.0
 static const int hor_n[NHOR] = { 16, 32 };
 typedef struct lib_maps {
     int w, h;
@@ -480,6 +513,9 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
         s0 = pf_slope_moments_stats(m, PF_R(0.0));
         if (k == 0) return pf_beckmann_g1(wo, s0);
+        if (k == K_HOR_LOD)
+            return pf_horizon_masking_lod(wo, horizon_hdf(L, 1, x0, y0, n, wo), s0, lod, PF_R(HOR_LOD_FULL),
+                                          PF_R(HOR_LOD_SMITH));
         if (k >= K_HOR) return pf_horizon_masking(wo, horizon_hdf(L, k - K_HOR, x0, y0, n, wo), s0);
         nu = pf_smith_nu(wo, s0);
         return k == 1 ? pf_g1_beckmann_fast(nu) : pf_g1_beckmann_walter(nu);
@@ -512,6 +548,12 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
         s0 = pf_slope_moments_stats(m, PF_R(0.0));
         if (k == 3) return pf_max(pf_vec3_dot(pf_beckmann_mesonormal(s0), wi), PF_R(0.0)) * PF_INV_PI;
+        if (k == 8 || k == 9) { /* pf_horizon.h: the matched grid with the HDF's visibility per facet */
+            pf_gg_grid g = pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3);
+            pf_hdf_moments mo = horizon_hdf(L, 1, x0, y0, n, wo), mi = horizon_hdf(L, 1, x0, y0, n, wi);
+            if (k == 8) return pf_horizon_diffuse_directional(g, wi, mo, mi);
+            return pf_horizon_diffuse_lod(g, wi, mo, mi, lod, PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+        }
         if (k == 7) /* ours, not from the module: LEADR's grid times the horizon's visible-area
                        ratios toward the view (as in pf_horizon_masking) and the light (capped at 1) */
             return pf_gg_diffuse_directional(pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3), wi) *
@@ -785,9 +827,9 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
                         for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
                         fm[5] = sh[2].diffuse * g2;
                         fm[6] = sh[2].diffuse;
-                        fm[7] = (double)eval_method(&L, T_DIFF, 7, x0, y0, n, wo, wi);
+                        for (k = 7; k < task_nmeth[T_DIFF]; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
                         for (r = 0; r < NREF; ++r) refs[r] = sh[r].diffuse;
-                        cell_add(&cells[T_DIFF][si][vi], refs, fm, 8);
+                        cell_add(&cells[T_DIFF][si][vi], refs, fm, task_nmeth[T_DIFF]);
                         if (sh[0].joint > 1e-9) {
                             int c;
                             for (c = 0; c < 2; ++c) {
@@ -1455,7 +1497,9 @@ static void write_md(const settings *S, double total_s)
                "times the footprint's visible projected area estimated from the filtered horizon "
                "distribution of the two stored azimuths around the view's, n = 16 or 32 azimuths, HDF moment "
                "pyramids built per kind by `pf_horizon_pyramid` with a %d-texel march; docs/horizon.md): they "
-               "see the bumps outside the footprint, so their reference is the full one. Specular: `pf_leadr_specular` "
+               "see the bumps outside the footprint, so their reference is the full one; "
+               "`horizon_masking_lod_n32` (`pf_horizon_masking_lod`) fades that horizon term to Smith by mip "
+               "level, whole up to 16 texels and none from 4096 texels on. Specular: `pf_leadr_specular` "
                "(joint masking-shadowing), `pf_leadr_specular_masking`, LEAN (P22 at the half vector's slope, "
                "no masking, Jacobian or projected area), Toksvig (Cook-Torrance Beckmann lobe around the "
                "normalized average normal, roughness widened by `pf_toksvig_beckmann_m`), the naive "
@@ -1469,7 +1513,11 @@ static void write_md(const settings *S, double total_s)
                "mesonormal; Lambert on the macro normal; `leadr_gg_matched3_horizon_n32`, the matched grid times "
                "the horizon map's visible-area ratios (`pf_horizon_visible_area`, n = 32) toward the view and "
                "toward the light (capped at 1): an ad-hoc combination of ours, measured here, not a formula "
-               "of the module. Two oracles (not shader methods: they read every "
+               "of the module; `horizon_diffuse_n32` (`pf_horizon_diffuse_directional`), the matched grid "
+               "with Smith's factor replaced by each grid facet's horizon visibility toward the view and the "
+               "light (the HDF conditioned on the facet's slope) joined by Tan et al.'s eq. 28, and "
+               "`horizon_diffuse_lod_n32` (`pf_horizon_diffuse_lod`), that faded to `leadr_gg_matched3` by "
+               "mip level like the masking. Two oracles (not shader methods: they read every "
                "texel) split the specular and diffuse errors into their causes: `oracle_histogram_no_vis` "
                "is the reference with every texel visible (the footprint's exact slope histogram, no "
                "masking or shadowing: its error is the visibility alone), `oracle_histogram_smith` is that "
@@ -1497,15 +1545,17 @@ static void write_md(const settings *S, double total_s)
         }
         fmt_err(a, sizeof a, pooled_all(R_BOX, T_MASK, K_HOR + 1, TOP, TOP, 0, VH));
         fmt_err(b, sizeof b, pooled_all(R_BOX, T_MASK, 0, TOP, TOP, 0, VH));
+        fmt_err(c, sizeof c, pooled_all(R_BOX, T_MASK, K_HOR_LOD, TOP, TOP, 0, VH));
         fprintf(f, ". At 4096 texels against the in-footprint reference, every kind pooled: `horizon_masking_n32` "
-                   "%s, `pf_beckmann_g1` %s.\n", a, b);
-        fprintf(f, "- diffuse at 16 texels against the **full** reference, `leadr_gg_matched3_horizon_n32` / "
-                   "`leadr_gg_matched3`:");
+                   "%s, `horizon_masking_lod_n32` %s, `pf_beckmann_g1` %s.\n", a, c, b);
+        fprintf(f, "- diffuse at 16 texels against the **full** reference, `horizon_diffuse_n32` / "
+                   "`leadr_gg_matched3_horizon_n32` / `leadr_gg_matched3`:");
         for (ko = 0; ko < NKIND; ++ko) {
             kind = kind_order[ko];
             fmt_err(a, sizeof a, pooled(kind, R_FULL, T_DIFF, 7, 2, 2, 0, VH));
             fmt_err(b, sizeof b, pooled(kind, R_FULL, T_DIFF, 0, 2, 2, 0, VH));
-            fprintf(f, "%s %s %s / %s", ko ? ";" : "", pfm_kind_name(kind), a, b);
+            fmt_err(c, sizeof c, pooled(kind, R_FULL, T_DIFF, 8, 2, 2, 0, VH));
+            fprintf(f, "%s %s %s / %s / %s", ko ? ";" : "", pfm_kind_name(kind), c, a, b);
         }
         fprintf(f, ".\n");
     }
@@ -1777,6 +1827,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) S.out = argv[++i];
         else if (!strcmp(argv[i], "--gp") && i + 1 < argc) S.gp = argv[++i];
         else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
+        else if (!strcmp(argv[i], "--kinds") && i + 1 < argc) only_kinds = argv[++i];
         else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
             /* the map's options; each value checked here, before anything is written */
             const char *o = argv[i] + 6, *v = argv[++i];
@@ -1785,7 +1836,7 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else {
-            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts] [--check] [--map PATH [--map-kind "
+            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K,K..] [--check] [--map PATH [--map-kind "
                             "height|normal-gl|normal-dx] [--map-scale S | --map-rms-slope R] [--map-border "
                             "periodic|clamped] [--map-raw-size WxH]]\n", argv[0]);
             return 2;
@@ -1860,9 +1911,22 @@ int main(int argc, char **argv)
         run_kind(KIND_MAP, &S, &gauss_surf, &gauss_maps);
         fprintf(stderr, "microsurface: map done (%.1f s)\n", info[KIND_MAP].seconds);
     } else {
-        for (i = 0; i < NKIND; ++i) run_kinds[i] = kind_order[i];
-        n_run_kinds = NKIND;
+        n_run_kinds = 0;
+        for (i = 0; i < NKIND; ++i)
+            if (kind_selected(kind_order[i])) run_kinds[n_run_kinds++] = kind_order[i];
+        if (n_run_kinds == 0) {
+            fprintf(stderr, "microsurface: --kinds %s names no kind of the corpus\n", only_kinds);
+            return 2;
+        }
+        if (!kind_selected(PFM_GAUSSIAN)) { /* the cost section's map, without its error run */
+            if (pfm_surface_make(&gauss_surf, S.map, S.map, 1.0, pfm_params_default(PFM_GAUSSIAN)) != 0) {
+                fprintf(stderr, "microsurface: pfm_surface_make failed for gaussian\n");
+                return 1;
+            }
+            lib_maps_build(&gauss_maps, &gauss_surf);
+        }
         for (kind = 0; kind < NKIND; ++kind) {
+            if (!kind_selected(kind)) continue;
             run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
             fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
         }

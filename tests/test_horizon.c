@@ -465,6 +465,295 @@ static void test_horizon_visible_area_quadrature(void)
     }
 }
 
+/* pf_horizon_lod_weight against its piecewise definition in long double (an independent
+   transcription: 1 up to lod_full, 0 from lod_smith, the straight line between), its limits
+   and edge inputs. */
+static long double ora_lod_weight(long double lod, long double lo, long double hi)
+{
+    if (lod >= hi) return 0.0L;
+    if (lod <= lo) return 1.0L;
+    return 1.0L - (lod - lo) / (hi - lo);
+}
+static void test_horizon_lod_weight(void)
+{
+    static const pf_real bounds[][2] = { { PF_R(2.0), PF_R(6.0) }, { PF_R(0.0), PF_R(1.0) }, { PF_R(-3.0), PF_R(4.5) },
+                                         { PF_R(3.0), PF_R(3.25) } };
+    long double worst = 0.0L;
+    int b, i, bad = 0;
+    for (b = 0; b < 4; ++b)
+        for (i = -80; i <= 160; ++i) {
+            pf_real lod = PF_R(i) * PF_R(0.0625), lo = bounds[b][0], hi = bounds[b][1];
+            long double d = fabsl((long double)pf_horizon_lod_weight(lod, lo, hi) - ora_lod_weight((long double)lod, (long double)lo, (long double)hi));
+            if (d > worst) worst = d;
+        }
+    pf_test_note("lod weight vs piecewise definition: max abs %.2Lg", worst);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-15L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-7L, "%Lg", worst);
+#endif
+    /* end points exact, halfway 0.5, monotone non-increasing */
+    bad += pf_horizon_lod_weight(PF_R(2.0), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(6.0), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(4.0), PF_R(2.0), PF_R(6.0)) != PF_R(0.5);
+    for (i = 0; i < 200; ++i)
+        bad += pf_horizon_lod_weight(PF_R(i + 1) * PF_R(0.04), PF_R(2.0), PF_R(6.0)) >
+               pf_horizon_lod_weight(PF_R(i) * PF_R(0.04), PF_R(2.0), PF_R(6.0));
+    /* edge inputs: negative lod (magnification) is the full horizon, NaN is Smith, infinities
+       the two ends; lod_full >= lod_smith a step; lod_smith = +inf never fades */
+    bad += pf_horizon_lod_weight(PF_R(-3.0), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(NAN), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), PF_R(NAN), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), PF_R(2.0), PF_R(NAN)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(-PF_R(INFINITY), PF_R(2.0), PF_R(6.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(INFINITY), PF_R(2.0), PF_R(6.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(4.0), PF_R(5.0), PF_R(3.0)) != PF_R(0.0);
+    bad += pf_horizon_lod_weight(PF_R(2.9), PF_R(5.0), PF_R(3.0)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(1e30), PF_R(2.0), PF_R(INFINITY)) != PF_R(1.0);
+    bad += pf_horizon_lod_weight(PF_R(3.0), -PF_R(INFINITY), PF_R(6.0)) != PF_R(0.0);
+    PF_CHECK(bad == 0, "%d limit or edge violations", bad);
+}
+
+/* pf_horizon_masking_lod: at weight 1 it is pf_horizon_masking bit for bit, at weight 0
+   pf_beckmann_g1 bit for bit; between, Smith's G1 times the blend of 1 and the area ratio,
+   the ratio taken from the bivariate-Gaussian quadrature (the oracle of
+   test_horizon_visible_area_quadrature) and the blend done in long double. */
+static long double ora_area_ratio(long double wx, long double wy, long double wz, long double mt, long double sdt,
+                                  long double mst, long double mx, long double my)
+{
+    long double r = sqrtl(wx * wx + wy * wy), e = atan2l(wz, r), rs = wx * mx + wy * my;
+    /* r Cov(S, T), S the slope along w's azimuth: r E[S T] - (r E[S]) E[T] */
+    long double ea = wz - rs, cov = r * mst - rs * mt, sum = 0.0L, h, lo, hi, ref;
+    int i, n = 4000;
+    lo = mt - 12.0L * sdt;
+    hi = e < mt + 12.0L * sdt ? e : mt + 12.0L * sdt;
+    if (hi > lo) {
+        h = (hi - lo) / n;
+        for (i = 0; i <= n; ++i) {
+            long double T = lo + h * i, z = (T - mt) / sdt;
+            long double pdf = expl(-0.5L * z * z) / (sdt * sqrtl(2.0L * TPI));
+            long double wgt = (i == 0 || i == n) ? 1.0L : ((i & 1) ? 4.0L : 2.0L);
+            /* E[a | T] = wz - (r E[S] + r Cov(S, T) z / sigma_T) */
+            sum += wgt * pdf * (wz - (rs + cov * z / sdt));
+        }
+        sum *= h / 3.0L;
+    }
+    ref = sum / ea;
+    return ref < 0.0L ? 0.0L : (ref > 2.0L ? 2.0L : ref);
+}
+static void test_horizon_masking_lod(void)
+{
+    pf_test_rng r;
+    long double worst = 0.0L;
+    int it, bad = 0;
+    r.state = 41u;
+    for (it = 0; it < 400; ++it) {
+        long double tz = (long double)pf_test_uniform(&r, 0.0, 1.3), phi = (long double)pf_test_uniform(&r, 0.0, 6.283);
+        long double mt = (long double)pf_test_uniform(&r, -0.2, 0.5), sdt = (long double)pf_test_uniform(&r, 0.05, 0.4);
+        long double mx = (long double)pf_test_uniform(&r, -0.2, 0.2), my = (long double)pf_test_uniform(&r, -0.2, 0.2);
+        long double rho = (long double)pf_test_uniform(&r, -0.7, 0.2), ss = 0.4L;
+        long double sal = mx * cosl(phi) + my * sinl(phi); /* E[S] along the azimuth */
+        long double mst = rho * ss * sdt + mt * sal;
+        pf_real lod = (pf_real)pf_test_uniform(&r, -1.0, 8.0);
+        pf_vec3 w = pf_vec3_make((pf_real)(sinl(tz) * cosl(phi)), (pf_real)(sinl(tz) * sinl(phi)), (pf_real)cosl(tz));
+        pf_hdf_moments m = pf_hdf_moments_make((pf_real)mt, (pf_real)(mt * mt + sdt * sdt), (pf_real)mst);
+        pf_slope_stats s = pf_slope_stats_make((pf_real)mx, (pf_real)my, PF_R(0.16), PF_R(0.12), PF_R(0.01));
+        pf_real k = pf_horizon_lod_weight(lod, PF_R(2.0), PF_R(6.0)), got = pf_horizon_masking_lod(w, m, s, lod, PF_R(2.0), PF_R(6.0));
+        long double g1 = (long double)pf_beckmann_g1(w, s), ratio, ref;
+        ratio = ora_area_ratio((long double)w.x, (long double)w.y, (long double)w.z, mt, sdt, mst, mx, my);
+        ref = g1 * ((long double)k * ratio + 1.0L - (long double)k);
+        if (ref > 1.0L) ref = 1.0L;
+        if (fabsl((long double)got - ref) > worst) worst = fabsl((long double)got - ref);
+        /* the two ends, bit for bit */
+        bad += pf_horizon_masking_lod(w, m, s, PF_R(1.0), PF_R(2.0), PF_R(6.0)) != pf_horizon_masking(w, m, s);
+        bad += pf_horizon_masking_lod(w, m, s, PF_R(7.0), PF_R(2.0), PF_R(6.0)) != pf_saturate(pf_beckmann_g1(w, s));
+        /* between the two ends */
+        {
+            pf_real a = pf_horizon_masking(w, m, s), b = pf_saturate(pf_beckmann_g1(w, s));
+            bad += got < pf_min(a, b) - PF_R(1e-6) || got > pf_max(a, b) + PF_R(1e-6);
+        }
+    }
+    pf_test_note("masking_lod vs Smith x blended quadrature ratio: max abs %.2Lg", worst);
+    PF_CHECK(bad == 0, "%d end-point or bracket violations", bad);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-9L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-5L, "%Lg", worst);
+#endif
+}
+
+/* pf_horizon_visibility_given_slope against the conditional probability by quadrature of the
+   bivariate Gaussian density of (S, T) (its own inverse covariance, no regression formula):
+   P(T < e | S = s) = integral_{-inf}^{e} f(s, t) dt / integral f(s, t) dt. */
+static void test_horizon_visibility_given_slope(void)
+{
+    pf_test_rng r;
+    long double worst = 0.0L;
+    int it, bad = 0;
+    r.state = 77u;
+    for (it = 0; it < 300; ++it) {
+        long double tz = (long double)pf_test_uniform(&r, 0.05, 1.4), phi = (long double)pf_test_uniform(&r, 0.0, 6.283);
+        long double mt = (long double)pf_test_uniform(&r, -0.3, 0.6), sdt = (long double)pf_test_uniform(&r, 0.03, 0.4);
+        long double mx = (long double)pf_test_uniform(&r, -0.3, 0.3), my = (long double)pf_test_uniform(&r, -0.3, 0.3);
+        long double vx = (long double)pf_test_uniform(&r, 0.01, 0.3), vy = (long double)pf_test_uniform(&r, 0.01, 0.3);
+        long double cxy = (long double)pf_test_uniform(&r, -0.6, 0.6) * sqrtl(vx * vy), rho = (long double)pf_test_uniform(&r, -0.9, 0.9);
+        long double dx = cosl(phi), dy = sinl(phi), es = mx * dx + my * dy;
+        long double vs = vx * dx * dx + vy * dy * dy + 2.0L * cxy * dx * dy, cst = rho * sqrtl(vs) * sdt;
+        long double sv = es + (long double)pf_test_uniform(&r, -2.0, 2.0) * sqrtl(vs);
+        long double e = atan2l(cosl(tz), sinl(tz));
+        /* inverse of [[vs, cst], [cst, sdt^2]] */
+        long double det = vs * sdt * sdt - cst * cst, i11 = sdt * sdt / det, i12 = -cst / det, i22 = vs / det;
+        long double num = 0.0L, den = 0.0L, lo = mt - 40.0L * sdt, hi = mt + 40.0L * sdt, ref;
+        pf_real got;
+        int i, pass;
+        /* Simpson over [lo, hi] (den) and over [lo, min(e, hi)] (num) */
+        for (pass = 0; pass < 2; ++pass) {
+            long double top = pass ? (e < hi ? e : hi) : hi, h = (top - lo) / 20000.0L, acc = 0.0L;
+            if (top <= lo) continue;
+            for (i = 0; i <= 20000; ++i) {
+                long double t = lo + h * i, a = sv - es, b = t - mt;
+                long double f = expl(-0.5L * (i11 * a * a + 2.0L * i12 * a * b + i22 * b * b));
+                acc += ((i == 0 || i == 20000) ? 1.0L : ((i & 1) ? 4.0L : 2.0L)) * f;
+            }
+            if (pass) num = acc * h;
+            else den = acc * h;
+        }
+        ref = num / den;
+        got = pf_horizon_visibility_given_slope(
+            pf_vec3_make((pf_real)(sinl(tz) * dx), (pf_real)(sinl(tz) * dy), (pf_real)cosl(tz)),
+            pf_hdf_moments_make((pf_real)mt, (pf_real)(mt * mt + sdt * sdt), (pf_real)(cst + es * mt)),
+            pf_slope_stats_make((pf_real)mx, (pf_real)my, (pf_real)vx, (pf_real)vy, (pf_real)cxy), (pf_real)(sv * dx),
+            (pf_real)(sv * dy));
+        if (fabsl((long double)got - ref) > worst) worst = fabsl((long double)got - ref);
+        bad += !(got >= PF_R(0.0) && got <= PF_R(1.0));
+    }
+    pf_test_note("visibility given slope vs bivariate-density quadrature: max abs %.2Lg", worst);
+    PF_CHECK(bad == 0, "%d outside [0, 1]", bad);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-9L, "%Lg", worst);
+#else
+    PF_CHECK(worst <= 2e-5L, "%Lg", worst);
+#endif
+    /* limits: a vertical direction sees over every horizon, NaN moments see nothing */
+    {
+        pf_slope_stats s = pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0));
+        pf_hdf_moments m = pf_hdf_moments_make(PF_R(0.3), PF_R(0.1), PF_R(0.02));
+        PF_CHECK(pf_horizon_visibility_given_slope(pf_vec3_make(0, 0, 1), m, s, PF_R(0.2), PF_R(0.1)) == PF_R(1.0), "vertical");
+        PF_CHECK(pf_horizon_visibility_given_slope(pf_vec3_make(PF_R(0.6), 0, PF_R(0.8)),
+                                                   pf_hdf_moments_make(PF_R(NAN), 0, 0), s, 0, 0) == PF_R(0.0), "nan");
+    }
+}
+
+/* Long-double oracle of pf_horizon_diffuse_directional's integral over the Gaussian slope
+   distribution (2D Simpson in the Cholesky-whitened plane, +-6 deviations), the conditional
+   visibility by erfcl and eq. 28 written out: the grid of the library is a quadrature of it. */
+static long double ora_cond_vis(long double wx, long double wy, long double wz, long double mt, long double sdt,
+                                long double mst, long double mx, long double my, long double vx, long double vy,
+                                long double cxy, long double sx, long double sy)
+{
+    long double r = sqrtl(wx * wx + wy * wy), dx = wx / r, dy = wy / r, e = atan2l(wz, r);
+    long double es = mx * dx + my * dy, vs = vx * dx * dx + vy * dy * dy + 2.0L * cxy * dx * dy;
+    long double cov = mst - es * mt, mu = mt + cov / vs * (sx * dx + sy * dy - es), var = sdt * sdt - cov * cov / vs;
+    return 0.5L * erfcl((mu - e) / (sqrtl(var) * sqrtl(2.0L)));
+}
+static long double ora_horizon_diffuse(const long double wo[3], const long double wi[3], long double mto, long double sdo,
+                                       long double msto, long double mti, long double sdi, long double msti, long double mx,
+                                       long double my, long double vx, long double vy, long double cxy)
+{
+    long double sxd = sqrtl(vx), syd = sqrtl(vy), rr = cxy / (sxd * syd), rc = sqrtl(1.0L - rr * rr);
+    long double al = 0.5L * (1.0L + wo[0] * wi[0] + wo[1] * wi[1] + wo[2] * wi[2]);
+    long double vis = 0.0L, lit = 0.0L, wsum = 0.0L, ao = wo[2] - wo[0] * mx - wo[1] * my, h = 12.0L / 240.0L;
+    int i, j;
+    for (i = 0; i <= 240; ++i)
+        for (j = 0; j <= 240; ++j) {
+            long double p = -6.0L + h * i, q = -6.0L + h * j;
+            long double wgt = ((i == 0 || i == 240) ? 1.0L : ((i & 1) ? 4.0L : 2.0L)) *
+                              ((j == 0 || j == 240) ? 1.0L : ((j & 1) ? 4.0L : 2.0L)) * expl(-0.5L * (p * p + q * q));
+            long double x = mx + sxd * p, y = my + syd * (rr * p + rc * q);
+            long double a = wo[2] - x * wo[0] - y * wo[1], nz = 1.0L / sqrtl(1.0L + x * x + y * y);
+            long double cosi = (-x * wi[0] - y * wi[1] + wi[2]) * nz, vo, vi, both, mn, mxx;
+            wsum += wgt;
+            if (a <= 0.0L) continue;
+            vo = ora_cond_vis(wo[0], wo[1], wo[2], mto, sdo, msto, mx, my, vx, vy, cxy, x, y);
+            vi = ora_cond_vis(wi[0], wi[1], wi[2], mti, sdi, msti, mx, my, vx, vy, cxy, x, y);
+            mn = vo < vi ? vo : vi;
+            mxx = vo + vi - 1.0L > 0.0L ? vo + vi - 1.0L : 0.0L;
+            both = al * mn + (1.0L - al) * mxx; /* eq. 28's visible-and-lit */
+            vis += wgt * a * vo;
+            if (cosi > 0.0L) lit += wgt * a * both * cosi;
+        }
+    vis /= wsum;
+    lit /= wsum;
+    if (vis / ao > 2.0L) return lit / (ao * TPI) * 2.0L * ao / vis;
+    return lit / (ao * TPI);
+}
+static void test_horizon_diffuse(void)
+{
+    pf_test_rng r;
+    long double worst = 0.0L;
+    int it, bad = 0;
+    r.state = 91u;
+    for (it = 0; it < 12; ++it) {
+        long double to = (long double)pf_test_uniform(&r, 0.1, 1.2), po = (long double)pf_test_uniform(&r, 0.0, 6.283);
+        long double ti = (long double)pf_test_uniform(&r, 0.1, 1.3), pi_ = (long double)pf_test_uniform(&r, 0.0, 6.283);
+        long double wo[3], wi[3], mx = (long double)pf_test_uniform(&r, -0.15, 0.15), my = (long double)pf_test_uniform(&r, -0.15, 0.15);
+        long double vx = (long double)pf_test_uniform(&r, 0.02, 0.12), vy = (long double)pf_test_uniform(&r, 0.02, 0.12), cxy = 0.3L * sqrtl(vx * vy);
+        long double mto = (long double)pf_test_uniform(&r, 0.0, 0.4), sdo = (long double)pf_test_uniform(&r, 0.08, 0.3);
+        long double mti = (long double)pf_test_uniform(&r, 0.0, 0.4), sdi = (long double)pf_test_uniform(&r, 0.08, 0.3);
+        long double ro = (long double)pf_test_uniform(&r, -0.6, 0.0), ri = (long double)pf_test_uniform(&r, -0.6, 0.0), ref, vso, vsi, eso, esi;
+        pf_real got;
+        pf_gg_grid g;
+        wo[0] = sinl(to) * cosl(po); wo[1] = sinl(to) * sinl(po); wo[2] = cosl(to);
+        wi[0] = sinl(ti) * cosl(pi_); wi[1] = sinl(ti) * sinl(pi_); wi[2] = cosl(ti);
+        /* E[S T] from a correlation rho of T with the slope along each azimuth */
+        eso = mx * cosl(po) + my * sinl(po);
+        vso = vx * cosl(po) * cosl(po) + vy * sinl(po) * sinl(po) + 2.0L * cxy * cosl(po) * sinl(po);
+        esi = mx * cosl(pi_) + my * sinl(pi_);
+        vsi = vx * cosl(pi_) * cosl(pi_) + vy * sinl(pi_) * sinl(pi_) + 2.0L * cxy * cosl(pi_) * sinl(pi_);
+        {
+            long double msto = ro * sqrtl(vso) * sdo + eso * mto, msti = ri * sqrtl(vsi) * sdi + esi * mti;
+            pf_slope_stats s = pf_slope_stats_make((pf_real)mx, (pf_real)my, (pf_real)vx, (pf_real)vy, (pf_real)cxy);
+            g = pf_gg_grid_make(pf_vec3_make((pf_real)wo[0], (pf_real)wo[1], (pf_real)wo[2]), s, PF_GG_HERMITE, PF_GG_MAX_N);
+            got = pf_horizon_diffuse_directional(g, pf_vec3_make((pf_real)wi[0], (pf_real)wi[1], (pf_real)wi[2]),
+                                                 pf_hdf_moments_make((pf_real)mto, (pf_real)(mto * mto + sdo * sdo), (pf_real)msto),
+                                                 pf_hdf_moments_make((pf_real)mti, (pf_real)(mti * mti + sdi * sdi), (pf_real)msti));
+            ref = ora_horizon_diffuse(wo, wi, mto, sdo, msto, mti, sdi, msti, mx, my, vx, vy, cxy);
+        }
+        if (fabsl((long double)got - ref) / (ref + 1e-3L) > worst) worst = fabsl((long double)got - ref) / (ref + 1e-3L);
+        bad += !pf_test_bits_finite(got) || got < PF_R(0.0);
+    }
+    pf_test_note("horizon diffuse (Gauss-Hermite 9 x 9) vs 2D quadrature: max rel %.2Lg", worst);
+    PF_CHECK(bad == 0, "%d non-finite or negative", bad);
+    PF_CHECK(worst <= 0.02L, "%Lg", worst);
+    /* limits. (1) horizons far below every view (T = -1.5 rad, uncorrelated): nothing hidden,
+       so the result is LEADR's grid without its Smith factors, pf_gg_diffuse_directional /
+       (G1(wo) * shadowing); (2) horizons above every direction: 0; (3) the lod fade's ends */
+    {
+        pf_slope_stats s = pf_slope_stats_make(PF_R(0.05), PF_R(-0.03), PF_R(0.06), PF_R(0.04), PF_R(0.01));
+        pf_vec3 wo = pf_vec3_normalize(pf_vec3_make(PF_R(0.5), PF_R(0.2), PF_R(0.84)));
+        pf_vec3 wi = pf_vec3_normalize(pf_vec3_make(PF_R(-0.3), PF_R(0.4), PF_R(0.87)));
+        pf_gg_grid g = pf_gg_grid_make(wo, s, PF_GG_MATCHED, 3);
+        pf_real low = PF_R(-1.5), high = PF_R(1.5);
+        pf_hdf_moments ml = pf_hdf_moments_make(low, low * low, PF_R(0.0)), mh = pf_hdf_moments_make(high, high * high, PF_R(0.0));
+        pf_real leadr = pf_gg_diffuse_directional(g, wi);
+        pf_real v = pfi_gg_shadowing(g.g1_o, pf_g1_beckmann(pf_smith_nu(wi, s)));
+        pf_real open = pf_horizon_diffuse_directional(g, wi, ml, ml), want = leadr / (g.g1_o * v);
+        PF_CHECK(PF_FABS(open - want) <= PF_R(1e-5) * want, "open sky %g vs %g", (double)open, (double)want);
+        PF_CHECK(pf_horizon_diffuse_directional(g, wi, mh, mh) == PF_R(0.0), "buried");
+        PF_CHECK(pf_horizon_diffuse_lod(g, wi, ml, mh, PF_R(1.0), PF_R(2.0), PF_R(6.0)) ==
+                 pf_horizon_diffuse_directional(g, wi, ml, mh), "lod 1: horizon");
+        PF_CHECK(pf_horizon_diffuse_lod(g, wi, ml, mh, PF_R(6.0), PF_R(2.0), PF_R(6.0)) == leadr, "lod 6: leadr");
+        {
+            pf_real hz = pf_horizon_diffuse_directional(g, wi, ml, ml), mid = pf_horizon_diffuse_lod(g, wi, ml, ml, PF_R(4.0), PF_R(2.0), PF_R(6.0));
+            PF_CHECK(PF_FABS(mid - PF_R(0.5) * (hz + leadr)) <= PF_R(1e-6) * (hz + leadr), "lod 4: halfway");
+        }
+        /* below the mean plane, light below the macrosurface: 0 */
+        PF_CHECK(pf_horizon_diffuse_directional(g, pf_vec3_make(PF_R(0.6), 0, PF_R(-0.8)), ml, ml) == PF_R(0.0), "light below");
+        PF_CHECK(pf_horizon_diffuse_directional(pf_gg_grid_make(pf_vec3_make(PF_R(0.6), 0, PF_R(-0.8)), s, PF_GG_MATCHED, 3), wi, ml, ml) ==
+                 PF_R(0.0), "view below");
+    }
+}
+
 static void test_horizon_azimuth_of(void)
 {
     int n, i, bad = 0;
@@ -597,6 +886,29 @@ static void edge_horizon_evaluators_finite(void)
                 r[6] = pf_horizon_masking(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), PF_R(0.01)),
                                           pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)));
                 for (q = 0; q < 7; ++q) bad += !pf_test_bits_finite(r[q]) || r[q] < PF_R(0.0) || r[q] > PF_R(2.0);
+                /* the lod fade: any lod and bounds (NaN, inf, negative), any direction (below
+                   the mean plane included) */
+                {
+                    pf_real k = pf_horizon_lod_weight(v[a], v[b], v[c]);
+                    pf_real g = pf_horizon_masking_lod(w, pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), PF_R(0.01)),
+                                                       pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)),
+                                                       v[b], PF_R(2.0), PF_R(6.0));
+                    bad += !pf_test_bits_finite(k) || k < PF_R(0.0) || k > PF_R(1.0);
+                    bad += !pf_test_bits_finite(g) || g < PF_R(0.0) || g > PF_R(1.0);
+                }
+                /* the diffuse and the conditional visibility: any direction and slope */
+                {
+                    pf_slope_stats st = pf_slope_stats_make(PF_R(0.1), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0));
+                    pf_hdf_moments hm = pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), v[c]);
+                    pf_gg_grid gr = pf_gg_grid_make(pf_vec3_normalize(pf_vec3_make(PF_R(0.3), PF_R(0.1), PF_R(0.9))), st, PF_GG_MATCHED, 3);
+                    pf_real q1 = pf_horizon_visibility_given_slope(w, hm, st, v[a], v[b]);
+                    pf_vec3 wn = pf_vec3_normalize(w); /* the light: a unit direction, any (below included) */
+                    pf_real q2 = pf_horizon_diffuse_directional(gr, wn, hm, hm);
+                    pf_real q3 = pf_horizon_diffuse_lod(gr, wn, hm, hm, v[b], PF_R(2.0), PF_R(6.0));
+                    bad += !pf_test_bits_finite(q1) || q1 < PF_R(0.0) || q1 > PF_R(1.0);
+                    bad += !pf_test_bits_finite(q2) || q2 < PF_R(0.0) || q2 > PF_R(1.0);
+                    bad += !pf_test_bits_finite(q3) || q3 < PF_R(0.0) || q3 > PF_R(1.0);
+                }
                 bad += !pf_test_bits_finite(pf_horizon_legendre_coeff(a % 8, pf_clamp(v[b], PF_R(-1.0), PF_R(1.0))));
                 bad += !pf_test_bits_finite(pf_horizon_elevation(w));
                 bad += pf_horizon_azimuth_of(w, 16).i0 < 0 || pf_horizon_azimuth_of(w, 16).i0 > 15;
@@ -616,6 +928,10 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_horizon_visibility_formulas);
     PF_TEST_RUN(test_horizon_bidir_limits);
     PF_TEST_RUN(test_horizon_visible_area_quadrature);
+    PF_TEST_RUN(test_horizon_lod_weight);
+    PF_TEST_RUN(test_horizon_masking_lod);
+    PF_TEST_RUN(test_horizon_visibility_given_slope);
+    PF_TEST_RUN(test_horizon_diffuse);
     PF_TEST_RUN(test_horizon_azimuth_of);
     PF_TEST_RUN(test_horizon_legendre_struct);
     PF_TEST_RUN(test_horizon_bad_input_writes_nothing);

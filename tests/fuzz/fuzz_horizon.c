@@ -102,6 +102,29 @@ static void hz_mapped(hz_src *s)
     hz_check(HZ_FIN(r) && r >= PF_R(0.0) && r <= PF_R(2.0), "visible area", r);
     r = pf_horizon_masking(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0)));
     HZ_01(r, "masking");
+    {
+        /* the lod fade: lod in [-4, 12], bounds around the measured 2 and 6 (in either order) */
+        pf_real lod = hz_in(s, PF_R(-4.0), PF_R(12.0)), lo = hz_in(s, PF_R(0.0), PF_R(4.0)), hi = hz_in(s, PF_R(2.0), PF_R(8.0));
+        pf_real k = pf_horizon_lod_weight(lod, lo, hi);
+        HZ_01(k, "lod weight");
+        hz_check(!(lod <= lo && lod < hi) || k == PF_R(1.0), "lod weight below lod_full", k);
+        hz_check(!(lod >= hi) || k == PF_R(0.0), "lod weight above lod_smith", k);
+        r = pf_horizon_masking_lod(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0)), lod, lo, hi);
+        HZ_01(r, "masking lod");
+        if (k == PF_R(1.0)) hz_check(r == pf_horizon_masking(w, m, pf_slope_stats_make(mx, my, sd, vv, PF_R(0.0))), "masking lod at 1", r);
+        /* the diffuse: a view from the inputs, the light w, the same HDF both ways */
+        {
+            pf_slope_stats st = pf_slope_stats_make(mx, my, sd * sd, vv, PF_R(0.0));
+            pf_vec3 wv = pf_vec3_make(PF_SIN(e) * PF_COS(c), PF_SIN(e) * PF_SIN(c), PF_COS(e));
+            pf_gg_grid g = pf_gg_grid_make(wv, st, PF_GG_MATCHED, k > PF_R(0.5) ? 3 : 5);
+            r = pf_horizon_visibility_given_slope(w, m, st, mx, my);
+            HZ_01(r, "visibility given slope");
+            r = pf_horizon_diffuse_directional(g, w, m, m);
+            hz_check(HZ_FIN(r) && r >= PF_R(0.0) && r <= PF_R(0.6367), "horizon diffuse", r);
+            r = pf_horizon_diffuse_lod(g, w, m, m, lod, lo, hi);
+            hz_check(HZ_FIN(r) && r >= PF_R(0.0) && r <= PF_R(1.0), "horizon diffuse lod", r);
+        }
+    }
 }
 
 static volatile pf_real hz_sink;
@@ -121,6 +144,15 @@ static void hz_rawcalls(hz_src *s)
     hz_sink = pf_horizon_bidir_product(a, b) + pf_horizon_bidir_tan(a, b, c) + pf_horizon_bidir_ashikhmin(a, b, c, hz_raw(s));
     hz_sink = pf_horizon_visible_area(w, pf_hdf_moments_lerp(m, m, c), a, b);
     hz_sink = pf_horizon_masking(w, m, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)));
+    hz_sink = pf_horizon_lod_weight(a, b, c);
+    hz_sink = pf_horizon_masking_lod(w, m, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)), hz_raw(s), hz_raw(s), hz_raw(s));
+    hz_sink = pf_horizon_visibility_given_slope(w, m, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)), hz_raw(s), hz_raw(s));
+    {
+        pf_gg_grid g = pf_gg_grid_make(w, pf_slope_stats_make(a, b, c, hz_raw(s), hz_raw(s)), n & 3, k);
+        pf_vec3 wi = pf_vec3_make(hz_raw(s), hz_raw(s), hz_raw(s));
+        hz_sink = pf_horizon_diffuse_directional(g, wi, m, m);
+        hz_sink = pf_horizon_diffuse_lod(g, wi, m, m, a, b, c);
+    }
 }
 
 int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size);

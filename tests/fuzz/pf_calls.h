@@ -1564,6 +1564,39 @@ static void pfc_f_pf_horizon_bidir_tan(pfc_ctx *c) { pf_real l = pfc_u01(c), v =
 static void pfc_f_pf_horizon_bidir_ashikhmin(pfc_ctx *c) { pf_real l = pfc_u01(c), v = pfc_u01(c), k = pfc_cos(c); pfc_01(c, pf_horizon_bidir_ashikhmin(l, v, k, pfc_u01(c))); }
 static void pfc_f_pf_horizon_visible_area(pfc_ctx *c) { pf_vec3 w = pfc_dir(c); pf_hdf_moments m = pfc_hdf(c); pf_real mx = pfc_sym(c, 2); pfc_in(c, pf_horizon_visible_area(w, m, mx, pfc_sym(c, 2)), PF_R(0.0), PF_R(2.0)); }
 static void pfc_f_pf_horizon_masking(pfc_ctx *c) { pf_vec3 w = pfc_dir(c); pf_hdf_moments m = pfc_hdf(c); pfc_01(c, pf_horizon_masking(w, m, pfc_stats(c, 0))); }
+static void pfc_f_pf_horizon_visibility_given_slope(pfc_ctx *c)
+{
+    pf_vec3 w = pfc_dir(c);
+    pf_hdf_moments m = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_real x = pfc_sym(c, 2);
+    pfc_01(c, pf_horizon_visibility_given_slope(w, m, s, x, pfc_sym(c, 2)));
+}
+static void pfc_f_pf_horizon_diffuse_directional(pfc_ctx *c)
+{
+    pf_gg_grid g = pfc_grid(c);
+    pf_vec3 wi = pfc_dir(c);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    /* (1/pi) lit share (<= 1) times the visible area ratio (<= 2) */
+    pfc_in(c, pf_horizon_diffuse_directional(g, wi, mo, mi), PF_R(0.0), PF_R(0.6367));
+}
+static void pfc_f_pf_horizon_diffuse_lod(pfc_ctx *c)
+{
+    pf_gg_grid g = pfc_grid(c);
+    pf_vec3 wi = pfc_dir(c);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pf_real l = pfc_sym(c, 4), a = pfc_sym(c, 4);
+    pfc_ge0(c, pf_horizon_diffuse_lod(g, wi, mo, mi, l, a, pfc_sym(c, 4)));
+}
+static void pfc_f_pf_horizon_lod_weight(pfc_ctx *c) { pf_real l = pfc_sym(c, 4), a = pfc_sym(c, 4); pfc_01(c, pf_horizon_lod_weight(l, a, pfc_sym(c, 4))); }
+static void pfc_f_pf_horizon_masking_lod(pfc_ctx *c)
+{
+    pf_vec3 w = pfc_dir(c);
+    pf_hdf_moments m = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_real l = pfc_sym(c, 4), a = pfc_sym(c, 4);
+    pfc_01(c, pf_horizon_masking_lod(w, m, s, l, a, pfc_sym(c, 4)));
+}
 
 
 /* ---- masks */
@@ -2130,6 +2163,11 @@ static const pfc_entry pfc_table[] = {
     PFC_E(horizon, pf_horizon_bidir_ashikhmin, 0, "fractions in [0, 1], cos, width [0, 1]", "width <= 0: beta 1 at l = v, else 0"),
     PFC_E(horizon, pf_horizon_visible_area, 0, "unit directions, HDF moments, mean slopes +-4", "clamped to [0, 2]; 0 below the mean plane"),
     PFC_E(horizon, pf_horizon_masking, 0, "unit directions, HDF moments, slope stats", "saturate(area ratio x pf_beckmann_g1)"),
+    PFC_E(horizon, pf_horizon_visibility_given_slope, 0, "unit directions, HDF moments, slope stats, slopes +-4", "in [0, 1]; NaN moments 0"),
+    PFC_E(horizon, pf_horizon_diffuse_directional, PFC_SLOW, "grid, unit wi (grazing, below), HDF moments", "in [0, 2/pi]; 0 below the mean plane"),
+    PFC_E(horizon, pf_horizon_diffuse_lod, PFC_SLOW, "grid, unit wi, HDF moments, lods +-16", ">= 0; blend of the two diffuse terms"),
+    PFC_E(horizon, pf_horizon_lod_weight, PFC_WIDE, "lod and bounds +-16, any order", "in [0, 1]; NaN gives 0"),
+    PFC_E(horizon, pf_horizon_masking_lod, 0, "unit directions, HDF moments, slope stats, lods +-16", "between pf_beckmann_g1 and pf_horizon_masking"),
     PFC_E(masks, pf_mask_params_make, PFC_WIDE, "+-2^100", "constructor"),
     PFC_E(masks, pf_mask_make, 0, "any 32-bit words", "constructor"),
     PFC_E(masks, pf_masks_v_max, 0, "shape -2..3", "unknown shapes read as the square"),
