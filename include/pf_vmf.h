@@ -86,9 +86,9 @@
      [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; a NaN kappa reads as PF_VMF_KAPPA_MIN. A mixture is
      shaded lobe by lobe (pf_vmf_sum_add): no arrays in structs, so the same source is GLSL;
      the fit returns at most PF_VMF_MAX_LOBES = 8 lobes. Evaluators return finite values >= 0
-     for finite inputs; 0 when a direction is on or below the macrosurface or the light on or
-     below the mixture's mesosurface (a view below the mesosurface sees the facets facing it, as
-     in pf_leadr_specular); G in [0, 1].
+     for finite inputs; 0 when a direction is on or below the macrosurface (a view or a light
+     below the mixture's mesosurface sees or lights the facets facing it, as in
+     pf_leadr_specular); G in [0, 1].
 
    ACCURACY AND COST (tests/test_vmf.c, bench/bench_vmf.c, bench/microsurface.c; docs/vmf.md)
      C(kappa) within 2 eps of quadrature (kappa 1e-4 .. 1e5, float and double); A3 and the
@@ -539,20 +539,30 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
        Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
        so its relative error grows as P_o / |area_o| shrinks.
-   The light must be above the mesosurface (Lambda_i finite), as before. */
+   Lambda_i as pf_leadr_specular has it: Smith's, capped by the macrosurface's share of the
+   light, min(Lambda_i, max(P_i, wi.z) / wi.z - 1) (pfi_beckmann_light_lambda in
+   pf_beckmann.h), so that a light above the macrosurface but on or below the mesosurface
+   lights the facets facing it instead of giving 0: one Gaussian, P_i of the sum's statistics
+   with A_i counted as 0 below the mean plane (pfi_beckmann_light_lambda_stats); mixture,
+   P_i = (area_i + excess_i) / amp, the mixture's own facing area (exact below too). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
     pf_real area_o, area_i, den, f;
     if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
     area_o = pfi_vmf_sum_area(s, wo);
     area_i = pfi_vmf_sum_area(s, wi);
-    if (!(area_i > PF_R(0.0))) return PF_R(0.0);
     if (mixture_smith != 0) {
-        den = area_o + s.excess_o + pf_max(area_o, PF_R(0.0)) * pf_vmf_lambda(s.excess_i, area_i);
+        /* min(Lambda_i, max(P_i, wi.z) / wi.z - 1) with the mixture's own P_i = (area_i +
+           excess_i) / amp (exact below the mean plane too: Lambda_i is then PF_LAMBDA_MAX) */
+        pf_real wz = wi.z * s.amp;
+        den = area_o + s.excess_o +
+              pf_max(area_o, PF_R(0.0)) *
+                  pf_min(pf_vmf_lambda(s.excess_i, area_i), pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pfi_beckmann_facing_area(wo, st) +
-                       pf_max(area_o / s.amp, PF_R(0.0)) * pf_beckmann_lambda(wi, st));
+                       pf_max(area_o / s.amp, PF_R(0.0)) *
+                           pfi_beckmann_light_lambda_stats(wi, st));
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
@@ -562,8 +572,8 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
 
 /* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
    of the mixture as one Gaussian (pf_vmf_sum_g2). 0 when either direction is on or below
-   the macrosurface, the light on or below the mesosurface, or the sum is empty; a view below
-   the mesosurface sees the facets facing it (pfi_vmf_sum_specular). Finite and >= 0 for
+   the macrosurface or the sum is empty; a view below the mesosurface sees the facets facing
+   it, a light below it lights them (pfi_vmf_sum_specular). Finite and >= 0 for
    finite inputs. */
 PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
 {
