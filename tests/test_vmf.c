@@ -636,7 +636,7 @@ static void test_fit_degenerate(void)
     PF_CHECK(rc == PF_ERR_ARG && m.count == 1, "all NaN: rc %d", rc);
     PF_CHECK(pf_vmf_fit_normals(NULL, NULL, 16, 4, 20, &m) == PF_ERR_ARG, "NULL normals");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 0, 20, &m) == PF_ERR_ARG, "0 lobes");
-    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 9, 20, &m) == PF_ERR_ARG, "9 lobes");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, PF_VMF_MAX_LOBES + 1, 20, &m) == PF_ERR_ARG, "17 lobes");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 0, 4, 20, &m) == PF_ERR_ARG, "0 normals");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 4, 20, NULL) == PF_ERR_ARG, "NULL out");
     /* pyramid of a NaN map: flat lobes, PF_OK, nothing past the buffer */
@@ -647,7 +647,7 @@ static void test_fit_degenerate(void)
     for (i = 0; i < 21 * 8; ++i) PF_CHECK(isfinite((double)pyr[i]) && pyr[i] != PF_R(-7.0), "texel value %d unwritten", i);
     for (i = 21 * 8; i < 400; ++i) PF_CHECK(pyr[i] == PF_R(-7.0), "canary %d overwritten", i);
     PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 3, 4, 2, 10, pyr) == PF_ERR_ARG, "non power of two");
-    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, 9, 10, pyr) == PF_ERR_ARG, "9 lobes");
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, PF_VMF_MAX_LOBES + 1, 10, pyr) == PF_ERR_ARG, "17 lobes");
     PF_CHECK(pf_vmf_pyramid_from_normals(NULL, NULL, 4, 4, 2, 10, pyr) == PF_ERR_ARG, "NULL");
     PF_CHECK(pf_vmf_pyramid_texel_count(0, 4) == 0 && pf_vmf_pyramid_level_offset(5, 4, 1) == -1, "bad sizes");
 }
@@ -1319,9 +1319,9 @@ static void test_scale_bad_input_guarded(void)
                                 fl) == PF_ERR_ARG,
              "NaN height, patch");
     hm[(W - 4) * W + 2] = PF_R(0.0);
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 9, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
-                 PF_ERR_ARG,
-             "lobes 9");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, PF_VMF_MAX_LOBES + 1, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP,
+                                PF_R(1.2), nr, vis, fe, fl) == PF_ERR_ARG,
+             "lobes 17");
     PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 3, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
                  PF_ERR_ARG,
              "masking 3");
