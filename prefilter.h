@@ -1558,29 +1558,30 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
 /* Lambda of the LIGHT in the specular BRDFs (pfi_leadr_specular; pf_vmf.h), from nu_i =
    A_i / sqrt(2 var_i) (A_i the mean plane's projected area toward wi, eq. 1), rs_i =
    1 / sqrt(2 var_i) and wi.z:
-       Lambda_i' = min(Lambda_i, max(P_i+, wi.z) / wi.z - 1)
-   with P_i+ the projected area toward wi of the facets that face it (pfi_beckmann_facing_area)
-   with A_i counted as 0 below the mean plane (as A_o is for the view).
-   Why (issue 15, the pictures' target; our model): Smith's Lambda_i is that of a surface whose
-   mean plane is the FOOTPRINT's, extended without end, so a light on or below that plane
-   shadows everything (Lambda_i = inf) and eq. 17 gave 0. On a flat macrosurface the
-   footprint's tilt is local: a light above the macrosurface still reaches the facets that face
-   it, and the brute force lights them (bench/pictures.c: lit pixels returned 0 at A_i <= 0;
-   near A_i = 0 the reference showed no more shadowing than the masking term alone). Over the
-   macrosurface, light falls on wi.z of projected area per unit area and is shared by the
-   facets facing it, so their lit fraction is at least wi.z / P_i: Smith's G1 relative to the
-   macrosurface's own mean plane; the footprint's mean plane decides only where it shadows
-   less. A centred footprint (A_i = wi.z) and one tilted toward the light (A_i >= wi.z) keep
-   Smith's Lambda_i exactly. Below the mean plane P_i+ = P_i(A_i = 0) = sqrt(var_i / (2 pi)) is
-   held (more shadowing than the exact P_i there; continuous through A_i = 0; it saves a branch
-   and keeps pf_leadr_specular within issue 17's op budget). Above the mean plane
-   P_i = A_i / G1(nu_i), so
-       1 + Lambda_i' = max(r / max(nu_i, wi.z rs_i), 1),   r = nu / G1(nu) at nu = max(nu_i, 1e-20)
-   (pfi_smith_nu_over_g1): 1/G1 where A_i >= wi.z, max(P_i / wi.z, 1) below that. Finite for
-   wi.z > 0 and finite rs_i > 0. */
+       Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
+       Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
+   P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
+   A_i counted as 0 (as A_o is for the view; pfi_beckmann_facing_area).
+   Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
+   plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
+   flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
+   macrosurface still reaches the facets that face it, and the brute force lights them
+   (bench/pictures.c: 12-48 lit pixels returned 0). Over the macrosurface, light falls on wi.z
+   of projected area per unit area and is shared by the facets facing it, so their lit
+   fraction is at least wi.z / P_i (Smith's G1 of the macrosurface's own plane). ABOVE the
+   mean plane Smith's Lambda_i is kept exactly: it is exact for a footprint whose mean plane is
+   real geometry (a single tilted facet, tests/test_microsurface.c's identity; LEADR's displaced
+   mesosurface), and a first version that capped it there too (min(Lambda_i, max(P_i, wi.z) /
+   wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
+   bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
+   just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
+   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pfi_smith_nu_over_g1), d = nu_i
+   above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
 PF_DEF pf_real pfi_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
 {
-    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / pf_max(nu, wz * rs), PF_R(1.0)) - PF_R(1.0);
+    pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */
+    pf_real d = nu > PF_R(0.0) ? nu : below;
+    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
 }
 
 /* The same from the direction and the statistics (pf_vmf.h's one-Gaussian G): the variance
@@ -6808,12 +6809,12 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
        Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
        so its relative error grows as P_o / |area_o| shrinks.
-   Lambda_i as pf_leadr_specular has it: Smith's, capped by the macrosurface's share of the
-   light, min(Lambda_i, max(P_i, wi.z) / wi.z - 1) (pfi_beckmann_light_lambda in
-   pf_beckmann.h), so that a light above the macrosurface but on or below the mesosurface
-   lights the facets facing it instead of giving 0: one Gaussian, P_i of the sum's statistics
-   with A_i counted as 0 below the mean plane (pfi_beckmann_light_lambda_stats); mixture,
-   P_i = (area_i + excess_i) / amp, the mixture's own facing area (exact below too). */
+   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
+   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
+   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
+   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
     pf_real area_o, area_i, den, f;
@@ -6821,12 +6822,13 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     area_o = pfi_vmf_sum_area(s, wo);
     area_i = pfi_vmf_sum_area(s, wi);
     if (mixture_smith != 0) {
-        /* min(Lambda_i, max(P_i, wi.z) / wi.z - 1) with the mixture's own P_i = (area_i +
-           excess_i) / amp (exact below the mean plane too: Lambda_i is then PF_LAMBDA_MAX) */
+        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
+           mixture's own facing area P_i = (area_i + excess_i) / amp */
         pf_real wz = wi.z * s.amp;
         den = area_o + s.excess_o +
               pf_max(area_o, PF_R(0.0)) *
-                  pf_min(pf_vmf_lambda(s.excess_i, area_i), pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
+                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
+                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pfi_beckmann_facing_area(wo, st) +

