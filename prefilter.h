@@ -6365,7 +6365,7 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
      3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
      Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
      corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
-     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.13-0.82), at 1.2-1.5x
+     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
      pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
      512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
 
