@@ -1004,6 +1004,28 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
 #endif
 }
 
+/* nu / G1(nu) = nu (1 + Lambda(nu)) for nu > 0 (internal: the facing areas of pf_beckmann.h,
+   P = sqrt(2 var) nu / G1(nu) toward a direction above the mean plane). The same fit as
+   pf_g1_beckmann without forming G1 first: float Q5(n) / P4(n) (n = nu clamped to [0, 3.1];
+   beyond, G1 = 1 and the max returns nu), double nu + exp(-nu^2) K(nu) / (2 sqrt(pi)) below
+   2, nu (1 + Lambda) above. Limit 1/(2 sqrt(pi)) at nu -> 0; callers pass nu > 0 (nu <= 0
+   and NaN give that limit in float). */
+PF_DEF pf_real pfi_smith_nu_over_g1(pf_real nu)
+{
+#ifdef PF_DOUBLE
+    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pfi_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
+    return nu + nu * pf_lambda_beckmann(nu);
+#else
+    {
+        pf_real n = PFI_SMITH_CLAMP0(nu, PF_R(3.1));
+        return pf_max((PF_R(10.27353954) + n * (PF_R(18.48168564) + n * (PF_R(13.68897915) + n * (PF_R(5.850288868) +
+                      n * (PF_R(1.95705688) + n))))) /
+                      (PF_R(36.41876602) + n * (PF_R(0.9635340571) + n * (PF_R(10.42804337) +
+                      n * (PF_R(1.123634458) + n * PF_R(1.061310649))))), nu);
+    }
+#endif
+}
+
 /* ---------------------------------------------------------------- Walter et al. 2007 tier
    The rational approximation of Walter et al. 2007 as quoted in Dupuy et al. 2013 sec. 4.3:
        Lambda ~ (1 - 1.259 nu + 0.396 nu^2) / (3.535 nu + 2.181 nu^2)  for nu < 1.6, else 0.
@@ -1533,6 +1555,44 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
     return front + sd * t;
 }
 
+/* Lambda of the LIGHT in the specular BRDFs (pfi_leadr_specular; pf_vmf.h), from nu_i =
+   A_i / sqrt(2 var_i) (A_i the mean plane's projected area toward wi, eq. 1), rs_i =
+   1 / sqrt(2 var_i) and wi.z:
+       Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
+       Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
+   P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
+   A_i counted as 0 (as A_o is for the view; pfi_beckmann_facing_area).
+   Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
+   plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
+   flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
+   macrosurface still reaches the facets that face it, and the brute force lights them
+   (bench/pictures.c: 12-48 lit pixels returned 0). Over the macrosurface, light falls on wi.z
+   of projected area per unit area and is shared by the facets facing it, so their lit
+   fraction is at least wi.z / P_i (Smith's G1 of the macrosurface's own plane). ABOVE the
+   mean plane Smith's Lambda_i is kept exactly: it is exact for a footprint whose mean plane is
+   real geometry (a single tilted facet, tests/test_microsurface.c's identity; LEADR's displaced
+   mesosurface), and a first version that capped it there too (min(Lambda_i, max(P_i, wi.z) /
+   wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
+   bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
+   just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
+   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pfi_smith_nu_over_g1), d = nu_i
+   above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
+PF_DEF pf_real pfi_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
+{
+    pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */
+    pf_real d = nu > PF_R(0.0) ? nu : below;
+    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
+}
+
+/* The same from the direction and the statistics (pf_vmf.h's one-Gaussian G): the variance
+   along wi clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] as in pfi_leadr_specular. */
+PF_DEF pf_real pfi_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
+{
+    pf_real var2 = PF_R(2.0) * (wi.x * wi.x * s.var_x + wi.y * wi.y * s.var_y + PF_R(2.0) * wi.x * wi.y * s.cov_xy);
+    pf_real rs = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    return pfi_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
+}
+
 /* ---------------------------------------------------------------- specular BRDF
    Schlick's Fresnel approximation F = f0 + (1 - f0) (1 - cos)^5, cos = w_h . w_i clamped to
    [0, 1]. f0 = 1 gives exactly 1 (Fresnel off). */
@@ -1554,10 +1614,12 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    (4 cos theta_o)); multiply by the light's radiance (directional) or intensity / distance^2
    (point), not by any further cosine.
    w_o, w_i: unit vectors in the tangent frame of the macrosurface (w_g = +z). Returns 0, never
-   NaN, when either direction is on or below the macrosurface, or the light on or below the
-   mesosurface (Lambda_i = inf: the mean plane shadows everything, Dupuy et al. 2013 after
-   eq. 15). A view above the macrosurface but on or below the mesosurface is not culled: it
-   sees the facets that face it (below). Fresnel uses w_h . w_i =
+   NaN, when either direction is on or below the macrosurface. A view above the macrosurface
+   but on or below the mesosurface is not culled: it sees the facets that face it (below). A
+   light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
+   is pfi_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
+   (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
+   taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
 
    Projected area of the facets facing the view (the pic_plane fix, issue 15 item 6). Eq. 17
@@ -1579,24 +1641,15 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    at -1, 2e-4 at -1.5, 2e-3 at -2, 3% at -2.5, 50% at -3 (double: <= 7e-11 down to -3). The
    grazing views of a flat macrosurface sit at nu > -0.5 (bench/pictures.c). Exact at any nu,
    for one exp and a branch more: P_o = max(A_o, 0) + sqrt(2 var_o) |nu| pf_lambda_beckmann(|nu|). */
-/* nu of direction w (pf_smith_nu) given its projected area (the numerator), for the lean
-   BRDF: the variance along w is clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] (normal
-   incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's tests, and
-   the square root is a reciprocal one. area <= 0 is left to the caller (it returns 0). */
-PF_DEF pf_real pfi_leadr_nu(pf_vec3 w, pf_real area, pf_real vx2, pf_real vy2, pf_real c4)
-{
-    /* 2 (w.x^2 var_x + w.y^2 var_y + 2 w.x w.y c), from 2 var_x, 2 var_y, 4 c (shared by wo, wi) */
-    pf_real var2 = w.x * (w.x * vx2 + w.y * c4) + w.y * (w.y * vy2);
-    return area * pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-}
-
 PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
                                   int masking_only)
 {
     pf_real area_o = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
     pf_real area_i = wi.z - s.mean_x * wi.x - s.mean_y * wi.y;
     pf_real vx2 = PF_R(2.0) * s.var_x, vy2 = PF_R(2.0) * s.var_y, c4 = PF_R(4.0) * s.cov_xy;
-    /* 1/sqrt(2 var_o) as in pfi_leadr_nu, kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
+    /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
+       (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
+       tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
     pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
                                                        PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     /* signed: < 0 when the view is below the mean plane; floored at -64, where P_o is 0 in
@@ -1608,25 +1661,28 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
        A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
        (1 + Lambda(-nu) = -Lambda(nu)); nu floored at 1e-20, where nu / G1(nu) is its limit
        1/(2 sqrt(pi)) to rounding */
-    pf_real front = (nu_a / pf_g1_beckmann(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    pf_real front = (pfi_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
     pf_real g, d, t, v;
     /* eq. 17's G / A_o = 1 / (P_o + A_o Lambda_i) (Smith: P_o = A_o (1 + Lambda_o)), with A_o
-       counted as 0 below the mean plane (see above); masking only: 1 / P_o */
-    if (masking_only != 0)
+       counted as 0 below the mean plane (see above) and Lambda_i capped by the macrosurface's
+       share of the light (pfi_beckmann_light_lambda); masking only: 1 / P_o */
+    if (masking_only != 0) {
         g = PF_R(1.0) / front;
-    else
-        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) *
-                                 (PF_R(1.0) / pf_g1_beckmann(pfi_leadr_nu(wi, area_i, vx2, vy2, c4)) - PF_R(1.0)));
+    } else {
+        pf_real rs_i = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
+                                                           PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pfi_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
+    }
     /* both directions above the macrosurface: the half vector's z > 0, as pfi_beckmann_d_up needs */
     /* the 1/4 of eq. 17 rides in D's exponent: ln(1/4) */
     d = pfi_beckmann_d_up(pf_vec3_add(wo, wi), s, PF_R(-1.38629436111989061883446424291635313));
     /* Schlick (pf_fresnel_schlick) with cos = w_h . w_i = sqrt((1 + w_o . w_i)/2), clamped once */
     t = PF_R(1.0) - PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi)));
     v = (f0 + (PF_R(1.0) - f0) * ((t * t) * (t * t) * t)) * d * g;
-    /* one select for the conditions (both directions above the macrosurface, the light above
-       the mean plane, some facet facing the view: P_o is 0 in pf_real once G1(|nu_o|) rounds
-       to 1, nu_o below -3.3 in float); the values computed for the other case are discarded */
-    return pf_min(pf_min(wo.z, wi.z), pf_min(area_i, front)) > PF_R(0.0) ? v : PF_R(0.0);
+    /* one select for the conditions (both directions above the macrosurface, some facet facing
+       the view: P_o is 0 in pf_real once G1(|nu_o|) rounds to 1, nu_o below -3.3 in float);
+       the values computed for the other case are discarded */
+    return pf_min(pf_min(wo.z, wi.z), front) > PF_R(0.0) ? v : PF_R(0.0);
 }
 
 /* LEADR specular with joint masking-shadowing (eq. 17). See pfi_leadr_specular. */
@@ -6418,7 +6474,7 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
    One Gaussian of slopes (LEADR) cannot describe a footprint whose slopes cluster on a few
    values (tiles, craters on flat ground, ridges): the bench's in-footprint reference puts the
    one-lobe error at 0.3-0.8 there. This module describes the footprint's micro-normals as
-   m <= 8 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
+   m <= 16 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
    spherical EM, stored per texel of a pyramid, and shaded with the multi-lobe BRDF of
    Wu et al. 2019 eq. 5 in the projected-area form of LEADR (Dupuy et al. 2013 eqs. 2-3, 17).
 
@@ -6499,10 +6555,10 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
      mu.x, mu.y and rebuilds mu.z = sqrt(1 - x^2 - y^2)). kappa is clamped to
      [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; a NaN kappa reads as PF_VMF_KAPPA_MIN. A mixture is
      shaded lobe by lobe (pf_vmf_sum_add): no arrays in structs, so the same source is GLSL;
-     the fit returns at most PF_VMF_MAX_LOBES = 8 lobes. Evaluators return finite values >= 0
-     for finite inputs; 0 when a direction is on or below the macrosurface or the light on or
-     below the mixture's mesosurface (a view below the mesosurface sees the facets facing it, as
-     in pf_leadr_specular); G in [0, 1].
+     the fit returns at most PF_VMF_MAX_LOBES = 16 lobes. Evaluators return finite values >= 0
+     for finite inputs; 0 when a direction is on or below the macrosurface (a view or a light
+     below the mixture's mesosurface sees or lights the facets facing it, as in
+     pf_leadr_specular); G in [0, 1].
 
    ACCURACY AND COST (tests/test_vmf.c, bench/bench_vmf.c, bench/microsurface.c; docs/vmf.md)
      C(kappa) within 2 eps of quadrature (kappa 1e-4 .. 1e5, float and double); A3 and the
@@ -6510,8 +6566,9 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
      3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
      Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
      corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
-     0.10-0.18 (LEADR: 0.12-0.82), at 1.0-2.0x pf_leadr_specular's cost for m = 4 and 2.0-2.7x
-     for m = 8, fetches included. Fit of a 512 x 512 pyramid at m = 4: 2.3-3.9 s CPU.
+     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
+     pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
+     512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -6529,7 +6586,7 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
 /* pf_moments.h: above in this file */
 #endif
 
-#define PF_VMF_MAX_LOBES 8
+#define PF_VMF_MAX_LOBES 16
 #define PF_VMF_KAPPA_MIN PF_R(1.0e-4)
 #define PF_VMF_KAPPA_MAX PF_R(1.0e5)
 /* EM stops when the mean log-likelihood per unit weight changes by less than this (relative,
@@ -6953,20 +7010,31 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
        Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
        so its relative error grows as P_o / |area_o| shrinks.
-   The light must be above the mesosurface (Lambda_i finite), as before. */
+   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
+   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
+   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
+   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
     pf_real area_o, area_i, den, f;
     if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
     area_o = pfi_vmf_sum_area(s, wo);
     area_i = pfi_vmf_sum_area(s, wi);
-    if (!(area_i > PF_R(0.0))) return PF_R(0.0);
     if (mixture_smith != 0) {
-        den = area_o + s.excess_o + pf_max(area_o, PF_R(0.0)) * pf_vmf_lambda(s.excess_i, area_i);
+        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
+           mixture's own facing area P_i = (area_i + excess_i) / amp */
+        pf_real wz = wi.z * s.amp;
+        den = area_o + s.excess_o +
+              pf_max(area_o, PF_R(0.0)) *
+                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
+                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pfi_beckmann_facing_area(wo, st) +
-                       pf_max(area_o / s.amp, PF_R(0.0)) * pf_beckmann_lambda(wi, st));
+                       pf_max(area_o / s.amp, PF_R(0.0)) *
+                           pfi_beckmann_light_lambda_stats(wi, st));
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
@@ -6976,8 +7044,8 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
 
 /* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
    of the mixture as one Gaussian (pf_vmf_sum_g2). 0 when either direction is on or below
-   the macrosurface, the light on or below the mesosurface, or the sum is empty; a view below
-   the mesosurface sees the facets facing it (pfi_vmf_sum_specular). Finite and >= 0 for
+   the macrosurface or the sum is empty; a view below the mesosurface sees the facets facing
+   it, a light below it lights them (pfi_vmf_sum_specular). Finite and >= 0 for
    finite inputs. */
 PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
 {
@@ -7092,7 +7160,7 @@ typedef struct pf_vmf_mixture {
    NaN, infinite or <= 0 are skipped; weights are divided by the largest usable one first (no
    sum can overflow). No usable normal: PF_ERR_ARG, and *out is set to one flat
    lobe (a = 1, mu = +z, kappa = PF_VMF_KAPPA_MAX), so it is always finite.
-   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, 8], iterations < 0;
+   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
    PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
@@ -7614,7 +7682,7 @@ PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
    vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff and f_lobes
    pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing outside them is written.
    Errors: those of pf_vmf_effective_brdf, and PF_ERR_ARG for a NULL buffer, lobes outside
-   [1, 8], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
+   [1, 16], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
    PF_ERR_SIZE when a buffer's size exceeds PF_MAX_REALS (every size is checked before any
    height is read). The fit cannot fail on finite heights (every normal has z = 2 texel > 0
    before normalization); if it did, PF_ERR_ARG. Cost: 2 nt (np - 1) n^2 marches
@@ -7815,12 +7883,12 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
    LAYOUT (what a shader fetches): levels one after another from level 0, texels row-major,
    4 * lobes pf_reals per texel: for each lobe (mu.x, mu.y, kappa, amp) - an RGBA texel per
    lobe (mu.z = sqrt(1 - x^2 - y^2)). A fit that returns fewer lobes pads with amp = 0,
-   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128 for m = 1, 2, 4, 8),
+   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128, 256 for m = 1, 2, 4, 8, 16),
    8 m in half floats (kappa <= 1e5 fits half's range; its 11-bit precision is 0.05% on kappa).
    A texel whose footprint has no usable normal gets the flat lobe (amp 1, mu = +z, kappa =
    PF_VMF_KAPPA_MAX) and the call still returns PF_OK.
    Errors: PF_ERR_ARG for NULL normals or pyr, w or h below 1 or not a power of two, lobes
-   outside [1, 8], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
+   outside [1, 16], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
    PF_MAX_REALS.
    normals: w * h * 3 pf_reals; weights: w * h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h)
    * 4 * lobes pf_reals. Nothing outside these is read or written. */
@@ -7897,7 +7965,7 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
 
 /* The mixture stored at one texel of the pyramid (4 * lobes pf_reals): what a shader's
    `lobes` RGBA fetches and pf_vmf_lobe_make calls give. Lobes with amp = 0 (padding) are
-   skipped. lobes is clamped to [1, 8]; texel NULL gives an empty mixture (count 0). */
+   skipped. lobes is clamped to [1, 16]; texel NULL gives an empty mixture (count 0). */
 PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lobes)
 {
     pf_vmf_mixture m = pfi_vmf_mixture_empty();

@@ -69,7 +69,12 @@
                is printed on stderr), fetched as m RGBA texels, each lobe's Beckmann lobe in
                slope space with BASE_SIGMA^2 added, Smith G of the mixture's slope mean and
                covariance (pf_vmf_sum_specular); vmf_m4_mix_smith, vmf_m8_mix_smith = the same
-               with the mixture's exact Smith Lambda (pf_vmf_sum_specular_mixture).
+               with the mixture's exact Smith Lambda (pf_vmf_sum_specular_mixture); vmf_m16 =
+               16 lobes (issue 15's gaussian target). vmf_m4_scaled, vmf_m8_scaled = vmf_m4,
+               vmf_m8 times the scaling function T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14,
+               sec. 6), S per kind and footprint level fitted to the IN-FOOTPRINT effective BRDF
+               (pf_vmf_scale_patch, pf_vmf_scale_factor), T per pyramid texel (see "scaling
+               function" below); vmf_m8_scaled_s = S alone (T = 1).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
@@ -121,12 +126,12 @@
    OUTPUT (directory --out, default bench/out): microsurface_errors.csv, microsurface_cost.csv,
    microsurface.md (report fragment), microsurface_*.svg (gnuplot, bench/microsurface.gp; the
    .dat files it reads are deleted afterwards).
-   Usage: microsurface [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K,K..]; BENCH_QUICK=1
-   in the environment also selects the quick mode (smaller map, fewer views, lights, positions).
-   --kinds gaussian,ridges runs only the named kinds of the corpus (exact names, comma-separated;
-   for measuring a method on a few kinds; the other kinds' tables read "-", the cost section runs
-   on the gaussian kind as always, so that kind's maps are built too when it was not named; use
-   --no-charts with it). */
+   Usage: microsurface [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K1,K2,..]
+   [--no-cost]; BENCH_QUICK=1 in the environment also selects the quick mode (smaller map, fewer
+   views, lights, positions). --kinds runs a subset of the corpus (names as in the CSV, e.g.
+   --kinds gaussian,tiles) and writes only microsurface_errors.csv (plus microsurface_cost.csv
+   when gaussian is among them and --no-cost is not given) and a summary of the specular task
+   at 4096 texels on stdout: a cheap way to measure a change on the kinds it concerns. */
 #define _POSIX_C_SOURCE 199309L
 #include <stdio.h>
 #include <stdlib.h>
@@ -149,7 +154,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define NMETH 13
+#define NMETH 17
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
@@ -170,21 +175,6 @@ static pfmap_info map_info;
 static pfmap_options map_opt;
 static pfmap_stats map_stats;
 static const char *map_path = NULL;
-static const char *only_kinds = NULL; /* --kinds: comma-separated kind names, NULL = all */
-static int kind_selected(int kind)
-{
-    const char *p = only_kinds, *name = pfm_kind_name(kind);
-    size_t n = strlen(name);
-    if (!p) return 1;
-    while (*p) {
-        const char *e = strchr(p, ',');
-        size_t len = e ? (size_t)(e - p) : strlen(p);
-        if (len == n && !strncmp(p, name, n)) return 1;
-        if (!e) break;
-        p = e + 1;
-    }
-    return 0;
-}
 static const char *kname(int kind) { return kind == KIND_MAP ? "map" : pfm_kind_name(kind); }
 /* methods that read every texel (not shader methods: no cost row, not candidates) */
 static int is_oracle(int t, int k) { return (t == 1 || t == 2) && (k == 5 || k == 6); }
@@ -195,17 +185,18 @@ static const char *task_title[NTASK] = { "Masking G1", "Specular (narrow Beckman
                                          "Diffuse (Lambertian base)",
                                          "Height-correlated colour, ramp map",
                                          "Height-correlated colour, banded map" };
-static const int task_nmeth[NTASK] = { 7, 13, 10, 4, 4 };
+static const int task_nmeth[NTASK] = { 7, 17, 10, 4, 4 };
 static const char *meth_name[NTASK][NMETH] = {
     { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", "horizon_masking_n16", "horizon_masking_n32",
-      "horizon_masking_lod_n32", NULL, NULL, NULL, NULL, NULL, NULL },
+      "horizon_masking_lod_n32" },
     { "leadr_joint", "leadr_masking", "lean", "toksvig", "naive_mip_normal", "oracle_histogram_smith",
-      "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith" },
+      "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith",
+      "vmf_m16", "vmf_m4_scaled", "vmf_m8_scaled", "vmf_m8_scaled_s" },
     { "leadr_gg_matched3", "leadr_gg_matched5", "leadr_gg_hermite3", "lambert_mesonormal", "lambert_macro",
       "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", "horizon_diffuse_n32",
-      "horizon_diffuse_lod_n32", NULL, NULL, NULL },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height", NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL },
+      "horizon_diffuse_lod_n32" },
+    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height" },
+    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height" },
 };
 
 /* ---------------------------------------------------------------- settings */
@@ -318,11 +309,49 @@ static pf_real cmap_filter(const cmap *m, pf_real mean, pf_real dev)
 /* ---------------------------------------------------------------- the library's view of a map */
 /* the multi-lobe specular methods (pf_vmf.h): m lobes per texel, fitted by EM from the finest
    normals of each texel's footprint, VMF_ITER iterations at most */
-#define NVMF 4
+#define NVMF 5
 #define VMF_ITER 24
-#define K_VMF 7 /* first vmf_m* method of the specular task; then vmf_m4_mix_smith, vmf_m8_mix_smith */
-#define NVMF_METH (NVMF + 2)
-static const int vmf_lobes[NVMF] = { 1, 2, 4, 8 };
+#define K_VMF 7 /* first vmf_m* method of the specular task; then vmf_m4_mix_smith, vmf_m8_mix_smith, vmf_m16,
+                   vmf_m4_scaled, vmf_m8_scaled, vmf_m8_scaled_s */
+#define NVMF_METH 10
+static const int vmf_lobes[NVMF] = { 1, 2, 4, 8, 16 };
+/* per vmf method (k - K_VMF): its lobe pyramid (index into vmf_lobes), its masking (0: Smith G
+   of the mixture's moments, 1: the mixture's exact Smith) and its scaling function (-1: none;
+   else the index into scale_pyr, then whether T is applied (1) or S alone (0)) */
+static const int vmf_meth_pyr[NVMF_METH] = { 0, 1, 2, 3, 2, 3, 4, 2, 3, 3 };
+static const int vmf_meth_mix[NVMF_METH] = { 0, 0, 0, 0, 1, 1, 0, 0, 0, 0 };
+static const int vmf_meth_scale[NVMF_METH] = { -1, -1, -1, -1, -1, -1, -1, 0, 1, 1 };
+static const int vmf_meth_use_t[NVMF_METH] = { 0, 0, 0, 0, 0, 0, 0, 1, 1, 0 };
+/* The scaling function of Wu et al. 2019 (eqs. 12-14, sec. 6; pf_vmf.h "SCALING FUNCTION",
+   docs/vmf.md) as methods vmf_m4_scaled, vmf_m8_scaled (T(x) S(wi, wo) times vmf_m4, vmf_m8)
+   and vmf_m8_scaled_s (S alone, T = 1), built per kind and per footprint level n as the paper
+   builds them per map and level:
+     S (one SC_NT x SC_NT x SC_NP node table per level and m, theta_max SC_THETA_MAX): the
+       rank-1 fit of pf_vmf_scale_factor (SC_ALS rounds) over SC_TRAIN patches of the level,
+       evenly spaced over the map (all of them when there are fewer), from their samples:
+       f_eff by pf_vmf_scale_patch (the in-footprint effective BRDF, eqs. 6-8, at every
+       sample pair of the node directions) and f_lobes = the method's own shading of the
+       pyramid texel (the fetched lobes, pf_vmf_sum_specular) at the same pairs;
+     T (one value per pyramid texel): for a patch, given S, the least-squares factor of its
+       own samples, T = sum f_eff S f_lobes / sum (S f_lobes)^2 (pf_vmf_scale_factor's T
+       step); computed the first time a footprint is shaded and cached (every footprint of
+       the error run and the cost section's footprints, before the cost is timed).
+   The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
+   trilinear) and multiplies (pf_vmf_scale_apply). */
+#define NSCALE 2
+#define SC_NT 6
+#define SC_NP 5
+#define SC_CELLS (SC_NT * SC_NT * SC_NP)
+#define SC_SAMPLES ((2 * SC_NT * (SC_NP - 1)) * (2 * SC_NT * (SC_NP - 1)))
+#define SC_THETA_MAX (75.0 * 3.14159265358979323846 / 180.0)
+#define SC_TRAIN 16
+#define SC_ALS 8
+static const int scale_pyr[NSCALE] = { 2, 3 }; /* m = 4, 8 */
+/* the largest level the scaling function is built and applied at: every level in a full run;
+   level 2 (16 texels) in quick mode, where above it the scaled methods return the unscaled
+   lobes (T and S of a 64 x 64 footprint march 4096 texels in 2304 direction pairs each: most
+   of the quick run's time otherwise; quick numbers are never published) */
+static int sc_max_level = NSIZE - 1;
 /* the horizon-map masking methods (pf_horizon.h): HDF moment pyramids (E[T], E[T^2], E[S T]
    per azimuth) with hor_n[i] stored azimuths, march bounded to HOR_STEPS texels (docs/horizon.md:
    64 and 128 give the same errors to +-0.001 at n = 16) */
@@ -344,11 +373,112 @@ typedef struct lib_maps {
     pf_real *vmf[NVMF]; /* vMF lobe pyramids (pf_vmf.h), vmf_lobes[i] lobes per texel */
     double vmf_fit_seconds[NVMF];
     pf_real *hor[NHOR]; /* horizon HDF-moment pyramids (pf_horizon.h), hor_n[i] azimuths */
+    pf_real *heights;   /* the centred heights (pf_vmf_scale_patch reads them) */
+    pf_real sc_S[NSCALE][NSIZE][SC_CELLS]; /* scaling function: S per lobe count and level */
+    pf_real *sc_T[NSCALE]; /* T per pyramid texel (NaN: not computed yet) */
+    double sc_seconds;     /* S fits and T computations so far */
+    long sc_patches;       /* patches whose samples were computed */
     double hor_seconds[NHOR];
     double *attr_d[2]; /* per-texel attributes in double (the reference's) */
     cmap cm[2];
     double mean_h, sd_h;
 } lib_maps;
+
+/* ---- the scaling function (see above) */
+static pf_vec3 sc_dir(int it, int k)
+{
+    double th = it * SC_THETA_MAX / (SC_NT - 1), ph = k * 3.14159265358979323846 / (SC_NP - 1);
+    return pf_vec3_make((pf_real)(sin(th) * cos(ph)), (pf_real)(sin(th) * sin(ph)), (pf_real)cos(th));
+}
+/* sample s's directions, in pf_vmf_scale_patch's order ((k_to A + a_o) nt + k_ti) A + a_i */
+static void sc_sample_dirs(long s, pf_vec3 *wo, pf_vec3 *wi)
+{
+    const long A = 2 * (SC_NP - 1);
+    long ai = s % A, ti = (s / A) % SC_NT, ao = (s / (A * SC_NT)) % A, to = s / (A * SC_NT * A);
+    *wo = sc_dir((int)to, (int)ao);
+    *wi = sc_dir((int)ti, (int)ai);
+}
+static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix);
+/* one patch's samples: f_eff (pf_vmf_scale_patch), f_lobes[j] for the scaled lobe counts */
+static void sc_patch_samples(lib_maps *L, int x0, int y0, int n, pf_real *f_eff, pf_real *f_lobes[NSCALE])
+{
+    static pf_real nrm[3 * 64 * 64], junk[SC_SAMPLES];
+    static unsigned char vis[2 * SC_NT * (SC_NP - 1) * 64 * 64];
+    long s;
+    int j;
+    if (pf_vmf_scale_patch(L->heights, L->w, L->h, PF_R(1.0), x0, y0, n, 1, 0, PF_R(BASE_SIGMA), PF_R(F0),
+                           PF_VMF_SCALE_G_GAUSSIAN, SC_NT, SC_NP, (pf_real)SC_THETA_MAX, nrm, vis, f_eff, junk) != PF_OK) {
+        fprintf(stderr, "microsurface: pf_vmf_scale_patch failed\n");
+        exit(1);
+    }
+    for (s = 0; s < SC_SAMPLES; ++s) {
+        pf_vec3 wo, wi;
+        sc_sample_dirs(s, &wo, &wi);
+        for (j = 0; j < NSCALE; ++j) f_lobes[j][s] = vmf_texel_spec(L, scale_pyr[j], x0, y0, n, wo, wi, 0);
+    }
+    L->sc_patches++;
+}
+/* S per lobe count and level from SC_TRAIN evenly spaced patches; the T caches emptied */
+static void scale_build(lib_maps *L)
+{
+    static pf_real f_eff[SC_TRAIN * SC_SAMPLES], f_l[NSCALE][SC_TRAIN * SC_SAMPLES];
+    static pf_real scratch[2 * SC_TRAIN * SC_CELLS], t[SC_TRAIN];
+    long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
+    double t0 = now_ns();
+    int si, j, p;
+    for (j = 0; j < NSCALE; ++j) {
+        L->sc_T[j] = (pf_real *)xmalloc((size_t)tc * sizeof(pf_real));
+        for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
+    }
+    L->sc_patches = 0;
+    for (si = 0; si <= sc_max_level; ++si) {
+        int n = 1 << si, g = L->w / n, np = g * g < SC_TRAIN ? g * g : SC_TRAIN;
+        for (p = 0; p < np; ++p) {
+            int c = (int)(((long long)p * g * g) / np), x0 = (c % g) * n, y0 = (c / g) * n;
+            pf_real *fl[NSCALE];
+            for (j = 0; j < NSCALE; ++j) fl[j] = f_l[j] + (size_t)p * SC_SAMPLES;
+            sc_patch_samples(L, x0, y0, n, f_eff + (size_t)p * SC_SAMPLES, fl);
+        }
+        for (j = 0; j < NSCALE; ++j)
+            if (pf_vmf_scale_factor(f_eff, f_l[j], np, SC_NT, SC_NP, SC_ALS, t, L->sc_S[j][si], scratch, NULL) != PF_OK) {
+                fprintf(stderr, "microsurface: pf_vmf_scale_factor failed\n");
+                exit(1);
+            }
+    }
+    L->sc_seconds = (now_ns() - t0) * 1e-9;
+    fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
+            SC_NT, SC_NT, SC_NP, SC_TRAIN, L->sc_seconds);
+}
+/* T of the footprint's pyramid texel (level log2 n) for scaled lobe count j: cached */
+static pf_real scale_T(const lib_maps *Lc, int j, int x0, int y0, int n)
+{
+    lib_maps *L = (lib_maps *)Lc; /* the cache only */
+    long long id = pf_vmf_pyramid_level_offset(L->w, L->h, ilog2(n)) + (long long)(y0 / n) * (L->w / n) + x0 / n;
+    if (L->sc_T[j][id] != L->sc_T[j][id]) {
+        static pf_real f_eff[SC_SAMPLES], f_l[NSCALE][SC_SAMPLES];
+        pf_real *fl[NSCALE];
+        double t0 = now_ns();
+        int k, si = ilog2(n);
+        for (k = 0; k < NSCALE; ++k) fl[k] = f_l[k];
+        sc_patch_samples(L, x0, y0, n, f_eff, fl);
+        for (k = 0; k < NSCALE; ++k) { /* both lobe counts from the same f_eff */
+            double num = 0.0, den = 0.0;
+            long s;
+            for (s = 0; s < SC_SAMPLES; ++s) {
+                pf_vec3 wo, wi;
+                double sl;
+                sc_sample_dirs(s, &wo, &wi);
+                sl = (double)pf_vmf_scale_lookup(L->sc_S[k][si], SC_NT, SC_NP, (pf_real)SC_THETA_MAX, wo, wi) *
+                     (double)f_l[k][s];
+                num += (double)f_eff[s] * sl;
+                den += sl * sl;
+            }
+            L->sc_T[k][id] = den > 0.0 ? (pf_real)(num / den) : PF_R(1.0);
+        }
+        L->sc_seconds += (now_ns() - t0) * 1e-9;
+    }
+    return L->sc_T[j][id];
+}
 
 static void lib_maps_build(lib_maps *L, const pfm_surface *s)
 {
@@ -384,8 +514,9 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
         }
         L->vmf_fit_seconds[k] = (now_ns() - t0) * 1e-9;
     }
-    fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8: %.2f %.2f %.2f %.2f s\n", w, h,
-            L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3]);
+    fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8, 16: %.2f %.2f %.2f %.2f %.2f s\n", w, h,
+            L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3],
+            L->vmf_fit_seconds[4]);
     for (k = 0; k < NHOR; ++k) {
         double t0 = now_ns();
         int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
@@ -414,7 +545,8 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
         L->attr[k] = (pf_real *)xmalloc((size_t)tc * 2 * sizeof(pf_real));
         pf_scalar_pyramid_from_values(ar, w, h, L->attr[k]);
     }
-    free(hr);
+    L->heights = hr;
+    scale_build(L);
     free(nr);
     free(ar);
 }
@@ -431,6 +563,8 @@ static void lib_maps_free(lib_maps *L)
     free(L->attr_d[1]);
     for (k = 0; k < NVMF; ++k) free(L->vmf[k]);
     for (k = 0; k < NHOR; ++k) free(L->hor[k]);
+    for (k = 0; k < NSCALE; ++k) free(L->sc_T[k]);
+    free(L->heights);
 }
 
 /* ---------------------------------------------------------------- the compared methods */
@@ -499,6 +633,23 @@ static pf_real horizon_area(const lib_maps *L, int i, int x0, int y0, int n, pf_
    method needs (a bilinear sample at its centre reads exactly that texel), then evaluate.
    The error runs and the cost section both call this, so the timed code is the measured one.
    Colour tasks: T_RAMP uses the ramp map, T_BANDS the banded one. */
+/* the lobes of texel (x0/n, y0/n) of level log2(n) of vMF pyramid p: m RGBA fetches, shaded
+   with Smith G of the mixture's moments (mix = 0) or the mixture's exact Smith (mix = 1) */
+static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix)
+{
+    const int m = vmf_lobes[p], W = L->w, H = L->h;
+    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(n)) + (long long)(y0 / n) * (W / n) + x0 / n;
+    const pf_real *tx = L->vmf[p] + id * 4 * m;
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int j;
+    for (j = 0; j < m; ++j) { /* padding lobes (amp 0) add nothing */
+        pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
+        sum = pf_vmf_sum_add(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+        if (mix) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+    }
+    return mix ? pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0)) : pf_vmf_sum_specular(sum, wo, wi, PF_R(F0));
+}
+
 static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi)
 {
     const int W = L->w, H = L->h, c = t == T_BANDS;
@@ -521,19 +672,14 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         return k == 1 ? pf_g1_beckmann_fast(nu) : pf_g1_beckmann_walter(nu);
     }
     if (t == T_SPEC) {
-        if (k >= K_VMF) { /* the lobes of texel (x0/n, y0/n) of level log2(n): m RGBA fetches */
-            const int p = k - K_VMF < NVMF ? k - K_VMF : k - K_VMF - NVMF + 2, mix = k - K_VMF >= NVMF;
-            const int m = vmf_lobes[p];
-            long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(n)) + (long long)(y0 / n) * (W / n) + x0 / n;
-            const pf_real *tx = L->vmf[p] + id * 4 * m;
-            pf_vmf_sum sum = pf_vmf_sum_zero();
-            int j;
-            for (j = 0; j < m; ++j) { /* padding lobes (amp 0) add nothing */
-                pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
-                sum = pf_vmf_sum_add(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
-                if (mix) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
-            }
-            return mix ? pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0)) : pf_vmf_sum_specular(sum, wo, wi, PF_R(F0));
+        if (k >= K_VMF) {
+            const int q = k - K_VMF, sc = vmf_meth_scale[q];
+            pf_real f = vmf_texel_spec(L, vmf_meth_pyr[q], x0, y0, n, wo, wi, vmf_meth_mix[q]);
+            if (sc < 0 || ilog2(n) > sc_max_level) return f; /* quick mode: see sc_max_level */
+            /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
+            return pf_vmf_scale_apply(vmf_meth_use_t[q] ? scale_T(L, sc, x0, y0, n) : PF_R(1.0),
+                                      pf_vmf_scale_lookup(L->sc_S[sc][ilog2(n)], SC_NT, SC_NP, (pf_real)SC_THETA_MAX, wo, wi),
+                                      f);
         }
         if (k == 3 || k == 4) /* Toksvig, naive: the average-normal pyramid */
             return toksvig_spec(pf_normal_avg_sample(L->normal, W, H, lod, u, v, PF_BORDER_WRAP), wo, wi, k == 3);
@@ -846,6 +992,8 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
         }
     }
     cells_reduce(kind);
+    fprintf(stderr, "microsurface: %s: scaling function S and T: %.1f s, %ld patches' samples\n", kname(kind), L.sc_seconds,
+            L.sc_patches);
     for (r = 0; r < NREF; ++r) ci->mean_masking_60[r] = ci->mask_n ? ci->mask_sum[r] / (double)ci->mask_n : 0.0;
     ci->seconds = (now_ns() - t0) * 1e-9;
     for (li = 0; li < S->nlights; ++li) {
@@ -946,6 +1094,11 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
             fx[k] = (c % g) * n;
             fy[k] = (c / g) * n;
             fl[k] = rng_int(&r, COST_LIGHTS);
+        }
+        /* the scaling function's T of these footprints, computed (and cached) before timing */
+        for (k = 0; k < COST_FP; ++k) {
+            int j;
+            for (j = 0; j < NSCALE && si <= sc_max_level; ++j) (void)scale_T(L, j, fx[k], fy[k], n);
         }
         for (mi = 0; mi < ncost; ++mi) {
             cost_row *cr = &cost[mi];
@@ -1177,9 +1330,9 @@ static int chart_kind = PFM_GAUSSIAN_FINE;
 #define CHART_KIND chart_kind
 static void make_charts(const settings *S)
 {
-    static char colbuf[16][96];
-    double x[32], y[32 * 16];
-    const char *cols[16];
+    static char colbuf[NMETH + 2][96];
+    double x[32], y[32 * (NMETH + 2)];
+    const char *cols[NMETH + 2];
     char name[256], title[512], dat[300];
     int t, k, s, v, ko, nc;
     for (t = 0; t < NTASK; ++t) {
@@ -1282,7 +1435,7 @@ static void make_charts(const settings *S)
         if (t == T_RAMP) continue; /* the colour methods are timed with the banded map */
         for (e = 0; e < NEC; ++e) {
             int n = 0, cs = e == 0 ? 2 : NSIZE - 1;
-            for (k = 0; k < task_nmeth[t] && n < 16; ++k) {
+            for (k = 0; k < task_nmeth[t] && n < NMETH + 2; ++k) {
                 int c = cost_find(meth_name[t][k]);
                 if (is_oracle(t, k) || c < 0) continue;
                 cols[n] = meth_name[t][k];
@@ -1421,7 +1574,8 @@ static void write_md(const settings *S, double total_s)
                "in that run. Raw cells: `microsurface_errors.csv` (with `sum_sq_err` and `sum_sq_ref`, so "
                "any set of cells pools as sqrt(sum sum_sq_err / sum sum_sq_ref)), timings: "
                "`microsurface_cost.csv`.\n\n",
-            S->quick ? "QUICK (smoke run: do not publish)" : "full", total_s);
+            S->quick ? "QUICK (smoke run: do not publish; the scaled vMF methods are scaled up to 16-texel "
+                       "footprints only and equal their unscaled methods above)" : "full", total_s);
     fprintf(f, "**Reference.** A brute-force shading of the pixel footprint texel by texel on an actual "
                "height field (`tests/pf_microsurface.h`): micro-normals from central differences of the "
                "heights, masking toward the view and shadowing toward the light by marching the "
@@ -1507,7 +1661,11 @@ static void write_md(const settings *S, double total_s)
                "(Wu et al. 2019 eqs. 4-5; docs/vmf.md): `vmf_m1` .. `vmf_m8` fetch m vMF lobes per texel "
                "of a lobe pyramid fitted by EM, each lobe a Beckmann lobe in slope space with the base "
                "roughness added, Smith G of the mixture's slope mean and covariance; "
-               "`vmf_m4_mix_smith`, `vmf_m8_mix_smith` use the mixture's exact Smith Lambda instead. "
+               "`vmf_m4_mix_smith`, `vmf_m8_mix_smith` use the mixture's exact Smith Lambda instead; `vmf_m16` "
+               "has 16 lobes; `vmf_m4_scaled`, `vmf_m8_scaled` multiply `vmf_m4`, `vmf_m8` by the scaling function "
+               "T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14), S (6 x 6 x 5 nodes) per kind and footprint level "
+               "fitted to the in-footprint effective BRDF of 16 patches of the level, T per pyramid texel "
+               "(`vmf_m8_scaled_s`: S alone). "
                "Diffuse: `pf_gg_diffuse_directional` "
                "(LEADR eq. 21) with the matched grid N = 3, 5 and Gauss-Hermite N = 3; Lambert on the "
                "mesonormal; Lambert on the macro normal; `leadr_gg_matched3_horizon_n32`, the matched grid times "
@@ -1805,13 +1963,43 @@ static void write_md_map(const settings *S, double total_s)
     fclose(f);
 }
 
+/* --kinds: the specular task's pooled errors (views 0-75) at 4096 texels, both references, per
+   kind and method, and the cost at 4096 texels when the cost section ran */
+static void print_subset_summary(int with_cost)
+{
+    int ko, k, r;
+    for (r = R_BOX; r >= R_FULL; --r) {
+        printf("specular, %s reference, 4096 texels, views 0-75 pooled\n%-26s", ref_name[r], "method");
+        for (ko = 0; ko < n_run_kinds; ++ko) printf(" %14s", kname(run_kinds[ko]));
+        printf("\n");
+        for (k = 0; k < task_nmeth[T_SPEC]; ++k) {
+            printf("%-26s", meth_name[T_SPEC][k]);
+            for (ko = 0; ko < n_run_kinds; ++ko)
+                printf(" %14.3f", pooled(run_kinds[ko], r, T_SPEC, k, NSIZE - 1, NSIZE - 1, 0, POOL_VIEW_HI));
+            printf("\n");
+        }
+    }
+    if (with_cost) {
+        printf("cost, gaussian, view 60, ns per footprint (x leadr_joint) at 1 / 16 / 256 / 4096 texels\n");
+        for (k = 0; k < ncost; ++k) {
+            int s;
+            if (cost[k].task != T_SPEC) continue;
+            printf("%-26s", cost[k].name);
+            for (s = 0; s < NSIZE; s += 2) printf(" %8.1f (%.2fx)", cost[k].med[s], cost[k].med[s] / cost[c_leadr].med[s]);
+            printf("\n");
+        }
+    }
+}
+
 int main(int argc, char **argv)
 {
     settings S;
-    int i, kind, check_only = 0;
+    int i, kind, check_only = 0, no_cost = 0;
+    const char *kinds_arg = NULL;
     const char *q = getenv("BENCH_QUICK");
     pfm_surface gauss_surf;
     lib_maps gauss_maps;
+    int have_gauss = 0;
     double t0 = now_ns();
     char err[1024];
     map_opt = pfmap_options_default();
@@ -1827,7 +2015,8 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) S.out = argv[++i];
         else if (!strcmp(argv[i], "--gp") && i + 1 < argc) S.gp = argv[++i];
         else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
-        else if (!strcmp(argv[i], "--kinds") && i + 1 < argc) only_kinds = argv[++i];
+        else if (!strcmp(argv[i], "--kinds") && i + 1 < argc) kinds_arg = argv[++i];
+        else if (!strcmp(argv[i], "--no-cost")) no_cost = 1;
         else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
             /* the map's options; each value checked here, before anything is written */
             const char *o = argv[i] + 6, *v = argv[++i];
@@ -1836,7 +2025,7 @@ int main(int argc, char **argv)
                 return 2;
             }
         } else {
-            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K,K..] [--check] [--map PATH [--map-kind "
+            fprintf(stderr, "usage: %s [--quick] [--out DIR] [--gp FILE] [--no-charts] [--kinds K1,K2,..] [--no-cost] [--check] [--map PATH [--map-kind "
                             "height|normal-gl|normal-dx] [--map-scale S | --map-rms-slope R] [--map-border "
                             "periodic|clamped] [--map-raw-size WxH]]\n", argv[0]);
             return 2;
@@ -1879,6 +2068,7 @@ int main(int argc, char **argv)
         S.naz = 1;
         S.nlights = 3;
         S.cost_reps = 7;
+        sc_max_level = 2;
     } else {
         S.map = 512;
         S.maxpos = 64;
@@ -1910,30 +2100,57 @@ int main(int argc, char **argv)
                     map_info.residual > PFMAP_RESIDUAL_WARN ? " (WARNING: far from a height field; see the report)" : "");
         run_kind(KIND_MAP, &S, &gauss_surf, &gauss_maps);
         fprintf(stderr, "microsurface: map done (%.1f s)\n", info[KIND_MAP].seconds);
-    } else {
-        n_run_kinds = 0;
-        for (i = 0; i < NKIND; ++i)
-            if (kind_selected(kind_order[i])) run_kinds[n_run_kinds++] = kind_order[i];
+    } else if (kinds_arg) {
+        /* a subset of the corpus (--kinds): the errors CSV and a summary on stdout only; the
+           cost section when the gaussian kind is in the subset and --no-cost is not given */
+        for (i = 0; i < NKIND; ++i) {
+            const char *name = pfm_kind_name(kind_order[i]), *p = kinds_arg;
+            size_t len = strlen(name);
+            while (p && *p) {
+                if (!strncmp(p, name, len) && (p[len] == ',' || p[len] == '\0')) {
+                    run_kinds[n_run_kinds++] = kind_order[i];
+                    break;
+                }
+                p = strchr(p, ',');
+                if (p) ++p;
+            }
+        }
         if (n_run_kinds == 0) {
-            fprintf(stderr, "microsurface: --kinds %s names no kind of the corpus\n", only_kinds);
+            fprintf(stderr, "microsurface: --kinds %s: no kind of the corpus named\n", kinds_arg);
             return 2;
         }
-        if (!kind_selected(PFM_GAUSSIAN)) { /* the cost section's map, without its error run */
-            if (pfm_surface_make(&gauss_surf, S.map, S.map, 1.0, pfm_params_default(PFM_GAUSSIAN)) != 0) {
-                fprintf(stderr, "microsurface: pfm_surface_make failed for gaussian\n");
-                return 1;
-            }
-            lib_maps_build(&gauss_maps, &gauss_surf);
+        for (i = 0; i < n_run_kinds; ++i) {
+            kind = run_kinds[i];
+            run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
+            fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
+            if (kind == PFM_GAUSSIAN) have_gauss = 1;
         }
+    } else {
+        for (i = 0; i < NKIND; ++i) run_kinds[i] = kind_order[i];
+        n_run_kinds = NKIND;
         for (kind = 0; kind < NKIND; ++kind) {
-            if (!kind_selected(kind)) continue;
             run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
             fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
         }
+        have_gauss = 1;
     }
-    run_cost(&S, &gauss_surf, &gauss_maps);
-    fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (now_ns() - t0) * 1e-9);
+    if (map_path) have_gauss = 1;
+    if (have_gauss && !no_cost) {
+        run_cost(&S, &gauss_surf, &gauss_maps);
+        fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (now_ns() - t0) * 1e-9);
+    }
     write_errors_csv(&S);
+    if (kinds_arg && !map_path) {
+        print_subset_summary(have_gauss && !no_cost);
+        if (have_gauss && !no_cost) write_cost_csv(&S);
+        if (have_gauss) {
+            lib_maps_free(&gauss_maps);
+            pfm_surface_free(&gauss_surf);
+        }
+        printf("microsurface: wrote %s/microsurface_errors.csv%s (%.1f s)\n", S.out,
+               have_gauss && !no_cost ? ", microsurface_cost.csv" : "", (now_ns() - t0) * 1e-9);
+        return 0;
+    }
     write_cost_csv(&S);
     make_charts(&S);
     if (map_path) write_md_map(&S, (now_ns() - t0) * 1e-9);

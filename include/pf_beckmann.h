@@ -373,6 +373,44 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
     return front + sd * t;
 }
 
+/* Lambda of the LIGHT in the specular BRDFs (pfi_leadr_specular; pf_vmf.h), from nu_i =
+   A_i / sqrt(2 var_i) (A_i the mean plane's projected area toward wi, eq. 1), rs_i =
+   1 / sqrt(2 var_i) and wi.z:
+       Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
+       Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
+   P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
+   A_i counted as 0 (as A_o is for the view; pfi_beckmann_facing_area).
+   Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
+   plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
+   flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
+   macrosurface still reaches the facets that face it, and the brute force lights them
+   (bench/pictures.c: 12-48 lit pixels returned 0). Over the macrosurface, light falls on wi.z
+   of projected area per unit area and is shared by the facets facing it, so their lit
+   fraction is at least wi.z / P_i (Smith's G1 of the macrosurface's own plane). ABOVE the
+   mean plane Smith's Lambda_i is kept exactly: it is exact for a footprint whose mean plane is
+   real geometry (a single tilted facet, tests/test_microsurface.c's identity; LEADR's displaced
+   mesosurface), and a first version that capped it there too (min(Lambda_i, max(P_i, wi.z) /
+   wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
+   bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
+   just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
+   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pfi_smith_nu_over_g1), d = nu_i
+   above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
+PF_DEF pf_real pfi_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
+{
+    pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */
+    pf_real d = nu > PF_R(0.0) ? nu : below;
+    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
+}
+
+/* The same from the direction and the statistics (pf_vmf.h's one-Gaussian G): the variance
+   along wi clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] as in pfi_leadr_specular. */
+PF_DEF pf_real pfi_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
+{
+    pf_real var2 = PF_R(2.0) * (wi.x * wi.x * s.var_x + wi.y * wi.y * s.var_y + PF_R(2.0) * wi.x * wi.y * s.cov_xy);
+    pf_real rs = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    return pfi_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
+}
+
 /* ---------------------------------------------------------------- specular BRDF
    Schlick's Fresnel approximation F = f0 + (1 - f0) (1 - cos)^5, cos = w_h . w_i clamped to
    [0, 1]. f0 = 1 gives exactly 1 (Fresnel off). */
@@ -394,10 +432,12 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    (4 cos theta_o)); multiply by the light's radiance (directional) or intensity / distance^2
    (point), not by any further cosine.
    w_o, w_i: unit vectors in the tangent frame of the macrosurface (w_g = +z). Returns 0, never
-   NaN, when either direction is on or below the macrosurface, or the light on or below the
-   mesosurface (Lambda_i = inf: the mean plane shadows everything, Dupuy et al. 2013 after
-   eq. 15). A view above the macrosurface but on or below the mesosurface is not culled: it
-   sees the facets that face it (below). Fresnel uses w_h . w_i =
+   NaN, when either direction is on or below the macrosurface. A view above the macrosurface
+   but on or below the mesosurface is not culled: it sees the facets that face it (below). A
+   light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
+   is pfi_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
+   (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
+   taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
 
    Projected area of the facets facing the view (the pic_plane fix, issue 15 item 6). Eq. 17
@@ -419,24 +459,15 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    at -1, 2e-4 at -1.5, 2e-3 at -2, 3% at -2.5, 50% at -3 (double: <= 7e-11 down to -3). The
    grazing views of a flat macrosurface sit at nu > -0.5 (bench/pictures.c). Exact at any nu,
    for one exp and a branch more: P_o = max(A_o, 0) + sqrt(2 var_o) |nu| pf_lambda_beckmann(|nu|). */
-/* nu of direction w (pf_smith_nu) given its projected area (the numerator), for the lean
-   BRDF: the variance along w is clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] (normal
-   incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's tests, and
-   the square root is a reciprocal one. area <= 0 is left to the caller (it returns 0). */
-PF_DEF pf_real pfi_leadr_nu(pf_vec3 w, pf_real area, pf_real vx2, pf_real vy2, pf_real c4)
-{
-    /* 2 (w.x^2 var_x + w.y^2 var_y + 2 w.x w.y c), from 2 var_x, 2 var_y, 4 c (shared by wo, wi) */
-    pf_real var2 = w.x * (w.x * vx2 + w.y * c4) + w.y * (w.y * vy2);
-    return area * pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-}
-
 PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
                                   int masking_only)
 {
     pf_real area_o = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
     pf_real area_i = wi.z - s.mean_x * wi.x - s.mean_y * wi.y;
     pf_real vx2 = PF_R(2.0) * s.var_x, vy2 = PF_R(2.0) * s.var_y, c4 = PF_R(4.0) * s.cov_xy;
-    /* 1/sqrt(2 var_o) as in pfi_leadr_nu, kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
+    /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
+       (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
+       tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
     pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
                                                        PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     /* signed: < 0 when the view is below the mean plane; floored at -64, where P_o is 0 in
@@ -448,25 +479,28 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
        A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
        (1 + Lambda(-nu) = -Lambda(nu)); nu floored at 1e-20, where nu / G1(nu) is its limit
        1/(2 sqrt(pi)) to rounding */
-    pf_real front = (nu_a / pf_g1_beckmann(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    pf_real front = (pfi_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
     pf_real g, d, t, v;
     /* eq. 17's G / A_o = 1 / (P_o + A_o Lambda_i) (Smith: P_o = A_o (1 + Lambda_o)), with A_o
-       counted as 0 below the mean plane (see above); masking only: 1 / P_o */
-    if (masking_only != 0)
+       counted as 0 below the mean plane (see above) and Lambda_i capped by the macrosurface's
+       share of the light (pfi_beckmann_light_lambda); masking only: 1 / P_o */
+    if (masking_only != 0) {
         g = PF_R(1.0) / front;
-    else
-        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) *
-                                 (PF_R(1.0) / pf_g1_beckmann(pfi_leadr_nu(wi, area_i, vx2, vy2, c4)) - PF_R(1.0)));
+    } else {
+        pf_real rs_i = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
+                                                           PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pfi_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
+    }
     /* both directions above the macrosurface: the half vector's z > 0, as pfi_beckmann_d_up needs */
     /* the 1/4 of eq. 17 rides in D's exponent: ln(1/4) */
     d = pfi_beckmann_d_up(pf_vec3_add(wo, wi), s, PF_R(-1.38629436111989061883446424291635313));
     /* Schlick (pf_fresnel_schlick) with cos = w_h . w_i = sqrt((1 + w_o . w_i)/2), clamped once */
     t = PF_R(1.0) - PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi)));
     v = (f0 + (PF_R(1.0) - f0) * ((t * t) * (t * t) * t)) * d * g;
-    /* one select for the conditions (both directions above the macrosurface, the light above
-       the mean plane, some facet facing the view: P_o is 0 in pf_real once G1(|nu_o|) rounds
-       to 1, nu_o below -3.3 in float); the values computed for the other case are discarded */
-    return pf_min(pf_min(wo.z, wi.z), pf_min(area_i, front)) > PF_R(0.0) ? v : PF_R(0.0);
+    /* one select for the conditions (both directions above the macrosurface, some facet facing
+       the view: P_o is 0 in pf_real once G1(|nu_o|) rounds to 1, nu_o below -3.3 in float);
+       the values computed for the other case are discarded */
+    return pf_min(pf_min(wo.z, wi.z), front) > PF_R(0.0) ? v : PF_R(0.0);
 }
 
 /* LEADR specular with joint masking-shadowing (eq. 17). See pfi_leadr_specular. */

@@ -278,6 +278,28 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
 #endif
 }
 
+/* nu / G1(nu) = nu (1 + Lambda(nu)) for nu > 0 (internal: the facing areas of pf_beckmann.h,
+   P = sqrt(2 var) nu / G1(nu) toward a direction above the mean plane). The same fit as
+   pf_g1_beckmann without forming G1 first: float Q5(n) / P4(n) (n = nu clamped to [0, 3.1];
+   beyond, G1 = 1 and the max returns nu), double nu + exp(-nu^2) K(nu) / (2 sqrt(pi)) below
+   2, nu (1 + Lambda) above. Limit 1/(2 sqrt(pi)) at nu -> 0; callers pass nu > 0 (nu <= 0
+   and NaN give that limit in float). */
+PF_DEF pf_real pfi_smith_nu_over_g1(pf_real nu)
+{
+#ifdef PF_DOUBLE
+    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pfi_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
+    return nu + nu * pf_lambda_beckmann(nu);
+#else
+    {
+        pf_real n = PFI_SMITH_CLAMP0(nu, PF_R(3.1));
+        return pf_max((PF_R(10.27353954) + n * (PF_R(18.48168564) + n * (PF_R(13.68897915) + n * (PF_R(5.850288868) +
+                      n * (PF_R(1.95705688) + n))))) /
+                      (PF_R(36.41876602) + n * (PF_R(0.9635340571) + n * (PF_R(10.42804337) +
+                      n * (PF_R(1.123634458) + n * PF_R(1.061310649))))), nu);
+    }
+#endif
+}
+
 /* ---------------------------------------------------------------- Walter et al. 2007 tier
    The rational approximation of Walter et al. 2007 as quoted in Dupuy et al. 2013 sec. 4.3:
        Lambda ~ (1 - 1.259 nu + 0.396 nu^2) / (3.535 nu + 2.181 nu^2)  for nu < 1.6, else 0.

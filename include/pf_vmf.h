@@ -4,7 +4,7 @@
    One Gaussian of slopes (LEADR) cannot describe a footprint whose slopes cluster on a few
    values (tiles, craters on flat ground, ridges): the bench's in-footprint reference puts the
    one-lobe error at 0.3-0.8 there. This module describes the footprint's micro-normals as
-   m <= 8 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
+   m <= 16 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
    spherical EM, stored per texel of a pyramid, and shaded with the multi-lobe BRDF of
    Wu et al. 2019 eq. 5 in the projected-area form of LEADR (Dupuy et al. 2013 eqs. 2-3, 17).
 
@@ -85,10 +85,10 @@
      mu.x, mu.y and rebuilds mu.z = sqrt(1 - x^2 - y^2)). kappa is clamped to
      [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; a NaN kappa reads as PF_VMF_KAPPA_MIN. A mixture is
      shaded lobe by lobe (pf_vmf_sum_add): no arrays in structs, so the same source is GLSL;
-     the fit returns at most PF_VMF_MAX_LOBES = 8 lobes. Evaluators return finite values >= 0
-     for finite inputs; 0 when a direction is on or below the macrosurface or the light on or
-     below the mixture's mesosurface (a view below the mesosurface sees the facets facing it, as
-     in pf_leadr_specular); G in [0, 1].
+     the fit returns at most PF_VMF_MAX_LOBES = 16 lobes. Evaluators return finite values >= 0
+     for finite inputs; 0 when a direction is on or below the macrosurface (a view or a light
+     below the mixture's mesosurface sees or lights the facets facing it, as in
+     pf_leadr_specular); G in [0, 1].
 
    ACCURACY AND COST (tests/test_vmf.c, bench/bench_vmf.c, bench/microsurface.c; docs/vmf.md)
      C(kappa) within 2 eps of quadrature (kappa 1e-4 .. 1e5, float and double); A3 and the
@@ -96,8 +96,9 @@
      3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
      Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
      corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
-     0.10-0.18 (LEADR: 0.12-0.82), at 1.0-2.0x pf_leadr_specular's cost for m = 4 and 2.0-2.7x
-     for m = 8, fetches included. Fit of a 512 x 512 pyramid at m = 4: 2.3-3.9 s CPU.
+     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
+     pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
+     512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -115,7 +116,7 @@
 #  include "pf_moments.h"
 #endif
 
-#define PF_VMF_MAX_LOBES 8
+#define PF_VMF_MAX_LOBES 16
 #define PF_VMF_KAPPA_MIN PF_R(1.0e-4)
 #define PF_VMF_KAPPA_MAX PF_R(1.0e5)
 /* EM stops when the mean log-likelihood per unit weight changes by less than this (relative,
@@ -539,20 +540,31 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
        Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
        so its relative error grows as P_o / |area_o| shrinks.
-   The light must be above the mesosurface (Lambda_i finite), as before. */
+   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
+   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
+   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
+   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
     pf_real area_o, area_i, den, f;
     if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
     area_o = pfi_vmf_sum_area(s, wo);
     area_i = pfi_vmf_sum_area(s, wi);
-    if (!(area_i > PF_R(0.0))) return PF_R(0.0);
     if (mixture_smith != 0) {
-        den = area_o + s.excess_o + pf_max(area_o, PF_R(0.0)) * pf_vmf_lambda(s.excess_i, area_i);
+        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
+           mixture's own facing area P_i = (area_i + excess_i) / amp */
+        pf_real wz = wi.z * s.amp;
+        den = area_o + s.excess_o +
+              pf_max(area_o, PF_R(0.0)) *
+                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
+                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pfi_beckmann_facing_area(wo, st) +
-                       pf_max(area_o / s.amp, PF_R(0.0)) * pf_beckmann_lambda(wi, st));
+                       pf_max(area_o / s.amp, PF_R(0.0)) *
+                           pfi_beckmann_light_lambda_stats(wi, st));
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
@@ -562,8 +574,8 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
 
 /* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
    of the mixture as one Gaussian (pf_vmf_sum_g2). 0 when either direction is on or below
-   the macrosurface, the light on or below the mesosurface, or the sum is empty; a view below
-   the mesosurface sees the facets facing it (pfi_vmf_sum_specular). Finite and >= 0 for
+   the macrosurface or the sum is empty; a view below the mesosurface sees the facets facing
+   it, a light below it lights them (pfi_vmf_sum_specular). Finite and >= 0 for
    finite inputs. */
 PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
 {
@@ -678,7 +690,7 @@ typedef struct pf_vmf_mixture {
    NaN, infinite or <= 0 are skipped; weights are divided by the largest usable one first (no
    sum can overflow). No usable normal: PF_ERR_ARG, and *out is set to one flat
    lobe (a = 1, mu = +z, kappa = PF_VMF_KAPPA_MAX), so it is always finite.
-   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, 8], iterations < 0;
+   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
    PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
@@ -1200,7 +1212,7 @@ PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
    vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff and f_lobes
    pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing outside them is written.
    Errors: those of pf_vmf_effective_brdf, and PF_ERR_ARG for a NULL buffer, lobes outside
-   [1, 8], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
+   [1, 16], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
    PF_ERR_SIZE when a buffer's size exceeds PF_MAX_REALS (every size is checked before any
    height is read). The fit cannot fail on finite heights (every normal has z = 2 texel > 0
    before normalization); if it did, PF_ERR_ARG. Cost: 2 nt (np - 1) n^2 marches
@@ -1401,12 +1413,12 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
    LAYOUT (what a shader fetches): levels one after another from level 0, texels row-major,
    4 * lobes pf_reals per texel: for each lobe (mu.x, mu.y, kappa, amp) - an RGBA texel per
    lobe (mu.z = sqrt(1 - x^2 - y^2)). A fit that returns fewer lobes pads with amp = 0,
-   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128 for m = 1, 2, 4, 8),
+   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128, 256 for m = 1, 2, 4, 8, 16),
    8 m in half floats (kappa <= 1e5 fits half's range; its 11-bit precision is 0.05% on kappa).
    A texel whose footprint has no usable normal gets the flat lobe (amp 1, mu = +z, kappa =
    PF_VMF_KAPPA_MAX) and the call still returns PF_OK.
    Errors: PF_ERR_ARG for NULL normals or pyr, w or h below 1 or not a power of two, lobes
-   outside [1, 8], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
+   outside [1, 16], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
    PF_MAX_REALS.
    normals: w * h * 3 pf_reals; weights: w * h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h)
    * 4 * lobes pf_reals. Nothing outside these is read or written. */
@@ -1483,7 +1495,7 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
 
 /* The mixture stored at one texel of the pyramid (4 * lobes pf_reals): what a shader's
    `lobes` RGBA fetches and pf_vmf_lobe_make calls give. Lobes with amp = 0 (padding) are
-   skipped. lobes is clamped to [1, 8]; texel NULL gives an empty mixture (count 0). */
+   skipped. lobes is clamped to [1, 16]; texel NULL gives an empty mixture (count 0). */
 PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lobes)
 {
     pf_vmf_mixture m = pfi_vmf_mixture_empty();

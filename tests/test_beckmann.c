@@ -552,17 +552,39 @@ static long double lambda_def(bcfg k, long double wx, long double wy, long doubl
                                sqrtl(cp * cp * k.vx + sp * sp * k.vy + 2.0L * cp * sp * k.cxy));
 }
 
+/* P(w) = E[max(0, w.z - x w.x - y w.y)] for Gaussian slopes, in closed form (the positive part
+   of a normal variable of mean A and deviation sigma: A Phi(A/sigma) + sigma phi(A/sigma)) */
+static long double facing_def(bcfg k, long double wx, long double wy, long double wz)
+{
+    long double a = wz - k.mx * wx - k.my * wy;
+    long double sd = sqrtl(wx * wx * k.vx + wy * wy * k.vy + 2.0L * wx * wy * k.cxy);
+    if (!(sd > 0.0L)) return a > 0.0L ? a : 0.0L;
+    return a * 0.5L * erfcl(-a / (sd * sqrtl(2.0L))) + sd * expl(-a * a / (2.0L * sd * sd)) / sqrtl(2.0L * PF_TEST_PI);
+}
+
+/* the light's Lambda of pf_leadr_specular (pfi_beckmann_light_lambda): Smith's lam above the
+   mean plane; on or below it max(P_i(0), wi.z) / wi.z - 1, P_i(0) the facing area with A_i
+   counted as 0 */
+static long double light_lambda_def(bcfg k, long double lam, long double wx, long double wy, long double wz)
+{
+    long double a = wz - k.mx * wx - k.my * wy, p;
+    if (a > 0.0L) return lam;
+    p = facing_def(k, wx, wy, wz - a); /* the same variance along w, A = 0 */
+    return (p > wz ? p : wz) / wz - 1.0L;
+}
+
 static void test_specular_pointwise(void)
 {
     pf_test_rng rng = pf_test_rng_seed(0xbec30006ULL);
     pf_test_max mj = pf_test_max_init(), mm = pf_test_max_init(), mrec = pf_test_max_init();
-    int i, zero_ok = 1;
+    int i, zero_ok = 1, ncap = 0;
     for (i = 0; i < 600; i++) {
         bcfg k = bcfg_random(&rng, i % 4);
         pf_slope_stats s = bcfg_stats(k);
         pf_vec3 wo = random_view(&rng, k, 0.05L), wi = random_view(&rng, k, 0.05L);
         long double o[3], w[3], h[3], hl, sx, sy, d, lo, li, ao, ai, f0, cd, F, ref_j, ref_m, q;
         pf_real f0r = (pf_real)pf_test_uniform(&rng, 0.02, 1.0);
+        int recip;
         pf_real gj, gm;
         chol2 L = chol_of(k);
         int j;
@@ -575,6 +597,10 @@ static void test_specular_pointwise(void)
         d = p22_ref(k, sx, sy) * powl(hl / h[2], 4.0L);
         lo = lambda_def(k, o[0], o[1], o[2]);
         li = lambda_def(k, w[0], w[1], w[2]);
+        /* both directions above the mean plane here: Smith's Lambda_i, reciprocity holds */
+        recip = light_lambda_def(k, li, w[0], w[1], w[2]) == li && light_lambda_def(k, lo, o[0], o[1], o[2]) == lo;
+        ncap += !recip;
+        li = light_lambda_def(k, li, w[0], w[1], w[2]);
         ao = o[2] - k.mx * o[0] - k.my * o[1];
         ai = w[2] - k.mx * w[0] - k.my * w[1];
         f0 = (long double)f0r;
@@ -595,8 +621,8 @@ static void test_specular_pointwise(void)
             pf_test_max_update(&mm, pf_test_rel_error((long double)gm, ref_m) / d_cond(k, q, sx, sy), (long double)i);
         }
         /* reciprocity of the joint form: I / A_i = F D G / (4 A_o A_i) is symmetric, so
-           I(o, i) A_o = I(i, o) A_i */
-        if (q <= 30.0L)
+           I(o, i) A_o = I(i, o) A_i (Smith's G; the light's cap is not symmetric) */
+        if (q <= 30.0L && recip)
             pf_test_max_update(&mrec,
                                pf_test_rel_error((long double)gj * ao,
                                                  (long double)pf_leadr_specular(wi, wo, s, f0r) * ai) / d_cond(k, q, sx, sy),
@@ -608,11 +634,73 @@ static void test_specular_pointwise(void)
                  "masking %.3g eps x the condition number of D",
                  (double)(mj.err / PF_TEST_EPS), (double)(mm.err / PF_TEST_EPS));
     pf_test_note("reciprocity I(o,i) A_o = I(i,o) A_i: max %.3g eps x the condition number of D", (double)(mrec.err / PF_TEST_EPS));
+    PF_CHECK(ncap == 0, "%d directions below the mean plane in the pointwise test", ncap);
     /* Lambda's own bound is a few eps; D's error grows with the (scaled) exponent */
     PF_CHECK(mj.err <= 64.0L * PF_TEST_EPS, "joint: %.3g eps (at %d)", (double)(mj.err / PF_TEST_EPS), (int)mj.at);
     PF_CHECK(mm.err <= 64.0L * PF_TEST_EPS, "masking: %.3g eps (at %d)", (double)(mm.err / PF_TEST_EPS), (int)mm.at);
     PF_CHECK(mrec.err <= 64.0L * PF_TEST_EPS, "reciprocity: %.3g eps", (double)(mrec.err / PF_TEST_EPS));
     PF_CHECK(zero_ok, "light below the macrosurface must give 0");
+}
+
+
+/* A light above the macrosurface but on or below the footprint's mean plane (A_i <= 0 <
+   wi.z), the view above it: pf_leadr_specular gives F D / (4 A_o (1 + Lambda_o + Lambda_i'))
+   with Lambda_i' = max(P_i(0), wi.z) / wi.z - 1 (pfi_beckmann_light_lambda below the mean plane, P_i(0)
+   = sqrt(var_i / (2 pi)) in closed form); composed in long double as test_specular_pointwise
+   does, the same bound. Smith's Lambda_i is infinite there, and the function used to return 0
+   (issue 15: bench/pictures.c's lit pixels returned 0). */
+static void test_specular_light_below_mean_plane(void)
+{
+    pf_test_rng rng = pf_test_rng_seed(0xbec3000bULL);
+    pf_test_max mj = pf_test_max_init();
+    int i, n = 0, pos = 1;
+    for (i = 0; i < 1000; i++) {
+        bcfg k = bcfg_random(&rng, i % 4);
+        pf_slope_stats s = bcfg_stats(k);
+        pf_vec3 wo = random_view(&rng, k, 0.05L), wi;
+        long double o[3], w[3], h[3], hl, sx, sy, d, lo, li, ao, cd, F, ref, q, u, v, dx, dy;
+        pf_real got;
+        chol2 L = chol_of(k);
+        int j, tries;
+        /* a light direction with A_i <= 0 < wi.z */
+        for (tries = 0; tries < 200; tries++) {
+            long double t = (long double)pf_test_uniform(&rng, 0.0, 1.55);
+            long double p = (long double)pf_test_uniform(&rng, -3.14159, 3.14159);
+            wi = vec3_of(sinl(t) * cosl(p), sinl(t) * sinl(p), cosl(t));
+            if ((long double)wi.z - k.mx * (long double)wi.x - k.my * (long double)wi.y <= 0.0L && wi.z > PF_R(0.0)) break;
+        }
+        if (tries == 200) continue;
+        o[0] = (long double)wo.x; o[1] = (long double)wo.y; o[2] = (long double)wo.z;
+        w[0] = (long double)wi.x; w[1] = (long double)wi.y; w[2] = (long double)wi.z;
+        for (j = 0; j < 3; j++) h[j] = o[j] + w[j];
+        hl = sqrtl(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        if (!(h[2] > 1e-3L * hl)) continue;
+        sx = -h[0] / h[2];
+        sy = -h[1] / h[2];
+        d = p22_ref(k, sx, sy) * powl(hl / h[2], 4.0L);
+        lo = lambda_def(k, o[0], o[1], o[2]);
+        li = light_lambda_def(k, HUGE_VALL, w[0], w[1], w[2]);
+        ao = o[2] - k.mx * o[0] - k.my * o[1];
+        cd = (o[0] * h[0] + o[1] * h[1] + o[2] * h[2]) / hl;
+        F = 0.04L + 0.96L * powl(1.0L - cd, 5.0L);
+        ref = F * d / (4.0L * ao * (1.0L + lo + li));
+        got = pf_leadr_specular(wo, wi, s, PF_R(0.04));
+        dx = sx - k.mx;
+        dy = sy - k.my;
+        u = dx / L.a;
+        v = (dy - L.b * u) / L.c;
+        q = 0.5L * (u * u + v * v);
+        if (q <= 30.0L) {
+            pf_test_max_update(&mj, pf_test_rel_error((long double)got, ref) / d_cond(k, q, sx, sy), (long double)i);
+            if (!(got > PF_R(0.0)) && ref > 1e-30L) pos = 0;
+            ++n;
+        }
+    }
+    pf_test_note("%d lights below the mean plane vs long double composition with the capped Lambda_i: %.3g eps x the "
+                 "condition number of D", n, (double)(mj.err / PF_TEST_EPS));
+    PF_CHECK(n >= 100, "only %d samples", n); /* 134 */
+    PF_CHECK(pos, "a light below the mean plane gave 0");
+    PF_CHECK(mj.err <= 64.0L * PF_TEST_EPS, "capped: %.3g eps (at %d)", (double)(mj.err / PF_TEST_EPS), (int)mj.at);
 }
 
 /* ------------------------------------------------------------------ eq. 12 */
@@ -894,7 +982,11 @@ static void edge_directions(void)
     PF_CHECK(pf_leadr_specular(up, below, s, PF_R(1.0)) == zero, "light below the horizon");
     PF_CHECK(pf_leadr_specular(below, up, s, PF_R(1.0)) == zero, "view below the horizon");
     PF_CHECK(pf_leadr_specular_masking(up, below, s, PF_R(1.0)) == zero, "masking: light below");
-    PF_CHECK(pf_leadr_specular(up, under_meso, s, PF_R(1.0)) == zero, "light below the mesosurface");
+    /* a light below the mesosurface but above the macrosurface lights the facets facing it
+       (issue 15, bench/pictures.c: Lambda_i capped, pfi_beckmann_light_lambda) */
+    PF_CHECK(pf_leadr_specular(up, under_meso, s, PF_R(1.0)) > zero &&
+                 finite_nonneg(pf_leadr_specular(up, under_meso, s, PF_R(1.0))),
+             "light below the mesosurface");
     /* a view below the mesosurface but above the macrosurface sees the facets facing it (the
        pic_plane regression, tests/test_moments.c): positive, finite */
     PF_CHECK(pf_leadr_specular_masking(under_meso, up, s, PF_R(1.0)) > zero &&
@@ -1063,7 +1155,7 @@ static void edge_beckmann_d_lean(void)
 /* Lean LEADR specular at the degenerate directions: normal incidence (nu = inf: G1 = 1) and
    zero variances given directly (both nu huge), where the joint and the masking-only terms
    are both exactly 1, so the two BRDFs agree to the bit; the light or the view on or below the
-   macrosurface or the mean plane gives exactly 0. */
+   macrosurface gives exactly 0, a light below the mean plane (above the macrosurface) not. */
 static void edge_leadr_lean(void)
 {
     pf_slope_stats z0 = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(0.0));
@@ -1081,9 +1173,13 @@ static void edge_leadr_lean(void)
     PF_CHECK(pf_leadr_specular(up, pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0)), z0, PF_R(1.0)) == PF_R(0.0), "light at the horizon");
     PF_CHECK(pf_leadr_specular(pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(-1.0)), up, z0, PF_R(1.0)) == PF_R(0.0), "view below");
     /* mean slope 2 in x: (1, 0, 1)/sqrt2 is below the mean plane (area 1 - 2 < 0) */
-    PF_CHECK(pf_leadr_specular(up, pf_vec3_make(PF_R(0.7071), PF_R(0.0), PF_R(0.7071)),
-                               pf_slope_stats_make(PF_R(2.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)), PF_R(1.0)) == PF_R(0.0),
-             "light below the mean plane");
+    /* ... where the light still reaches the facets facing it (Lambda_i capped,
+       pfi_beckmann_light_lambda): positive and finite */
+    {
+        pf_real v = pf_leadr_specular(up, pf_vec3_make(PF_R(0.7071), PF_R(0.0), PF_R(0.7071)),
+                                      pf_slope_stats_make(PF_R(2.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)), PF_R(1.0));
+        PF_CHECK(finite_nonneg(v) && v > PF_R(0.0), "light below the mean plane: %g", (double)v);
+    }
 }
 
 int main(int argc, char **argv)
@@ -1095,6 +1191,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_projected_area_identity);
     PF_TEST_RUN(test_brdf_identity_and_energy);
     PF_TEST_RUN(test_specular_pointwise);
+    PF_TEST_RUN(test_specular_light_below_mean_plane);
     PF_TEST_RUN(test_deformation_brute_force);
     PF_TEST_RUN(test_centered_reduces_to_textbook);
     PF_TEST_RUN(test_moments_stats);

@@ -636,7 +636,7 @@ static void test_fit_degenerate(void)
     PF_CHECK(rc == PF_ERR_ARG && m.count == 1, "all NaN: rc %d", rc);
     PF_CHECK(pf_vmf_fit_normals(NULL, NULL, 16, 4, 20, &m) == PF_ERR_ARG, "NULL normals");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 0, 20, &m) == PF_ERR_ARG, "0 lobes");
-    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 9, 20, &m) == PF_ERR_ARG, "9 lobes");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, PF_VMF_MAX_LOBES + 1, 20, &m) == PF_ERR_ARG, "17 lobes");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 0, 4, 20, &m) == PF_ERR_ARG, "0 normals");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 4, 20, NULL) == PF_ERR_ARG, "NULL out");
     /* pyramid of a NaN map: flat lobes, PF_OK, nothing past the buffer */
@@ -647,7 +647,7 @@ static void test_fit_degenerate(void)
     for (i = 0; i < 21 * 8; ++i) PF_CHECK(isfinite((double)pyr[i]) && pyr[i] != PF_R(-7.0), "texel value %d unwritten", i);
     for (i = 21 * 8; i < 400; ++i) PF_CHECK(pyr[i] == PF_R(-7.0), "canary %d overwritten", i);
     PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 3, 4, 2, 10, pyr) == PF_ERR_ARG, "non power of two");
-    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, 9, 10, pyr) == PF_ERR_ARG, "9 lobes");
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, PF_VMF_MAX_LOBES + 1, 10, pyr) == PF_ERR_ARG, "17 lobes");
     PF_CHECK(pf_vmf_pyramid_from_normals(NULL, NULL, 4, 4, 2, 10, pyr) == PF_ERR_ARG, "NULL");
     PF_CHECK(pf_vmf_pyramid_texel_count(0, 4) == 0 && pf_vmf_pyramid_level_offset(5, 4, 1) == -1, "bad sizes");
 }
@@ -1319,9 +1319,9 @@ static void test_scale_bad_input_guarded(void)
                                 fl) == PF_ERR_ARG,
              "NaN height, patch");
     hm[(W - 4) * W + 2] = PF_R(0.0);
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 9, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
-                 PF_ERR_ARG,
-             "lobes 9");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, PF_VMF_MAX_LOBES + 1, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP,
+                                PF_R(1.2), nr, vis, fe, fl) == PF_ERR_ARG,
+             "lobes 17");
     PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 3, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
                  PF_ERR_ARG,
              "masking 3");
@@ -1485,6 +1485,110 @@ static void test_specular_view_below_mean_plane(void)
     PF_CHECK(jump_mix <= 0.01L && jump_one <= 0.01L, "jump across the mean plane %.3Le %.3Le", jump_mix, jump_one);
 }
 
+/* ------------------------------------------------------------------ light below the mesosurface
+   pf_vmf_sum_specular(_mixture) with the LIGHT below the mixture's mean plane but above the
+   macrosurface (area_i < 0 < wi.z) and the view above it: Smith's Lambda_i is infinite there,
+   and the BRDF uses pf_leadr_specular's cap, Lambda_i' = max(P_i, wi.z) / wi.z - 1 (issue 15,
+   bench/pictures.c; pfi_beckmann_light_lambda), so I = F D' / (4 (P_o + A_o Lambda_i')).
+   Oracle: P_o and P_i by 1D quadrature (below_facing) of each lobe's Gaussian slopes, summed
+   with the amplitudes (mixture form: the exact P_i), or of the sum's one Gaussian (P_i with
+   A_i counted as 0, as pf_leadr_specular holds it below the mean plane); A_o in long double.
+   Also: the value positive just below area_i = 0 (it jumps there from Smith's 0). */
+static void test_specular_light_below_mean_plane(void)
+{
+    const pf_real base_var = PF_R(0.01);
+    pf_vmf_mixture m;
+    long double worst_mix = 0.0L, worst_one = 0.0L, jump_mix = 0.0L, jump_one = 0.0L;
+    int i, j, n = 0, pos = 1;
+    /* the lobes of test_specular_view_below_mean_plane: mean slope ~0.43 along x, so lights
+       beyond ~67 deg at phi near 0 are below the mean plane */
+    m.count = 2;
+    m.lobe[0] = pf_vmf_lobe_make(PF_R(0.6), PF_R(-0.45), PF_R(0.0), PF_R(40.0));
+    m.lobe[1] = pf_vmf_lobe_make(PF_R(0.4), PF_R(-0.3), PF_R(0.2), PF_R(80.0));
+    for (i = 0; i < 5; ++i)
+        for (j = 0; j < 4; ++j) {
+            double wo[3], wi[3], h[3], hl;
+            pf_vmf_sum s;
+            pf_slope_stats st;
+            long double po_mix = 0.0L, pi_mix = 0.0L, po_one, pi_one, f, hw, ref_mix, ref_one, got_mix, got_one;
+            long double a_o, a_i, amp, wz, cap_mix, cap_one;
+            int k;
+            dir_deg(70.0 + 4.0 * i, -10.0 + 7.0 * j, wi);
+            dir_deg(25.0 + 10.0 * j, 170.0 + 8.0 * i, wo);
+            s = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
+            st = pf_vmf_sum_stats(s);
+            amp = (long double)s.amp;
+            a_o = (long double)(pf_real)wo[2] - (long double)(pf_real)wo[0] * (long double)st.mean_x -
+                  (long double)(pf_real)wo[1] * (long double)st.mean_y;
+            a_i = (long double)(pf_real)wi[2] - (long double)(pf_real)wi[0] * (long double)st.mean_x -
+                  (long double)(pf_real)wi[1] * (long double)st.mean_y;
+            if (!(a_i < 0.0L) || !(a_o > 0.0L)) continue; /* only lights below the mean plane here */
+            for (k = 0; k < m.count; ++k) {
+                pf_slope_stats lk = pf_vmf_lobe_slope_stats(m.lobe[k].mu, m.lobe[k].kappa, base_var);
+                po_mix += (long double)m.lobe[k].amp * below_facing_stats(lk, wo);
+                pi_mix += (long double)m.lobe[k].amp * below_facing_stats(lk, wi);
+            }
+            po_mix /= amp;
+            pi_mix /= amp;
+            po_one = below_facing_stats(st, wo);
+            { /* one Gaussian: P_i with A_i counted as 0 below the mean plane */
+                long double wx = (long double)(pf_real)wi[0], wy = (long double)(pf_real)wi[1];
+                long double v = wx * wx * (long double)st.var_x + wy * wy * (long double)st.var_y +
+                                2.0L * wx * wy * (long double)st.cov_xy;
+                pi_one = below_facing(a_i > 0.0L ? a_i : 0.0L, sqrtl(v > 0.0L ? v : 0.0L));
+            }
+            wz = (long double)(pf_real)wi[2];
+            cap_mix = (pi_mix > wz ? pi_mix : wz) / wz - 1.0L;
+            cap_one = (pi_one > wz ? pi_one : wz) / wz - 1.0L;
+            for (k = 0; k < 3; ++k) h[k] = (double)(pf_real)wo[k] + (double)(pf_real)wi[k];
+            hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+            hw = (long double)((h[0] * (double)(pf_real)wi[0] + h[1] * (double)(pf_real)wi[1] + h[2] * (double)(pf_real)wi[2]) / hl);
+            f = 0.04L + 0.96L * powl(1.0L - hw, 5.0L);
+            ref_mix = f * (long double)s.ndf / (4.0L * amp * (po_mix + a_o * cap_mix));
+            ref_one = f * (long double)s.ndf / (4.0L * amp * (po_one + a_o * cap_one));
+            got_mix = (long double)pf_vmf_sum_specular_mixture(s, V(wo), V(wi), PF_R(0.04));
+            got_one = (long double)pf_vmf_sum_specular(s, V(wo), V(wi), PF_R(0.04));
+            if (!(got_mix > 0.0L) || !(got_one > 0.0L)) pos = 0;
+            worst_mix = fmaxl(worst_mix, pf_test_rel_error(got_mix, ref_mix));
+            worst_one = fmaxl(worst_one, pf_test_rel_error(got_one, ref_one));
+            ++n;
+        }
+    /* continuity through area_i = 0 (phi = 0) */
+    {
+        double wo[3], wi[3];
+        pf_vmf_sum s0;
+        long double mx, tc, v[2][2];
+        int side;
+        dir_deg(35.0, 180.0, wo);
+        dir_deg(70.0, 0.0, wi);
+        s0 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
+        mx = (long double)s0.ex / (long double)s0.amp;
+        tc = atanl(1.0L / mx) * 180.0L / PF_TEST_PI; /* the light angle of the mean plane along x */
+        for (side = 0; side < 2; ++side) {
+            pf_vmf_sum s1;
+            dir_deg((double)(tc + (side ? 0.006L : -0.006L)), 0.0, wi);
+            s1 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
+            v[side][0] = (long double)pf_vmf_sum_specular_mixture(s1, V(wo), V(wi), PF_R(0.04));
+            v[side][1] = (long double)pf_vmf_sum_specular(s1, V(wo), V(wi), PF_R(0.04));
+        }
+        jump_mix = pf_test_rel_error(v[1][0], v[0][0]);
+        jump_one = pf_test_rel_error(v[1][1], v[0][1]);
+        if (!(v[1][0] > 0.0L) || !(v[1][1] > 0.0L)) pos = 0;
+    }
+    pf_test_note("%d lights below the mean plane vs quadrature of the facing areas: mixture form max rel %.2Le, "
+                 "one-Gaussian form %.2Le; across area_i = 0 (+/- 0.006 deg): rel jump %.2Le / %.2Le",
+                 n, worst_mix, worst_one, jump_mix, jump_one);
+    PF_CHECK(n >= 10, "only %d lights below the mean plane", n);
+    PF_CHECK(pos, "a light below the mesosurface gave 0");
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_mix <= 1e-9L && worst_one <= 1e-9L, "rel %.3Le %.3Le", worst_mix, worst_one);
+#else
+    PF_CHECK(worst_mix <= 1e-3L && worst_one <= 1e-4L, "rel %.3Le %.3Le", worst_mix, worst_one);
+#endif
+    /* the value jumps at area_i = 0 by design (Smith's 0 just above the mean plane, the facing
+       facets' share just below: pfi_beckmann_light_lambda); only checked finite and positive */
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1499,6 +1603,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_specular_one_lobe_is_leadr);
     PF_TEST_RUN(test_specular_vmf_form_vs_integration);
     PF_TEST_RUN(test_specular_view_below_mean_plane);
+    PF_TEST_RUN(test_specular_light_below_mean_plane);
     PF_TEST_RUN(test_masking_vs_microsurface);
     PF_TEST_RUN(test_em_recovers_mixture);
     PF_TEST_RUN(test_em_deterministic_and_weighted);

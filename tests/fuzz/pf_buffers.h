@@ -2055,7 +2055,7 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
             pfb_setcall("%s(heights, %d, %d, %a, %d, %d, %d, %d, %d, %a, %a, %d, %d, %d, %a, ...) null %d", fn, w, h, (double)texel, x0,
                         y0, n, lobes, iters, (double)sigma, (double)f0, masking, nt, np, (double)tm, null);
         if (null || n < 1 || !(texel > 0 && texel < PF_REAL_MAX) || !(sigma > 0 && sigma < PF_R(1.0e15))) ex.arg = 1;
-        if (which == 1 && (lobes < 1 || lobes > 8 || iters < 0 || nt < 2 || np < 2 || masking < 0 || masking > 2 ||
+        if (which == 1 && (lobes < 1 || lobes > PF_VMF_MAX_LOBES || iters < 0 || nt < 2 || np < 2 || masking < 0 || masking > 2 ||
                            !(tm > 0 && tm < PF_R(1.5707963))))
             ex.arg = 1;
         pfb_side(&ex, w, 1);

@@ -1981,7 +1981,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_beckmann_g1, PFC_WIDE, "any-length w, stats", "0 on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_masking_shadowing, PFC_WIDE, "any-length wo, wi, stats", "0 when either direction is on/below the mean plane"),
     PFC_E(beckmann, pf_fresnel_schlick, 0, "f0 in [0, 1], cos in [-1, 1]", "cos clamped to [0, 1]; f0 = 1 gives exactly 1"),
-    PFC_E(beckmann, pf_leadr_specular, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats (var >= 1e-6), f0 in [0, 1]", "0 on/below the macrosurface or light on/below the mesosurface; peak of D ~ 1/(2 pi sqrt(det)) large for var -> 1e-6 (1.6e5)"),
+    PFC_E(beckmann, pf_leadr_specular, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats (var >= 1e-6), f0 in [0, 1]", "0 on/below the macrosurface (a light below the mesosurface has Lambda_i capped, not 0); peak of D ~ 1/(2 pi sqrt(det)) large for var -> 1e-6 (1.6e5)"),
     PFC_E(beckmann, pf_leadr_specular_masking, 0, "as pf_leadr_specular", "as pf_leadr_specular"),
     PFC_E(beckmann, pf_leadr_specular_point, 0, "unit wo, any-length to_light (zero, 2^+-40), stats, f0", "0 for a zero to_light; 1/|to_light|^2 falloff overflows for |to_light| < ~1e-19 (f)"),
     /* moments */
@@ -2209,7 +2209,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_sum_g2, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g2_mixture, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g1_mixture, 0, "sums of 1-4 lobes, direction", "in [0, 1]"),
-    PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
+    PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the macrosurface"),
     PFC_E(vmf, pf_vmf_sum_specular_mixture, 0, "sums of 1-4 lobes (vMF form), directions, f0", ">= 0"),
     PFC_E(vmf, pf_vmf_sum_specular_unmasked, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
     PFC_E(vmf, pf_vmf_scale_coords, 0, "directions, theta_max +-2^4", "each coordinate in [0, 1]"),
