@@ -5900,7 +5900,8 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
 
 /* ---------------------------------------------------------------- Chebyshev
    One lean form serves VSM, EVSM and the any-scale bound (issue 17: the textbook formula's
-   cost, with the library's robustness), branch-free in every language:
+   cost, with the library's robustness), branch-free in every language (C -ffast-math builds
+   excepted, below):
        ratio = var / (var + t^2),   t = max(x - mean, 0),   var in [PF_REAL_MIN, PF_REAL_MAX/4].
    t = 0 (receiver at or in front of the mean) gives var/var = 1 exactly, so one max replaces
    the textbook's "x <= mean ? 1 : ..." (a compare and a select, or a branch). The variance is
@@ -5912,8 +5913,14 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
    without). */
 PF_DEF pf_real pfi_shadow_chebyshev_ratio(pf_real var, pf_real t)
 {
+#if defined(__FAST_MATH__) && !defined(PF_GLSL) && !defined(__CUDACC__)
+    /* under clang -ffast-math the branch-free form returned values above 1 (edge_shadow_finite:
+       488 of 302988 in float), so C fast-math builds keep the exact 1 for receivers in front */
+    return t > PF_R(0.0) ? var / (var + t * t) : PF_R(1.0);
+#else
     pf_real tp = pf_max(t, PF_R(0.0)); /* NaN t: 0, so 1 (C, CUDA) */
     return var / (var + tp * tp);
+#endif
 }
 
 /* linstep(threshold, 1, q) for q in [0, 1] (Lauritzen 2007): q - th <= 1 - th, so the quotient
