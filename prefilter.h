@@ -1704,7 +1704,9 @@ PF_DEF pf_real pf_leadr_specular_point(pf_vec3 wo, pf_vec3 to_light, pf_slope_st
 {
     pf_real d2 = pf_vec3_dot(to_light, to_light);
     if (!(d2 > PF_R(0.0))) return PF_R(0.0);
-    return pf_leadr_specular(wo, pf_vec3_scale(to_light, PF_R(1.0) / PF_SQRT(d2)), s, f0) / d2;
+    /* saturated at PF_REAL_MAX: a light a few 1e-8 away (1/d2 ~ 1e15) over a grazing footprint
+       overflows float (fuzz_beckmann-float found inf) */
+    return pf_min(pf_leadr_specular(wo, pf_vec3_scale(to_light, PF_R(1.0) / PF_SQRT(d2)), s, f0) / d2, PF_REAL_MAX);
 }
 
 #endif /* PF_BECKMANN_H */
