@@ -41,7 +41,7 @@
      D, P22: relative error a few eps times the condition number (1 + q/2)(1 + 1/(1 - r^2) + ...)
      of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
      GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh; issue 17): pf_beckmann_d 31
-     ops, branch-free (the LEAN lobe as shipped, for a unit half vector and no guards: 27);
+     ops, branch-free; the LEAN lobe as shipped, for a unit half vector and no guards: 27;
      pf_leadr_specular 108 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
      with the exact G1 of pf_smith.h, not Walter's 3e-3 rational. Every guard is a floor or a
      cap applied once, and one select replaces the early returns for directions below the
@@ -279,7 +279,7 @@ PF_DEF pf_real pfi_beckmann_rsqrt(pf_real x) { return PF_R(1.0) / PF_SQRT(x); }
 #endif
 
 /* D for m.z > 0 (the caller tests it), times exp(ln_scale - ln(2 pi)): see pf_beckmann_d. A
-   constant factor of the caller rides in the exponent for free (ln_scale = 0: D itself). */
+   constant factor of the caller rides in the exponent at no cost; ln_scale = 0 gives D itself. */
 PF_DEF pf_real pfi_beckmann_d_up(pf_vec3 m, pf_slope_stats s, pf_real ln_scale)
 {
     pf_real iz = PF_R(1.0) / m.z;
@@ -306,7 +306,7 @@ PF_DEF pf_real pfi_beckmann_d_up(pf_vec3 m, pf_slope_stats s, pf_real ln_scale)
    m.z <= 0 (a micro-normal facing down, which a height field cannot have) gives 0. Any
    finite statistics: see the floors above. Finite and >= 0 for every finite m and
    statistics. Cost: within 1.1x of the LEAN lobe on a GPU,
-   branch-free (docs/beckmann.md). */
+   branch-free; see docs/beckmann.md. */
 PF_DEF pf_real pf_beckmann_d(pf_vec3 m, pf_slope_stats s)
 {
     pf_real d = pfi_beckmann_d_up(m, s, PF_R(0.0));
