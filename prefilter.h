@@ -1224,7 +1224,7 @@ PF_DEF pf_real pf_g2_beckmann(pf_real nu_o, pf_real nu_i)
      of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
      GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh; issue 17): pf_beckmann_d 31
      ops, branch-free; the LEAN lobe as shipped, for a unit half vector and no guards: 27;
-     pf_leadr_specular 108 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
+     pf_leadr_specular 116 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
      with the exact G1 of pf_smith.h, not Walter's 3e-3 rational. Every guard is a floor or a
      cap applied once, and one select replaces the early returns for directions below the
      surface. On a CPU the LEADR specular costs about 2.5-3.5x a LEAN lobe (see the bench).
