@@ -137,14 +137,36 @@ PF_DEF pf_real pfi_vmf_kappa(pf_real kappa)
     return pf_min(kappa, PF_VMF_KAPPA_MAX);
 }
 
-/* 1 - exp(-x) for x >= 0 without cancellation near 0 (Kahan's expm1 trick: with u = exp(-x),
-   (1 - u) x / (-log u) carries the rounding of u in both factors, which cancels). */
+/* 1 - exp(-x) for x >= 0 without cancellation near 0. Above 1/2, 1 - exp(-x) directly (at most
+   one bit lost to the subtraction). At and below 1/2 the Taylor series x (1 - x/2 (1 - x/3 (1 -
+   ...))), plain arithmetic with no exp or log: Kahan's (1 - u) x / (-log u), u = exp(-x), used
+   here before, needs log accurate RELATIVE to log u near u = 1, and GLSL promises log only an
+   absolute 2^-21 on [1/2, 2] (docs/gpu.md: a relative 2^-21 / x, 5e-4 at x = 1e-3). Truncation
+   after x^9 (float) resp. x^16 (double): the first omitted term, relative, is x^9/10! = 5.4e-10
+   resp. x^16/17! = 4.3e-20 at x = 1/2, well below half an ulp; every factor x/k < 1/2, so the
+   nested form does not amplify rounding (tests/test_vmf.c: against expm1l). */
 PF_DEF pf_real pfi_vmf_one_minus_exp_neg(pf_real x)
 {
-    pf_real u = PF_EXP(-x);
-    if (x > PF_R(0.5)) return PF_R(1.0) - u;
-    if (!(u < PF_R(1.0))) return x;
-    return (PF_R(1.0) - u) * x / (-PF_LOG(u));
+    pf_real r = PF_R(1.0);
+    if (x > PF_R(0.5)) return PF_R(1.0) - PF_EXP(-x);
+#ifdef PF_DOUBLE
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(16.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(15.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(14.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(13.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(12.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(11.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(10.0)) * r;
+#endif
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(9.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(8.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(7.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(6.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(5.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(4.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(3.0)) * r;
+    r = PF_R(1.0) - x * PF_R(0.5) * r;
+    return x * r;
 }
 
 /* C(kappa) = kappa / (2 pi (1 - exp(-2 kappa))): the constant that makes
