@@ -297,7 +297,7 @@ static int scaling_main(int argc, char **argv)
         for (p = 0; p < patches && rc == PF_OK; ++p)
             rc = pf_vmf_scale_patch(hm, size, size, PF_R(1.0), (p % per) * n, (p / per) * n, n, lobes, 24, sigma, f0, masking,
                                     nt, np, tm, nr, vis, fe + p * cnt, fl + p * cnt);
-        if (rc == PF_OK) rc = pf_vmf_scale_factor(fe, fl, patches, nt, np, 30, T, S, scr, err);
+        if (rc == PF_OK) rc = pf_vmf_scale_factor(fe, fl, patches, nt, np, 30, PF_R(0.0), T, S, scr, NULL, err);
         if (rc != PF_OK) {
             fprintf(stderr, "%s: error %d\n", pfm_kind_name(kinds[ki]), rc);
             return 1;

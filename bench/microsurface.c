@@ -72,9 +72,10 @@
                with the mixture's exact Smith Lambda (pf_vmf_sum_specular_mixture); vmf_m16 =
                16 lobes (issue 15's gaussian target). vmf_m4_scaled, vmf_m8_scaled = vmf_m4,
                vmf_m8 times the scaling function T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14,
-               sec. 6), S per kind and footprint level fitted to the IN-FOOTPRINT effective BRDF
-               (pf_vmf_scale_patch, pf_vmf_scale_factor), T per pyramid texel (see "scaling
-               function" below); vmf_m8_scaled_s = S alone (T = 1).
+               sec. 6) at 4096-texel footprints (the unscaled lobes below), S per kind fitted
+               to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_patch, pf_vmf_scale_factor with
+               a prior toward 1), T per pyramid texel (pf_vmf_scale_t; see "scaling function"
+               below); vmf_m8_scaled_s = S alone (T = 1).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
@@ -324,18 +325,20 @@ static const int vmf_meth_scale[NVMF_METH] = { -1, -1, -1, -1, -1, -1, -1, 0, 1,
 static const int vmf_meth_use_t[NVMF_METH] = { 0, 0, 0, 0, 0, 0, 0, 1, 1, 0 };
 /* The scaling function of Wu et al. 2019 (eqs. 12-14, sec. 6; pf_vmf.h "SCALING FUNCTION",
    docs/vmf.md) as methods vmf_m4_scaled, vmf_m8_scaled (T(x) S(wi, wo) times vmf_m4, vmf_m8)
-   and vmf_m8_scaled_s (S alone, T = 1), built per kind and per footprint level n as the paper
-   builds them per map and level:
+   and vmf_m8_scaled_s (S alone, T = 1), built per kind at the footprint levels from
+   sc_min_level to sc_max_level (4096 texels; see there why not below) as the paper builds them
+   per map and level; at other levels these methods return the unscaled lobes:
      S (one SC_NT x SC_NT x SC_NP node table per level and m, theta_max SC_THETA_MAX): the
-       rank-1 fit of pf_vmf_scale_factor (SC_ALS rounds) over SC_TRAIN patches of the level,
-       evenly spaced over the map (all of them when there are fewer), from their samples:
-       f_eff by pf_vmf_scale_patch (the in-footprint effective BRDF, eqs. 6-8, at every
-       sample pair of the node directions) and f_lobes = the method's own shading of the
-       pyramid texel (the fetched lobes, pf_vmf_sum_specular) at the same pairs;
-     T (one value per pyramid texel): for a patch, given S, the least-squares factor of its
-       own samples, T = sum f_eff S f_lobes / sum (S f_lobes)^2 (pf_vmf_scale_factor's T
-       step); computed the first time a footprint is shaded and cached (every footprint of
-       the error run and the cost section's footprints, before the cost is timed).
+       rank-1 fit of pf_vmf_scale_factor (SC_ALS rounds, prior SC_SHRINK toward 1) over
+       SC_TRAIN patches of the level, evenly spaced over the map (all of them when there are
+       fewer), from their samples: f_eff by pf_vmf_scale_patch (the in-footprint effective
+       BRDF, eqs. 6-8, at every sample pair of the node directions) and f_lobes = the method's
+       own shading of the pyramid texel (the fetched lobes, pf_vmf_sum_specular) at the same
+       pairs;
+     T (one value per pyramid texel): for a patch, given S, pf_vmf_scale_t on its own samples
+       with the level's prior; the training patches' T from their samples when S is built,
+       any other's the first time its footprint is shaded, cached (every footprint of the
+       error run and the cost section's footprints, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
    trilinear) and multiplies (pf_vmf_scale_apply). */
 #define NSCALE 2
@@ -346,12 +349,20 @@ static const int vmf_meth_use_t[NVMF_METH] = { 0, 0, 0, 0, 0, 0, 0, 1, 1, 0 };
 #define SC_THETA_MAX (75.0 * 3.14159265358979323846 / 180.0)
 #define SC_TRAIN 16
 #define SC_ALS 8
+/* the fit's prior toward 1 (pf_vmf_scale_factor's shrink): 1, the mean patch's (cell's) own
+   energy. Quick maps, in-footprint, vmf_m8_scaled at 4096 texels: prior 0.1 gave craters 0.057,
+   gaussian 0.126, prior 1 0.068, 0.126; scaled at every level, 1 was the steadier below
+   (gaussian, 256 texels: 1.02 with 0.1, 0.58 with 1, 0.15 unscaled) */
+#define SC_SHRINK PF_R(1.0)
 static const int scale_pyr[NSCALE] = { 2, 3 }; /* m = 4, 8 */
-/* the largest level the scaling function is built and applied at: every level in a full run;
-   level 2 (16 texels) in quick mode, where above it the scaled methods return the unscaled
-   lobes (T and S of a 64 x 64 footprint march 4096 texels in 2304 direction pairs each: most
-   of the quick run's time otherwise; quick numbers are never published) */
-static int sc_max_level = NSIZE - 1;
+/* the levels the scaling function is built and applied at: 4096-texel footprints (level 6)
+   only; at other levels the scaled methods return the unscaled lobes. Why: with the node
+   direction set of pf_vmf_scale_patch, T and S are fitted from samples that often miss a
+   patch's highlight; measured on every kind (quick maps, prior 1, in-footprint reference,
+   docs/vmf.md), T S helped or was neutral at 4096 texels on all seven kinds, but below it
+   made several worse (1024 texels: gaussian_aniso 0.10 -> 0.44, gaussian 0.15 -> 0.21;
+   16-256 texels up to 1.4), where the lobes alone are already within 0.002-0.24. */
+static int sc_min_level = NSIZE - 1, sc_max_level = NSIZE - 1;
 /* the horizon-map masking methods (pf_horizon.h): HDF moment pyramids (E[T], E[T^2], E[S T]
    per azimuth) with hor_n[i] stored azimuths, march bounded to HOR_STEPS texels (docs/horizon.md:
    64 and 128 give the same errors to +-0.001 at n = 16) */
@@ -375,6 +386,7 @@ typedef struct lib_maps {
     pf_real *hor[NHOR]; /* horizon HDF-moment pyramids (pf_horizon.h), hor_n[i] azimuths */
     pf_real *heights;   /* the centred heights (pf_vmf_scale_patch reads them) */
     pf_real sc_S[NSCALE][NSIZE][SC_CELLS]; /* scaling function: S per lobe count and level */
+    pf_real sc_prior[NSCALE][NSIZE];       /* and the prior of T's fit (pf_vmf_scale_t) */
     pf_real *sc_T[NSCALE]; /* T per pyramid texel (NaN: not computed yet) */
     double sc_seconds;     /* S fits and T computations so far */
     long sc_patches;       /* patches whose samples were computed */
@@ -431,7 +443,7 @@ static void scale_build(lib_maps *L)
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
     }
     L->sc_patches = 0;
-    for (si = 0; si <= sc_max_level; ++si) {
+    for (si = sc_min_level; si <= sc_max_level; ++si) {
         int n = 1 << si, g = L->w / n, np = g * g < SC_TRAIN ? g * g : SC_TRAIN;
         for (p = 0; p < np; ++p) {
             int c = (int)(((long long)p * g * g) / np), x0 = (c % g) * n, y0 = (c / g) * n;
@@ -439,11 +451,21 @@ static void scale_build(lib_maps *L)
             for (j = 0; j < NSCALE; ++j) fl[j] = f_l[j] + (size_t)p * SC_SAMPLES;
             sc_patch_samples(L, x0, y0, n, f_eff + (size_t)p * SC_SAMPLES, fl);
         }
-        for (j = 0; j < NSCALE; ++j)
-            if (pf_vmf_scale_factor(f_eff, f_l[j], np, SC_NT, SC_NP, SC_ALS, t, L->sc_S[j][si], scratch, NULL) != PF_OK) {
+        for (j = 0; j < NSCALE; ++j) {
+            if (pf_vmf_scale_factor(f_eff, f_l[j], np, SC_NT, SC_NP, SC_ALS, SC_SHRINK, t, L->sc_S[j][si], scratch,
+                                    &L->sc_prior[j][si], NULL) != PF_OK) {
                 fprintf(stderr, "microsurface: pf_vmf_scale_factor failed\n");
                 exit(1);
             }
+            /* the training patches' T from their samples in hand, as scale_T computes any other's
+               (pf_vmf_scale_t with the level's final S): cached, not recomputed */
+            for (p = 0; p < np; ++p) {
+                int c = (int)(((long long)p * g * g) / np);
+                long long id = pf_vmf_pyramid_level_offset(L->w, L->h, si) + c;
+                L->sc_T[j][id] = pf_vmf_scale_t(f_eff + (size_t)p * SC_SAMPLES, f_l[j] + (size_t)p * SC_SAMPLES, SC_NT, SC_NP,
+                                                L->sc_S[j][si], L->sc_prior[j][si]);
+            }
+        }
     }
     L->sc_seconds = (now_ns() - t0) * 1e-9;
     fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
@@ -461,20 +483,8 @@ static pf_real scale_T(const lib_maps *Lc, int j, int x0, int y0, int n)
         int k, si = ilog2(n);
         for (k = 0; k < NSCALE; ++k) fl[k] = f_l[k];
         sc_patch_samples(L, x0, y0, n, f_eff, fl);
-        for (k = 0; k < NSCALE; ++k) { /* both lobe counts from the same f_eff */
-            double num = 0.0, den = 0.0;
-            long s;
-            for (s = 0; s < SC_SAMPLES; ++s) {
-                pf_vec3 wo, wi;
-                double sl;
-                sc_sample_dirs(s, &wo, &wi);
-                sl = (double)pf_vmf_scale_lookup(L->sc_S[k][si], SC_NT, SC_NP, (pf_real)SC_THETA_MAX, wo, wi) *
-                     (double)f_l[k][s];
-                num += (double)f_eff[s] * sl;
-                den += sl * sl;
-            }
-            L->sc_T[k][id] = den > 0.0 ? (pf_real)(num / den) : PF_R(1.0);
-        }
+        for (k = 0; k < NSCALE; ++k) /* both lobe counts from the same f_eff */
+            L->sc_T[k][id] = pf_vmf_scale_t(f_eff, f_l[k], SC_NT, SC_NP, L->sc_S[k][si], L->sc_prior[k][si]);
         L->sc_seconds += (now_ns() - t0) * 1e-9;
     }
     return L->sc_T[j][id];
@@ -675,7 +685,7 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
         if (k >= K_VMF) {
             const int q = k - K_VMF, sc = vmf_meth_scale[q];
             pf_real f = vmf_texel_spec(L, vmf_meth_pyr[q], x0, y0, n, wo, wi, vmf_meth_mix[q]);
-            if (sc < 0 || ilog2(n) > sc_max_level) return f; /* quick mode: see sc_max_level */
+            if (sc < 0 || ilog2(n) < sc_min_level || ilog2(n) > sc_max_level) return f; /* see sc_min_level */
             /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
             return pf_vmf_scale_apply(vmf_meth_use_t[q] ? scale_T(L, sc, x0, y0, n) : PF_R(1.0),
                                       pf_vmf_scale_lookup(L->sc_S[sc][ilog2(n)], SC_NT, SC_NP, (pf_real)SC_THETA_MAX, wo, wi),
@@ -1098,7 +1108,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
         /* the scaling function's T of these footprints, computed (and cached) before timing */
         for (k = 0; k < COST_FP; ++k) {
             int j;
-            for (j = 0; j < NSCALE && si <= sc_max_level; ++j) (void)scale_T(L, j, fx[k], fy[k], n);
+            for (j = 0; j < NSCALE && si >= sc_min_level && si <= sc_max_level; ++j) (void)scale_T(L, j, fx[k], fy[k], n);
         }
         for (mi = 0; mi < ncost; ++mi) {
             cost_row *cr = &cost[mi];
@@ -1574,8 +1584,7 @@ static void write_md(const settings *S, double total_s)
                "in that run. Raw cells: `microsurface_errors.csv` (with `sum_sq_err` and `sum_sq_ref`, so "
                "any set of cells pools as sqrt(sum sum_sq_err / sum sum_sq_ref)), timings: "
                "`microsurface_cost.csv`.\n\n",
-            S->quick ? "QUICK (smoke run: do not publish; the scaled vMF methods are scaled up to 16-texel "
-                       "footprints only and equal their unscaled methods above)" : "full", total_s);
+            S->quick ? "QUICK (smoke run: do not publish)" : "full", total_s);
     fprintf(f, "**Reference.** A brute-force shading of the pixel footprint texel by texel on an actual "
                "height field (`tests/pf_microsurface.h`): micro-normals from central differences of the "
                "heights, masking toward the view and shadowing toward the light by marching the "
@@ -1663,9 +1672,9 @@ static void write_md(const settings *S, double total_s)
                "roughness added, Smith G of the mixture's slope mean and covariance; "
                "`vmf_m4_mix_smith`, `vmf_m8_mix_smith` use the mixture's exact Smith Lambda instead; `vmf_m16` "
                "has 16 lobes; `vmf_m4_scaled`, `vmf_m8_scaled` multiply `vmf_m4`, `vmf_m8` by the scaling function "
-               "T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14), S (6 x 6 x 5 nodes) per kind and footprint level "
-               "fitted to the in-footprint effective BRDF of 16 patches of the level, T per pyramid texel "
-               "(`vmf_m8_scaled_s`: S alone). "
+               "T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14) at 4096-texel footprints (unscaled below: "
+               "docs/vmf.md), S (6 x 6 x 5 nodes) per kind fitted to the in-footprint effective BRDF of 16 "
+               "patches with a prior toward 1, T per pyramid texel (`vmf_m8_scaled_s`: S alone). "
                "Diffuse: `pf_gg_diffuse_directional` "
                "(LEADR eq. 21) with the matched grid N = 3, 5 and Gauss-Hermite N = 3; Lambert on the "
                "mesonormal; Lambert on the macro normal; `leadr_gg_matched3_horizon_n32`, the matched grid times "
@@ -2068,7 +2077,6 @@ int main(int argc, char **argv)
         S.naz = 1;
         S.nlights = 3;
         S.cost_reps = 7;
-        sc_max_level = 2;
     } else {
         S.map = 512;
         S.maxpos = 64;

@@ -1219,6 +1219,61 @@ static void test_scale_vs_microsurface_reference(void)
     }
 }
 
+/* the prior toward 1 (shrink): well-sampled values keep their least-squares fit, a cell that
+   only tails reach (f_eff exactly 0, f_lobes tiny: the case that left cells of S at 0 in the
+   bench) and a patch without energy stay near 1; pf_vmf_scale_t with the returned prior gives
+   a training patch's own T back, and every value against a closed form computed here */
+static void test_scale_factor_shrink(void)
+{
+    enum { NT = 3, NP = 2, P = 6 };
+    long long cnt = pf_vmf_scale_sample_count(NT, NP), cells = pf_vmf_scale_cell_count(NT, NP), s, c;
+    pf_real fe[P * 36], fl[P * 36], scr[2 * 18 * P], T[P], S[18], S0[18], T0[P], prior = PF_R(-1.0), t_one;
+    long double a = 0, q = 0, worst_fit = 0;
+    trng r;
+    int x, weak = 5, tail_cell = 7;
+    r.s = 91;
+    for (x = 0; x < P; ++x)
+        for (s = 0; s < cnt; ++s) {
+            c = pfi_vmf_scale_cell(s, NT, NP);
+            fl[x * cnt + s] = (pf_real)(0.5 + trng_u(&r)) * (x == weak ? PF_R(1e-4) : PF_R(1.0)) * (c == tail_cell ? PF_R(1e-3) : PF_R(1.0));
+            /* R = 1.5 on patch 0, 0.8 elsewhere; the tail cell's f_eff is exactly 0 */
+            fe[x * cnt + s] = c == tail_cell ? PF_R(0.0) : (x == 0 ? PF_R(1.5) : PF_R(0.8)) * fl[x * cnt + s];
+        }
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.0), T0, S0, scr, NULL, NULL) == PF_OK, "plain");
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.1), T, S, scr, &prior, NULL) == PF_OK, "shrink");
+    pf_test_note("tail cell: S %.3g (plain %.3g); weak patch T %.3g (plain %.3g); patch 0 / patch 1 T ratio %.4g (plain %.4g)",
+                 (double)S[tail_cell], (double)S0[tail_cell], (double)T[weak], (double)T0[weak], (double)(T[0] / T[1]),
+                 (double)(T0[0] / T0[1]));
+    PF_CHECK(S0[tail_cell] == PF_R(0.0), "plain least squares puts the tail cell at 0: %g", (double)S0[tail_cell]);
+    /* with the prior: the tail cell holds ~1e-6 of a cell's energy, so its T S stays near 1
+       (plain least squares: 0) */
+    for (c = 0; c < cells; ++c)
+        if (c != tail_cell) worst_fit = fmaxl(worst_fit, fabsl((long double)S[c] / (long double)S[0] - 1.0L));
+    PF_CHECK(fabsl((long double)S[tail_cell] * (long double)T[1] - 1.0L) <= 0.35L,
+             "tail cell scaled by %g, not near 1", (double)(S[tail_cell] * T[1]));
+    /* every other cell fits the same R, so only the prior separates them: a cell of energy q is
+       pulled 0.1 qbar / (q + 0.1 qbar) of the way toward 1, and the cells' energies differ */
+    PF_CHECK(worst_fit <= 0.03L, "well-sampled cells moved by %.3Lg", worst_fit);
+    /* patch 0's ratio 1.5 / 0.8 survives within the prior's 10% pull */
+    PF_CHECK(fabsl((long double)(T[0] / T[1]) / (1.5L / 0.8L) - 1.0L) <= 0.1L, "T ratio %g", (double)(T[0] / T[1]));
+    /* the weak patch (1e-4 of the energy) gets no T of its own (1 before T's normalization to
+       mean 1), so T S is the unnormalized S, a few % from 1 here; plain least squares gave it
+       its data's 0.8 relative to patch 1 */
+    PF_CHECK(fabsl((long double)T[weak] * (long double)S[0] - 1.0L) <= 0.05L, "weak patch T S = %g", (double)(T[weak] * S[0]));
+    /* pf_vmf_scale_t: the closed form (sum e l S + p) / (sum (l S)^2 + p), computed here */
+    for (s = 0; s < cnt; ++s) {
+        long double l = (long double)fl[cnt + s] * (long double)S[pfi_vmf_scale_cell(s, NT, NP)];
+        a += (long double)fe[cnt + s] * l;
+        q += l * l;
+    }
+    t_one = pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, prior);
+    PF_CHECK(prior > PF_R(0.0) && fabsl((long double)t_one / ((a + prior) / (q + prior)) - 1.0L) <= 1e3L * PF_TEST_EPS,
+             "pf_vmf_scale_t %g against %Lg", (double)t_one, (a + prior) / (q + prior));
+    PF_CHECK(pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) == PF_R(1.0) ||
+                 fabs((double)pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) - 1.0) <= 1e-6,
+             "a huge prior gives 1");
+}
+
 /* a separable R = T0(x) S0(cell) must be recovered exactly by the rank-1 fit */
 static void test_scale_factor_separable(void)
 {
@@ -1243,7 +1298,7 @@ static void test_scale_factor_separable(void)
             fl[x * cnt + s] = (pf_real)(trng_u(&r) * trng_u(&r) * 3.0);
             fe[x * cnt + s] = t0[x] * s0[pfi_vmf_scale_cell(s, NT, NP)] * fl[x * cnt + s];
         }
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 60, T, S, scr, err) == PF_OK, "factor");
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 60, PF_R(0.0), T, S, scr, NULL, err) == PF_OK, "factor");
     ratio = (long double)T[0] / (long double)t0[0];
     for (x = 0; x < P; ++x) worst = fmaxl(worst, fabsl((long double)T[x] / (long double)t0[x] / ratio - 1.0L));
     for (c = 0; c < cells; ++c) worst = fmaxl(worst, fabsl((long double)S[c] * ratio / (long double)s0[c] - 1.0L));
@@ -1303,7 +1358,7 @@ static void test_scale_bad_input_guarded(void)
     pf_real *hm = (pf_real *)pf_test_guarded_alloc(hb), *nr = (pf_real *)pf_test_guarded_alloc(nb);
     pf_real *fe = (pf_real *)pf_test_guarded_alloc(fb), *fl = (pf_real *)pf_test_guarded_alloc(fb);
     pf_real *T = (pf_real *)pf_test_guarded_alloc(sizeof(pf_real)), *S = (pf_real *)pf_test_guarded_alloc((size_t)cells * sizeof(pf_real));
-    pf_real *scr = (pf_real *)pf_test_guarded_alloc((size_t)(2 * cells) * sizeof(pf_real)), out = PF_R(7.0), err[3];
+    pf_real *scr = (pf_real *)pf_test_guarded_alloc((size_t)(2 * cells) * sizeof(pf_real)), out = PF_R(7.0), err[3], prior = PF_R(-1.0);
     unsigned char *vis = (unsigned char *)pf_test_guarded_alloc((size_t)vb);
     pf_vec3 z = pf_vec3_make(PF_R(0.3), PF_R(0.0), PF_R(0.9539392));
     int i;
@@ -1320,7 +1375,10 @@ static void test_scale_bad_input_guarded(void)
                                 NP, PF_R(1.2), nr, vis, fe, fl) == PF_OK,
              "valid patch");
     for (i = 0; i < cnt; ++i) PF_CHECK(pf_test_finite(fe[i]) && pf_test_finite(fl[i]) && fe[i] >= 0 && fl[i] >= 0, "sample %d", i);
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, T, S, scr, err) == PF_OK && pf_test_finite(T[0]), "valid factor");
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(1.0), T, S, scr, &prior, err) == PF_OK && pf_test_finite(T[0]) &&
+                 pf_test_finite(prior) && prior >= 0,
+             "valid factor");
+    PF_CHECK(pf_test_finite(pf_vmf_scale_t(fe, fl, NT, NP, S, prior)), "valid T");
     /* errors */
     PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), NULL) == PF_ERR_ARG, "NULL out");
     PF_CHECK(pf_vmf_effective_brdf(NULL, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
@@ -1351,11 +1409,17 @@ static void test_scale_bad_input_guarded(void)
     PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, NULL, fe, fl) ==
                  PF_ERR_ARG,
              "NULL scratch");
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, 0, NT, NP, 4, T, S, scr, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 0, T, S, scr, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, NULL, 1, NT, NP, 4, T, S, scr, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, 1 << 30, 1 << 30, 4, T, S, scr, err) == PF_ERR_SIZE,
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, 0, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 0, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, NULL, 1, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(-1.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, (pf_real)NAN, T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, 1 << 30, 1 << 30, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_SIZE,
              "factor errors");
+    PF_CHECK(pf_vmf_scale_t(NULL, fl, NT, NP, S, PF_R(0.0)) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, 1, NP, S, PF_R(0.0)) == PF_R(1.0) &&
+                 pf_vmf_scale_t(fe, fl, NT, NP, NULL, PF_R(0.0)) == PF_R(1.0) &&
+                 pf_vmf_scale_t(fe, fl, NT, NP, S, (pf_real)NAN) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, NT, NP, S, PF_R(-1.0)) == PF_R(1.0),
+             "T errors");
     PF_CHECK(pf_vmf_scale_sample_count(1, 2) == 0 && pf_vmf_scale_cell_count(2, 1) == 0 && pf_vmf_scale_vis_bytes(2, 2, 0) == 0,
              "size queries");
     pf_test_guarded_free(hm, hb);
@@ -1641,6 +1705,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_scale_visibility_wall);
     PF_TEST_RUN(test_scale_vs_microsurface_reference);
     PF_TEST_RUN(test_scale_factor_separable);
+    PF_TEST_RUN(test_scale_factor_shrink);
     PF_TEST_RUN(test_scale_lookup);
     PF_TEST_RUN(test_scale_bad_input_guarded);
     return PF_TEST_END();

@@ -1992,11 +1992,15 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
     }
     if (which == 3) {
         int patches = pfb_int(c, 1, 4), nt = pfb_int(c, 2, 3), np = pfb_int(c, 2, 3), iters = pfb_int(c, 1, 6);
-        int null = pfb_null(c, 5), no_err = PFC_R(pfc_next(c)) < 2;
+        int null = pfb_null(c, 5), no_err = PFC_R(pfc_next(c)) < 2, no_prior = PFC_R(pfc_next(c)) < 2;
+        /* shrink: mostly in [0, 2], sometimes negative, NaN or huge (PF_ERR_ARG) */
+        pfc_u32 sel = pfc_next(c);
+        pf_real shrink = PFC_R(sel) < 1 ? PF_R(-0.5) : PFC_R(sel) < 2 ? (pf_real)NAN : PFC_R(sel) < 3 ? PF_R(2.0e6) : PF_R(2.0) * pfc_u01(c);
         long long cnt = pfb_scale_count(nt, np), cells = pfb_scale_cells(nt, np), ns = -1, nsc = -1;
-        pf_real *b[6];
-        pfb_setcall("%s(fe, fl, %d, %d, %d, %d, T, S, scratch, %s) null %d", fn, patches, nt, np, iters, no_err ? "NULL" : "err", null);
-        if (null || patches < 1 || nt < 2 || np < 2 || iters < 1) ex.arg = 1;
+        pf_real *b[7];
+        pfb_setcall("%s(fe, fl, %d, %d, %d, %d, %a, T, S, scratch, %s, %s) null %d", fn, patches, nt, np, iters, (double)shrink,
+                    no_prior ? "NULL" : "prior", no_err ? "NULL" : "err", null);
+        if (null || patches < 1 || nt < 2 || np < 2 || iters < 1 || !(shrink >= PF_R(0.0)) || !(shrink <= PF_R(1.0e6))) ex.arg = 1;
         if (!ex.arg) {
             ns = pfb_mul(cnt, patches);
             nsc = pfb_mul(pfb_mul(cells, patches), 2);
@@ -2009,7 +2013,8 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
             /* 4 pool buffers (pfb_small's limit), the last two pointers reuse two of them */
             for (k = 0; k < 4; ++k) pool[k] = pfb_small();
             for (k = 0; k < 6; ++k) q[k] = null == k + 1 ? 0 : pool[k % 4];
-            rc = pf_vmf_scale_factor(q[0], q[1], patches, nt, np, iters, q[2], q[3], q[4], no_err ? 0 : q[5]);
+            rc = pf_vmf_scale_factor(q[0], q[1], patches, nt, np, iters, shrink, q[2], q[3], q[4], no_prior ? 0 : q[0],
+                                     no_err ? 0 : q[5]);
             pfb_rc_check(rc, allowed, fn);
             pfb_check_untouched(pool, 4);
             return;
@@ -2021,18 +2026,28 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
         b[3] = pfb_map(cells, !at_start);
         b[4] = pfb_map(nsc, at_start);
         b[5] = no_err ? 0 : pfb_map(3, !at_start);
-        if (!b[0] || !b[1] || !b[2] || !b[3] || !b[4] || (!no_err && !b[5])) return;
+        b[6] = no_prior ? 0 : pfb_map(1, at_start);
+        if (!b[0] || !b[1] || !b[2] || !b[3] || !b[4] || (!no_err && !b[5]) || (!no_prior && !b[6])) return;
         pfb_fill(c, b[0], ns, 6);
         pfb_fill(c, b[1], ns, 6);
         pfb_fill_canary(b[2], patches);
         pfb_fill_canary(b[3], cells);
         if (b[5]) pfb_fill_canary(b[5], 3);
+        if (b[6]) pfb_fill_canary(b[6], 1);
         if (pfb_t) pfb_t->run += 1;
-        rc = pf_vmf_scale_factor(b[0], b[1], patches, nt, np, iters, b[2], b[3], b[4], b[5]);
+        rc = pf_vmf_scale_factor(b[0], b[1], patches, nt, np, iters, shrink, b[2], b[3], b[4], b[6], b[5]);
         if (pfb_rc_check(rc, PFB_A_OK, fn)) {
             pfb_check_written(b[2], patches, "T", 1);
             pfb_check_written(b[3], cells, "S", 1);
             if (b[5]) pfb_check_written(b[5], 3, "err", 1);
+            if (b[6]) {
+                pf_real t1;
+                pfb_check_written(b[6], 1, "prior", 1);
+                if (!(b[6][0] >= PF_R(0.0))) pfb_fail(PFB_VALUE, "prior %a", (double)b[6][0]);
+                /* pf_vmf_scale_t on the first patch's samples with that prior: finite */
+                t1 = pf_vmf_scale_t(b[0], b[1], nt, np, b[3], b[6][0]);
+                if (!pfb_finite(t1)) pfb_fail(PFB_VALUE, "pf_vmf_scale_t %a", (double)t1);
+            }
         }
         if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
         return;
