@@ -149,6 +149,7 @@
 #include "pf_horizon.h"
 #include "pf_microsurface.h"
 #include "pf_maps.h"
+#include "vmf_scaling.h"
 
 #define BASE_SIGMA 0.1 /* deviation of the base lobe's slopes (reference and library) */
 #define F0 1.0         /* Fresnel off: the reference's F is 1 */
@@ -328,32 +329,14 @@ static const int vmf_meth_use_t[NVMF_METH] = { 0, 0, 0, 0, 0, 0, 0, 1, 1, 0 };
    and vmf_m8_scaled_s (S alone, T = 1), built per kind at the footprint levels from
    sc_min_level to sc_max_level (4096 texels; see there why not below) as the paper builds them
    per map and level; at other levels these methods return the unscaled lobes:
-     S (one SC_NT x SC_NT x SC_NP node table per level and m, theta_max SC_THETA_MAX): the
-       rank-1 fit of pf_vmf_scale_factor (SC_ALS rounds, prior SC_SHRINK toward 1) over
-       SC_TRAIN patches of the level, evenly spaced over the map (all of them when there are
-       fewer), from their samples: f_eff by pf_vmf_scale_patch (the in-footprint effective
-       BRDF, eqs. 6-8, at every sample pair of the node directions) and f_lobes = the method's
-       own shading of the pyramid texel (the fetched lobes, pf_vmf_sum_specular) at the same
-       pairs;
-     T (one value per pyramid texel): for a patch, given S, pf_vmf_scale_t on its own samples
-       with the level's prior; the training patches' T from their samples when S is built,
-       any other's the first time its footprint is shaded, cached (every footprint of the
-       error run and the cost section's footprints, before the cost is timed).
+     S per level and m (a 6 x 6 x 5 node table fitted over 16 patches of the level, with a
+       prior toward 1) and T per pyramid texel (the patch's own samples given S): built by
+       bench/vmf_scaling.h, which says how; the training patches' T when S is built, any
+       other's the first time its footprint is shaded, cached (every footprint of the error
+       run and the cost section's footprints, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
    trilinear) and multiplies (pf_vmf_scale_apply). */
 #define NSCALE 2
-#define SC_NT 6
-#define SC_NP 5
-#define SC_CELLS (SC_NT * SC_NT * SC_NP)
-#define SC_SAMPLES ((2 * SC_NT * (SC_NP - 1)) * (2 * SC_NT * (SC_NP - 1)))
-#define SC_THETA_MAX (75.0 * 3.14159265358979323846 / 180.0)
-#define SC_TRAIN 16
-#define SC_ALS 8
-/* the fit's prior toward 1 (pf_vmf_scale_factor's shrink): 1, the mean patch's (cell's) own
-   energy. Quick maps, in-footprint, vmf_m8_scaled at 4096 texels: prior 0.1 gave craters 0.057,
-   gaussian 0.126, prior 1 0.068, 0.126; scaled at every level, 1 was the steadier below
-   (gaussian, 256 texels: 1.02 with 0.1, 0.58 with 1, 0.15 unscaled) */
-#define SC_SHRINK PF_R(1.0)
 static const int scale_pyr[NSCALE] = { 2, 3 }; /* m = 4, 8 */
 /* the levels the scaling function is built and applied at: 4096-texel footprints (level 6)
    only; at other levels the scaled methods return the unscaled lobes. Why: with the node
@@ -385,8 +368,8 @@ typedef struct lib_maps {
     double vmf_fit_seconds[NVMF];
     pf_real *hor[NHOR]; /* horizon HDF-moment pyramids (pf_horizon.h), hor_n[i] azimuths */
     pf_real *heights;   /* the centred heights (pf_vmf_scale_patch reads them) */
-    pf_real sc_S[NSCALE][NSIZE][SC_CELLS]; /* scaling function: S per lobe count and level */
-    pf_real sc_prior[NSCALE][NSIZE];       /* and the prior of T's fit (pf_vmf_scale_t) */
+    pf_real sc_S[NSIZE][NSCALE][VS_CELLS]; /* scaling function: S per level and lobe count */
+    pf_real sc_prior[NSIZE][NSCALE];       /* and the prior of T's fit (pf_vmf_scale_t) */
     pf_real *sc_T[NSCALE]; /* T per pyramid texel (NaN: not computed yet) */
     double sc_seconds;     /* S fits and T computations so far */
     long sc_patches;       /* patches whose samples were computed */
@@ -396,80 +379,35 @@ typedef struct lib_maps {
     double mean_h, sd_h;
 } lib_maps;
 
-/* ---- the scaling function (see above) */
-static pf_vec3 sc_dir(int it, int k)
-{
-    double th = it * SC_THETA_MAX / (SC_NT - 1), ph = k * 3.14159265358979323846 / (SC_NP - 1);
-    return pf_vec3_make((pf_real)(sin(th) * cos(ph)), (pf_real)(sin(th) * sin(ph)), (pf_real)cos(th));
-}
-/* sample s's directions, in pf_vmf_scale_patch's order ((k_to A + a_o) nt + k_ti) A + a_i */
-static void sc_sample_dirs(long s, pf_vec3 *wo, pf_vec3 *wi)
-{
-    const long A = 2 * (SC_NP - 1);
-    long ai = s % A, ti = (s / A) % SC_NT, ao = (s / (A * SC_NT)) % A, to = s / (A * SC_NT * A);
-    *wo = sc_dir((int)to, (int)ao);
-    *wi = sc_dir((int)ti, (int)ai);
-}
-static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix);
-/* one patch's samples: f_eff (pf_vmf_scale_patch), f_lobes[j] for the scaled lobe counts */
-static void sc_patch_samples(lib_maps *L, int x0, int y0, int n, pf_real *f_eff, pf_real *f_lobes[NSCALE])
-{
-    static pf_real nrm[3 * 64 * 64], junk[SC_SAMPLES];
-    static unsigned char vis[2 * SC_NT * (SC_NP - 1) * 64 * 64];
-    long s;
-    int j;
-    if (pf_vmf_scale_patch(L->heights, L->w, L->h, PF_R(1.0), x0, y0, n, 1, 0, PF_R(BASE_SIGMA), PF_R(F0),
-                           PF_VMF_SCALE_G_GAUSSIAN, SC_NT, SC_NP, (pf_real)SC_THETA_MAX, nrm, vis, f_eff, junk) != PF_OK) {
-        fprintf(stderr, "microsurface: pf_vmf_scale_patch failed\n");
-        exit(1);
-    }
-    for (s = 0; s < SC_SAMPLES; ++s) {
-        pf_vec3 wo, wi;
-        sc_sample_dirs(s, &wo, &wi);
-        for (j = 0; j < NSCALE; ++j) f_lobes[j][s] = vmf_texel_spec(L, scale_pyr[j], x0, y0, n, wo, wi, 0);
-    }
-    L->sc_patches++;
-}
-/* S per lobe count and level from SC_TRAIN evenly spaced patches; the T caches emptied */
+/* ---- the scaling function (see above; bench/vmf_scaling.h) */
+/* S per lobe count at the scaled levels, and the training patches' T; the T caches emptied */
 static void scale_build(lib_maps *L)
 {
-    static pf_real f_eff[SC_TRAIN * SC_SAMPLES], f_l[NSCALE][SC_TRAIN * SC_SAMPLES];
-    static pf_real scratch[2 * SC_TRAIN * SC_CELLS], t[SC_TRAIN];
     long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
+    const pf_real *pyrs[NSCALE];
+    int ms[NSCALE], si, j, np;
     double t0 = now_ns();
-    int si, j, p;
     for (j = 0; j < NSCALE; ++j) {
         L->sc_T[j] = (pf_real *)xmalloc((size_t)tc * sizeof(pf_real));
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
+        pyrs[j] = L->vmf[scale_pyr[j]];
+        ms[j] = vmf_lobes[scale_pyr[j]];
     }
     L->sc_patches = 0;
     for (si = sc_min_level; si <= sc_max_level; ++si) {
-        int n = 1 << si, g = L->w / n, np = g * g < SC_TRAIN ? g * g : SC_TRAIN;
-        for (p = 0; p < np; ++p) {
-            int c = (int)(((long long)p * g * g) / np), x0 = (c % g) * n, y0 = (c / g) * n;
-            pf_real *fl[NSCALE];
-            for (j = 0; j < NSCALE; ++j) fl[j] = f_l[j] + (size_t)p * SC_SAMPLES;
-            sc_patch_samples(L, x0, y0, n, f_eff + (size_t)p * SC_SAMPLES, fl);
+        pf_real *tl[NSCALE];
+        for (j = 0; j < NSCALE; ++j) tl[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
+        np = vs_fit_level(L->heights, L->w, L->h, si, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, L->sc_S[si], L->sc_prior[si],
+                          tl);
+        if (np < 0) {
+            fprintf(stderr, "microsurface: the scaling function's fit failed\n");
+            exit(1);
         }
-        for (j = 0; j < NSCALE; ++j) {
-            if (pf_vmf_scale_factor(f_eff, f_l[j], np, SC_NT, SC_NP, SC_ALS, SC_SHRINK, t, L->sc_S[j][si], scratch,
-                                    &L->sc_prior[j][si], NULL) != PF_OK) {
-                fprintf(stderr, "microsurface: pf_vmf_scale_factor failed\n");
-                exit(1);
-            }
-            /* the training patches' T from their samples in hand, as scale_T computes any other's
-               (pf_vmf_scale_t with the level's final S): cached, not recomputed */
-            for (p = 0; p < np; ++p) {
-                int c = (int)(((long long)p * g * g) / np);
-                long long id = pf_vmf_pyramid_level_offset(L->w, L->h, si) + c;
-                L->sc_T[j][id] = pf_vmf_scale_t(f_eff + (size_t)p * SC_SAMPLES, f_l[j] + (size_t)p * SC_SAMPLES, SC_NT, SC_NP,
-                                                L->sc_S[j][si], L->sc_prior[j][si]);
-            }
-        }
+        L->sc_patches += np;
     }
     L->sc_seconds = (now_ns() - t0) * 1e-9;
     fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
-            SC_NT, SC_NT, SC_NP, SC_TRAIN, L->sc_seconds);
+            VS_NT, VS_NT, VS_NP, VS_TRAIN, L->sc_seconds);
 }
 /* T of the footprint's pyramid texel (level log2 n) for scaled lobe count j: cached */
 static pf_real scale_T(const lib_maps *Lc, int j, int x0, int y0, int n)
@@ -477,14 +415,21 @@ static pf_real scale_T(const lib_maps *Lc, int j, int x0, int y0, int n)
     lib_maps *L = (lib_maps *)Lc; /* the cache only */
     long long id = pf_vmf_pyramid_level_offset(L->w, L->h, ilog2(n)) + (long long)(y0 / n) * (L->w / n) + x0 / n;
     if (L->sc_T[j][id] != L->sc_T[j][id]) {
-        static pf_real f_eff[SC_SAMPLES], f_l[NSCALE][SC_SAMPLES];
-        pf_real *fl[NSCALE];
+        const pf_real *pyrs[NSCALE];
+        pf_real t[NSCALE];
+        int k, ms[NSCALE], si = ilog2(n);
         double t0 = now_ns();
-        int k, si = ilog2(n);
-        for (k = 0; k < NSCALE; ++k) fl[k] = f_l[k];
-        sc_patch_samples(L, x0, y0, n, f_eff, fl);
-        for (k = 0; k < NSCALE; ++k) /* both lobe counts from the same f_eff */
-            L->sc_T[k][id] = pf_vmf_scale_t(f_eff, f_l[k], SC_NT, SC_NP, L->sc_S[k][si], L->sc_prior[k][si]);
+        for (k = 0; k < NSCALE; ++k) {
+            pyrs[k] = L->vmf[scale_pyr[k]];
+            ms[k] = vmf_lobes[scale_pyr[k]];
+        }
+        if (vs_texel_t(L->heights, L->w, L->h, si, x0 / n, y0 / n, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, L->sc_S[si],
+                       L->sc_prior[si], t) != 0) {
+            fprintf(stderr, "microsurface: the scaling function's T failed\n");
+            exit(1);
+        }
+        for (k = 0; k < NSCALE; ++k) L->sc_T[k][id] = t[k]; /* both lobe counts from the same f_eff */
+        L->sc_patches++;
         L->sc_seconds += (now_ns() - t0) * 1e-9;
     }
     return L->sc_T[j][id];
@@ -652,12 +597,14 @@ static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, p
     const pf_real *tx = L->vmf[p] + id * 4 * m;
     pf_vmf_sum sum = pf_vmf_sum_zero();
     int j;
+    if (!mix) /* the texel's lobes, Smith G of their moments (what the scaling function is fitted to) */
+        return vs_texel_spec(L->vmf[p], W, H, m, ilog2(n), x0 / n, y0 / n, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA), PF_R(F0));
     for (j = 0; j < m; ++j) { /* padding lobes (amp 0) add nothing */
         pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
         sum = pf_vmf_sum_add(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
-        if (mix) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+        sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
     }
-    return mix ? pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0)) : pf_vmf_sum_specular(sum, wo, wi, PF_R(F0));
+    return pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0));
 }
 
 static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi)
@@ -688,7 +635,7 @@ static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int 
             if (sc < 0 || ilog2(n) < sc_min_level || ilog2(n) > sc_max_level) return f; /* see sc_min_level */
             /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
             return pf_vmf_scale_apply(vmf_meth_use_t[q] ? scale_T(L, sc, x0, y0, n) : PF_R(1.0),
-                                      pf_vmf_scale_lookup(L->sc_S[sc][ilog2(n)], SC_NT, SC_NP, (pf_real)SC_THETA_MAX, wo, wi),
+                                      pf_vmf_scale_lookup(L->sc_S[ilog2(n)][sc], VS_NT, VS_NP, (pf_real)VS_THETA_MAX, wo, wi),
                                       f);
         }
         if (k == 3 || k == 4) /* Toksvig, naive: the average-normal pyramid */

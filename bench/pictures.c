@@ -108,6 +108,7 @@
 #include "pf_vmf.h"
 #include "pf_microsurface.h"
 #include "pf_maps.h"
+#include "vmf_scaling.h"
 
 /* ---------------------------------------------------------------- settings */
 #define MAP_SIZE        256     /* the height map: MAP_SIZE^2 texels, texel = 1 world unit */
@@ -128,6 +129,8 @@
                                    its peak (1e-13) are not marched (their term is taken as 0) */
 #define FLAT_RMS_SLOPE  1e-9    /* self-check: the map flattened to this RMS slope */
 #define VMF_ITER        24      /* EM iterations at most per lobe-pyramid texel (as bench/microsurface.c) */
+#define SC_LEVEL        6       /* the scaling function's level: 64 x 64-texel footprints, the only
+                                   level bench/microsurface.c scales (docs/vmf.md) */
 #define VMF_CHECK_BOUND 2e-2    /* self-check bound of the vMF methods on the flat map: its fitted
                                    lobe is the sharpest the fit stores (kappa 1e5), whose own slope
                                    variance (~1e-5) widens the base lobe's 0.01 (docs/vmf.md: 4.4e-3
@@ -200,6 +203,11 @@ typedef struct {
     double t_pyramid;     /* seconds to build both pyramids */
     pf_real *vmf_pyr[NVMF_PIC]; /* vMF lobe pyramids (pf_vmf.h), vmf_pic_lobes[i] lobes per texel */
     double t_vmf[NVMF_PIC];     /* seconds to fit each */
+    /* the scaling function (bench/vmf_scaling.h) of both lobe pyramids at level SC_LEVEL:
+       S, the prior, T per texel of the level; sc_ok = 0 when the map has no such level */
+    int sc_ok;
+    pf_real sc_S[NVMF_PIC][VS_CELLS], sc_prior[NVMF_PIC], *sc_T[NVMF_PIC];
+    double t_scale;
 } pic_maps;
 
 /* flat = 1: the same map scaled to an RMS slope of FLAT_RMS_SLOPE (the pipeline self-check). */
@@ -247,6 +255,32 @@ static int maps_make(pic_maps *m, int flat)
             return 1;
         m->t_vmf[k] = now_seconds() - t0;
     }
+    /* the scaling function at SC_LEVEL (not for the flat self-check map) */
+    m->sc_ok = !flat && (W >> SC_LEVEL) >= 1 && (H >> SC_LEVEL) >= 1 &&
+               (long long)(W >> SC_LEVEL) * (H >> SC_LEVEL) <= 256; /* a 1024^2 map at most: ~0.4 s per T */
+    if (m->sc_ok) {
+        const pf_real *pyrs[NVMF_PIC];
+        long long gw = W >> SC_LEVEL, gh = H >> SC_LEVEL, t;
+        t0 = now_seconds();
+        for (k = 0; k < NVMF_PIC; ++k) {
+            pyrs[k] = m->vmf_pyr[k];
+            m->sc_T[k] = (pf_real *)malloc(sizeof(pf_real) * (size_t)(gw * gh));
+            if (!m->sc_T[k]) return 1;
+            for (t = 0; t < gw * gh; ++t) m->sc_T[k][t] = (pf_real)NAN;
+        }
+        if (vs_fit_level(heights, W, H, SC_LEVEL, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs, vmf_pic_lobes, m->sc_S,
+                         m->sc_prior, m->sc_T) < 0)
+            return 1;
+        for (t = 0; t < gw * gh; ++t)
+            if (m->sc_T[0][t] != m->sc_T[0][t]) { /* not a training patch */
+                pf_real tv[NVMF_PIC];
+                if (vs_texel_t(heights, W, H, SC_LEVEL, t % gw, t / gw, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs,
+                               vmf_pic_lobes, m->sc_S, m->sc_prior, tv) != 0)
+                    return 1;
+                for (k = 0; k < NVMF_PIC; ++k) m->sc_T[k][t] = tv[k];
+            }
+        m->t_scale = now_seconds() - t0;
+    }
     /* summed-area table of the level-0 moments, in double, from pfm's own slopes */
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
@@ -278,6 +312,8 @@ static void maps_free(pic_maps *m)
     free(m->ref_scratch);
     free(m->vmf_pyr[0]);
     free(m->vmf_pyr[1]);
+    free(m->sc_T[0]);
+    free(m->sc_T[1]);
 }
 
 /* Sum of the level-0 moments over [0, x) x [0, y) of the periodic extension of the map. */
@@ -513,6 +549,35 @@ static double shade_vmf(const pic_maps *m, const pic_sample *p, int which)
     return (double)pf_vmf_sum_specular(sum, wo, wi, (pf_real)F0);
 }
 
+/* shade_vmf times the scaling function (Wu et al. 2019 eqs. 13-14) where the footprint reaches
+   level SC_LEVEL: T sampled bilinearly from its level (wrap, texel centres) and S at (wo, wi)
+   (pf_vmf_scale_lookup), the factor T S faded in by the level's share of the trilinear fetch,
+   w = clamp(lod - (SC_LEVEL - 1), 0, 1), and kept at w = 1 above (T and S of level SC_LEVEL
+   stand for coarser footprints too). Our rule for continuous footprints, not the paper's:
+   bench/microsurface.c scales 64 x 64 footprints only, and below that level the fit made
+   several kinds worse (docs/vmf.md). */
+static double shade_vmf_scaled(const pic_maps *m, const pic_sample *p, int which)
+{
+    const int W = m->surf.w, H = m->surf.h, gw = W >> SC_LEVEL, gh = H >> SC_LEVEL;
+    double f = shade_vmf(m, p, which), lod = p->fp > 1.0 ? log2(p->fp) : 0.0, w = lod - (SC_LEVEL - 1), x, y, fx, fy, t = 0.0;
+    long ix, iy;
+    int k;
+    if (!m->sc_ok || !(w > 0.0) || !(f > 0.0)) return f;
+    if (w > 1.0) w = 1.0;
+    x = (p->tx / W - floor(p->tx / W)) * gw - 0.5;
+    y = (p->ty / H - floor(p->ty / H)) * gh - 0.5;
+    ix = (long)floor(x);
+    iy = (long)floor(y);
+    fx = x - (double)ix;
+    fy = y - (double)iy;
+    for (k = 0; k < 4; ++k) {
+        long tx = wrap_index((int)(ix + (k & 1)), gw), ty = wrap_index((int)(iy + (k >> 1)), gh);
+        t += ((k & 1) ? fx : 1.0 - fx) * ((k & 2) ? fy : 1.0 - fy) * (double)m->sc_T[which][ty * gw + tx];
+    }
+    t *= (double)pf_vmf_scale_lookup(m->sc_S[which], VS_NT, VS_NP, (pf_real)VS_THETA_MAX, to_pf(p->wo), to_pf(p->wi));
+    return f * (1.0 + w * (t - 1.0));
+}
+
 /* ---------------------------------------------------------------- scenes: per-pixel geometry */
 typedef struct {
     const char *name;
@@ -738,12 +803,14 @@ static int footprint_bin(double fp)
     return b;
 }
 
-enum { M_REF = 0, M_LEADR, M_NAIVE, M_BOX, M_VMF4, M_VMF8, M_COUNT };
+enum { M_REF = 0, M_LEADR, M_NAIVE, M_BOX, M_VMF4, M_VMF8, M_VMF4S, M_VMF8S, M_COUNT };
 static const char *const method_label[M_COUNT] = {"reference (brute force)", "LEADR (trilinear)",
                                                   "naive mip-mapped normal",
                                                   "LEADR, exact box moments",
                                                   "vMF m = 4 (trilinear lobes)",
-                                                  "vMF m = 8 (trilinear lobes)"};
+                                                  "vMF m = 8 (trilinear lobes)",
+                                                  "vMF m = 4, scaling function",
+                                                  "vMF m = 8, scaling function"};
 
 typedef struct {
     double *val[M_COUNT];
@@ -804,6 +871,8 @@ static double run_method(pic_maps *m, const pic_scene *sc, int method, double *o
         case M_NAIVE: out[i] = shade_naive(m, p); break;
         case M_VMF4: out[i] = shade_vmf(m, p, 0); break;
         case M_VMF8: out[i] = shade_vmf(m, p, 1); break;
+        case M_VMF4S: out[i] = shade_vmf_scaled(m, p, 0); break;
+        case M_VMF8S: out[i] = shade_vmf_scaled(m, p, 1); break;
         default: out[i] = shade_leadr_box(m, p); break;
         }
     }
@@ -1166,23 +1235,26 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
                 "in rows with few lit pixels comes from the Gaussian lobe's tails lighting pixels "
                 "that the reference leaves dark).\n\n"
                 "| %s: footprint side (texels) | surface pixels | lit | LEADR (trilinear): "
-                "error, bias | LEADR, exact box | naive | vMF m = 4 | vMF m = 8 |\n"
-                "|---|---|---|---|---|---|---|---|\n",
+                "error, bias | LEADR, exact box | naive | vMF m = 4 | vMF m = 8 | vMF m = 4, scaled | "
+                "vMF m = 8, scaled |\n"
+                "|---|---|---|---|---|---|---|---|---|---|\n",
             sc->name);
     for (k = 0; k < PIC_BINS; ++k) {
         if (!r->bin_surface[k]) continue;
         print_bin_label(md, k);
         fprintf(md, " %d | %d |", r->bin_surface[k], r->bin_lit[k]);
         if (r->bin_lit[k] == 0) {
-            fprintf(md, " - | - | - | - | - |\n"); /* nothing lit: no error, and the bias is 0/0 */
+            fprintf(md, " - | - | - | - | - | - | - |\n"); /* nothing lit: no error, and the bias is 0/0 */
             continue;
         }
-        fprintf(md, " %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f |\n",
+        fprintf(md, " %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f |\n",
                 100.0 * r->bin_err[k][M_LEADR], r->bin_ratio[k][M_LEADR],
                 100.0 * r->bin_err[k][M_BOX], r->bin_ratio[k][M_BOX],
                 100.0 * r->bin_err[k][M_NAIVE], r->bin_ratio[k][M_NAIVE],
                 100.0 * r->bin_err[k][M_VMF4], r->bin_ratio[k][M_VMF4],
-                100.0 * r->bin_err[k][M_VMF8], r->bin_ratio[k][M_VMF8]);
+                100.0 * r->bin_err[k][M_VMF8], r->bin_ratio[k][M_VMF8],
+                100.0 * r->bin_err[k][M_VMF4S], r->bin_ratio[k][M_VMF4S],
+                100.0 * r->bin_err[k][M_VMF8S], r->bin_ratio[k][M_VMF8S]);
     }
     fprintf(md, "\n");
     /* what the error is made of */
@@ -1372,7 +1444,7 @@ static double self_check(double *worst_vmf)
                 double ref = r.val[M_REF][i], e;
                 if (!sc.px[i].hit || !(ref >= r.floor)) continue;
                 e = fabs((k == M_REF ? r.inbox[i] : r.val[k][i]) - ref) / ref;
-                if (k == M_VMF4 || k == M_VMF8) {
+                if (k == M_VMF4 || k == M_VMF8 || k == M_VMF4S || k == M_VMF8S) {
                     if (!(e <= *worst_vmf)) *worst_vmf = e;
                 } else if (!(e <= worst)) worst = e; /* NaN counts as the worst */
             }
@@ -1531,8 +1603,14 @@ int main(int argc, char **argv)
                         "covariance; docs/vmf.md) read the lobes of the 8 texels a trilinear lookup "
                         "at the footprint's level of detail touches, each texel's amplitudes scaled "
                         "by its weight (the mixture of the 8 mixtures): 8 m lobe evaluations per "
-                        "pixel.\n\n",
-                    m.surf.w, m.surf.h, 1e3 * m.t_pyramid, VMF_ITER, m.t_vmf[0], m.t_vmf[1]);
+                        "pixel. The scaled rows multiply them by the scaling function T(x) S(wi, wo) "
+                        "(Wu et al. 2019 eqs. 13-14, `bench/vmf_scaling.h`: S fitted to the in-footprint "
+                        "effective BRDF of 16 patches of 64 x 64 texels with a prior toward 1, T per "
+                        "64 x 64 texel, built in %.1f s%s), faded in with the footprint's share of "
+                        "level 6 (1 from 64-texel footprints on; 0 below 32).\n\n",
+                    m.surf.w, m.surf.h, 1e3 * m.t_pyramid, VMF_ITER, m.t_vmf[0], m.t_vmf[1], m.t_scale,
+                    m.sc_ok ? "" : "; NOT BUILT for this map (smaller than 64 texels, or more than 256 level-6 "
+                                   "texels): the scaled rows equal the unscaled ones");
         describe_scene(md, &sc, &r, png, &m);
         result_free(&r);
         free(sc.px);
