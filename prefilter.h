@@ -6555,7 +6555,7 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
                  pf_vmf_downsample_slopes, pf_vmf_downsample_scratch_size (slope-preserving
                  downsampling of the height map, Wu et al. 2019 eqs. 9-10);
                  pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
-                 pf_vmf_scale_lookup, pf_vmf_scale_sample_count, pf_vmf_scale_cell_count,
+                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count, pf_vmf_scale_cell_count,
                  pf_vmf_scale_vis_bytes (scaling function, Wu et al. 2019 eqs. 6-8, 12-14, 21-24)
 
    CONVENTIONS
@@ -7465,7 +7465,15 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
    R: where the narrow lobes put almost no energy R is a ratio of two tiny numbers (the paper
    adds an epsilon), and a plain mean weights those samples as much as the highlight; the fit
    in BRDF units weights them by their energy, and is still exact when R is separable (the
-   plain means are exact then too). Cells or patches without energy get 1. */
+   plain means are exact then too). Cells or patches without energy get 1.
+   REGULARIZATION: the samples are node directions, so a patch whose highlight falls between
+   them, or a cell that only the lobes' far tails reach (where f_eff, whose facets skip the
+   base lobe's tail, is exactly 0), is decided by a few tiny samples: unregularized, S had
+   cells of exactly 0 at every level of the bench's maps (trilinear reads spread them onto the
+   highlights) and T ranged 0.13-10.8 at 64-256 texels. Each T and S is therefore the
+   least-squares value with a prior pulling it toward 1 whose weight is `shrink` times the
+   average energy sum (S f_lobes)^2 of a patch (for T) or sum (T f_lobes)^2 of a cell (for S):
+   well-sampled values keep their fit, poorly sampled ones stay near 1 (no scaling). */
 #define PF_VMF_SCALE_UNMASKED 0
 #define PF_VMF_SCALE_G_GAUSSIAN 1
 #define PF_VMF_SCALE_G_MIXTURE 2
@@ -7786,21 +7794,27 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
 /* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
    `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
    patch after patch, as pf_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
-   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment).
-   scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
+   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
+   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
+   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
+   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
+   pf_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
+   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
    of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
    for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
    T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
    not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
-   Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1;
-   PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
+   Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
+   outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
-                                   int iterations, pf_real *t_out, pf_real *s_out, pf_real *scratch, pf_real *err)
+                                   int iterations, pf_real shrink, pf_real *t_out, pf_real *s_out, pf_real *scratch,
+                                   pf_real *prior_out, pf_real *err)
 {
     long long cells, count, x, b, s;
     pf_real *num, *den, mean;
     int it;
-    if (!f_eff || !f_lobes || !t_out || !s_out || !scratch || patches < 1 || nt < 2 || np < 2 || iterations < 1)
+    if (!f_eff || !f_lobes || !t_out || !s_out || !scratch || patches < 1 || nt < 2 || np < 2 || iterations < 1 ||
+        !(shrink >= PF_R(0.0)) || !(shrink <= PF_R(1.0e6)))
         return PF_ERR_ARG;
     cells = pf_vmf_scale_cell_count(nt, np);
     count = pf_vmf_scale_sample_count(nt, np);
@@ -7822,21 +7836,38 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
     for (b = 0; b < cells; ++b) s_out[b] = PF_R(1.0);
     for (x = 0; x < patches; ++x) t_out[x] = PF_R(1.0);
     for (it = 0; it < iterations; ++it) {
+        /* T step: the prior's weight is `shrink` times the mean patch energy (first pass) */
+        pf_real prior = PF_R(0.0);
+        for (x = 0; x < patches; ++x) {
+            pf_real q = PF_R(0.0);
+            for (b = 0; b < cells; ++b) q += den[x * cells + b] * s_out[b] * s_out[b];
+            prior += q;
+        }
+        prior = shrink * prior / (pf_real)patches;
+        prior = prior < PF_REAL_MAX ? prior : PF_R(0.0); /* overflowed energies: no prior */
         for (x = 0; x < patches; ++x) {
             pf_real a = PF_R(0.0), q = PF_R(0.0);
             for (b = 0; b < cells; ++b) {
                 a += num[x * cells + b] * s_out[b];
                 q += den[x * cells + b] * s_out[b] * s_out[b];
             }
-            t_out[x] = q > PF_R(0.0) ? a / q : PF_R(1.0);
+            a = (a + prior) / (q + prior);
+            t_out[x] = a < PF_REAL_MAX ? a : PF_R(1.0); /* no energy and no prior (NaN), overflow */
         }
+        /* S step: likewise with the mean cell energy */
+        prior = PF_R(0.0);
+        for (b = 0; b < cells; ++b)
+            for (x = 0; x < patches; ++x) prior += den[x * cells + b] * t_out[x] * t_out[x];
+        prior = shrink * prior / (pf_real)cells;
+        prior = prior < PF_REAL_MAX ? prior : PF_R(0.0);
         for (b = 0; b < cells; ++b) {
             pf_real a = PF_R(0.0), q = PF_R(0.0);
             for (x = 0; x < patches; ++x) {
                 a += num[x * cells + b] * t_out[x];
                 q += den[x * cells + b] * t_out[x] * t_out[x];
             }
-            s_out[b] = q > PF_R(0.0) ? a / q : PF_R(1.0);
+            a = (a + prior) / (q + prior);
+            s_out[b] = a < PF_REAL_MAX ? a : PF_R(1.0);
         }
     }
     mean = PF_R(0.0);
@@ -7845,6 +7876,15 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
     if (mean > PF_R(0.0)) {
         for (x = 0; x < patches; ++x) t_out[x] /= mean;
         for (b = 0; b < cells; ++b) s_out[b] *= mean;
+    }
+    /* the prior for pf_vmf_scale_t on other patches of the same level: shrink times the mean
+       patch energy sum_s (S f_lobes)^2 under the final S */
+    if (prior_out) {
+        pf_real e_sum = PF_R(0.0);
+        for (x = 0; x < patches; ++x)
+            for (b = 0; b < cells; ++b) e_sum += den[x * cells + b] * s_out[b] * s_out[b];
+        e_sum = shrink * e_sum / (pf_real)patches;
+        *prior_out = e_sum < PF_REAL_MAX ? e_sum : PF_R(0.0);
     }
     if (err) {
         pf_real e0 = PF_R(0.0), e1 = PF_R(0.0), ref = PF_R(0.0), l2 = PF_R(0.0), r0 = PF_R(0.0), rr = PF_R(0.0), floor_l;
@@ -7874,6 +7914,30 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
         err[2] = rr > PF_R(0.0) ? PF_SQRT(r0 / rr) : PF_R(0.0);
     }
     return PF_OK;
+}
+
+/* T of one patch given a level's S table (pf_vmf_scale_factor's s_out) from the patch's own
+   samples (f_eff, f_lobes: pf_vmf_scale_sample_count(nt, np) pf_reals each, as
+   pf_vmf_scale_patch writes them): (sum e l S + prior) / (sum (l S)^2 + prior), S of each
+   sample's cell, prior from pf_vmf_scale_factor's prior_out (>= 0). Non-finite or negative
+   samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, a patch
+   without energy and no prior, or sums that overflow. */
+PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
+                                  pf_real prior)
+{
+    long long count = pf_vmf_scale_sample_count(nt, np), s;
+    pf_real a = PF_R(0.0), q = PF_R(0.0);
+    if (!f_eff || !f_lobes || !s_table || count == 0 || pf_vmf_scale_cell_count(nt, np) == 0 || !(prior >= PF_R(0.0)))
+        return PF_R(1.0);
+    for (s = 0; s < count; ++s) {
+        pf_real e = f_eff[s], l = f_lobes[s];
+        e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
+        l = l > PF_R(0.0) && l < PF_REAL_MAX ? l * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
+        a += e * l;
+        q += l * l;
+    }
+    a = (a + prior) / (q + prior);
+    return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
 }
 
 /* S at (wo, wi) from the table (CPU side of the shader lookup: pf_vmf_scale_coords,

@@ -1927,7 +1927,7 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
 
 /* ---------------------------------------------------------------- pf_vmf.h: scaling function
    (helper J) pf_vmf_effective_brdf (which 0), pf_vmf_scale_patch (1), the size queries (2),
-   pf_vmf_scale_factor (3), pf_vmf_scale_lookup (4). Accepted patch calls run on maps of at most
+   pf_vmf_scale_factor and pf_vmf_scale_t on its result (3), pf_vmf_scale_lookup (4). Accepted patch calls run on maps of at most
    16 x 16 with nt, np <= 3 and n <= 8; heights finite, or one NaN/inf (then PF_ERR_ARG or, when
    it lies outside the patch and its ring, PF_OK). The byte scratch of pf_vmf_scale_patch is
    mapped as whole pf_reals (at most sizeof(pf_real) - 1 bytes of slack before the guard). */
@@ -2181,7 +2181,7 @@ static const pfb_entry pfb_table[] = {
     { "pf_vmf_effective_brdf", "vmf", pfb_d_vmf_scale, 0 },
     { "pf_vmf_scale_patch", "vmf", pfb_d_vmf_scale, 1 },
     { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf", pfb_d_vmf_scale, 2 },
-    { "pf_vmf_scale_factor", "vmf", pfb_d_vmf_scale, 3 },
+    { "pf_vmf_scale_factor pf_vmf_scale_t", "vmf", pfb_d_vmf_scale, 3 },
     { "pf_vmf_scale_lookup", "vmf", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
