@@ -1468,6 +1468,34 @@ static long double below_facing_stats(pf_slope_stats s, const double w[3])
     return below_facing(a, sqrtl(v > 0.0L ? v : 0.0L));
 }
 
+/* The specular of mixture m just below (v[0]) and just above (v[1]) its mean plane along x,
+   step_deg either side of it: the view moves (move_light 0; light at 35 deg, phi 180) or the
+   light does (1; view there). v[side][0] is the mixture-Smith form, v[side][1] the
+   one-Gaussian form. */
+static void mean_plane_crossing(const pf_vmf_mixture *m, pf_real base_var, int move_light, long double step_deg,
+                                long double v[2][2])
+{
+    double fixed[3], moving[3];
+    pf_vmf_sum s0;
+    long double mx, tc;
+    int side;
+    dir_deg(35.0, 180.0, fixed);
+    dir_deg(70.0, 0.0, moving);
+    s0 = move_light ? mix_sum(m, V(fixed), V(moving), base_var, 0, PF_R(0.0)) : mix_sum(m, V(moving), V(fixed), base_var, 0, PF_R(0.0));
+    mx = (long double)s0.ex / (long double)s0.amp;
+    tc = atanl(1.0L / mx) * 180.0L / PF_TEST_PI; /* the polar angle of the mean plane along x */
+    for (side = 0; side < 2; ++side) {
+        pf_vmf_sum s1;
+        pf_vec3 wo, wi;
+        dir_deg((double)(tc + (side ? step_deg : -step_deg)), 0.0, moving);
+        wo = move_light ? V(fixed) : V(moving);
+        wi = move_light ? V(moving) : V(fixed);
+        s1 = mix_sum(m, wo, wi, base_var, 0, PF_R(0.0));
+        v[side][0] = (long double)pf_vmf_sum_specular_mixture(s1, wo, wi, PF_R(0.04));
+        v[side][1] = (long double)pf_vmf_sum_specular(s1, wo, wi, PF_R(0.04));
+    }
+}
+
 static void test_specular_view_below_mean_plane(void)
 {
     const pf_real base_var = PF_R(0.01);
@@ -1530,24 +1558,10 @@ static void test_specular_view_below_mean_plane(void)
         PF_CHECK(ref > 0.0L, "pf_leadr_specular is 0 at view %d", i);
         worst_leadr = fmaxl(worst_leadr, pf_test_rel_error(got, ref));
     }
-    /* continuity through area_o = 0: views 1e-3 rad either side of the mean plane (phi = 0) */
+    /* continuity through area_o = 0: views 0.06 deg either side of the mean plane (phi = 0) */
     {
-        double wo[3], wi[3];
-        pf_vmf_sum s0;
-        long double mx, tc, v[2][2];
-        int side;
-        dir_deg(70.0, 0.0, wo);
-        dir_deg(35.0, 180.0, wi);
-        s0 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
-        mx = (long double)s0.ex / (long double)s0.amp;
-        tc = atanl(1.0L / mx) * 180.0L / PF_TEST_PI; /* the view angle of the mean plane along x */
-        for (side = 0; side < 2; ++side) {
-            pf_vmf_sum s1;
-            dir_deg((double)(tc + (side ? 0.06L : -0.06L)), 0.0, wo);
-            s1 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
-            v[side][0] = (long double)pf_vmf_sum_specular_mixture(s1, V(wo), V(wi), PF_R(0.04));
-            v[side][1] = (long double)pf_vmf_sum_specular(s1, V(wo), V(wi), PF_R(0.04));
-        }
+        long double v[2][2];
+        mean_plane_crossing(&m, base_var, 0, 0.06L, v);
         jump_mix = pf_test_rel_error(v[1][0], v[0][0]);
         jump_one = pf_test_rel_error(v[1][1], v[0][1]);
     }
@@ -1639,22 +1653,8 @@ static void test_specular_light_below_mean_plane(void)
         }
     /* continuity through area_i = 0 (phi = 0) */
     {
-        double wo[3], wi[3];
-        pf_vmf_sum s0;
-        long double mx, tc, v[2][2];
-        int side;
-        dir_deg(35.0, 180.0, wo);
-        dir_deg(70.0, 0.0, wi);
-        s0 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
-        mx = (long double)s0.ex / (long double)s0.amp;
-        tc = atanl(1.0L / mx) * 180.0L / PF_TEST_PI; /* the light angle of the mean plane along x */
-        for (side = 0; side < 2; ++side) {
-            pf_vmf_sum s1;
-            dir_deg((double)(tc + (side ? 0.006L : -0.006L)), 0.0, wi);
-            s1 = mix_sum(&m, V(wo), V(wi), base_var, 0, PF_R(0.0));
-            v[side][0] = (long double)pf_vmf_sum_specular_mixture(s1, V(wo), V(wi), PF_R(0.04));
-            v[side][1] = (long double)pf_vmf_sum_specular(s1, V(wo), V(wi), PF_R(0.04));
-        }
+        long double v[2][2];
+        mean_plane_crossing(&m, base_var, 1, 0.006L, v);
         jump_mix = pf_test_rel_error(v[1][0], v[0][0]);
         jump_one = pf_test_rel_error(v[1][1], v[0][1]);
         if (!(v[1][0] > 0.0L) || !(v[1][1] > 0.0L)) pos = 0;
