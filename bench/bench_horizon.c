@@ -183,6 +183,18 @@ static pf_hdf_moments hdf_at(const pf_real *t, pf_horizon_azimuth az)
 
 static int ilog2i(int n) { int l = 0; while ((1 << l) < n) ++l; return l; }
 
+/* the rest of a markdown table's header: one column per kind run (have[kind]), then the rule */
+static void kind_columns(const int *kinds, int nk, const int *have)
+{
+    int ki;
+    for (ki = 0; ki < nk; ++ki)
+        if (have[kinds[ki]]) printf(" %s |", pfm_kind_name(kinds[ki]));
+    printf("\n|---|");
+    for (ki = 0; ki < nk; ++ki)
+        if (have[kinds[ki]]) printf("--:|");
+    printf("\n");
+}
+
 static int run_masking(int quick, const char *kinds, int steps, int nbig)
 {
     static const int kind_list[] = { PFM_GAUSSIAN, PFM_GAUSSIAN_FINE, PFM_GAUSSIAN_ANISO, PFM_PEAKED,
@@ -355,12 +367,7 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
                 if (sizes[si] != 64 && r == 1) continue;
                 printf("\n## masking, %d-texel footprints, %s reference, views 0-75 pooled, relative L2\n\n| method |",
                        sizes[si] * sizes[si], rn[r]);
-                for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
-                    if (have[kind_list[ki]]) printf(" %s |", pfm_kind_name(kind_list[ki]));
-                printf("\n|---|");
-                for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
-                    if (have[kind_list[ki]]) printf("--:|");
-                printf("\n");
+                kind_columns(kind_list, (int)(sizeof kind_list / sizeof kind_list[0]), have);
                 for (q = 0; q < NMETH; ++q) {
                     printf("| %s |", meth_name[q]);
                     for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
@@ -374,12 +381,7 @@ static int run_masking(int quick, const char *kinds, int steps, int nbig)
        (full reference). Docs/horizon.md's lod-fade argument: the two agree at small footprints
        and part at large ones, where the truth tends to 1. */
     printf("\n## mean area ratio sum V a / sum a over footprints and views 0-75: estimate (pf_horizon_visible_area, n = %d) / true (marched)\n\n| footprint |", nbig);
-    for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
-        if (have[kind_list[ki]]) printf(" %s |", pfm_kind_name(kind_list[ki]));
-    printf("\n|---|");
-    for (ki = 0; ki < (int)(sizeof kind_list / sizeof kind_list[0]); ++ki)
-        if (have[kind_list[ki]]) printf("--:|");
-    printf("\n");
+    kind_columns(kind_list, (int)(sizeof kind_list / sizeof kind_list[0]), have);
     {
         int si;
         for (si = 0; si < nsz; ++si) {
