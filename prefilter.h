@@ -7836,37 +7836,37 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
     for (b = 0; b < cells; ++b) s_out[b] = PF_R(1.0);
     for (x = 0; x < patches; ++x) t_out[x] = PF_R(1.0);
     for (it = 0; it < iterations; ++it) {
-        /* T step: the prior's weight is `shrink` times the mean patch energy (first pass) */
+        /* T step: each patch's energy q first (kept in t_out, which this step overwrites),
+           the prior's weight `shrink` times their mean, then T from q and sum e l S */
         pf_real prior = PF_R(0.0);
         for (x = 0; x < patches; ++x) {
             pf_real q = PF_R(0.0);
             for (b = 0; b < cells; ++b) q += den[x * cells + b] * s_out[b] * s_out[b];
+            t_out[x] = q;
             prior += q;
         }
         prior = shrink * prior / (pf_real)patches;
         prior = prior < PF_REAL_MAX ? prior : PF_R(0.0); /* overflowed energies: no prior */
         for (x = 0; x < patches; ++x) {
-            pf_real a = PF_R(0.0), q = PF_R(0.0);
-            for (b = 0; b < cells; ++b) {
-                a += num[x * cells + b] * s_out[b];
-                q += den[x * cells + b] * s_out[b] * s_out[b];
-            }
-            a = (a + prior) / (q + prior);
+            pf_real a = PF_R(0.0);
+            for (b = 0; b < cells; ++b) a += num[x * cells + b] * s_out[b];
+            a = (a + prior) / (t_out[x] + prior);
             t_out[x] = a < PF_REAL_MAX ? a : PF_R(1.0); /* no energy and no prior (NaN), overflow */
         }
-        /* S step: likewise with the mean cell energy */
+        /* S step: likewise with each cell's energy (kept in s_out) and their mean */
         prior = PF_R(0.0);
-        for (b = 0; b < cells; ++b)
-            for (x = 0; x < patches; ++x) prior += den[x * cells + b] * t_out[x] * t_out[x];
+        for (b = 0; b < cells; ++b) {
+            pf_real q = PF_R(0.0);
+            for (x = 0; x < patches; ++x) q += den[x * cells + b] * t_out[x] * t_out[x];
+            s_out[b] = q;
+            prior += q;
+        }
         prior = shrink * prior / (pf_real)cells;
         prior = prior < PF_REAL_MAX ? prior : PF_R(0.0);
         for (b = 0; b < cells; ++b) {
-            pf_real a = PF_R(0.0), q = PF_R(0.0);
-            for (x = 0; x < patches; ++x) {
-                a += num[x * cells + b] * t_out[x];
-                q += den[x * cells + b] * t_out[x] * t_out[x];
-            }
-            a = (a + prior) / (q + prior);
+            pf_real a = PF_R(0.0);
+            for (x = 0; x < patches; ++x) a += num[x * cells + b] * t_out[x];
+            a = (a + prior) / (s_out[b] + prior);
             s_out[b] = a < PF_REAL_MAX ? a : PF_R(1.0);
         }
     }
