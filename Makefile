@@ -124,7 +124,7 @@ REPORT_PROGS := microsurface pictures
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
 $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -Itests $< -o $@ -lpng -lm
+	$(CC) $(BENCH_FLAGS) -pthread -Itests $< -o $@ -lpng -lm
 
 # The ground truth on the user's own map (bench/map.sh, docs/maps.md): with MAP set, make bench
 # runs bench/microsurface.c and bench/pictures.c on that map instead of the full run, and writes
