@@ -149,7 +149,7 @@ typedef float pf_real;
 
 /* ---------------------------------------------------------------- math, one macro per function */
 #if defined(PF_SIN) || defined(PF_COS)
-#  define PFI_USER_TRIG 1 /* the user mapped sin/cos: PFI_SINPI/PFI_COSPI below go through them */
+#  define PFI_USER_TRIG 1 /* the user mapped sin/cos: PF_SINPI/PF_COSPI below go through them */
 #endif
 #if defined(PF_GLSL)
 #  ifndef PF_SQRT
@@ -220,11 +220,11 @@ typedef float pf_real;
    huge arguments written in FP64, which the float device build must not contain (make
    portability, nvcc-float). Elsewhere, and when PF_SIN/PF_COS are user-mapped, sin(PF_PI x). */
 #if defined(__CUDACC__) && !defined(PF_GLSL) && !defined(PFI_USER_TRIG)
-#  define PFI_SINPI(x) PFI_LIBM(sinpi)(x)
-#  define PFI_COSPI(x) PFI_LIBM(cospi)(x)
+#  define PF_SINPI(x) PFI_LIBM(sinpi)(x)
+#  define PF_COSPI(x) PFI_LIBM(cospi)(x)
 #else
-#  define PFI_SINPI(x) PF_SIN(PF_PI * (x))
-#  define PFI_COSPI(x) PF_COS(PF_PI * (x))
+#  define PF_SINPI(x) PF_SIN(PF_PI * (x))
+#  define PF_COSPI(x) PF_COS(PF_PI * (x))
 #endif
 
 /* ---------------------------------------------------------------- scalar helpers */
@@ -259,7 +259,7 @@ PF_DEF pf_real pf_clamp(pf_real x, pf_real lo, pf_real hi) { return PFI_CLAMP(x,
 PF_DEF pf_real pf_saturate(pf_real x) { return pf_clamp(x, PF_R(0.0), PF_R(1.0)); }
 /* clamp(x, lo, hi) that also sanitizes: a NaN x gives lo in C and CUDA (max first: pf_max's
    comparison is false for NaN), one native clamp in GLSL. lo <= hi. */
-PF_DEF pf_real pfi_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
+PF_DEF pf_real pf_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
 {
 #ifdef PF_GLSL
     return clamp(x, lo, hi);
@@ -304,20 +304,20 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
    (a + 2^k a) - 2^k a, whose only product is exact, and every other product in an exact
    step is exact, so fusing it changes nothing (measured: <= 1.51 ulp with
    -ffp-contract=fast -mfma; the Veltkamp form c - (c - 4097 a) reached 2.09). In GLSL the
-   exact steps are `precise` (PFI_EXACT), which forbids both contraction and simplification
+   exact steps are `precise` (PF_EXACT), which forbids both contraction and simplification
    there. Under -ffast-math the split may be simplified away: results stay finite and in
    range, with a few ulp more error. */
 
 
-/* PFI_EXACT marks the variables of the error-free steps below (splits, exact products and
+/* PF_EXACT marks the variables of the error-free steps below (splits, exact products and
    their residuals). In GLSL it is `precise` (SPIR-V NoContraction): a shader compiler may
    otherwise contract them into FMAs or simplify (a + s) - s to a, which is exact algebra and
    wrong arithmetic. C and CUDA need nothing: the splits are written so that contraction
    cannot change them (below), and C compilers do not reassociate without -ffast-math. */
 #ifdef PF_GLSL
-#  define PFI_EXACT precise
+#  define PF_EXACT precise
 #else
-#  define PFI_EXACT
+#  define PF_EXACT
 #endif
 
 /* The high half of a: a rounded to 12 (float) or 26 (double) significant bits, so that
@@ -332,12 +332,12 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
 PF_DEF pf_real pfi_split_hi(pf_real a)
 {
 #ifdef PF_DOUBLE
-    PFI_EXACT pf_real s = PF_R(134217728.0) * a;
+    PF_EXACT pf_real s = PF_R(134217728.0) * a;
 #else
-    PFI_EXACT pf_real s = PF_R(4096.0) * a;
+    PF_EXACT pf_real s = PF_R(4096.0) * a;
 #endif
-    PFI_EXACT pf_real t = a + s;
-    PFI_EXACT pf_real h = t - s;
+    PF_EXACT pf_real t = a + s;
+    PF_EXACT pf_real h = t - s;
     return h;
 }
 
@@ -348,10 +348,10 @@ PF_DEF pf_real pfi_split_hi(pf_real a)
 PF_DEF pf_real pf_exp_neg_sq(pf_real x)
 {
     pf_real xc = pf_min(PF_FABS(x), PF_R(64.0)); /* exp(-4096) = 0; keeps the split finite */
-    PFI_EXACT pf_real xh = pfi_split_hi(xc);
-    PFI_EXACT pf_real xl = xc - xh;
-    PFI_EXACT pf_real p = xc * xc;
-    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PF_EXACT pf_real xh = pfi_split_hi(xc);
+    PF_EXACT pf_real xl = xc - xh;
+    PF_EXACT pf_real p = xc * xc;
+    PF_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     pf_real e = PF_EXP(-p);
     return e - e * b;
 }
@@ -382,16 +382,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
 {
 #ifdef PF_DOUBLE
     pf_real xc = x > PF_R(27.25) ? PF_R(27.25) : x; /* not pf_min: CUDA's fmin drops a NaN */
-    PFI_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
+    PF_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
 #else
     pf_real xc = x > PF_R(10.125) ? PF_R(10.125) : x; /* not pf_min: CUDA's fminf drops a NaN */
-    PFI_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
+    PF_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
 #endif
-    PFI_EXACT pf_real xh = pfi_split_hi(xc);
-    PFI_EXACT pf_real xl = xc - xh;
+    PF_EXACT pf_real xh = pfi_split_hi(xc);
+    PF_EXACT pf_real xl = xc - xh;
     /* x*x = p + b exactly */
-    PFI_EXACT pf_real p = xc * xc;
-    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PF_EXACT pf_real p = xc * xc;
+    PF_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     /* exp(-p): scaled by 2^64, or, where the result is subnormal (float x > 9.27, double
        x > 26.57), computed as exp(sh - p) and scaled by exp(-sh); sh - p is exact. */
 #ifdef PF_DOUBLE
@@ -407,16 +407,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     /* 1/(x + A) = wh/(1 + s): dh = xs + A is exact with <= 14 (double 28) bits, wh = 1/dh
        rounded to 9 (23) bits, so wh*dh and r = 1 - wh*dh are exact, |s| < 2^-8. Then
        exp(-b)/(x + A) = wh (1 + g), g = (1 - b)/(1 + s) - 1. */
-    PFI_EXACT pf_real xs = (xc + c2) - c2;
+    PF_EXACT pf_real xs = (xc + c2) - c2;
     pf_real dh = xs + PF_R(0.625);
     pf_real cw = PF_R(1.0) / dh;
 #ifdef PF_DOUBLE
-    PFI_EXACT pf_real wc = PF_R(1073741824.0) * cw; /* 2^30 */
+    PF_EXACT pf_real wc = PF_R(1073741824.0) * cw; /* 2^30 */
 #else
-    PFI_EXACT pf_real wc = PF_R(32768.0) * cw;      /* 2^15 */
+    PF_EXACT pf_real wc = PF_R(32768.0) * cw;      /* 2^15 */
 #endif
-    PFI_EXACT pf_real wh = (cw + wc) - wc;
-    PFI_EXACT pf_real r = PF_R(1.0) - wh * dh;
+    PF_EXACT pf_real wh = (cw + wc) - wc;
+    PF_EXACT pf_real r = PF_R(1.0) - wh * dh;
     pf_real sv = (xc - xs) * wh - r;
     pf_real s3 = sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv))); /* s/(1 + s) */
     pf_real g = -b - (PF_R(1.0) - b) * s3;
@@ -474,7 +474,7 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     kh = PF_R(0.625) * wh;
     kl = wh * (y + g * (PF_R(0.625) + y));
     e1h = pfi_split_hi(e1);
-    /* not PFI_EXACT: a shader compiler that refactors this sum (kh (e1h + (e1 - e1h))) makes
+    /* not PF_EXACT: a shader compiler that refactors this sum (kh (e1h + (e1 - e1h))) makes
        one rounding more, 1/2 ulp; `precise` here cost 16 SPIR-V ops */
     return (e1h * kh + ((e1 - e1h) * kh + e1 * kl)) * sc;
 }
@@ -705,7 +705,7 @@ PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE;
 /* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
    pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
    float-to-integer conversion, which is undefined behaviour in C. */
-PF_CPU_DEF long long pfi_floor_index(pf_real x, long long lo, long long hi)
+PF_CPU_DEF long long pf_floor_index(pf_real x, long long lo, long long hi)
 {
     long long i;
     if (!(x > (pf_real)lo)) return lo;
@@ -895,7 +895,7 @@ PF_DEF pf_real pf_smith_nu_iso(pf_real cos_theta, pf_real sigma)
    1.5e-19 / 2.2e-18 (double, K(8,8), F(8,8)). exp(-nu^2) goes through pf_exp_neg_sq, which
    avoids the rounding of nu*nu that would otherwise cost ~nu^2 ulp. */
 #ifdef PF_DOUBLE
-PF_DEF pf_real pfi_smith_k(pf_real nu) /* K(nu), nu in [0, 2] */
+PF_DEF pf_real pf_smith_k(pf_real nu) /* K(nu), nu in [0, 2] */
 {
     pf_real p = PF_R(0.999999999999999999854) + nu * (PF_R(0.938920679029529481423) +
                 nu * (PF_R(0.519045664654744982871) + nu * (PF_R(0.172147912216411197721) +
@@ -923,7 +923,7 @@ PF_DEF pf_real pfi_smith_f(pf_real s) /* F(s), s = 1/nu^2 in [0, 1/4] */
 }
 #  define PF_SMITH_NU_UNDERFLOW PF_R(27.5) /* Lambda < smallest subnormal double beyond */
 #else
-PF_DEF pf_real pfi_smith_k(pf_real nu)
+PF_DEF pf_real pf_smith_k(pf_real nu)
 {
     pf_real p = PF_R(0.9999999961) + nu * (PF_R(0.2507246113) + nu * (PF_R(0.07860461384) +
                 nu * (PF_R(-0.002767716913) + nu * PF_R(0.0001852377203))));
@@ -953,7 +953,7 @@ PF_DEF pf_real pf_lambda_beckmann(pf_real nu)
     if (!(nu > PF_R(0.5) * PF_INV_SQRT_PI / PF_LAMBDA_MAX)) return PF_LAMBDA_MAX;
     if (nu >= PF_SMITH_NU_UNDERFLOW) return PF_R(0.0);
     if (nu < PF_R(2.0))
-        return pf_exp_neg_sq(nu) * pfi_smith_k(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) / nu;
+        return pf_exp_neg_sq(nu) * pf_smith_k(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) / nu;
     s = PF_R(1.0) / (nu * nu);
     return pf_exp_neg_sq(nu) * pfi_smith_f(s) * (PF_R(0.25) * PF_INV_SQRT_PI) * s / nu;
 }
@@ -979,7 +979,7 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
     if (!(nu > PF_R(0.0))) return PF_R(0.0);
     if (nu < PF_R(2.0)) {
         pf_real a = PF_R(2.0) * PF_SQRT_PI * nu;
-        return a / (a + pf_exp_neg_sq(nu) * pfi_smith_k(nu));
+        return a / (a + pf_exp_neg_sq(nu) * pf_smith_k(nu));
     }
     return PF_R(1.0) / (PF_R(1.0) + pf_lambda_beckmann(nu));
 #else
@@ -1004,10 +1004,10 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
    beyond, G1 = 1 and the max returns nu), double nu + exp(-nu^2) K(nu) / (2 sqrt(pi)) below
    2, nu (1 + Lambda) above. Limit 1/(2 sqrt(pi)) at nu -> 0; callers pass nu > 0 (nu <= 0
    and NaN give that limit in float). */
-PF_DEF pf_real pfi_smith_nu_over_g1(pf_real nu)
+PF_DEF pf_real pf_smith_nu_over_g1(pf_real nu)
 {
 #ifdef PF_DOUBLE
-    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pfi_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
+    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pf_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
     return nu + nu * pf_lambda_beckmann(nu);
 #else
     {
@@ -1418,8 +1418,8 @@ PF_DEF pf_csm_pair pf_csm_pair_make(pf_real cos_a, pf_real sin_a, pf_real cos_b,
 PF_DEF pf_csm_pair pf_csm_pair_from_depth(pf_real z, int pair)
 {
     pf_real fa = PF_R(4.0) * PF_R(pair < 0 ? 0 : pair) + PF_R(1.0);
-    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PFI_SINPI: pf_core.h) */
-    return pf_csm_pair_make(PFI_COSPI(pa), PFI_SINPI(pa), PFI_COSPI(pb), PFI_SINPI(pb));
+    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PF_SINPI: pf_core.h) */
+    return pf_csm_pair_make(PF_COSPI(pa), PF_SINPI(pa), PF_COSPI(pb), PF_SINPI(pb));
 }
 PF_DEF pf_csm_pair pf_csm_pair_add(pf_csm_pair a, pf_csm_pair b)
 { return pf_csm_pair_make(a.cos_a + b.cos_a, a.sin_a + b.sin_a, a.cos_b + b.cos_b, a.sin_b + b.sin_b); }
@@ -1997,14 +1997,14 @@ PF_DEF pf_real pfi_beckmann_d_up(pf_vec3 m, pf_slope_stats s, pf_real ln_scale)
     /* the variance floor keeps q/det a Gaussian's exponent when a variance is tiny (the
        determinant floor alone would flatten a degenerate axis); the ceiling keeps
        var_x var_y finite */
-    pf_real vx = pfi_clamp_nan_lo(s.var_x, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
-    pf_real vy = pfi_clamp_nan_lo(s.var_y, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real vx = pf_clamp_nan_lo(s.var_x, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real vy = pf_clamp_nan_lo(s.var_y, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
     pf_real det = pf_max(vx * vy - s.cov_xy * s.cov_xy, PFI_BECKMANN_DET_MIN);
     /* adj(Sigma) quadratic form: var_y X^2 - 2 c X Y + var_x Y^2; c Y first: c near PF_REAL_MAX
        with Y = 0 gives 0, not (-2 c = -inf) * 0 */
     pf_real q = X * (vy * X + (s.cov_xy * Y) * PF_R(-2.0)) + vx * Y * Y;
     pf_real rs = pfi_beckmann_rsqrt(det);
-    pf_real e = pfi_clamp_nan_lo(q * rs * rs, PF_R(0.0), PFI_BECKMANN_QDET_CAP);
+    pf_real e = pf_clamp_nan_lo(q * rs * rs, PF_R(0.0), PFI_BECKMANN_QDET_CAP);
     return PF_EXP(PF_R(-0.5) * e + (PFI_LN_INV_2PI + ln_scale)) * r2 * r2 * rs;
 }
 
@@ -2068,15 +2068,15 @@ PF_DEF pf_real pf_beckmann_masking_shadowing(pf_vec3 wo, pf_vec3 wi, pf_slope_st
    plane (unlike the G1 form pfi_leadr_specular uses). Zero deviation along w (or NaN
    statistics): max(A, 0). For the evaluators that fold G / A_o into 1 / (P_o + A_o+ Lambda_i)
    (pf_gaussgrid.h, pf_vmf.h). w need not be unit length. */
-PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
+PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
 {
     pf_real a = w.z - s.mean_x * w.x - s.mean_y * w.y;
     pf_real var2 = PF_R(2.0) * (w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy);
-    pf_real sd = PF_SQRT(pfi_clamp_nan_lo(var2, PF_R(0.0), PF_R(0.25) * PF_REAL_MAX));
+    pf_real sd = PF_SQRT(pf_clamp_nan_lo(var2, PF_R(0.0), PF_R(0.25) * PF_REAL_MAX));
     pf_real front = pf_max(a, PF_R(0.0)), m, t;
     if (!(sd > PF_R(1.0e-12) * PF_FABS(a))) return front;
     m = PF_FABS(a) / sd;
-    t = m < PF_R(2.0) ? pf_exp_neg_sq(m) * pfi_smith_k(m) * (PF_R(0.5) * PF_INV_SQRT_PI)
+    t = m < PF_R(2.0) ? pf_exp_neg_sq(m) * pf_smith_k(m) * (PF_R(0.5) * PF_INV_SQRT_PI)
                       : m * pf_lambda_beckmann(m);
     return front + sd * t;
 }
@@ -2087,7 +2087,7 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
        Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
        Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
    P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
-   A_i counted as 0 (as A_o is for the view; pfi_beckmann_facing_area).
+   A_i counted as 0 (as A_o is for the view; pf_beckmann_facing_area).
    Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
    plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
    flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
@@ -2101,22 +2101,22 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
    wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
    bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
    just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
-   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pfi_smith_nu_over_g1), d = nu_i
+   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pf_smith_nu_over_g1), d = nu_i
    above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
-PF_DEF pf_real pfi_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
+PF_DEF pf_real pf_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
 {
     pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */
     pf_real d = nu > PF_R(0.0) ? nu : below;
-    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
+    return pf_max(pf_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
 }
 
 /* The same from the direction and the statistics (pf_vmf.h's one-Gaussian G): the variance
    along wi clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] as in pfi_leadr_specular. */
-PF_DEF pf_real pfi_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
+PF_DEF pf_real pf_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
 {
     pf_real var2 = PF_R(2.0) * (wi.x * wi.x * s.var_x + wi.y * wi.y * s.var_y + PF_R(2.0) * wi.x * wi.y * s.cov_xy);
-    pf_real rs = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-    return pfi_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
+    pf_real rs = pfi_beckmann_rsqrt(pf_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    return pf_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
 }
 
 /* ---------------------------------------------------------------- specular BRDF
@@ -2143,7 +2143,7 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    NaN, when either direction is on or below the macrosurface. A view above the macrosurface
    but on or below the mesosurface is not culled: it sees the facets that face it (below). A
    light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
-   is pfi_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
+   is pf_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
    (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
    taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
@@ -2176,7 +2176,7 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
     /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
        (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
        tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
-    pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
+    pf_real rs_o = pfi_beckmann_rsqrt(pf_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
                                                        PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     /* signed: < 0 when the view is below the mean plane; floored at -64, where P_o is 0 in
        pf_real anyway, so that -inf (huge mean slopes) gives P_o = 0, not inf - inf: the final
@@ -2187,17 +2187,17 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
        A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
        (1 + Lambda(-nu) = -Lambda(nu)); nu floored at 1e-20, where nu / G1(nu) is its limit
        1/(2 sqrt(pi)) to rounding */
-    pf_real front = (pfi_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    pf_real front = (pf_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
     pf_real g, d, t, v;
     /* eq. 17's G / A_o = 1 / (P_o + A_o Lambda_i) (Smith: P_o = A_o (1 + Lambda_o)), with A_o
        counted as 0 below the mean plane (see above) and Lambda_i capped by the macrosurface's
-       share of the light (pfi_beckmann_light_lambda); masking only: 1 / P_o */
+       share of the light (pf_beckmann_light_lambda); masking only: 1 / P_o */
     if (masking_only != 0) {
         g = PF_R(1.0) / front;
     } else {
-        pf_real rs_i = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
+        pf_real rs_i = pfi_beckmann_rsqrt(pf_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
                                                            PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pfi_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
+        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pf_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
     }
     /* both directions above the macrosurface: the half vector's z > 0, as pfi_beckmann_d_up needs */
     /* the 1/4 of eq. 17 rides in D's exponent: ln(1/4) */
@@ -2638,7 +2638,7 @@ PF_STRUCT_BEGIN(pf_gg_grid)
     pf_real corr;         /* r = cov / (sigma_x sigma_y), in [-1, 1] (0 if a sigma is 0) */
     pf_real corr_c;       /* sqrt(1 - r^2) */
     pf_real inv_proj;     /* 1/P_o, P_o = E[max(0, wo.z - x wo.x - y wo.y)] the projected area of the facets facing wo
-                             (pfi_beckmann_facing_area) = A_o (1 + Lambda(wo)) above the mesosurface; 0 at or below the
+                             (pf_beckmann_facing_area) = A_o (1 + Lambda(wo)) above the mesosurface; 0 at or below the
                              macrosurface (see pf_gg_grid_make) */
     pf_real g1_o;         /* 1/(1 + Lambda(wo)) (eq. 13 with one direction), = A_o / P_o; 0 at or below the mesosurface */
     int node_set;         /* PF_GG_UNIFORM, PF_GG_HERMITE or PF_GG_MATCHED */
@@ -2648,7 +2648,7 @@ PF_STRUCT_END(pf_gg_grid)
 /* Per-pixel setup: Cholesky factor of the covariance (LEADR sec. 5.1; a negative variance
    counts as 0, |r| is clamped to 1), the view's masking and the projected-area normalization.
    wo must be a unit vector in the tangent frame.
-   Normalization, as pf_leadr_specular (see the comment above pfi_leadr_specular in
+   Normalization, as pf_leadr_specular (see the comment above pf_leadr_specular in
    pf_beckmann.h): eqs. 19-21 divide by A_o = w_nbar.w_o / w_nbar.w_g and multiply by
    G = 1/(1 + Lambda_o + Lambda_i), which is 0 / 0 when the view is at or below the
    mesosurface (A_o <= 0) yet above the macrosurface, where a flat (bump- or normal-mapped)
@@ -2668,7 +2668,7 @@ PF_DEF pf_gg_grid pf_gg_grid_make(pf_vec3 wo, pf_slope_stats s, int node_set, in
     pf_real sxy = sx * sy;
     /* min before max: a NaN covariance becomes r = 1 (finite samples), not NaN */
     pf_real r = sxy > PF_R(0.0) ? pf_max(pf_min(s.cov_xy / sxy, PF_R(1.0)), PF_R(-1.0)) : PF_R(0.0);
-    pf_real facing = pfi_beckmann_facing_area(wo, s);
+    pf_real facing = pf_beckmann_facing_area(wo, s);
     g.wo = wo;
     g.stats = s;
     g.sigma_x = sx;
@@ -2699,7 +2699,7 @@ PF_STRUCT_END(pf_gg_sample)
 /* The sample of node pair (p_j, W_j), (p_k, W_k). The cell width u = W / phi(p) is the
    interval of the standard normal that the node stands for (sum_j u_j phi(p_j) = 1, so the
    cells tile the measure); for the uniform grid it is the node spacing. */
-PF_DEF pf_gg_sample pfi_gg_sample_nodes(pf_gg_grid g, pf_real pj, pf_real wj, pf_real pk, pf_real wk)
+PF_DEF pf_gg_sample pf_gg_sample_nodes(pf_gg_grid g, pf_real pj, pf_real wj, pf_real pk, pf_real wk)
 {
     pf_gg_sample smp;
     pf_real x = g.stats.mean_x + g.sigma_x * pj;
@@ -2730,7 +2730,7 @@ PF_DEF pf_gg_sample pf_gg_sample_at(pf_gg_grid g, int i)
     pk = pf_gg_node(g.node_set, g.n, k);
     wj = pf_gg_weight(g.node_set, g.n, j);
     wk = pf_gg_weight(g.node_set, g.n, k);
-    smp = pfi_gg_sample_nodes(g, pj, wj, pk, wk);
+    smp = pf_gg_sample_nodes(g, pj, wj, pk, wk);
     /* u_j u_k = W_j W_k 2 pi exp((p_j^2 + p_k^2)/2); tiny (possibly 0) far out, never huge */
     smp.cell = smp.weight * (PF_R(2.0) * PF_PI) * PF_EXP(PF_R(0.5) * (pj * pj + pk * pk));
     return smp;
@@ -2921,7 +2921,7 @@ PF_DEF pf_real pf_gg_diffuse_sh(pf_gg_grid g, pf_sh9 sh)
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             acc += smp.weight * smp.proj * pf_sh9_irradiance(sh, smp.normal);
         }
@@ -2937,7 +2937,7 @@ PF_DEF pf_vec3 pf_gg_diffuse_sh_rgb(pf_gg_grid g, pf_sh9 sh_r, pf_sh9 sh_g, pf_s
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             pf_real w = smp.weight * smp.proj;
             acc = pf_vec3_add(acc, pf_vec3_make(w * pf_sh9_irradiance(sh_r, smp.normal),
@@ -2963,7 +2963,7 @@ PF_DEF pf_real pf_gg_diffuse_directional(pf_gg_grid g, pf_vec3 wi)
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             acc += smp.weight * smp.proj * pf_max(pf_vec3_dot(smp.normal, wi), PF_R(0.0));
         }
@@ -3930,8 +3930,8 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
     v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
     u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1)); /* NaN -> 0 */
     v = pf_min(pf_max(v, PF_R(0.0)), (pf_real)(t->n_sigma - 1));
-    i = pfi_floor_index(u, 0, t->n_mean - 2);
-    j = pfi_floor_index(v, 0, t->n_sigma - 2);
+    i = pf_floor_index(u, 0, t->n_mean - 2);
+    j = pf_floor_index(v, 0, t->n_sigma - 2);
     fu = u - (pf_real)i;
     fv = v - (pf_real)j;
     stride = (long long)t->n_mean * cs;
@@ -3954,14 +3954,11 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
 /* ================================================================= include/pf_map.h ====== */
 /* pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
    height-field march of the library, the pyramids of linear moments (slope, scalar, depth,
-   normal), their bilinear/trilinear sampling, heights to slopes and to unit normals, and the
-   slope-preserving height downsampler. Every module that bakes a map (pf_moments.h's texels,
-   pf_vmf_fit.h's lobe pyramid and scaling function, pf_horizon.h's horizon maps) uses these,
-   so a map built by one module is laid out, bordered and differentiated like every other.
-
-   CPU only: everything here walks caller-owned buffers and allocates nothing (linkage
-   PF_CPU_DEF, pf_core.h); the header is empty under PF_GLSL. A shader reads what these
-   functions bake with the evaluators of pf_moments.h (the texels) and its own sampler.
+   normal) and their sampling, heights to slopes and to unit normals, and the slope-preserving
+   height downsampler. Every module that bakes a map (pf_moments.h's texels, pf_vmf_fit.h,
+   pf_horizon.h) uses these, so its maps are laid out, bordered and differentiated alike.
+   CPU only (PF_CPU_DEF: caller-owned buffers, no allocation); empty under PF_GLSL. A shader
+   reads what these functions bake with pf_moments.h's evaluators and its own sampler.
 
    USAGE (a whole pyramid in one caller buffer, no allocation)
      long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
@@ -3972,11 +3969,9 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
    FUNCTIONS
      layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
      borders         PF_BORDER_CLAMP, PF_BORDER_WRAP, pf_map_wrap (a wrapped index)
-     heights         pf_map_slope_stencil (the height-map stencil), pf_map_height (wrapped
-                     read), pf_map_node_slope (wrapped central difference at one node),
-                     pf_map_normals_from_heights (unit normals of the same slopes),
-                     pf_map_visible (the height-field march), pf_map_downsample_slopes and
-                     pf_map_downsample_scratch_size (slope-preserving downsampling)
+     heights         pf_map_slope_stencil, pf_map_height, pf_map_node_slope,
+                     pf_map_normals_from_heights, pf_map_visible (the march),
+                     pf_map_downsample_slopes, pf_map_downsample_scratch_size
      building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
                      pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
                      pf_depth_moment_channels, pf_depth_pyramid_from_depths,
@@ -4017,12 +4012,10 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
      -PF_REAL_MAX; pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices
      are long long.
 
-   ACCURACY AND COST (measured; docs/map.md and docs/moments.md have the tables,
-   bench/bench_moments.c and bench/bench_vmf.c the timings). Reductions and sampling are sums
-   of a few products: their moments equal the mixture moments of their texels to a few ulps
-   (tests/test_map.c). A pyramid is built in one pass, each level reduced while the rows it
-   needs are in cache: the 5-moment pyramid of a 4096^2 float height map writes at over half
-   of memcpy's bandwidth.
+   ACCURACY AND COST (docs/map.md; bench/bench_moments.c, bench/bench_vmf.c). Reductions and
+   sampling equal the mixture moments of their texels to a few ulps (tests/test_moments.c). A
+   pyramid is built in one pass while the rows it reads are in cache: the 5-moment pyramid of
+   a 4096^2 float height map writes at over half of memcpy's bandwidth.
 
    SOURCES
      Dupuy et al. 2013 (LEADR) sec. 4.1-4.2; Bruneton & Neyret 2012 sec. 7.2 (moments of a
@@ -4278,9 +4271,12 @@ PF_CPU_DEF void pf_map_slope_stencil(long long i, int n, int border, pf_real k, 
 /* Stores the slope moments of slope (sx, sy). */
 PF_CPU_DEF void pfi_put_slope(pf_real *o, pf_real sx, pf_real sy)
 { o[0] = sx, o[1] = sy, o[2] = sx * sx, o[3] = sy * sy, o[4] = sx * sy; }
-/* Row r of the slope-moment map of a height map (5 channels). */
+/* Stores the unit normal (-sx, -sy, 1)/|.| of slope (sx, sy). */
+PF_CPU_DEF void pfi_put_normal(pf_real *o, pf_real sx, pf_real sy)
+{ pf_vec3 m = pf_normal_avg_from_slope(sx, sy); o[0] = m.x, o[1] = m.y, o[2] = m.z; }
+/* Row r of the slope-moment map of a height map (5 channels), or of its unit normals (3). */
 PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
-                              pf_real height_scale, int border, pf_real *out)
+                              pf_real height_scale, int border, int normals, pf_real *out)
 {
     const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
     const pf_real *row = heights + (long long)r * w, *r0, *r1, *r2;
@@ -4291,15 +4287,24 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
     r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
     c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
     /* interior texels: branch-free, so the compiler can vectorize the row */
-    for (i = 1; i < w - 1; ++i) {
-        pf_real sx = kx * (row[i + 1] - row[i - 1]);
-        pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
-    }
+    if (!normals)
+        for (i = 1; i < w - 1; ++i) {
+            pf_real sx = kx * (row[i + 1] - row[i - 1]);
+            pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        }
+    else
+        for (i = 1; i < w - 1; ++i) {
+            pf_real sx = kx * (row[i + 1] - row[i - 1]);
+            pfi_put_normal(out + 3 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        }
     /* the first and last texels of the row */
     for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
+        pf_real sx, sy;
         pf_map_slope_stencil(i, w, border, kx, x, cx);
-        pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
-                      c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        sx = cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]];
+        sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
+        if (normals) pfi_put_normal(out + 3 * i, sx, sy);
+        else pfi_put_slope(out + 5 * i, sx, sy);
     }
 }
 
@@ -4316,7 +4321,23 @@ PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, 
         return PF_ERR_ARG;
     if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 5) < 0) return PF_ERR_SIZE;
     for (r = 0; r < h; ++r)
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 0, out + (long long)r * w * 5);
+    return PF_OK;
+}
+
+/* The unit micro-normals (-sx, -sy, 1)/sqrt(1 + sx^2 + sy^2) of every texel of a w x h height
+   map, 3 interleaved pf_reals each, into out (w h 3 pf_reals), the slopes (sx, sy) exactly those
+   of pf_slope_moments_map_from_heights (same arguments): the normals a lobe fit reads
+   (pf_vmf_fit.h). PF_ERR_SIZE when w h 3 > PF_MAX_REALS. */
+PF_CPU_DEF int pf_map_normals_from_heights(const pf_real *heights, int w, int h, pf_real dx, pf_real dy,
+                                           pf_real height_scale, int border, pf_real *out)
+{
+    int r;
+    if (!heights || !out || w < 1 || h < 1 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))
+        return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 3) < 0) return PF_ERR_SIZE;
+    for (r = 0; r < h; ++r)
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 1, out + (long long)r * w * 3);
     return PF_OK;
 }
 
@@ -4376,7 +4397,7 @@ PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int 
     if (!heights || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
     if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 0, pyr + (long long)r * w * 5);
         pfi_mip_push_row(&c, 0, r);
     }
     return PF_OK;
@@ -4444,10 +4465,9 @@ PF_CPU_DEF pf_real pf_map_height(const pf_real *hm, int w, int h, long long x, l
     return hm[pf_map_wrap(y, h) * (long long)w + pf_map_wrap(x, w)];
 }
 
-/* The slope (dh/dx, dh/dy) of node (x, y) of the periodic map by central differences,
-   k (h(x + 1) - h(x - 1)) with k = 1/(2 texel): the PF_BORDER_WRAP stencil of
-   pf_map_slope_stencil at one node, evaluated as a scaled difference (the stencil's
-   -k a + k b rounds differently; both are the same second-order slope). */
+/* The slope (dh/dx, dh/dy) of node (x, y) of the periodic map, k (h(x + 1) - h(x - 1)) with
+   k = 1/(2 texel): pf_map_slope_stencil's PF_BORDER_WRAP stencil at one node, as a scaled
+   difference (the stencil's -k a + k b rounds differently). */
 PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_real *sx,
                                   pf_real *sy)
 {
@@ -4477,8 +4497,7 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    node sees d, 0 when d.z <= 0, the node's facet faces away from d, or the ray is occluded.
    Cost: the cells the ray crosses inside the patch (about 2 n at most; up to
    PF_MAP_MARCH_MAX_CELLS where the patch spans the periodic map), 4 reads each. */
-/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
-   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
+/* most cells a march visits before it calls the ray occluded (~1e-4 rad above the horizon) */
 #ifndef PF_MAP_MARCH_MAX_CELLS
 #  define PF_MAP_MARCH_MAX_CELLS 65536
 #endif
@@ -4563,7 +4582,7 @@ PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long l
     if (border == PF_BORDER_WRAP) u = (u - u == PF_R(0.0)) ? u - PF_FLOOR(u) : PF_R(0.0);
     else u = (u == u) ? pf_clamp(u, PF_R(0.0), PF_R(1.0)) : PF_R(0.0);
     x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
-    i = pfi_floor_index(x, -1, n - 1);
+    i = pf_floor_index(x, -1, n - 1);
     *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
     *i0 = border == PF_BORDER_WRAP ? pf_map_wrap(i, n) : (i < 0 ? 0 : i);
     *i1 = border == PF_BORDER_WRAP ? pf_map_wrap(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
@@ -4681,9 +4700,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
               wrapped, or the edge texel repeated under PF_BORDER_CLAMP);
      minimize  E(H) = sum_T |(G H)_T - s*_T|^2 + reg_weight sum_T (L H)_T^2        (eq. 10)
    (Wu et al. put heights on cell corners and take the bilinear cell's mean slope, eq. 9; on
-   the texel-centred grid the same role is played by the central difference, and using the
-   stencil every slope consumer of the library uses makes the coarse map's slopes exactly the
-   ones it is read with.) Every term is in height per coarse texel, so reg_weight is
+   the texel-centred grid the central difference plays that role, the stencil every slope
+   consumer of the library reads.) Every term is in height per coarse texel, so reg_weight is
    dimensionless (the paper's w = 0.01) and the result does not depend on the texel spacing
    (both slopes divide by it), which is therefore not an argument.
    The normal equations (G^T G + reg_weight L^T L) H = G^T s* are singular along the
@@ -4696,23 +4714,19 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
    of two (exact) so that no difference overflows; a result beyond the pf_real range is
    clamped to +-PF_REAL_MAX.
-   Arguments: fine w x h row-major; factor >= 1 dividing w and h (coarse (w/factor) x
-   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
-   PF_BORDER_CLAMP; reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
-   2-texel checkerboards, which no central difference sees, keep their box values; far above
-   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
-   the box map); tol finite >= 0; scratch: scratch_len >= pf_map_downsample_scratch_size(w,
-   h, factor) pf_reals; iters_out (iterations done) and residual_out (the final |r| over the
-   reference norm above) may be NULL.
+   Arguments (pf_map_downsample_desc below): factor >= 1 dividing w and h (coarse (w/factor) x
+   (h/factor), row-major); reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
+   2-texel checkerboards, which no central difference sees, keep their box values; the bound
+   keeps every product finite); max_iter >= 0 (0: the box map); tol finite >= 0; scratch_len >=
+   pf_map_downsample_scratch_size(w, h, factor); iters_out (iterations done) and residual_out
+   (the final |r| over the reference norm above) may be NULL.
    Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
    dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
    height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
    above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
    the first pf_map_downsample_scratch_size reals of scratch is touched.
-   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
-   their transposes over the coarse map) and four vector passes; 512 x 512 -> 256 x 256 in
-   15-50 ms (float, tol 1e-5; docs/vmf.md has the table and the slope errors against the box
-   map). */
+   Cost: one pass over the fine map, then per iteration one product and four vector passes;
+   512 x 512 -> 256 x 256 in 15-50 ms (float, tol 1e-5; docs/map.md has the table). */
 
 #define PF_MAP_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
 
@@ -4812,7 +4826,7 @@ PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_re
     }
 }
 
-PF_CPU_DEF int pf_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
+PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
                                         int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
                                         long long scratch_len, int *iters_out, pf_real *residual_out)
 {
@@ -4903,6 +4917,33 @@ PF_CPU_DEF int pf_map_downsample_slopes(const pf_real *fine, int w, int h, int f
     if (iters_out) *iters_out = it;
     if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
     return PF_OK;
+}
+/* A downsampling's description; ZERO MEANS THE DEFAULT (negative reg_weight, max_iter, tol: 0). */
+typedef struct pf_map_downsample_desc {
+    const pf_real *fine;  /* the fine height map, w x h row-major (required) */
+    int w, h;             /* its sides (required) */
+    int factor;           /* coarse texel = factor x factor fine texels, dividing w and h (0: 2) */
+    int border;           /* PF_BORDER_CLAMP (0) or PF_BORDER_WRAP */
+    pf_real reg_weight;   /* the Laplacian's weight (0: 0.01, Wu et al.'s w; negative: 0) */
+    int max_iter;         /* conjugate-gradient iterations (0: 400; negative: 0, the box map) */
+    pf_real tol;          /* relative residual to stop at (0: 1e-5; negative: 0, max_iter decides) */
+} pf_map_downsample_desc;
+
+/* The slope-preserving coarse map of desc (see the block comment) into coarse
+   ((w/factor) x (h/factor) pf_reals); scratch, iters_out, residual_out and the errors as
+   there (NULL desc: PF_ERR_ARG). */
+PF_CPU_DEF int pf_map_downsample_slopes(const pf_map_downsample_desc *desc, pf_real *coarse, pf_real *scratch,
+                                        long long scratch_len, int *iters_out, pf_real *residual_out)
+{
+    pf_map_downsample_desc d;
+    if (!desc) return PF_ERR_ARG;
+    d = *desc;
+    if (d.factor == 0) d.factor = 2;
+    d.reg_weight = d.reg_weight == PF_R(0.0) ? PF_R(0.01) : (d.reg_weight < PF_R(0.0) ? PF_R(0.0) : d.reg_weight);
+    d.max_iter = d.max_iter == 0 ? 400 : (d.max_iter < 0 ? 0 : d.max_iter);
+    d.tol = d.tol == PF_R(0.0) ? PF_R(1.0e-5) : (d.tol < PF_R(0.0) ? PF_R(0.0) : d.tol);
+    return pfi_map_downsample_slopes(d.fine, d.w, d.h, d.factor, d.border, d.reg_weight, d.max_iter, d.tol, coarse, scratch,
+                                     scratch_len, iters_out, residual_out);
 }
 #endif /* !PF_GLSL */
 
@@ -5369,7 +5410,7 @@ PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_
     if (lod <= lod_full) return PF_R(1.0);
     if (lod_smith > PF_REAL_MAX) return PF_R(1.0);
     /* lod_full = -inf: finite / inf = 0; lod_full NaN: NaN, which the clamp takes to 0 */
-    return pfi_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
+    return pf_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
 }
 
 /* Masking G1 with the horizon term faded to Smith by footprint size:
@@ -5432,7 +5473,7 @@ PF_DEF pf_real pfi_horizon_cond_vis(pfi_horizon_cond c, pf_real sx, pf_real sy, 
     if (!(c.sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)))) return c.e >= mu ? PF_R(1.0) : PF_R(0.0);
     /* a NaN z (NaN slope) becomes -12: not visible; beyond |z| = 12 Phi is 0 or 1 (and erfc's
        tail would be subnormal) */
-    z = pfi_clamp_nan_lo((c.e - mu) / c.sd, PF_R(-12.0), PF_R(12.0));
+    z = pf_clamp_nan_lo((c.e - mu) / c.sd, PF_R(-12.0), PF_R(12.0));
     if (!(z > PF_R(-12.0))) return PF_R(0.0);
     if (!(z < PF_R(12.0))) return PF_R(1.0);
     return PF_R(0.5) * (fast != 0 ? pf_erfc_fast(-z * PF_INV_SQRT2) : pf_erfc(-z * PF_INV_SQRT2));
@@ -5474,7 +5515,7 @@ PF_DEF pf_real pf_horizon_diffuse_directional(pf_gg_grid g, pf_vec3 wi, pf_hdf_m
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             pf_real a = smp.weight * pf_max(wo.z - smp.slope_x * wo.x - smp.slope_y * wo.y, PF_R(0.0));
             pf_real vo = pfi_horizon_cond_vis(co, smp.slope_x, smp.slope_y, 1);
@@ -6383,7 +6424,7 @@ PF_DEF pf_real pf_shadow_chebyshev_upper(pf_real m1, pf_real m2, pf_real x, pf_r
     pf_real inv = PF_R(1.0) / s;
     pf_real mu = m1 * inv;
     pf_real var = pf_max((m2 * inv) * inv - mu * mu, (min_variance * inv) * inv);
-    var = pfi_clamp_nan_lo(var, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
+    var = pf_clamp_nan_lo(var, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
     return pfi_shadow_chebyshev_ratio(var, x * inv - mu);
 }
 
@@ -6407,10 +6448,10 @@ PF_DEF pf_real pf_shadow_vsm(pf_depth_moments2 m, pf_real d, pf_real min_varianc
 {
     /* depths are in [0, 1]: m2 - m1^2 <= m2 is finite, so only the floor is needed; a NaN
        moment gives var = the floor and t = 0 (C), lit 1. m1^2 is rounded on its own (a
-       separate, PFI_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
+       separate, PF_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
        rounding error of a stored point mass's m2 = fl(z^2) as a variance (~1e-8 in float at
        z ~ 1), lighting receivers well behind it (clang's default -ffp-contract=on with FMA) */
-    PFI_EXACT pf_real m1sq = m.m1 * m.m1;
+    PF_EXACT pf_real m1sq = m.m1 * m.m1;
     pf_real var = pf_max(m.m2 - m1sq, pf_max(min_variance, PF_REAL_MIN));
     return pfi_shadow_linstep(pfi_shadow_chebyshev_ratio(var, d - m.m1), bleed);
 }
@@ -6450,7 +6491,7 @@ PF_DEF pf_real pfi_shadow_evsm_warped(pf_real m1, pf_real m2, pf_real w, pf_real
 {
     pf_real k = PF_R(2.0) * c * at;
     /* NaN -> floor: 0 * inf, should a compiler reassociate to min_variance (k k) */
-    pf_real mv = pfi_clamp_nan_lo((min_variance * k) * k, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
+    pf_real mv = pf_clamp_nan_lo((min_variance * k) * k, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
     pf_real var = pf_max(m2 - m1 * m1, mv);
     return pfi_shadow_chebyshev_ratio(var, w - m1);
 }
@@ -6580,11 +6621,11 @@ PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real momen
        large (i33 small). */
     pf_real b1 = PFI_MSM_SAT(PFI_MSM_BIASED(m.m1, moment_bias, keep, coin));
     pf_real b11 = b1 * b1;
-    pf_real b2 = pfi_clamp_nan_lo(PFI_MSM_BIASED(m.m2, moment_bias, keep, coin), PFI_MSM_LOW(b11), b1);
+    pf_real b2 = pf_clamp_nan_lo(PFI_MSM_BIASED(m.m2, moment_bias, keep, coin), PFI_MSM_LOW(b11), b1);
     pf_real b22 = b2 * b2;
-    pf_real b3 = pfi_clamp_nan_lo(PFI_MSM_BIASED(m.m3, moment_bias, keep, coin), PFI_MSM_LOW(b22), b2);
+    pf_real b3 = pf_clamp_nan_lo(PFI_MSM_BIASED(m.m3, moment_bias, keep, coin), PFI_MSM_LOW(b22), b2);
     pf_real b4 = pf_max(PFI_MSM_BIASED(m.m4, moment_bias, keep, coin), PFI_MSM_LOW(b22));
-    pf_real uf = pfi_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), PF_R(-1.0), PF_R(2.0));
+    pf_real uf = pf_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), PF_R(-1.0), PF_R(2.0));
     /* L D L^T of the Hankel matrix */
     pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + PFI_MSM_D22_FLOOR);
     pf_real e32 = b3 - b1 * b2; /* l32 d22 */
@@ -6697,14 +6738,14 @@ PF_DEF pf_csm_sum pf_csm_sum_make(pf_real value, pf_real cos_k, pf_real sin_k, p
    input makes its phase infinite; any e outside [-1, 2] is already outside the domain. */
 PF_DEF pf_csm_sum pf_csm_sum_begin(pf_real d, pf_real offset)
 {
-    pf_real e = pfi_clamp_nan_lo(d - offset, PF_R(-2.0), PF_R(3.0)), c = PFI_COSPI(e), s = PFI_SINPI(e);
+    pf_real e = pf_clamp_nan_lo(d - offset, PF_R(-2.0), PF_R(3.0)), c = PF_COSPI(e), s = PF_SINPI(e);
     return pf_csm_sum_make(PF_R(0.5), c, s, (c - s) * (c + s), PF_R(2.0) * s * c, PF_R(1.0));
 }
 /* Adds the next harmonic from its filtered basis values E[cos(c_k z)], E[sin(c_k z)]. */
 PF_DEF pf_csm_sum pf_csm_sum_add_harmonic(pf_csm_sum a, pf_real cos_z, pf_real sin_z)
 {
-    pf_real cz = pfi_clamp_nan_lo(cos_z, PF_R(-1.0), PF_R(1.0));
-    pf_real sz = pfi_clamp_nan_lo(sin_z, PF_R(-1.0), PF_R(1.0));
+    pf_real cz = pf_clamp_nan_lo(cos_z, PF_R(-1.0), PF_R(1.0));
+    pf_real sz = pf_clamp_nan_lo(sin_z, PF_R(-1.0), PF_R(1.0));
     pf_real coef = PF_R(2.0) / (a.freq * PF_PI);
     pf_real v = a.value + coef * (sz * a.cos_k - cz * a.sin_k);
     pf_real c = a.cos_k * a.cos_step - a.sin_k * a.sin_step;
@@ -6716,7 +6757,7 @@ PF_DEF pf_csm_sum pf_csm_sum_add(pf_csm_sum a, pf_csm_pair p)
 { return pf_csm_sum_add_harmonic(pf_csm_sum_add_harmonic(a, p.cos_a, p.sin_a), p.cos_b, p.sin_b); }
 /* The lit fraction: clamp(1/2 + scale (value - 1/2), 0, 1) (NaN: 0 in C). */
 PF_DEF pf_real pf_csm_sum_lit(pf_csm_sum a, pf_real scale)
-{ return pfi_clamp_nan_lo(PF_R(0.5) + scale * (a.value - PF_R(0.5)), PF_R(0.0), PF_R(1.0)); }
+{ return pf_clamp_nan_lo(PF_R(0.5) + scale * (a.value - PF_R(0.5)), PF_R(0.0), PF_R(1.0)); }
 
 /* Up to PF_CSM_MAX_TERMS = 16 harmonics, 8 pairs: p0 holds harmonics 1, 2; p7 15, 16. */
 PF_STRUCT_BEGIN(pf_csm_moments)
@@ -7152,7 +7193,7 @@ PF_DEF pf_real pf_vmf_lobe_eval(pf_vec3 mu, pf_real kappa, pf_vec3 w)
    gives PF_VMF_KAPPA_MAX. (The fit uses the cancellation-free 1 - r^2 it accumulates.) */
 PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
 {
-    pf_real rr = pfi_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
+    pf_real rr = pf_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
     pf_real one_minus = (PF_R(1.0) - rr) * (PF_R(1.0) + rr);
     if (!(one_minus * PF_VMF_KAPPA_MAX > rr * (PF_R(3.0) - rr * rr))) return PF_VMF_KAPPA_MAX;
     return pf_vmf_kappa_clamp(rr * (PF_R(3.0) - rr * rr) / one_minus);
@@ -7456,11 +7497,11 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
     return PF_R(1.0) / (PF_R(1.0) + lo);
 }
 
-/* G / A_o as pf_leadr_specular has it (see the comment above pfi_leadr_specular in
+/* G / A_o as pf_leadr_specular has it (see the comment above pf_leadr_specular in
    pf_beckmann.h): 1 / (P_o + max(A_o, 0) Lambda_i), P_o the projected area toward wo of the
    facets that face it, so that a view below the mesosurface (A_o <= 0) but above the
    macrosurface sees those facets instead of 0. Times sum amp:
-     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pfi_beckmann_facing_area, amp A_o =
+     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pf_beckmann_facing_area, amp A_o =
        area_o, Lambda_i = pf_beckmann_lambda;
      mixture: each lobe's area + excess is amp E[(a - Y)+] = its facing area (>= 0), so
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
@@ -7468,9 +7509,9 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        so its relative error grows as P_o / |area_o| shrinks.
    Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
    above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
-   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   (pf_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
    it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
-   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   (pf_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
    own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
@@ -7488,9 +7529,9 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
                                       : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
-        den = s.amp * (pfi_beckmann_facing_area(wo, st) +
+        den = s.amp * (pf_beckmann_facing_area(wo, st) +
                        pf_max(area_o / s.amp, PF_R(0.0)) *
-                           pfi_beckmann_light_lambda_stats(wi, st));
+                           pf_beckmann_light_lambda_stats(wi, st));
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
@@ -7620,32 +7661,25 @@ PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, p
 /* pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
    normals, the lobe pyramid a shader fetches, and the scaling function of Wu et al. 2019
    (eqs. 6-8, 12-14, 21-24) that corrects the multi-lobe BRDF toward the height field's
-   effective BRDF.
-
-   pf_vmf.h holds what a shader pastes (lobes, mixtures, their BRDF, the scaling function's
-   lookup); this header fits what those evaluators read. CPU only (linkage PF_CPU_DEF): it
-   walks caller-owned buffers and allocates nothing; empty under PF_GLSL. Map infrastructure
-   (pyramid layout, wrap, height stencils, the height-field march, the slope-preserving
-   downsampler) is pf_map.h's.
+   effective BRDF. pf_vmf.h holds what a shader pastes; map infrastructure (layout, wrap,
+   stencils, the height-field march, the downsampler) is pf_map.h's. CPU only (PF_CPU_DEF:
+   caller-owned buffers, no allocation); empty under PF_GLSL.
 
    USAGE
      pf_vmf_fit_normals(normals, NULL, n, 4, 24, &mixture);           -- EM on n normals
      pf_vmf_pyramid_from_normals(normals, NULL, w, h, 4, 24, pyr);    -- one mixture per texel
-     then per texel: pf_vmf_mixture_from_texel, or a shader's 4 RGBA fetches (pf_vmf.h USAGE)
+     pf_vmf_scale_desc d = {0}; d.heights = hm; ...; pf_vmf_scale_fit_level(&d, level, ...);
 
    FUNCTIONS
      fitting     pf_vmf_fit_normals (struct pf_vmf_mixture: the fit's lobes)
-     pyramid     pf_vmf_pyramid_level_count, pf_vmf_pyramid_level_offset,
-                 pf_vmf_pyramid_texel_count, pf_vmf_pyramid_from_normals,
+     pyramid     pf_vmf_pyramid_level_count, _level_offset, _texel_count, _from_normals,
                  pf_vmf_mixture_from_texel
-     scaling     pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
-                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count,
-                 pf_vmf_scale_cell_count, pf_vmf_scale_vis_bytes
+     scaling     pf_vmf_scale_fit_level, pf_vmf_scale_texel_t, pf_vmf_scale_scratch_size
+                 (struct pf_vmf_scale_desc), pf_vmf_effective_brdf, pf_vmf_scale_lookup,
+                 pf_vmf_scale_cell_count, pf_vmf_scale_sample_count, pf_vmf_scale_vis_bytes
 
-   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md)
-     Fit of a 512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16. Scaling
-     function: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade
-     2304 direction pairs.
+   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md): a 512 x 512
+   pyramid fits in 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 eqs. 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun
@@ -7665,17 +7699,16 @@ PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, p
 #endif
 
 /* ================================================================ mixtures
-   The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1). Host code (a
-   struct with arrays, which the portability generator does not synthesise); shade it lobe by
-   lobe with pf_vmf_sum_add, as a shader does with the pyramid's texels. */
+   The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1), shaded lobe by
+   lobe with pf_vmf_sum_add as a shader does with the pyramid's texels. */
 typedef struct pf_vmf_mixture {
     pf_vmf_lobe lobe[PF_VMF_MAX_LOBES];
     int count;
 } pf_vmf_mixture;
 
-/* ================================================================ CPU only: fitting
+/* ================================================================ fitting
    Spherical EM (Banerjee et al. 2005; Han et al. 2007 sec. 4) of m vMF lobes to weighted
-   unit normals, on caller-owned buffers, no allocation: each iteration is ONE pass that
+   unit normals: each iteration is ONE pass that
    computes every normal's responsibilities on the fly and accumulates, per lobe, W = sum w r,
    D = sum w r (x - mu_old) and S = sum w r |x - mu_old|^2 (relative to the previous axis, so
    that the concentration needs no 1 - |R|/W cancellation: W^2 (1 - rbar^2) = W S - |D|^2
@@ -7687,12 +7720,11 @@ typedef struct pf_vmf_mixture {
    fewer lobes than asked. Initial kappa from the whole set's resultant, at least 1.
    ITERATIONS: at most `iterations` EM steps; it stops earlier when the mean log-likelihood
    changes by less than 1e-6. Lobes whose weight share falls below 1e-6 are dropped.
-   DEGENERATE INPUT: normals with a NaN or infinite component, zero length, or a weight that is
-   NaN, infinite or <= 0 are skipped; weights are divided by the largest usable one first (no
-   sum can overflow). No usable normal: PF_ERR_ARG, and *out is set to one flat
-   lobe (a = 1, mu = +z, kappa = PF_VMF_KAPPA_MAX), so it is always finite.
-   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
-   PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
+   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights NaN,
+   infinite or <= 0, are skipped; weights are divided by the largest usable one first (no sum
+   can overflow). No usable normal: PF_ERR_ARG, *out one flat lobe (a = 1, mu = +z, kappa =
+   PF_VMF_KAPPA_MAX). Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside
+   [1, 16], iterations < 0; PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
     pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], l2, wt;
@@ -7922,16 +7954,13 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
     return pfi_vmf_fit_block(normals, weights, count, count, 1, lobes, iterations, out);
 }
 
-/* ================================================================ CPU only: SCALING FUNCTION
-   (Wu et al. 2019 eqs. 6-8, 12-14 and sec. 6 eqs. 21-24; interreflections, sec. 5,
-   are not modelled).
+/* ================================================================ SCALING FUNCTION
+   (Wu et al. 2019 eqs. 6-8, 12-14, sec. 6 eqs. 21-24; interreflections, sec. 5, not modelled).
    EFFECTIVE BRDF (eqs. 6-8, single bounce) of an n x n patch of a periodic height map
    heights[y w + x] (world units, `texel` world units between nodes), texels (x0 + i, y0 + j)
-   wrapping: every texel is a facet of its central-difference slope s_t (as
-   tests/pf_microsurface.h and pf_slope_pyramid_from_heights level 0) shaded by the base BRDF,
-   a Beckmann lobe of slope deviation base_sigma around s_t with Schlick Fresnel and the lobe's
-   own Smith G2 (LEADR eqs. 10, 13, 16-17: the bench's base BRDF), kept when the texel's node
-   sees both wo and wi:
+   wrapping: every texel is a facet of its central-difference slope s_t (pf_map_node_slope)
+   shaded by the base BRDF pf_vmf_facet_specular (a Beckmann lobe of deviation base_sigma
+   about s_t, Schlick Fresnel, its own Smith G2), kept when the node sees both wo and wi:
        f_eff = sum_t V_t(wo) V_t(wi) F D_t(h) G2_t / 4  /  sum_t a_t(wo),   a_t(w) = w.z - s_t.w.xy
    (eq. 8: the patch's projected area toward wo is that of its mean plane; radiance toward wo
    per unit radiance from wi, light cosine included, like pf_vmf_sum_specular).
@@ -7941,30 +7970,28 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
    normals, slope form pf_vmf_sum_add with base_var = base_sigma^2), masking per `masking`:
    PF_VMF_SCALE_UNMASKED (eq. 5 as written: R carries all the masking-shadowing),
    PF_VMF_SCALE_G_GAUSSIAN (pf_vmf_sum_specular), PF_VMF_SCALE_G_MIXTURE
-   (pf_vmf_sum_specular_mixture). Samples per patch (pf_vmf_scale_patch): one direction set,
+   (pf_vmf_sum_specular_mixture). Samples per patch (pfi_vmf_scale_patch): one direction set,
    the nt theta nodes times A = 2 (np - 1) azimuths a pi/(np - 1), and every (wo, wi) pair of
    it: phi_d falls on the np phi_d nodes exactly, each node gets A (ends) or 2 A (inner)
    samples per patch and theta pair, and the mirror pairs are among them (a narrow highlight
    is sampled at its peak). Sample order ((k_to A + a_o) nt + k_ti) A + a_i.
-   T and S (pf_vmf_scale_factor): the rank-1 fit of eq. 21 minimizing the error IN BRDF UNITS,
+   T and S (pfi_vmf_scale_factor): the rank-1 fit of eq. 21 minimizing the error IN BRDF UNITS,
    sum_{x, samples} (f_eff - T(x) S(cell) f_lobes)^2, by alternating least squares (T(x) =
    sum f_eff f_lobes S / sum (f_lobes S)^2 over the patch's samples, S likewise over the
-   patches), then T scaled to mean 1 (Wu et al. sec. 7). Why not eqs. 22-24's plain means of
-   R: where the narrow lobes put almost no energy R is a ratio of two tiny numbers (the paper
-   adds an epsilon), and a plain mean weights those samples as much as the highlight; the fit
-   in BRDF units weights them by their energy, and is still exact when R is separable (the
-   plain means are exact then too). Cells or patches without energy get 1.
-   REGULARIZATION: the samples are node directions, so a patch whose highlight falls between
-   them, or a cell that only the lobes' far tails reach (where f_eff, whose facets skip the
-   base lobe's tail, is exactly 0), is decided by a few tiny samples: unregularized, S had
-   cells of exactly 0 at every level of the bench's maps (trilinear reads spread them onto the
-   highlights) and T ranged 0.13-10.8 at 64-256 texels. Each T and S is therefore the
-   least-squares value with a prior pulling it toward 1 whose weight is `shrink` times the
-   average energy sum (S f_lobes)^2 of a patch (for T) or sum (T f_lobes)^2 of a cell (for S):
-   well-sampled values keep their fit, poorly sampled ones stay near 1 (no scaling). */
-#define PF_VMF_SCALE_UNMASKED 0
+   patches), then T scaled to mean 1 (Wu et al. sec. 7). Not eqs. 22-24's plain means of R:
+   where the lobes put almost no energy R is a ratio of two tiny numbers, which a plain mean
+   weights as much as the highlight; the fit in BRDF units weights them by their energy and is
+   still exact for a separable R. Cells or patches without energy get 1.
+   REGULARIZATION: a patch whose highlight falls between the node directions, or a cell only
+   the lobes' far tails reach (f_eff exactly 0 there), is decided by a few tiny samples:
+   unregularized, S had cells of exactly 0 at every level of the bench's maps and T ranged
+   0.13-10.8 at 64-256 texels. So each T and S is the least-squares value with a prior toward
+   1 of weight `shrink` times the mean energy sum (S f_lobes)^2 of a patch (for T) or
+   sum (T f_lobes)^2 of a cell (for S): well-sampled values keep their fit, poor ones stay near
+   1. */
 #define PF_VMF_SCALE_G_GAUSSIAN 1
 #define PF_VMF_SCALE_G_MIXTURE 2
+#define PF_VMF_SCALE_UNMASKED 3
 
 /* argument and size checks shared by the scaling functions (no data read) */
 PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texel, long long n)
@@ -7975,8 +8002,7 @@ PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texe
     return PF_OK;
 }
 
-/* the data check, after every size check: finite heights in the patch and its one-node ring;
-   *top gets the highest of them */
+/* after every size check: finite heights in the patch and its ring, *top the highest */
 PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, long long y0, long long n, pf_real *top)
 {
     long long i, j;
@@ -7991,8 +8017,7 @@ PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, 
     return PF_OK;
 }
 
-/* f_eff accumulation over the patch, visibility either marched (vis_o NULL) or read from two
-   n x n byte maps (both given) */
+/* f_eff over the patch, visibility marched (vis_o NULL) or read from two n x n byte maps */
 PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real texel, long long x0, long long y0,
                                      long long n, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0, pf_real top,
                                      const unsigned char *vis_o, const unsigned char *vis_i)
@@ -8016,14 +8041,11 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
     return area > PF_R(0.0) ? num / area : PF_R(0.0);
 }
 
-/* The single-bounce effective BRDF of the n x n patch from (x0, y0) (Wu et al. 2019 eqs. 6-8;
-   see the block comment) toward wo from wi (unit, tangent frame) into *out; 0 when either
-   direction is on or below the macrosurface or the patch's mean plane faces away.
-   Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
-   below 1, n > w or n > h, texel or base_sigma not finite and > 0, a non-finite height in the
-   patch or its one-texel ring; PF_ERR_SIZE for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
-   Cost: 2 n^2 marches of at most n cells. Reads only heights[0 .. w h). */
-PF_CPU_DEF int pf_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
+/* f_eff of the n x n patch from (x0, y0) toward wo from wi (unit) into *out; 0 when either is
+   on or below the macrosurface or the mean plane faces away. Errors (*out 0): PF_ERR_ARG for
+   NULL heights or out, n, w or h below 1, n > w or h, texel or base_sigma not finite > 0, a
+   non-finite height in the patch or its ring; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. */
+PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
                                      pf_vec3 wo, pf_vec3 wi, pf_real base_sigma, pf_real f0, pf_real *out)
 {
     pf_real top = PF_R(0.0);
@@ -8039,8 +8061,7 @@ PF_CPU_DEF int pf_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_re
     return PF_OK;
 }
 
-/* samples per patch, (2 nt (np - 1))^2 (every pair of nt thetas times 2 (np - 1) azimuths);
-   0 for nt or np below 2 or a count above PF_MAX_REALS */
+/* samples per patch, (2 nt (np - 1))^2 (direction pairs); 0 for nt, np < 2 or too large */
 PF_CPU_DEF long long pf_vmf_scale_sample_count(int nt, int np)
 {
     long long d;
@@ -8057,8 +8078,7 @@ PF_CPU_DEF long long pf_vmf_scale_cell_count(int nt, int np)
     return c < 0 ? 0 : c;
 }
 
-/* bytes of pf_vmf_scale_patch's visibility scratch: 2 nt (np - 1) n^2 (one n x n map per
-   direction); 0 for bad sizes */
+/* visibility bytes of one n x n patch: 2 nt (np - 1) n^2 (a map per direction); 0 for bad sizes */
 PF_CPU_DEF long long pf_vmf_scale_vis_bytes(int nt, int np, int n)
 {
     long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pf_size_mul3(2, nt, np - 1);
@@ -8082,20 +8102,16 @@ PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
     return (ti * nt + to) * np + k;
 }
 
-/* One patch's samples of the scaling function (see the block comment): for every sample s,
-   f_eff[s] (eqs. 6-8) and f_lobes[s] (eq. 5 with the patch's `lobes` fitted lobes, EM budget
-   `iterations`, masking PF_VMF_SCALE_*); R = f_eff / f_lobes. Directions: thetas
-   k theta_max / (nt - 1), theta_max in (0, pi/2). Caller buffers: normals_scratch 3 n^2 pf_reals,
-   vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff and f_lobes
-   pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing outside them is written.
-   Errors: those of pf_vmf_effective_brdf, and PF_ERR_ARG for a NULL buffer, lobes outside
-   [1, 16], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
-   PF_ERR_SIZE when a buffer's size exceeds PF_MAX_REALS (every size is checked before any
-   height is read). The fit cannot fail on finite heights (every normal has z = 2 texel > 0
-   before normalization); if it did, PF_ERR_ARG. Cost: 2 nt (np - 1) n^2 marches
-   and up to (2 nt (np - 1))^2 n^2 base-lobe evaluations (facets far from the half vector's
-   slope skip theirs). */
-PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n, int lobes,
+/* One patch's samples (block comment): for every sample s, f_eff[s] (eqs. 6-8) and f_lobes[s]
+   (eq. 5 with the patch's `lobes` fitted lobes, EM budget `iterations`, masking
+   PF_VMF_SCALE_*). Thetas k theta_max / (nt - 1), theta_max in (0, pi/2). Buffers:
+   normals_scratch 3 n^2 pf_reals, vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff
+   and f_lobes pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing else is written.
+   Errors: those of pfi_vmf_effective_brdf; PF_ERR_ARG for a NULL buffer, lobes outside [1, 16],
+   iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking, a failed fit;
+   PF_ERR_SIZE for a buffer above PF_MAX_REALS (sizes checked before any height is read).
+   Cost: 2 nt (np - 1) n^2 marches, up to (2 nt (np - 1))^2 n^2 base lobes. */
+PF_CPU_DEF int pfi_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n, int lobes,
                                   int iterations, pf_real base_sigma, pf_real f0, int masking, int nt, int np,
                                   pf_real theta_max, pf_real *normals_scratch, unsigned char *vis_scratch,
                                   pf_real *f_eff, pf_real *f_lobes)
@@ -8106,7 +8122,7 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
     int rc, d;
     if (!normals_scratch || !vis_scratch || !f_eff || !f_lobes || lobes < 1 || lobes > PF_VMF_MAX_LOBES ||
         iterations < 0 || nt < 2 || np < 2 || !(theta_max > PF_R(0.0)) || !(theta_max < PF_R(0.5) * PF_PI) ||
-        masking < PF_VMF_SCALE_UNMASKED || masking > PF_VMF_SCALE_G_MIXTURE)
+        masking < PF_VMF_SCALE_G_GAUSSIAN || masking > PF_VMF_SCALE_UNMASKED)
         return PF_ERR_ARG;
     if (!(base_sigma > PF_R(0.0)) || !(base_sigma < PF_R(1.0e15))) return PF_ERR_ARG;
     rc = pfi_vmf_patch_sizes(heights, w, h, texel, n);
@@ -8159,22 +8175,17 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
     return PF_OK;
 }
 
-/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
-   `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
-   patch after patch, as pf_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
-   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
-   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
-   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
-   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
-   pf_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
-   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
-   of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
-   for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
-   T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
-   not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
+/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np)) from the samples of `patches`
+   patches (patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares
+   fit in BRDF units, `iterations` (>= 1) alternating rounds, T scaled to mean 1, each value
+   pulled toward 1 by a prior `shrink` (>= 0) times the mean energy of a patch (T) or cell (S):
+   T(x) = (sum e l S + p) / (sum (l S)^2 + p). prior_out (NULL or 1): p for pfi_vmf_scale_t on
+   other patches of the level. scratch: 2 patches cells pf_reals. err (NULL or 3): the relative
+   L2 error of T S f_lobes against f_eff, of f_lobes alone, and of T S against R = f_eff /
+   f_lobes where f_lobes exceeds 1% of its RMS. Non-finite or negative samples count as 0.
    Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
    outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
-PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
+PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
                                    int iterations, pf_real shrink, pf_real *t_out, pf_real *s_out, pf_real *scratch,
                                    pf_real *prior_out, pf_real *err)
 {
@@ -8245,7 +8256,7 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
         for (x = 0; x < patches; ++x) t_out[x] /= mean;
         for (b = 0; b < cells; ++b) s_out[b] *= mean;
     }
-    /* the prior for pf_vmf_scale_t on other patches of the same level: shrink times the mean
+    /* the prior for pfi_vmf_scale_t on other patches of the same level: shrink times the mean
        patch energy sum_s (S f_lobes)^2 under the final S */
     if (prior_out) {
         pf_real e_sum = PF_R(0.0);
@@ -8284,13 +8295,11 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
     return PF_OK;
 }
 
-/* T of one patch given a level's S table (pf_vmf_scale_factor's s_out) from the patch's own
-   samples (f_eff, f_lobes: pf_vmf_scale_sample_count(nt, np) pf_reals each, as
-   pf_vmf_scale_patch writes them): (sum e l S + prior) / (sum (l S)^2 + prior), S of each
-   sample's cell, prior from pf_vmf_scale_factor's prior_out (>= 0). Non-finite or negative
-   samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, a patch
-   without energy and no prior, or sums that overflow. */
-PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
+/* T of one patch from its own samples (as pfi_vmf_scale_patch writes them) given a level's S
+   and prior (pfi_vmf_scale_factor's): (sum e l S + prior) / (sum (l S)^2 + prior); non-finite
+   or negative samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, no
+   energy and no prior, or sums that overflow. */
+PF_CPU_DEF pf_real pfi_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
                                   pf_real prior)
 {
     long long count = pf_vmf_scale_sample_count(nt, np), s;
@@ -8308,9 +8317,8 @@ PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, 
     return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
 }
 
-/* S at (wo, wi) from the table (CPU side of the shader lookup: pf_vmf_scale_coords,
-   pf_vmf_scale_texel_pos, 8 reads, pf_vmf_scale_trilinear). NULL table or bad sizes: 1 (no
-   scaling). */
+/* S at (wo, wi) from the table, as a shader reads it (pf_vmf_scale_coords, _texel_pos, 8 reads,
+   pf_vmf_scale_trilinear). NULL table or bad sizes: 1 (no scaling). */
 PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_real theta_max, pf_vec3 wo, pf_vec3 wi)
 {
     pf_vec3 c, f;
@@ -8337,36 +8345,32 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
 /* ================================================================ end of SCALING FUNCTION */
 
 /* ================================================================ the lobe pyramid
-   pf_map.h's pyramid layout restricted to power-of-two sides: level l of a w x h normal map has max(1, w >> l) x max(1, h >> l)
-   texels; texel (i, j) of level l covers the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1)
-   fy), fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
+   pf_map.h's pyramid layout for power-of-two sides: level l has max(1, w >> l) x max(1, h >> l)
+   texels, texel (i, j) covering the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1) fy),
+   fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
    FINEST NORMALS of its footprint (not merged from the level below: merging m lobes of four
    children into m is itself a fit, and the finest normals are at hand); cost ~ levels x
    texels x lobes x iterations exps (docs/vmf.md has the measured time).
    LAYOUT (what a shader fetches): levels one after another from level 0, texels row-major,
    4 * lobes pf_reals per texel: for each lobe (mu.x, mu.y, kappa, amp) - an RGBA texel per
    lobe (mu.z = sqrt(1 - x^2 - y^2)). A fit that returns fewer lobes pads with amp = 0,
-   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128, 256 for m = 1, 2, 4, 8, 16),
-   8 m in half floats (kappa <= 1e5 fits half's range; its 11-bit precision is 0.05% on kappa).
+   mu = +z, kappa = 1. Bytes per texel: 16 m in float32, 8 m in half floats (kappa <= 1e5 fits
+   half's range; its 11-bit precision is 0.05% on kappa).
    A texel whose footprint has no usable normal gets the flat lobe (amp 1, mu = +z, kappa =
    PF_VMF_KAPPA_MAX) and the call still returns PF_OK.
-   Errors: PF_ERR_ARG for NULL normals or pyr, w or h below 1 or not a power of two, lobes
-   outside [1, 16], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
-   PF_MAX_REALS.
-   normals: w * h * 3 pf_reals; weights: w * h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h)
-   * 4 * lobes pf_reals. Nothing outside these is read or written. */
+   Errors: PF_ERR_ARG for NULL normals or pyr, sides not powers of two, lobes outside [1, 16],
+   iterations < 0; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. normals: w h 3 pf_reals;
+   weights: w h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h) 4 lobes. Nothing else touched. */
 PF_CPU_DEF int pfi_vmf_pow2(long long n) { return pf_size_side_ok(n) && (n & (n - 1)) == 0; }
 
-/* levels of the lobe pyramid: pf_mip_level_count (pf_map.h's layout), 0 unless w and h are
-   powers of two in [1, PF_MAX_SIDE] */
+/* levels: pf_mip_level_count (pf_map.h), 0 unless w and h are powers of two <= PF_MAX_SIDE */
 PF_CPU_DEF int pf_vmf_pyramid_level_count(int w, int h)
 {
     if (!pfi_vmf_pow2(w) || !pfi_vmf_pow2(h)) return 0;
     return pf_mip_level_count(w, h);
 }
 
-/* texels before level `level` (level >= count: the total): pf_mip_level_offset; -1 for bad
-   sizes or a negative level */
+/* texels before `level` (>= count: the total), pf_mip_level_offset; -1 for bad sizes, level < 0 */
 PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
 {
     if (pf_vmf_pyramid_level_count(w, h) == 0 || level < 0) return -1;
@@ -8421,9 +8425,8 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
     return PF_OK;
 }
 
-/* The mixture stored at one texel of the pyramid (4 * lobes pf_reals): what a shader's
-   `lobes` RGBA fetches and pf_vmf_lobe_make calls give. Lobes with amp = 0 (padding) are
-   skipped. lobes is clamped to [1, 16]; texel NULL gives an empty mixture (count 0). */
+/* The mixture at one pyramid texel (4 lobes pf_reals), as a shader's RGBA fetches and
+   pf_vmf_lobe_make give it; padding (amp 0) skipped, lobes clamped to [1, 16], NULL: empty. */
 PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lobes)
 {
     pf_vmf_mixture m = pfi_vmf_mixture_empty();
@@ -8436,6 +8439,222 @@ PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lo
 }
 #undef PFI_VMF_FOREACH
 
+/* ================================================================ the scaling function of a lobe
+   pyramid, one call per level (Wu et al. 2019 eqs. 12-14, 21-24)
+   Per level l of a lobe pyramid (patches of n = 2^l texels, one per texel of level l): S, one
+   nt x nt x np node table (pf_vmf_scale_lookup; pf_vmf_scale_coords and _trilinear in a
+   shader), and T, one value per texel. Both come from the samples of the block comment above:
+   f_eff (pfi_vmf_scale_patch) against f_lobes, the pyramid texel's OWN lobes (what a shader
+   fetches, base_var = base_sigma^2, masked per `masking`). S and a prior are fitted on
+   `train_patches` patches evenly spaced over the level (texel p w_l h_l / P, p < P, row-major),
+   T of any other texel from its own samples (pf_vmf_scale_texel_t). The pyramids of one map
+   (different lobe counts) are fitted in one call: they share f_eff, the costly half.
+   pf_vmf_scale_desc describes the call: ZERO MEANS THE DEFAULT. */
+#define PF_VMF_SCALE_MAX_PYRAMIDS 4
+
+typedef struct pf_vmf_scale_desc {
+    const pf_real *heights;  /* the periodic height map, w x h row-major, world units (required) */
+    int w, h;                /* its sides: powers of two, those of the lobe pyramids (required) */
+    pf_real texel;           /* world units between height nodes (0: 1) */
+    pf_real base_sigma;      /* slope deviation of the base Beckmann lobe, > 0 (0: 0.1) */
+    pf_real f0;              /* Schlick f0 of the base BRDF (0: 1, no Fresnel) */
+    int pyramid_count;       /* lobe pyramids fitted together, 1 .. PF_VMF_SCALE_MAX_PYRAMIDS (0: 1) */
+    const pf_real *pyramid[PF_VMF_SCALE_MAX_PYRAMIDS]; /* pf_vmf_pyramid_from_normals of the map */
+    int lobes[PF_VMF_SCALE_MAX_PYRAMIDS];              /* lobes per texel of each (required) */
+    int masking;             /* f_lobes' G: PF_VMF_SCALE_G_GAUSSIAN (0 reads as it), _G_MIXTURE, _UNMASKED */
+    int nt, np;              /* S's nodes along theta_i, theta_o and along phi_d, >= 2 (0: 6, 5) */
+    pf_real theta_max;       /* the last theta node, in (0, pi/2) (0: 75 degrees) */
+    int train_patches;       /* patches S is fitted on (0: 16) */
+    int rounds;              /* alternating least-squares rounds (0: 8) */
+    pf_real shrink;          /* the prior toward 1 (REGULARIZATION; 0: 1; negative: 0, plain LSQ) */
+} pf_vmf_scale_desc;
+
+/* the description with every default applied; 0 when d is NULL */
+PF_CPU_DEF int pfi_vmf_scale_resolve(const pf_vmf_scale_desc *d, pf_vmf_scale_desc *r)
+{
+    if (!d) return 0;
+    *r = *d;
+    if (r->texel == PF_R(0.0)) r->texel = PF_R(1.0);
+    if (r->base_sigma == PF_R(0.0)) r->base_sigma = PF_R(0.1);
+    if (r->f0 == PF_R(0.0)) r->f0 = PF_R(1.0);
+    if (r->pyramid_count == 0) r->pyramid_count = 1;
+    if (r->masking == 0) r->masking = PF_VMF_SCALE_G_GAUSSIAN;
+    if (r->nt == 0) r->nt = 6;
+    if (r->np == 0) r->np = 5;
+    if (r->theta_max == PF_R(0.0)) r->theta_max = PF_R(1.3089969389957472); /* 75 degrees */
+    if (r->train_patches == 0) r->train_patches = 16;
+    if (r->rounds == 0) r->rounds = 8;
+    if (r->shrink == PF_R(0.0)) r->shrink = PF_R(1.0);
+    else if (r->shrink < PF_R(0.0)) r->shrink = PF_R(0.0);
+    return 1;
+}
+
+/* the checks every level call shares (no data read): PF_OK or the error */
+PF_CPU_DEF int pfi_vmf_scale_check(const pf_vmf_scale_desc *r, int level)
+{
+    int k;
+    if (!r->heights || r->pyramid_count < 1 || r->pyramid_count > PF_VMF_SCALE_MAX_PYRAMIDS || r->train_patches < 1 ||
+        r->rounds < 1 || level < 0 || level > 30)
+        return PF_ERR_ARG;
+    for (k = 0; k < r->pyramid_count; ++k)
+        if (!r->pyramid[k] || r->lobes[k] < 1 || r->lobes[k] > PF_VMF_MAX_LOBES) return PF_ERR_ARG;
+    if (pf_vmf_pyramid_level_count(r->w, r->h) <= level) return PF_ERR_ARG; /* not powers of two, or no such level */
+    if (pf_vmf_scale_sample_count(r->nt, r->np) == 0 || pf_vmf_scale_vis_bytes(r->nt, r->np, 1 << level) == 0)
+        return r->nt < 2 || r->np < 2 ? PF_ERR_ARG : PF_ERR_SIZE;
+    return PF_OK;
+}
+
+/* pf_reals of scratch the level calls need (the training patches' samples, the factorization,
+   a patch's normals and visibility bytes); 0 for a call they reject or above PF_MAX_REALS. */
+PF_CPU_DEF long long pf_vmf_scale_scratch_size(const pf_vmf_scale_desc *desc, int level)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, cells, n, gp, P, need, vis;
+    if (!pfi_vmf_scale_resolve(desc, &r) || pfi_vmf_scale_check(&r, level) != PF_OK) return 0;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    cells = pf_vmf_scale_cell_count(r.nt, r.np);
+    n = 1LL << level;
+    gp = (long long)(r.w >> level) * (long long)(r.h >> level);
+    P = gp < r.train_patches ? gp : r.train_patches;
+    vis = (pf_vmf_scale_vis_bytes(r.nt, r.np, (int)n) + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    /* f_eff and f_lobes of P patches, 2 P cells, T of P patches, normals, a junk f_lobes, vis */
+    need = pf_size_mul3(P, cnt, 1 + r.pyramid_count);
+    if (need < 0 || pf_size_mul3(2, P, cells) < 0 || pf_size_mul(3 * n, n) < 0) return 0;
+    need += 2 * P * cells + P + 3 * n * n + cnt + vis;
+    return need <= PF_MAX_REALS ? need : 0;
+}
+
+/* f_lobes of texel (tx, ty) of `level` of pyramid k for the patch's samples: the texel's lobes
+   shaded at each sample's directions */
+PF_CPU_DEF void pfi_vmf_scale_texel_lobes(const pf_vmf_scale_desc *r, int k, int level, long long tx, long long ty,
+                                          pf_real *f_lobes)
+{
+    long long count = pf_vmf_scale_sample_count(r->nt, r->np), A = 2LL * (r->np - 1), s;
+    long long lw = (r->w >> level) > 1 ? (r->w >> level) : 1;
+    const pf_real *t = r->pyramid[k] + (pf_vmf_pyramid_level_offset(r->w, r->h, level) + ty * lw + tx) * 4 * r->lobes[k];
+    pf_real bv = r->base_sigma * r->base_sigma;
+    for (s = 0; s < count; ++s) {
+        long long ai = s % A, ti = (s / A) % r->nt, ao = (s / (A * r->nt)) % A, to = s / (A * r->nt * A);
+        pf_vec3 wo = pfi_vmf_scale_dir((int)to, (int)ao, r->nt, r->np, r->theta_max);
+        pf_vec3 wi = pfi_vmf_scale_dir((int)ti, (int)ai, r->nt, r->np, r->theta_max);
+        pf_vmf_sum sum = pf_vmf_sum_zero();
+        int j;
+        for (j = 0; j < r->lobes[k]; ++j) { /* padding lobes (amp 0) add nothing */
+            pf_vmf_lobe lobe = pf_vmf_lobe_make(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);
+            sum = pf_vmf_sum_add(sum, lobe, wo, wi, bv);
+            if (r->masking == PF_VMF_SCALE_G_MIXTURE) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, bv);
+        }
+        f_lobes[s] = r->masking == PF_VMF_SCALE_UNMASKED    ? pf_vmf_sum_specular_unmasked(sum, wo, wi, r->f0)
+                     : r->masking == PF_VMF_SCALE_G_GAUSSIAN ? pf_vmf_sum_specular(sum, wo, wi, r->f0)
+                                                             : pf_vmf_sum_specular_mixture(sum, wo, wi, r->f0);
+    }
+}
+
+/* one texel's samples: f_eff into f_eff, f_lobes of every pyramid into f_lobes + k count */
+PF_CPU_DEF int pfi_vmf_scale_texel_samples(const pf_vmf_scale_desc *r, int level, long long tx, long long ty,
+                                           pf_real *f_eff, pf_real *f_lobes, long long stride, pf_real *work)
+{
+    long long count = pf_vmf_scale_sample_count(r->nt, r->np), n = 1LL << level;
+    pf_real *nrm = work, *junk = nrm + 3 * n * n;
+    unsigned char *vis = (unsigned char *)(void *)(junk + count);
+    int k, rc;
+    /* f_eff: the patch's own one-lobe fit without EM steps is computed too (cheap), not used */
+    rc = pfi_vmf_scale_patch(r->heights, r->w, r->h, r->texel, (int)(tx * n), (int)(ty * n), (int)n, 1, 0, r->base_sigma,
+                             r->f0, r->masking, r->nt, r->np, r->theta_max, nrm, vis, f_eff, junk);
+    if (rc != PF_OK) return rc;
+    for (k = 0; k < r->pyramid_count; ++k) pfi_vmf_scale_texel_lobes(r, k, level, tx, ty, f_lobes + k * stride);
+    return PF_OK;
+}
+
+/* S and the prior of `level` for each pyramid of desc from its training patches: s_out[k]
+   gets pf_vmf_scale_cell_count(nt, np) pf_reals, prior_out[k] one (for pf_vmf_scale_texel_t),
+   t_level[k] (NULL: none; one pf_real per texel of the level, row-major) T of the training
+   texels only. scratch_len >= pf_vmf_scale_scratch_size(desc, level). Errors: PF_ERR_ARG for a
+   NULL desc, heights, pyramid, s_out, prior_out or scratch, a short scratch, sides not powers
+   of two, a level the pyramid lacks, lobes outside [1, 16], and pfi_vmf_scale_patch's
+   (non-finite heights, bad texel, base_sigma, theta_max, nt, np, masking); PF_ERR_SIZE above
+   PF_MAX_REALS; outputs may then be partly written. Cost: train_patches pfi_vmf_scale_patch
+   calls: 16 patches of 64 x 64 at 6 x 6 x 5 nodes, ~30 s (docs/vmf_fit.md). */
+PF_CPU_DEF int pf_vmf_scale_fit_level(const pf_vmf_scale_desc *desc, int level, pf_real *const *s_out,
+                                      pf_real *prior_out, pf_real *const *t_level, pf_real *scratch,
+                                      long long scratch_len)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, cells, gw, gh, P, p, need;
+    pf_real *f_eff, *f_l, *fac, *t, *work;
+    int k, rc;
+    if (!pfi_vmf_scale_resolve(desc, &r) || !s_out || !prior_out || !scratch) return PF_ERR_ARG;
+    if ((rc = pfi_vmf_scale_check(&r, level)) != PF_OK) return rc;
+    for (k = 0; k < r.pyramid_count; ++k)
+        if (!s_out[k]) return PF_ERR_ARG;
+    need = pf_vmf_scale_scratch_size(&r, level);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    cells = pf_vmf_scale_cell_count(r.nt, r.np);
+    gw = r.w >> level;
+    gh = r.h >> level;
+    P = gw * gh < r.train_patches ? gw * gh : r.train_patches;
+    f_eff = scratch;
+    f_l = f_eff + P * cnt;
+    fac = f_l + r.pyramid_count * P * cnt;
+    t = fac + 2 * P * cells;
+    work = t + P;
+    for (p = 0; p < P; ++p) {
+        long long c = (p * gw * gh) / P;
+        rc = pfi_vmf_scale_texel_samples(&r, level, c % gw, c / gw, f_eff + p * cnt, f_l + p * cnt, P * cnt, work);
+        if (rc != PF_OK) return rc;
+    }
+    for (k = 0; k < r.pyramid_count; ++k) {
+        const pf_real *fk = f_l + k * P * cnt;
+        rc = pfi_vmf_scale_factor(f_eff, fk, (int)P, r.nt, r.np, r.rounds, r.shrink, t, s_out[k], fac, &prior_out[k], 0);
+        if (rc != PF_OK) return rc;
+        if (t_level && t_level[k])
+            for (p = 0; p < P; ++p)
+                t_level[k][(p * gw * gh) / P] = pfi_vmf_scale_t(f_eff + p * cnt, fk + p * cnt, r.nt, r.np, s_out[k], prior_out[k]);
+    }
+    return PF_OK;
+}
+
+/* T of texel (tx, ty) of `level` for each pyramid into t_out[k], from its own samples with the
+   level's S (s_table[k]) and prior[k] of pf_vmf_scale_fit_level; scratch and errors as there,
+   and PF_ERR_ARG for a NULL s_table, prior, t_out or a texel outside the level. */
+PF_CPU_DEF int pf_vmf_scale_texel_t(const pf_vmf_scale_desc *desc, int level, long long tx, long long ty,
+                                    const pf_real *const *s_table, const pf_real *prior, pf_real *t_out, pf_real *scratch,
+                                    long long scratch_len)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, need;
+    int k, rc;
+    if (!pfi_vmf_scale_resolve(desc, &r) || !s_table || !prior || !t_out || !scratch) return PF_ERR_ARG;
+    if ((rc = pfi_vmf_scale_check(&r, level)) != PF_OK) return rc;
+    if (tx < 0 || ty < 0 || tx >= (r.w >> level) || ty >= (r.h >> level)) return PF_ERR_ARG;
+    for (k = 0; k < r.pyramid_count; ++k)
+        if (!s_table[k]) return PF_ERR_ARG;
+    need = pf_vmf_scale_scratch_size(&r, level);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    rc = pfi_vmf_scale_texel_samples(&r, level, tx, ty, scratch, scratch + cnt, cnt, scratch + (1 + r.pyramid_count) * cnt);
+    if (rc != PF_OK) return rc;
+    for (k = 0; k < r.pyramid_count; ++k)
+        t_out[k] = pfi_vmf_scale_t(scratch, scratch + (1 + k) * cnt, r.nt, r.np, s_table[k], prior[k]);
+    return PF_OK;
+}
+
+/* The in-footprint effective BRDF (eqs. 6-8) of the n x n patch from (x0, y0) of desc's map
+   (heights, w, h, texel, base_sigma, f0) toward wo from wi into *out; errors as
+   pfi_vmf_effective_brdf's (NULL desc: PF_ERR_ARG), *out 0 on an error. Cost: 2 n^2 marches. */
+PF_CPU_DEF int pf_vmf_effective_brdf(const pf_vmf_scale_desc *desc, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi,
+                                     pf_real *out)
+{
+    pf_vmf_scale_desc r;
+    if (!pfi_vmf_scale_resolve(desc, &r)) {
+        if (out) *out = PF_R(0.0);
+        return PF_ERR_ARG;
+    }
+    return pfi_vmf_effective_brdf(r.heights, r.w, r.h, r.texel, x0, y0, n, wo, wi, r.base_sigma, r.f0, out);
+}
 #endif /* !PF_GLSL */
 
 #endif /* PF_VMF_FIT_H */

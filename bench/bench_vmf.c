@@ -274,6 +274,9 @@ static int scaling_main(int argc, char **argv)
     pf_real *T = (pf_real *)malloc((size_t)patches * sizeof(pf_real)), *S = (pf_real *)malloc((size_t)cells * sizeof(pf_real));
     pf_real *scr = (pf_real *)malloc((size_t)(2 * cells * patches) * sizeof(pf_real));
     unsigned char *vis = (unsigned char *)malloc((size_t)vb);
+    pf_vmf_scale_desc ed; /* the effective BRDF's description: the map, the base BRDF */
+    memset(&ed, 0, sizeof ed);
+    ed.heights = hm, ed.w = size, ed.h = size, ed.texel = PF_R(1.0), ed.base_sigma = sigma, ed.f0 = f0;
     if (per < 1 || cnt == 0 || !hm || !nr || !fe || !fl || !T || !S || !scr || !vis) {
         fprintf(stderr, "bench_vmf --scaling: bad arguments or no memory\n");
         return 1;
@@ -295,9 +298,11 @@ static int scaling_main(int argc, char **argv)
         if (pfm_surface_make(&s, size, size, 1.0, pfm_params_default(kinds[ki])) != 0) return 1;
         for (i = 0; i < size * size; ++i) hm[i] = (pf_real)s.height[i];
         for (p = 0; p < patches && rc == PF_OK; ++p)
-            rc = pf_vmf_scale_patch(hm, size, size, PF_R(1.0), (p % per) * n, (p / per) * n, n, lobes, 24, sigma, f0, masking,
-                                    nt, np, tm, nr, vis, fe + p * cnt, fl + p * cnt);
-        if (rc == PF_OK) rc = pf_vmf_scale_factor(fe, fl, patches, nt, np, 30, PF_R(0.0), T, S, scr, NULL, err);
+            /* the per-patch samples and the factorization the library's level calls build on
+               (pf_vmf_fit.h, private: this experiment fits each patch's own lobes) */
+            rc = pfi_vmf_scale_patch(hm, size, size, PF_R(1.0), (p % per) * n, (p / per) * n, n, lobes, 24, sigma, f0, masking,
+                                     nt, np, tm, nr, vis, fe + p * cnt, fl + p * cnt);
+        if (rc == PF_OK) rc = pfi_vmf_scale_factor(fe, fl, patches, nt, np, 30, PF_R(0.0), T, S, scr, NULL, err);
         if (rc != PF_OK) {
             fprintf(stderr, "%s: error %d\n", pfm_kind_name(kinds[ki]), rc);
             return 1;
@@ -324,7 +329,7 @@ static int scaling_main(int argc, char **argv)
                                   PF_SIN(u[0] * tm) * PF_SIN(u[1] * PF_R(2.0) * PF_PI), PF_COS(u[0] * tm));
                 wi = pf_vec3_make(PF_SIN(u[2] * tm) * PF_COS(u[3] * PF_R(2.0) * PF_PI),
                                   PF_SIN(u[2] * tm) * PF_SIN(u[3] * PF_R(2.0) * PF_PI), PF_COS(u[2] * tm));
-                pf_vmf_effective_brdf(hm, size, size, PF_R(1.0), x0, y0, n, wo, wi, sigma, f0, &fe1);
+                pf_vmf_effective_brdf(&ed, x0, y0, n, wo, wi, &fe1);
                 for (k = 0; k < mix.count; ++k) {
                     sum = pf_vmf_sum_add(sum, mix.lobe[k], wo, wi, sigma * sigma);
                     if (masking == PF_VMF_SCALE_G_MIXTURE) sum = pf_vmf_sum_add_masking(sum, mix.lobe[k], wo, wi, sigma * sigma);
@@ -432,9 +437,13 @@ static int downsample_main(void)
                 }
             for (i = 0; i < n; ++i) s2 += sx[i] * sx[i] + sy[i] * sy[i];
             for (rep = 0; rep < 3; ++rep) {
-                double t0 = pfb_now_ns();
-                if (pf_map_downsample_slopes(fine, N, N, f, PF_BORDER_WRAP, PF_R(0.01), 2000, tol, coarse, scratch, need, &it,
-                                             NULL) != PF_OK) {
+                pf_map_downsample_desc dd;
+                double t0;
+                memset(&dd, 0, sizeof dd);
+                dd.fine = fine, dd.w = N, dd.h = N, dd.factor = f, dd.border = PF_BORDER_WRAP, dd.reg_weight = PF_R(0.01);
+                dd.max_iter = 2000, dd.tol = tol;
+                t0 = pfb_now_ns();
+                if (pf_map_downsample_slopes(&dd, coarse, scratch, need, &it, NULL) != PF_OK) {
                     fprintf(stderr, "downsample: solve failed\n");
                     return 1;
                 }

@@ -236,14 +236,14 @@ PF_DEF pf_real pfi_beckmann_d_up(pf_vec3 m, pf_slope_stats s, pf_real ln_scale)
     /* the variance floor keeps q/det a Gaussian's exponent when a variance is tiny (the
        determinant floor alone would flatten a degenerate axis); the ceiling keeps
        var_x var_y finite */
-    pf_real vx = pfi_clamp_nan_lo(s.var_x, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
-    pf_real vy = pfi_clamp_nan_lo(s.var_y, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real vx = pf_clamp_nan_lo(s.var_x, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
+    pf_real vy = pf_clamp_nan_lo(s.var_y, PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL);
     pf_real det = pf_max(vx * vy - s.cov_xy * s.cov_xy, PFI_BECKMANN_DET_MIN);
     /* adj(Sigma) quadratic form: var_y X^2 - 2 c X Y + var_x Y^2; c Y first: c near PF_REAL_MAX
        with Y = 0 gives 0, not (-2 c = -inf) * 0 */
     pf_real q = X * (vy * X + (s.cov_xy * Y) * PF_R(-2.0)) + vx * Y * Y;
     pf_real rs = pfi_beckmann_rsqrt(det);
-    pf_real e = pfi_clamp_nan_lo(q * rs * rs, PF_R(0.0), PFI_BECKMANN_QDET_CAP);
+    pf_real e = pf_clamp_nan_lo(q * rs * rs, PF_R(0.0), PFI_BECKMANN_QDET_CAP);
     return PF_EXP(PF_R(-0.5) * e + (PFI_LN_INV_2PI + ln_scale)) * r2 * r2 * rs;
 }
 
@@ -307,15 +307,15 @@ PF_DEF pf_real pf_beckmann_masking_shadowing(pf_vec3 wo, pf_vec3 wi, pf_slope_st
    plane (unlike the G1 form pfi_leadr_specular uses). Zero deviation along w (or NaN
    statistics): max(A, 0). For the evaluators that fold G / A_o into 1 / (P_o + A_o+ Lambda_i)
    (pf_gaussgrid.h, pf_vmf.h). w need not be unit length. */
-PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
+PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
 {
     pf_real a = w.z - s.mean_x * w.x - s.mean_y * w.y;
     pf_real var2 = PF_R(2.0) * (w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy);
-    pf_real sd = PF_SQRT(pfi_clamp_nan_lo(var2, PF_R(0.0), PF_R(0.25) * PF_REAL_MAX));
+    pf_real sd = PF_SQRT(pf_clamp_nan_lo(var2, PF_R(0.0), PF_R(0.25) * PF_REAL_MAX));
     pf_real front = pf_max(a, PF_R(0.0)), m, t;
     if (!(sd > PF_R(1.0e-12) * PF_FABS(a))) return front;
     m = PF_FABS(a) / sd;
-    t = m < PF_R(2.0) ? pf_exp_neg_sq(m) * pfi_smith_k(m) * (PF_R(0.5) * PF_INV_SQRT_PI)
+    t = m < PF_R(2.0) ? pf_exp_neg_sq(m) * pf_smith_k(m) * (PF_R(0.5) * PF_INV_SQRT_PI)
                       : m * pf_lambda_beckmann(m);
     return front + sd * t;
 }
@@ -326,7 +326,7 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
        Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
        Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
    P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
-   A_i counted as 0 (as A_o is for the view; pfi_beckmann_facing_area).
+   A_i counted as 0 (as A_o is for the view; pf_beckmann_facing_area).
    Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
    plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
    flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
@@ -340,22 +340,22 @@ PF_DEF pf_real pfi_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
    wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
    bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
    just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
-   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pfi_smith_nu_over_g1), d = nu_i
+   max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pf_smith_nu_over_g1), d = nu_i
    above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
-PF_DEF pf_real pfi_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
+PF_DEF pf_real pf_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
 {
     pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */
     pf_real d = nu > PF_R(0.0) ? nu : below;
-    return pf_max(pfi_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
+    return pf_max(pf_smith_nu_over_g1(pf_max(nu, PF_R(1.0e-20))) / d, PF_R(1.0)) - PF_R(1.0);
 }
 
 /* The same from the direction and the statistics (pf_vmf.h's one-Gaussian G): the variance
    along wi clamped once to [PF_REAL_MIN, PF_REAL_MAX/4] as in pfi_leadr_specular. */
-PF_DEF pf_real pfi_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
+PF_DEF pf_real pf_beckmann_light_lambda_stats(pf_vec3 wi, pf_slope_stats s)
 {
     pf_real var2 = PF_R(2.0) * (wi.x * wi.x * s.var_x + wi.y * wi.y * s.var_y + PF_R(2.0) * wi.x * wi.y * s.cov_xy);
-    pf_real rs = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-    return pfi_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
+    pf_real rs = pfi_beckmann_rsqrt(pf_clamp_nan_lo(var2, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    return pf_beckmann_light_lambda((wi.z - s.mean_x * wi.x - s.mean_y * wi.y) * rs, rs, wi.z);
 }
 
 /* ---------------------------------------------------------------- specular BRDF
@@ -382,7 +382,7 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    NaN, when either direction is on or below the macrosurface. A view above the macrosurface
    but on or below the mesosurface is not culled: it sees the facets that face it (below). A
    light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
-   is pfi_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
+   is pf_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
    (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
    taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
@@ -415,7 +415,7 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
     /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
        (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
        tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
-    pf_real rs_o = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
+    pf_real rs_o = pfi_beckmann_rsqrt(pf_clamp_nan_lo(wo.x * (wo.x * vx2 + wo.y * c4) + wo.y * (wo.y * vy2),
                                                        PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     /* signed: < 0 when the view is below the mean plane; floored at -64, where P_o is 0 in
        pf_real anyway, so that -inf (huge mean slopes) gives P_o = 0, not inf - inf: the final
@@ -426,17 +426,17 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
        A_o / G1(nu_o) above the mean plane, (|nu_o| / G1(|nu_o|) - |nu_o|) sqrt(2 var_o) below
        (1 + Lambda(-nu) = -Lambda(nu)); nu floored at 1e-20, where nu / G1(nu) is its limit
        1/(2 sqrt(pi)) to rounding */
-    pf_real front = (pfi_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    pf_real front = (pf_smith_nu_over_g1(nu_a) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
     pf_real g, d, t, v;
     /* eq. 17's G / A_o = 1 / (P_o + A_o Lambda_i) (Smith: P_o = A_o (1 + Lambda_o)), with A_o
        counted as 0 below the mean plane (see above) and Lambda_i capped by the macrosurface's
-       share of the light (pfi_beckmann_light_lambda); masking only: 1 / P_o */
+       share of the light (pf_beckmann_light_lambda); masking only: 1 / P_o */
     if (masking_only != 0) {
         g = PF_R(1.0) / front;
     } else {
-        pf_real rs_i = pfi_beckmann_rsqrt(pfi_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
+        pf_real rs_i = pfi_beckmann_rsqrt(pf_clamp_nan_lo(wi.x * (wi.x * vx2 + wi.y * c4) + wi.y * (wi.y * vy2),
                                                            PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pfi_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
+        g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pf_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
     }
     /* both directions above the macrosurface: the half vector's z > 0, as pfi_beckmann_d_up needs */
     /* the 1/4 of eq. 17 rides in D's exponent: ln(1/4) */

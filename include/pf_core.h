@@ -112,7 +112,7 @@ typedef float pf_real;
 
 /* ---------------------------------------------------------------- math, one macro per function */
 #if defined(PF_SIN) || defined(PF_COS)
-#  define PFI_USER_TRIG 1 /* the user mapped sin/cos: PFI_SINPI/PFI_COSPI below go through them */
+#  define PFI_USER_TRIG 1 /* the user mapped sin/cos: PF_SINPI/PF_COSPI below go through them */
 #endif
 #if defined(PF_GLSL)
 #  ifndef PF_SQRT
@@ -183,11 +183,11 @@ typedef float pf_real;
    huge arguments written in FP64, which the float device build must not contain (make
    portability, nvcc-float). Elsewhere, and when PF_SIN/PF_COS are user-mapped, sin(PF_PI x). */
 #if defined(__CUDACC__) && !defined(PF_GLSL) && !defined(PFI_USER_TRIG)
-#  define PFI_SINPI(x) PFI_LIBM(sinpi)(x)
-#  define PFI_COSPI(x) PFI_LIBM(cospi)(x)
+#  define PF_SINPI(x) PFI_LIBM(sinpi)(x)
+#  define PF_COSPI(x) PFI_LIBM(cospi)(x)
 #else
-#  define PFI_SINPI(x) PF_SIN(PF_PI * (x))
-#  define PFI_COSPI(x) PF_COS(PF_PI * (x))
+#  define PF_SINPI(x) PF_SIN(PF_PI * (x))
+#  define PF_COSPI(x) PF_COS(PF_PI * (x))
 #endif
 
 /* ---------------------------------------------------------------- scalar helpers */
@@ -222,7 +222,7 @@ PF_DEF pf_real pf_clamp(pf_real x, pf_real lo, pf_real hi) { return PFI_CLAMP(x,
 PF_DEF pf_real pf_saturate(pf_real x) { return pf_clamp(x, PF_R(0.0), PF_R(1.0)); }
 /* clamp(x, lo, hi) that also sanitizes: a NaN x gives lo in C and CUDA (max first: pf_max's
    comparison is false for NaN), one native clamp in GLSL. lo <= hi. */
-PF_DEF pf_real pfi_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
+PF_DEF pf_real pf_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
 {
 #ifdef PF_GLSL
     return clamp(x, lo, hi);
@@ -267,20 +267,20 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
    (a + 2^k a) - 2^k a, whose only product is exact, and every other product in an exact
    step is exact, so fusing it changes nothing (measured: <= 1.51 ulp with
    -ffp-contract=fast -mfma; the Veltkamp form c - (c - 4097 a) reached 2.09). In GLSL the
-   exact steps are `precise` (PFI_EXACT), which forbids both contraction and simplification
+   exact steps are `precise` (PF_EXACT), which forbids both contraction and simplification
    there. Under -ffast-math the split may be simplified away: results stay finite and in
    range, with a few ulp more error. */
 
 
-/* PFI_EXACT marks the variables of the error-free steps below (splits, exact products and
+/* PF_EXACT marks the variables of the error-free steps below (splits, exact products and
    their residuals). In GLSL it is `precise` (SPIR-V NoContraction): a shader compiler may
    otherwise contract them into FMAs or simplify (a + s) - s to a, which is exact algebra and
    wrong arithmetic. C and CUDA need nothing: the splits are written so that contraction
    cannot change them (below), and C compilers do not reassociate without -ffast-math. */
 #ifdef PF_GLSL
-#  define PFI_EXACT precise
+#  define PF_EXACT precise
 #else
-#  define PFI_EXACT
+#  define PF_EXACT
 #endif
 
 /* The high half of a: a rounded to 12 (float) or 26 (double) significant bits, so that
@@ -295,12 +295,12 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
 PF_DEF pf_real pfi_split_hi(pf_real a)
 {
 #ifdef PF_DOUBLE
-    PFI_EXACT pf_real s = PF_R(134217728.0) * a;
+    PF_EXACT pf_real s = PF_R(134217728.0) * a;
 #else
-    PFI_EXACT pf_real s = PF_R(4096.0) * a;
+    PF_EXACT pf_real s = PF_R(4096.0) * a;
 #endif
-    PFI_EXACT pf_real t = a + s;
-    PFI_EXACT pf_real h = t - s;
+    PF_EXACT pf_real t = a + s;
+    PF_EXACT pf_real h = t - s;
     return h;
 }
 
@@ -311,10 +311,10 @@ PF_DEF pf_real pfi_split_hi(pf_real a)
 PF_DEF pf_real pf_exp_neg_sq(pf_real x)
 {
     pf_real xc = pf_min(PF_FABS(x), PF_R(64.0)); /* exp(-4096) = 0; keeps the split finite */
-    PFI_EXACT pf_real xh = pfi_split_hi(xc);
-    PFI_EXACT pf_real xl = xc - xh;
-    PFI_EXACT pf_real p = xc * xc;
-    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PF_EXACT pf_real xh = pfi_split_hi(xc);
+    PF_EXACT pf_real xl = xc - xh;
+    PF_EXACT pf_real p = xc * xc;
+    PF_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     pf_real e = PF_EXP(-p);
     return e - e * b;
 }
@@ -345,16 +345,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
 {
 #ifdef PF_DOUBLE
     pf_real xc = x > PF_R(27.25) ? PF_R(27.25) : x; /* not pf_min: CUDA's fmin drops a NaN */
-    PFI_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
+    PF_EXACT pf_real c2 = PF_R(268435456.0) * xc; /* 2^28: x to 25 bits (as pfi_split_hi) */
 #else
     pf_real xc = x > PF_R(10.125) ? PF_R(10.125) : x; /* not pf_min: CUDA's fminf drops a NaN */
-    PFI_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
+    PF_EXACT pf_real c2 = PF_R(16384.0) * xc;     /* 2^14: x to 10 bits */
 #endif
-    PFI_EXACT pf_real xh = pfi_split_hi(xc);
-    PFI_EXACT pf_real xl = xc - xh;
+    PF_EXACT pf_real xh = pfi_split_hi(xc);
+    PF_EXACT pf_real xl = xc - xh;
     /* x*x = p + b exactly */
-    PFI_EXACT pf_real p = xc * xc;
-    PFI_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
+    PF_EXACT pf_real p = xc * xc;
+    PF_EXACT pf_real b = ((xh * xh - p) + PF_R(2.0) * xh * xl) + xl * xl;
     /* exp(-p): scaled by 2^64, or, where the result is subnormal (float x > 9.27, double
        x > 26.57), computed as exp(sh - p) and scaled by exp(-sh); sh - p is exact. */
 #ifdef PF_DOUBLE
@@ -370,16 +370,16 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     /* 1/(x + A) = wh/(1 + s): dh = xs + A is exact with <= 14 (double 28) bits, wh = 1/dh
        rounded to 9 (23) bits, so wh*dh and r = 1 - wh*dh are exact, |s| < 2^-8. Then
        exp(-b)/(x + A) = wh (1 + g), g = (1 - b)/(1 + s) - 1. */
-    PFI_EXACT pf_real xs = (xc + c2) - c2;
+    PF_EXACT pf_real xs = (xc + c2) - c2;
     pf_real dh = xs + PF_R(0.625);
     pf_real cw = PF_R(1.0) / dh;
 #ifdef PF_DOUBLE
-    PFI_EXACT pf_real wc = PF_R(1073741824.0) * cw; /* 2^30 */
+    PF_EXACT pf_real wc = PF_R(1073741824.0) * cw; /* 2^30 */
 #else
-    PFI_EXACT pf_real wc = PF_R(32768.0) * cw;      /* 2^15 */
+    PF_EXACT pf_real wc = PF_R(32768.0) * cw;      /* 2^15 */
 #endif
-    PFI_EXACT pf_real wh = (cw + wc) - wc;
-    PFI_EXACT pf_real r = PF_R(1.0) - wh * dh;
+    PF_EXACT pf_real wh = (cw + wc) - wc;
+    PF_EXACT pf_real r = PF_R(1.0) - wh * dh;
     pf_real sv = (xc - xs) * wh - r;
     pf_real s3 = sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv * (PF_R(1.0) - sv))); /* s/(1 + s) */
     pf_real g = -b - (PF_R(1.0) - b) * s3;
@@ -437,7 +437,7 @@ PF_DEF pf_real pfi_erfc_big(pf_real x)
     kh = PF_R(0.625) * wh;
     kl = wh * (y + g * (PF_R(0.625) + y));
     e1h = pfi_split_hi(e1);
-    /* not PFI_EXACT: a shader compiler that refactors this sum (kh (e1h + (e1 - e1h))) makes
+    /* not PF_EXACT: a shader compiler that refactors this sum (kh (e1h + (e1 - e1h))) makes
        one rounding more, 1/2 ulp; `precise` here cost 16 SPIR-V ops */
     return (e1h * kh + ((e1 - e1h) * kh + e1 * kl)) * sc;
 }
@@ -668,7 +668,7 @@ PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE;
 /* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
    pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
    float-to-integer conversion, which is undefined behaviour in C. */
-PF_CPU_DEF long long pfi_floor_index(pf_real x, long long lo, long long hi)
+PF_CPU_DEF long long pf_floor_index(pf_real x, long long lo, long long hi)
 {
     long long i;
     if (!(x > (pf_real)lo)) return lo;

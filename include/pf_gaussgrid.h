@@ -398,7 +398,7 @@ PF_STRUCT_BEGIN(pf_gg_grid)
     pf_real corr;         /* r = cov / (sigma_x sigma_y), in [-1, 1] (0 if a sigma is 0) */
     pf_real corr_c;       /* sqrt(1 - r^2) */
     pf_real inv_proj;     /* 1/P_o, P_o = E[max(0, wo.z - x wo.x - y wo.y)] the projected area of the facets facing wo
-                             (pfi_beckmann_facing_area) = A_o (1 + Lambda(wo)) above the mesosurface; 0 at or below the
+                             (pf_beckmann_facing_area) = A_o (1 + Lambda(wo)) above the mesosurface; 0 at or below the
                              macrosurface (see pf_gg_grid_make) */
     pf_real g1_o;         /* 1/(1 + Lambda(wo)) (eq. 13 with one direction), = A_o / P_o; 0 at or below the mesosurface */
     int node_set;         /* PF_GG_UNIFORM, PF_GG_HERMITE or PF_GG_MATCHED */
@@ -408,7 +408,7 @@ PF_STRUCT_END(pf_gg_grid)
 /* Per-pixel setup: Cholesky factor of the covariance (LEADR sec. 5.1; a negative variance
    counts as 0, |r| is clamped to 1), the view's masking and the projected-area normalization.
    wo must be a unit vector in the tangent frame.
-   Normalization, as pf_leadr_specular (see the comment above pfi_leadr_specular in
+   Normalization, as pf_leadr_specular (see the comment above pf_leadr_specular in
    pf_beckmann.h): eqs. 19-21 divide by A_o = w_nbar.w_o / w_nbar.w_g and multiply by
    G = 1/(1 + Lambda_o + Lambda_i), which is 0 / 0 when the view is at or below the
    mesosurface (A_o <= 0) yet above the macrosurface, where a flat (bump- or normal-mapped)
@@ -428,7 +428,7 @@ PF_DEF pf_gg_grid pf_gg_grid_make(pf_vec3 wo, pf_slope_stats s, int node_set, in
     pf_real sxy = sx * sy;
     /* min before max: a NaN covariance becomes r = 1 (finite samples), not NaN */
     pf_real r = sxy > PF_R(0.0) ? pf_max(pf_min(s.cov_xy / sxy, PF_R(1.0)), PF_R(-1.0)) : PF_R(0.0);
-    pf_real facing = pfi_beckmann_facing_area(wo, s);
+    pf_real facing = pf_beckmann_facing_area(wo, s);
     g.wo = wo;
     g.stats = s;
     g.sigma_x = sx;
@@ -459,7 +459,7 @@ PF_STRUCT_END(pf_gg_sample)
 /* The sample of node pair (p_j, W_j), (p_k, W_k). The cell width u = W / phi(p) is the
    interval of the standard normal that the node stands for (sum_j u_j phi(p_j) = 1, so the
    cells tile the measure); for the uniform grid it is the node spacing. */
-PF_DEF pf_gg_sample pfi_gg_sample_nodes(pf_gg_grid g, pf_real pj, pf_real wj, pf_real pk, pf_real wk)
+PF_DEF pf_gg_sample pf_gg_sample_nodes(pf_gg_grid g, pf_real pj, pf_real wj, pf_real pk, pf_real wk)
 {
     pf_gg_sample smp;
     pf_real x = g.stats.mean_x + g.sigma_x * pj;
@@ -490,7 +490,7 @@ PF_DEF pf_gg_sample pf_gg_sample_at(pf_gg_grid g, int i)
     pk = pf_gg_node(g.node_set, g.n, k);
     wj = pf_gg_weight(g.node_set, g.n, j);
     wk = pf_gg_weight(g.node_set, g.n, k);
-    smp = pfi_gg_sample_nodes(g, pj, wj, pk, wk);
+    smp = pf_gg_sample_nodes(g, pj, wj, pk, wk);
     /* u_j u_k = W_j W_k 2 pi exp((p_j^2 + p_k^2)/2); tiny (possibly 0) far out, never huge */
     smp.cell = smp.weight * (PF_R(2.0) * PF_PI) * PF_EXP(PF_R(0.5) * (pj * pj + pk * pk));
     return smp;
@@ -681,7 +681,7 @@ PF_DEF pf_real pf_gg_diffuse_sh(pf_gg_grid g, pf_sh9 sh)
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             acc += smp.weight * smp.proj * pf_sh9_irradiance(sh, smp.normal);
         }
@@ -697,7 +697,7 @@ PF_DEF pf_vec3 pf_gg_diffuse_sh_rgb(pf_gg_grid g, pf_sh9 sh_r, pf_sh9 sh_g, pf_s
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             pf_real w = smp.weight * smp.proj;
             acc = pf_vec3_add(acc, pf_vec3_make(w * pf_sh9_irradiance(sh_r, smp.normal),
@@ -723,7 +723,7 @@ PF_DEF pf_real pf_gg_diffuse_directional(pf_gg_grid g, pf_vec3 wi)
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             acc += smp.weight * smp.proj * pf_max(pf_vec3_dot(smp.normal, wi), PF_R(0.0));
         }

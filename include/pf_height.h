@@ -875,8 +875,8 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
     v = sigma / t->sigma_max * (pf_real)(t->n_sigma - 1);
     u = pf_min(pf_max(u, PF_R(0.0)), (pf_real)(t->n_mean - 1)); /* NaN -> 0 */
     v = pf_min(pf_max(v, PF_R(0.0)), (pf_real)(t->n_sigma - 1));
-    i = pfi_floor_index(u, 0, t->n_mean - 2);
-    j = pfi_floor_index(v, 0, t->n_sigma - 2);
+    i = pf_floor_index(u, 0, t->n_mean - 2);
+    j = pf_floor_index(v, 0, t->n_sigma - 2);
     fu = u - (pf_real)i;
     fv = v - (pf_real)j;
     stride = (long long)t->n_mean * cs;

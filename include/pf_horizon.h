@@ -458,7 +458,7 @@ PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_
     if (lod <= lod_full) return PF_R(1.0);
     if (lod_smith > PF_REAL_MAX) return PF_R(1.0);
     /* lod_full = -inf: finite / inf = 0; lod_full NaN: NaN, which the clamp takes to 0 */
-    return pfi_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
+    return pf_clamp_nan_lo((lod_smith - lod) / (lod_smith - lod_full), PF_R(0.0), PF_R(1.0));
 }
 
 /* Masking G1 with the horizon term faded to Smith by footprint size:
@@ -521,7 +521,7 @@ PF_DEF pf_real pfi_horizon_cond_vis(pfi_horizon_cond c, pf_real sx, pf_real sy, 
     if (!(c.sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)))) return c.e >= mu ? PF_R(1.0) : PF_R(0.0);
     /* a NaN z (NaN slope) becomes -12: not visible; beyond |z| = 12 Phi is 0 or 1 (and erfc's
        tail would be subnormal) */
-    z = pfi_clamp_nan_lo((c.e - mu) / c.sd, PF_R(-12.0), PF_R(12.0));
+    z = pf_clamp_nan_lo((c.e - mu) / c.sd, PF_R(-12.0), PF_R(12.0));
     if (!(z > PF_R(-12.0))) return PF_R(0.0);
     if (!(z < PF_R(12.0))) return PF_R(1.0);
     return PF_R(0.5) * (fast != 0 ? pf_erfc_fast(-z * PF_INV_SQRT2) : pf_erfc(-z * PF_INV_SQRT2));
@@ -563,7 +563,7 @@ PF_DEF pf_real pf_horizon_diffuse_directional(pf_gg_grid g, pf_vec3 wi, pf_hdf_m
     for (j = 0; j < g.n; ++j) {
         pf_real pj = pf_gg_node(g.node_set, g.n, j), wj = pf_gg_weight(g.node_set, g.n, j);
         for (k = 0; k < g.n; ++k) {
-            pf_gg_sample smp = pfi_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
+            pf_gg_sample smp = pf_gg_sample_nodes(g, pj, wj, pf_gg_node(g.node_set, g.n, k),
                                                    pf_gg_weight(g.node_set, g.n, k));
             pf_real a = smp.weight * pf_max(wo.z - smp.slope_x * wo.x - smp.slope_y * wo.y, PF_R(0.0));
             pf_real vo = pfi_horizon_cond_vis(co, smp.slope_x, smp.slope_y, 1);

@@ -1,13 +1,10 @@
 /* pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
    height-field march of the library, the pyramids of linear moments (slope, scalar, depth,
-   normal), their bilinear/trilinear sampling, heights to slopes and to unit normals, and the
-   slope-preserving height downsampler. Every module that bakes a map (pf_moments.h's texels,
-   pf_vmf_fit.h's lobe pyramid and scaling function, pf_horizon.h's horizon maps) uses these,
-   so a map built by one module is laid out, bordered and differentiated like every other.
-
-   CPU only: everything here walks caller-owned buffers and allocates nothing (linkage
-   PF_CPU_DEF, pf_core.h); the header is empty under PF_GLSL. A shader reads what these
-   functions bake with the evaluators of pf_moments.h (the texels) and its own sampler.
+   normal) and their sampling, heights to slopes and to unit normals, and the slope-preserving
+   height downsampler. Every module that bakes a map (pf_moments.h's texels, pf_vmf_fit.h,
+   pf_horizon.h) uses these, so its maps are laid out, bordered and differentiated alike.
+   CPU only (PF_CPU_DEF: caller-owned buffers, no allocation); empty under PF_GLSL. A shader
+   reads what these functions bake with pf_moments.h's evaluators and its own sampler.
 
    USAGE (a whole pyramid in one caller buffer, no allocation)
      long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
@@ -18,11 +15,9 @@
    FUNCTIONS
      layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
      borders         PF_BORDER_CLAMP, PF_BORDER_WRAP, pf_map_wrap (a wrapped index)
-     heights         pf_map_slope_stencil (the height-map stencil), pf_map_height (wrapped
-                     read), pf_map_node_slope (wrapped central difference at one node),
-                     pf_map_normals_from_heights (unit normals of the same slopes),
-                     pf_map_visible (the height-field march), pf_map_downsample_slopes and
-                     pf_map_downsample_scratch_size (slope-preserving downsampling)
+     heights         pf_map_slope_stencil, pf_map_height, pf_map_node_slope,
+                     pf_map_normals_from_heights, pf_map_visible (the march),
+                     pf_map_downsample_slopes, pf_map_downsample_scratch_size
      building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
                      pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
                      pf_depth_moment_channels, pf_depth_pyramid_from_depths,
@@ -63,12 +58,10 @@
      -PF_REAL_MAX; pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices
      are long long.
 
-   ACCURACY AND COST (measured; docs/map.md and docs/moments.md have the tables,
-   bench/bench_moments.c and bench/bench_vmf.c the timings). Reductions and sampling are sums
-   of a few products: their moments equal the mixture moments of their texels to a few ulps
-   (tests/test_map.c). A pyramid is built in one pass, each level reduced while the rows it
-   needs are in cache: the 5-moment pyramid of a 4096^2 float height map writes at over half
-   of memcpy's bandwidth.
+   ACCURACY AND COST (docs/map.md; bench/bench_moments.c, bench/bench_vmf.c). Reductions and
+   sampling equal the mixture moments of their texels to a few ulps (tests/test_moments.c). A
+   pyramid is built in one pass while the rows it reads are in cache: the 5-moment pyramid of
+   a 4096^2 float height map writes at over half of memcpy's bandwidth.
 
    SOURCES
      Dupuy et al. 2013 (LEADR) sec. 4.1-4.2; Bruneton & Neyret 2012 sec. 7.2 (moments of a
@@ -324,9 +317,12 @@ PF_CPU_DEF void pf_map_slope_stencil(long long i, int n, int border, pf_real k, 
 /* Stores the slope moments of slope (sx, sy). */
 PF_CPU_DEF void pfi_put_slope(pf_real *o, pf_real sx, pf_real sy)
 { o[0] = sx, o[1] = sy, o[2] = sx * sx, o[3] = sy * sy, o[4] = sx * sy; }
-/* Row r of the slope-moment map of a height map (5 channels). */
+/* Stores the unit normal (-sx, -sy, 1)/|.| of slope (sx, sy). */
+PF_CPU_DEF void pfi_put_normal(pf_real *o, pf_real sx, pf_real sy)
+{ pf_vec3 m = pf_normal_avg_from_slope(sx, sy); o[0] = m.x, o[1] = m.y, o[2] = m.z; }
+/* Row r of the slope-moment map of a height map (5 channels), or of its unit normals (3). */
 PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
-                              pf_real height_scale, int border, pf_real *out)
+                              pf_real height_scale, int border, int normals, pf_real *out)
 {
     const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
     const pf_real *row = heights + (long long)r * w, *r0, *r1, *r2;
@@ -337,15 +333,24 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
     r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
     c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
     /* interior texels: branch-free, so the compiler can vectorize the row */
-    for (i = 1; i < w - 1; ++i) {
-        pf_real sx = kx * (row[i + 1] - row[i - 1]);
-        pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
-    }
+    if (!normals)
+        for (i = 1; i < w - 1; ++i) {
+            pf_real sx = kx * (row[i + 1] - row[i - 1]);
+            pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        }
+    else
+        for (i = 1; i < w - 1; ++i) {
+            pf_real sx = kx * (row[i + 1] - row[i - 1]);
+            pfi_put_normal(out + 3 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        }
     /* the first and last texels of the row */
     for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
+        pf_real sx, sy;
         pf_map_slope_stencil(i, w, border, kx, x, cx);
-        pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
-                      c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
+        sx = cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]];
+        sy = c0 * r0[i] + c1 * r1[i] + c2 * r2[i];
+        if (normals) pfi_put_normal(out + 3 * i, sx, sy);
+        else pfi_put_slope(out + 5 * i, sx, sy);
     }
 }
 
@@ -362,7 +367,23 @@ PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, 
         return PF_ERR_ARG;
     if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 5) < 0) return PF_ERR_SIZE;
     for (r = 0; r < h; ++r)
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 0, out + (long long)r * w * 5);
+    return PF_OK;
+}
+
+/* The unit micro-normals (-sx, -sy, 1)/sqrt(1 + sx^2 + sy^2) of every texel of a w x h height
+   map, 3 interleaved pf_reals each, into out (w h 3 pf_reals), the slopes (sx, sy) exactly those
+   of pf_slope_moments_map_from_heights (same arguments): the normals a lobe fit reads
+   (pf_vmf_fit.h). PF_ERR_SIZE when w h 3 > PF_MAX_REALS. */
+PF_CPU_DEF int pf_map_normals_from_heights(const pf_real *heights, int w, int h, pf_real dx, pf_real dy,
+                                           pf_real height_scale, int border, pf_real *out)
+{
+    int r;
+    if (!heights || !out || w < 1 || h < 1 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))
+        return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 3) < 0) return PF_ERR_SIZE;
+    for (r = 0; r < h; ++r)
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 1, out + (long long)r * w * 3);
     return PF_OK;
 }
 
@@ -422,7 +443,7 @@ PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int 
     if (!heights || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
     if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) != PF_OK) return rc;
     for (r = 0; r < h; ++r) {
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
+        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, 0, pyr + (long long)r * w * 5);
         pfi_mip_push_row(&c, 0, r);
     }
     return PF_OK;
@@ -490,10 +511,9 @@ PF_CPU_DEF pf_real pf_map_height(const pf_real *hm, int w, int h, long long x, l
     return hm[pf_map_wrap(y, h) * (long long)w + pf_map_wrap(x, w)];
 }
 
-/* The slope (dh/dx, dh/dy) of node (x, y) of the periodic map by central differences,
-   k (h(x + 1) - h(x - 1)) with k = 1/(2 texel): the PF_BORDER_WRAP stencil of
-   pf_map_slope_stencil at one node, evaluated as a scaled difference (the stencil's
-   -k a + k b rounds differently; both are the same second-order slope). */
+/* The slope (dh/dx, dh/dy) of node (x, y) of the periodic map, k (h(x + 1) - h(x - 1)) with
+   k = 1/(2 texel): pf_map_slope_stencil's PF_BORDER_WRAP stencil at one node, as a scaled
+   difference (the stencil's -k a + k b rounds differently). */
 PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_real *sx,
                                   pf_real *sy)
 {
@@ -523,8 +543,7 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    node sees d, 0 when d.z <= 0, the node's facet faces away from d, or the ray is occluded.
    Cost: the cells the ray crosses inside the patch (about 2 n at most; up to
    PF_MAP_MARCH_MAX_CELLS where the patch spans the periodic map), 4 reads each. */
-/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
-   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
+/* most cells a march visits before it calls the ray occluded (~1e-4 rad above the horizon) */
 #ifndef PF_MAP_MARCH_MAX_CELLS
 #  define PF_MAP_MARCH_MAX_CELLS 65536
 #endif
@@ -609,7 +628,7 @@ PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long l
     if (border == PF_BORDER_WRAP) u = (u - u == PF_R(0.0)) ? u - PF_FLOOR(u) : PF_R(0.0);
     else u = (u == u) ? pf_clamp(u, PF_R(0.0), PF_R(1.0)) : PF_R(0.0);
     x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
-    i = pfi_floor_index(x, -1, n - 1);
+    i = pf_floor_index(x, -1, n - 1);
     *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
     *i0 = border == PF_BORDER_WRAP ? pf_map_wrap(i, n) : (i < 0 ? 0 : i);
     *i1 = border == PF_BORDER_WRAP ? pf_map_wrap(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
@@ -727,9 +746,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
               wrapped, or the edge texel repeated under PF_BORDER_CLAMP);
      minimize  E(H) = sum_T |(G H)_T - s*_T|^2 + reg_weight sum_T (L H)_T^2        (eq. 10)
    (Wu et al. put heights on cell corners and take the bilinear cell's mean slope, eq. 9; on
-   the texel-centred grid the same role is played by the central difference, and using the
-   stencil every slope consumer of the library uses makes the coarse map's slopes exactly the
-   ones it is read with.) Every term is in height per coarse texel, so reg_weight is
+   the texel-centred grid the central difference plays that role, the stencil every slope
+   consumer of the library reads.) Every term is in height per coarse texel, so reg_weight is
    dimensionless (the paper's w = 0.01) and the result does not depend on the texel spacing
    (both slopes divide by it), which is therefore not an argument.
    The normal equations (G^T G + reg_weight L^T L) H = G^T s* are singular along the
@@ -742,23 +760,19 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
    of two (exact) so that no difference overflows; a result beyond the pf_real range is
    clamped to +-PF_REAL_MAX.
-   Arguments: fine w x h row-major; factor >= 1 dividing w and h (coarse (w/factor) x
-   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
-   PF_BORDER_CLAMP; reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
-   2-texel checkerboards, which no central difference sees, keep their box values; far above
-   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
-   the box map); tol finite >= 0; scratch: scratch_len >= pf_map_downsample_scratch_size(w,
-   h, factor) pf_reals; iters_out (iterations done) and residual_out (the final |r| over the
-   reference norm above) may be NULL.
+   Arguments (pf_map_downsample_desc below): factor >= 1 dividing w and h (coarse (w/factor) x
+   (h/factor), row-major); reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
+   2-texel checkerboards, which no central difference sees, keep their box values; the bound
+   keeps every product finite); max_iter >= 0 (0: the box map); tol finite >= 0; scratch_len >=
+   pf_map_downsample_scratch_size(w, h, factor); iters_out (iterations done) and residual_out
+   (the final |r| over the reference norm above) may be NULL.
    Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
    dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
    height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
    above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
    the first pf_map_downsample_scratch_size reals of scratch is touched.
-   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
-   their transposes over the coarse map) and four vector passes; 512 x 512 -> 256 x 256 in
-   15-50 ms (float, tol 1e-5; docs/vmf.md has the table and the slope errors against the box
-   map). */
+   Cost: one pass over the fine map, then per iteration one product and four vector passes;
+   512 x 512 -> 256 x 256 in 15-50 ms (float, tol 1e-5; docs/map.md has the table). */
 
 #define PF_MAP_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
 
@@ -858,7 +872,7 @@ PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_re
     }
 }
 
-PF_CPU_DEF int pf_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
+PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
                                         int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
                                         long long scratch_len, int *iters_out, pf_real *residual_out)
 {
@@ -949,6 +963,33 @@ PF_CPU_DEF int pf_map_downsample_slopes(const pf_real *fine, int w, int h, int f
     if (iters_out) *iters_out = it;
     if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
     return PF_OK;
+}
+/* A downsampling's description; ZERO MEANS THE DEFAULT (negative reg_weight, max_iter, tol: 0). */
+typedef struct pf_map_downsample_desc {
+    const pf_real *fine;  /* the fine height map, w x h row-major (required) */
+    int w, h;             /* its sides (required) */
+    int factor;           /* coarse texel = factor x factor fine texels, dividing w and h (0: 2) */
+    int border;           /* PF_BORDER_CLAMP (0) or PF_BORDER_WRAP */
+    pf_real reg_weight;   /* the Laplacian's weight (0: 0.01, Wu et al.'s w; negative: 0) */
+    int max_iter;         /* conjugate-gradient iterations (0: 400; negative: 0, the box map) */
+    pf_real tol;          /* relative residual to stop at (0: 1e-5; negative: 0, max_iter decides) */
+} pf_map_downsample_desc;
+
+/* The slope-preserving coarse map of desc (see the block comment) into coarse
+   ((w/factor) x (h/factor) pf_reals); scratch, iters_out, residual_out and the errors as
+   there (NULL desc: PF_ERR_ARG). */
+PF_CPU_DEF int pf_map_downsample_slopes(const pf_map_downsample_desc *desc, pf_real *coarse, pf_real *scratch,
+                                        long long scratch_len, int *iters_out, pf_real *residual_out)
+{
+    pf_map_downsample_desc d;
+    if (!desc) return PF_ERR_ARG;
+    d = *desc;
+    if (d.factor == 0) d.factor = 2;
+    d.reg_weight = d.reg_weight == PF_R(0.0) ? PF_R(0.01) : (d.reg_weight < PF_R(0.0) ? PF_R(0.0) : d.reg_weight);
+    d.max_iter = d.max_iter == 0 ? 400 : (d.max_iter < 0 ? 0 : d.max_iter);
+    d.tol = d.tol == PF_R(0.0) ? PF_R(1.0e-5) : (d.tol < PF_R(0.0) ? PF_R(0.0) : d.tol);
+    return pfi_map_downsample_slopes(d.fine, d.w, d.h, d.factor, d.border, d.reg_weight, d.max_iter, d.tol, coarse, scratch,
+                                     scratch_len, iters_out, residual_out);
 }
 #endif /* !PF_GLSL */
 

@@ -242,8 +242,8 @@ PF_DEF pf_csm_pair pf_csm_pair_make(pf_real cos_a, pf_real sin_a, pf_real cos_b,
 PF_DEF pf_csm_pair pf_csm_pair_from_depth(pf_real z, int pair)
 {
     pf_real fa = PF_R(4.0) * PF_R(pair < 0 ? 0 : pair) + PF_R(1.0);
-    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PFI_SINPI: pf_core.h) */
-    return pf_csm_pair_make(PFI_COSPI(pa), PFI_SINPI(pa), PFI_COSPI(pb), PFI_SINPI(pb));
+    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PF_SINPI: pf_core.h) */
+    return pf_csm_pair_make(PF_COSPI(pa), PF_SINPI(pa), PF_COSPI(pb), PF_SINPI(pb));
 }
 PF_DEF pf_csm_pair pf_csm_pair_add(pf_csm_pair a, pf_csm_pair b)
 { return pf_csm_pair_make(a.cos_a + b.cos_a, a.sin_a + b.sin_a, a.cos_b + b.cos_b, a.sin_b + b.sin_b); }

@@ -168,7 +168,7 @@ PF_DEF pf_real pf_shadow_chebyshev_upper(pf_real m1, pf_real m2, pf_real x, pf_r
     pf_real inv = PF_R(1.0) / s;
     pf_real mu = m1 * inv;
     pf_real var = pf_max((m2 * inv) * inv - mu * mu, (min_variance * inv) * inv);
-    var = pfi_clamp_nan_lo(var, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
+    var = pf_clamp_nan_lo(var, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
     return pfi_shadow_chebyshev_ratio(var, x * inv - mu);
 }
 
@@ -192,10 +192,10 @@ PF_DEF pf_real pf_shadow_vsm(pf_depth_moments2 m, pf_real d, pf_real min_varianc
 {
     /* depths are in [0, 1]: m2 - m1^2 <= m2 is finite, so only the floor is needed; a NaN
        moment gives var = the floor and t = 0 (C), lit 1. m1^2 is rounded on its own (a
-       separate, PFI_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
+       separate, PF_EXACT statement): contracted into fma(-m1, m1, m2) it would return the
        rounding error of a stored point mass's m2 = fl(z^2) as a variance (~1e-8 in float at
        z ~ 1), lighting receivers well behind it (clang's default -ffp-contract=on with FMA) */
-    PFI_EXACT pf_real m1sq = m.m1 * m.m1;
+    PF_EXACT pf_real m1sq = m.m1 * m.m1;
     pf_real var = pf_max(m.m2 - m1sq, pf_max(min_variance, PF_REAL_MIN));
     return pfi_shadow_linstep(pfi_shadow_chebyshev_ratio(var, d - m.m1), bleed);
 }
@@ -235,7 +235,7 @@ PF_DEF pf_real pfi_shadow_evsm_warped(pf_real m1, pf_real m2, pf_real w, pf_real
 {
     pf_real k = PF_R(2.0) * c * at;
     /* NaN -> floor: 0 * inf, should a compiler reassociate to min_variance (k k) */
-    pf_real mv = pfi_clamp_nan_lo((min_variance * k) * k, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
+    pf_real mv = pf_clamp_nan_lo((min_variance * k) * k, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX);
     pf_real var = pf_max(m2 - m1 * m1, mv);
     return pfi_shadow_chebyshev_ratio(var, w - m1);
 }
@@ -365,11 +365,11 @@ PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real momen
        large (i33 small). */
     pf_real b1 = PFI_MSM_SAT(PFI_MSM_BIASED(m.m1, moment_bias, keep, coin));
     pf_real b11 = b1 * b1;
-    pf_real b2 = pfi_clamp_nan_lo(PFI_MSM_BIASED(m.m2, moment_bias, keep, coin), PFI_MSM_LOW(b11), b1);
+    pf_real b2 = pf_clamp_nan_lo(PFI_MSM_BIASED(m.m2, moment_bias, keep, coin), PFI_MSM_LOW(b11), b1);
     pf_real b22 = b2 * b2;
-    pf_real b3 = pfi_clamp_nan_lo(PFI_MSM_BIASED(m.m3, moment_bias, keep, coin), PFI_MSM_LOW(b22), b2);
+    pf_real b3 = pf_clamp_nan_lo(PFI_MSM_BIASED(m.m3, moment_bias, keep, coin), PFI_MSM_LOW(b22), b2);
     pf_real b4 = pf_max(PFI_MSM_BIASED(m.m4, moment_bias, keep, coin), PFI_MSM_LOW(b22));
-    pf_real uf = pfi_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), PF_R(-1.0), PF_R(2.0));
+    pf_real uf = pf_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), PF_R(-1.0), PF_R(2.0));
     /* L D L^T of the Hankel matrix */
     pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + PFI_MSM_D22_FLOOR);
     pf_real e32 = b3 - b1 * b2; /* l32 d22 */
@@ -482,14 +482,14 @@ PF_DEF pf_csm_sum pf_csm_sum_make(pf_real value, pf_real cos_k, pf_real sin_k, p
    input makes its phase infinite; any e outside [-1, 2] is already outside the domain. */
 PF_DEF pf_csm_sum pf_csm_sum_begin(pf_real d, pf_real offset)
 {
-    pf_real e = pfi_clamp_nan_lo(d - offset, PF_R(-2.0), PF_R(3.0)), c = PFI_COSPI(e), s = PFI_SINPI(e);
+    pf_real e = pf_clamp_nan_lo(d - offset, PF_R(-2.0), PF_R(3.0)), c = PF_COSPI(e), s = PF_SINPI(e);
     return pf_csm_sum_make(PF_R(0.5), c, s, (c - s) * (c + s), PF_R(2.0) * s * c, PF_R(1.0));
 }
 /* Adds the next harmonic from its filtered basis values E[cos(c_k z)], E[sin(c_k z)]. */
 PF_DEF pf_csm_sum pf_csm_sum_add_harmonic(pf_csm_sum a, pf_real cos_z, pf_real sin_z)
 {
-    pf_real cz = pfi_clamp_nan_lo(cos_z, PF_R(-1.0), PF_R(1.0));
-    pf_real sz = pfi_clamp_nan_lo(sin_z, PF_R(-1.0), PF_R(1.0));
+    pf_real cz = pf_clamp_nan_lo(cos_z, PF_R(-1.0), PF_R(1.0));
+    pf_real sz = pf_clamp_nan_lo(sin_z, PF_R(-1.0), PF_R(1.0));
     pf_real coef = PF_R(2.0) / (a.freq * PF_PI);
     pf_real v = a.value + coef * (sz * a.cos_k - cz * a.sin_k);
     pf_real c = a.cos_k * a.cos_step - a.sin_k * a.sin_step;
@@ -501,7 +501,7 @@ PF_DEF pf_csm_sum pf_csm_sum_add(pf_csm_sum a, pf_csm_pair p)
 { return pf_csm_sum_add_harmonic(pf_csm_sum_add_harmonic(a, p.cos_a, p.sin_a), p.cos_b, p.sin_b); }
 /* The lit fraction: clamp(1/2 + scale (value - 1/2), 0, 1) (NaN: 0 in C). */
 PF_DEF pf_real pf_csm_sum_lit(pf_csm_sum a, pf_real scale)
-{ return pfi_clamp_nan_lo(PF_R(0.5) + scale * (a.value - PF_R(0.5)), PF_R(0.0), PF_R(1.0)); }
+{ return pf_clamp_nan_lo(PF_R(0.5) + scale * (a.value - PF_R(0.5)), PF_R(0.0), PF_R(1.0)); }
 
 /* Up to PF_CSM_MAX_TERMS = 16 harmonics, 8 pairs: p0 holds harmonics 1, 2; p7 15, 16. */
 PF_STRUCT_BEGIN(pf_csm_moments)

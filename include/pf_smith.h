@@ -175,7 +175,7 @@ PF_DEF pf_real pf_smith_nu_iso(pf_real cos_theta, pf_real sigma)
    1.5e-19 / 2.2e-18 (double, K(8,8), F(8,8)). exp(-nu^2) goes through pf_exp_neg_sq, which
    avoids the rounding of nu*nu that would otherwise cost ~nu^2 ulp. */
 #ifdef PF_DOUBLE
-PF_DEF pf_real pfi_smith_k(pf_real nu) /* K(nu), nu in [0, 2] */
+PF_DEF pf_real pf_smith_k(pf_real nu) /* K(nu), nu in [0, 2] */
 {
     pf_real p = PF_R(0.999999999999999999854) + nu * (PF_R(0.938920679029529481423) +
                 nu * (PF_R(0.519045664654744982871) + nu * (PF_R(0.172147912216411197721) +
@@ -203,7 +203,7 @@ PF_DEF pf_real pfi_smith_f(pf_real s) /* F(s), s = 1/nu^2 in [0, 1/4] */
 }
 #  define PF_SMITH_NU_UNDERFLOW PF_R(27.5) /* Lambda < smallest subnormal double beyond */
 #else
-PF_DEF pf_real pfi_smith_k(pf_real nu)
+PF_DEF pf_real pf_smith_k(pf_real nu)
 {
     pf_real p = PF_R(0.9999999961) + nu * (PF_R(0.2507246113) + nu * (PF_R(0.07860461384) +
                 nu * (PF_R(-0.002767716913) + nu * PF_R(0.0001852377203))));
@@ -233,7 +233,7 @@ PF_DEF pf_real pf_lambda_beckmann(pf_real nu)
     if (!(nu > PF_R(0.5) * PF_INV_SQRT_PI / PF_LAMBDA_MAX)) return PF_LAMBDA_MAX;
     if (nu >= PF_SMITH_NU_UNDERFLOW) return PF_R(0.0);
     if (nu < PF_R(2.0))
-        return pf_exp_neg_sq(nu) * pfi_smith_k(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) / nu;
+        return pf_exp_neg_sq(nu) * pf_smith_k(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) / nu;
     s = PF_R(1.0) / (nu * nu);
     return pf_exp_neg_sq(nu) * pfi_smith_f(s) * (PF_R(0.25) * PF_INV_SQRT_PI) * s / nu;
 }
@@ -259,7 +259,7 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
     if (!(nu > PF_R(0.0))) return PF_R(0.0);
     if (nu < PF_R(2.0)) {
         pf_real a = PF_R(2.0) * PF_SQRT_PI * nu;
-        return a / (a + pf_exp_neg_sq(nu) * pfi_smith_k(nu));
+        return a / (a + pf_exp_neg_sq(nu) * pf_smith_k(nu));
     }
     return PF_R(1.0) / (PF_R(1.0) + pf_lambda_beckmann(nu));
 #else
@@ -284,10 +284,10 @@ PF_DEF pf_real pf_g1_beckmann(pf_real nu)
    beyond, G1 = 1 and the max returns nu), double nu + exp(-nu^2) K(nu) / (2 sqrt(pi)) below
    2, nu (1 + Lambda) above. Limit 1/(2 sqrt(pi)) at nu -> 0; callers pass nu > 0 (nu <= 0
    and NaN give that limit in float). */
-PF_DEF pf_real pfi_smith_nu_over_g1(pf_real nu)
+PF_DEF pf_real pf_smith_nu_over_g1(pf_real nu)
 {
 #ifdef PF_DOUBLE
-    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pfi_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
+    if (nu < PF_R(2.0)) return pf_max(nu, PF_R(0.0)) + pf_exp_neg_sq(nu) * pf_smith_k(pf_max(nu, PF_R(0.0))) * (PF_R(0.5) * PF_INV_SQRT_PI);
     return nu + nu * pf_lambda_beckmann(nu);
 #else
     {

@@ -239,7 +239,7 @@ PF_DEF pf_real pf_vmf_lobe_eval(pf_vec3 mu, pf_real kappa, pf_vec3 w)
    gives PF_VMF_KAPPA_MAX. (The fit uses the cancellation-free 1 - r^2 it accumulates.) */
 PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
 {
-    pf_real rr = pfi_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
+    pf_real rr = pf_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
     pf_real one_minus = (PF_R(1.0) - rr) * (PF_R(1.0) + rr);
     if (!(one_minus * PF_VMF_KAPPA_MAX > rr * (PF_R(3.0) - rr * rr))) return PF_VMF_KAPPA_MAX;
     return pf_vmf_kappa_clamp(rr * (PF_R(3.0) - rr * rr) / one_minus);
@@ -543,11 +543,11 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
     return PF_R(1.0) / (PF_R(1.0) + lo);
 }
 
-/* G / A_o as pf_leadr_specular has it (see the comment above pfi_leadr_specular in
+/* G / A_o as pf_leadr_specular has it (see the comment above pf_leadr_specular in
    pf_beckmann.h): 1 / (P_o + max(A_o, 0) Lambda_i), P_o the projected area toward wo of the
    facets that face it, so that a view below the mesosurface (A_o <= 0) but above the
    macrosurface sees those facets instead of 0. Times sum amp:
-     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pfi_beckmann_facing_area, amp A_o =
+     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pf_beckmann_facing_area, amp A_o =
        area_o, Lambda_i = pf_beckmann_lambda;
      mixture: each lobe's area + excess is amp E[(a - Y)+] = its facing area (>= 0), so
        amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
@@ -555,9 +555,9 @@ PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
        so its relative error grows as P_o / |area_o| shrinks.
    Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
    above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
-   (pfi_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   (pf_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
    it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
-   (pfi_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   (pf_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
    own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
 PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
 {
@@ -575,9 +575,9 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
                                       : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
-        den = s.amp * (pfi_beckmann_facing_area(wo, st) +
+        den = s.amp * (pf_beckmann_facing_area(wo, st) +
                        pf_max(area_o / s.amp, PF_R(0.0)) *
-                           pfi_beckmann_light_lambda_stats(wi, st));
+                           pf_beckmann_light_lambda_stats(wi, st));
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));

@@ -1,32 +1,25 @@
 /* pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
    normals, the lobe pyramid a shader fetches, and the scaling function of Wu et al. 2019
    (eqs. 6-8, 12-14, 21-24) that corrects the multi-lobe BRDF toward the height field's
-   effective BRDF.
-
-   pf_vmf.h holds what a shader pastes (lobes, mixtures, their BRDF, the scaling function's
-   lookup); this header fits what those evaluators read. CPU only (linkage PF_CPU_DEF): it
-   walks caller-owned buffers and allocates nothing; empty under PF_GLSL. Map infrastructure
-   (pyramid layout, wrap, height stencils, the height-field march, the slope-preserving
-   downsampler) is pf_map.h's.
+   effective BRDF. pf_vmf.h holds what a shader pastes; map infrastructure (layout, wrap,
+   stencils, the height-field march, the downsampler) is pf_map.h's. CPU only (PF_CPU_DEF:
+   caller-owned buffers, no allocation); empty under PF_GLSL.
 
    USAGE
      pf_vmf_fit_normals(normals, NULL, n, 4, 24, &mixture);           -- EM on n normals
      pf_vmf_pyramid_from_normals(normals, NULL, w, h, 4, 24, pyr);    -- one mixture per texel
-     then per texel: pf_vmf_mixture_from_texel, or a shader's 4 RGBA fetches (pf_vmf.h USAGE)
+     pf_vmf_scale_desc d = {0}; d.heights = hm; ...; pf_vmf_scale_fit_level(&d, level, ...);
 
    FUNCTIONS
      fitting     pf_vmf_fit_normals (struct pf_vmf_mixture: the fit's lobes)
-     pyramid     pf_vmf_pyramid_level_count, pf_vmf_pyramid_level_offset,
-                 pf_vmf_pyramid_texel_count, pf_vmf_pyramid_from_normals,
+     pyramid     pf_vmf_pyramid_level_count, _level_offset, _texel_count, _from_normals,
                  pf_vmf_mixture_from_texel
-     scaling     pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
-                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count,
-                 pf_vmf_scale_cell_count, pf_vmf_scale_vis_bytes
+     scaling     pf_vmf_scale_fit_level, pf_vmf_scale_texel_t, pf_vmf_scale_scratch_size
+                 (struct pf_vmf_scale_desc), pf_vmf_effective_brdf, pf_vmf_scale_lookup,
+                 pf_vmf_scale_cell_count, pf_vmf_scale_sample_count, pf_vmf_scale_vis_bytes
 
-   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md)
-     Fit of a 512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16. Scaling
-     function: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade
-     2304 direction pairs.
+   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md): a 512 x 512
+   pyramid fits in 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 eqs. 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun
@@ -46,17 +39,16 @@
 #endif
 
 /* ================================================================ mixtures
-   The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1). Host code (a
-   struct with arrays, which the portability generator does not synthesise); shade it lobe by
-   lobe with pf_vmf_sum_add, as a shader does with the pyramid's texels. */
+   The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1), shaded lobe by
+   lobe with pf_vmf_sum_add as a shader does with the pyramid's texels. */
 typedef struct pf_vmf_mixture {
     pf_vmf_lobe lobe[PF_VMF_MAX_LOBES];
     int count;
 } pf_vmf_mixture;
 
-/* ================================================================ CPU only: fitting
+/* ================================================================ fitting
    Spherical EM (Banerjee et al. 2005; Han et al. 2007 sec. 4) of m vMF lobes to weighted
-   unit normals, on caller-owned buffers, no allocation: each iteration is ONE pass that
+   unit normals: each iteration is ONE pass that
    computes every normal's responsibilities on the fly and accumulates, per lobe, W = sum w r,
    D = sum w r (x - mu_old) and S = sum w r |x - mu_old|^2 (relative to the previous axis, so
    that the concentration needs no 1 - |R|/W cancellation: W^2 (1 - rbar^2) = W S - |D|^2
@@ -68,12 +60,11 @@ typedef struct pf_vmf_mixture {
    fewer lobes than asked. Initial kappa from the whole set's resultant, at least 1.
    ITERATIONS: at most `iterations` EM steps; it stops earlier when the mean log-likelihood
    changes by less than 1e-6. Lobes whose weight share falls below 1e-6 are dropped.
-   DEGENERATE INPUT: normals with a NaN or infinite component, zero length, or a weight that is
-   NaN, infinite or <= 0 are skipped; weights are divided by the largest usable one first (no
-   sum can overflow). No usable normal: PF_ERR_ARG, and *out is set to one flat
-   lobe (a = 1, mu = +z, kappa = PF_VMF_KAPPA_MAX), so it is always finite.
-   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
-   PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
+   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights NaN,
+   infinite or <= 0, are skipped; weights are divided by the largest usable one first (no sum
+   can overflow). No usable normal: PF_ERR_ARG, *out one flat lobe (a = 1, mu = +z, kappa =
+   PF_VMF_KAPPA_MAX). Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside
+   [1, 16], iterations < 0; PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
     pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], l2, wt;
@@ -303,16 +294,13 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
     return pfi_vmf_fit_block(normals, weights, count, count, 1, lobes, iterations, out);
 }
 
-/* ================================================================ CPU only: SCALING FUNCTION
-   (Wu et al. 2019 eqs. 6-8, 12-14 and sec. 6 eqs. 21-24; interreflections, sec. 5,
-   are not modelled).
+/* ================================================================ SCALING FUNCTION
+   (Wu et al. 2019 eqs. 6-8, 12-14, sec. 6 eqs. 21-24; interreflections, sec. 5, not modelled).
    EFFECTIVE BRDF (eqs. 6-8, single bounce) of an n x n patch of a periodic height map
    heights[y w + x] (world units, `texel` world units between nodes), texels (x0 + i, y0 + j)
-   wrapping: every texel is a facet of its central-difference slope s_t (as
-   tests/pf_microsurface.h and pf_slope_pyramid_from_heights level 0) shaded by the base BRDF,
-   a Beckmann lobe of slope deviation base_sigma around s_t with Schlick Fresnel and the lobe's
-   own Smith G2 (LEADR eqs. 10, 13, 16-17: the bench's base BRDF), kept when the texel's node
-   sees both wo and wi:
+   wrapping: every texel is a facet of its central-difference slope s_t (pf_map_node_slope)
+   shaded by the base BRDF pf_vmf_facet_specular (a Beckmann lobe of deviation base_sigma
+   about s_t, Schlick Fresnel, its own Smith G2), kept when the node sees both wo and wi:
        f_eff = sum_t V_t(wo) V_t(wi) F D_t(h) G2_t / 4  /  sum_t a_t(wo),   a_t(w) = w.z - s_t.w.xy
    (eq. 8: the patch's projected area toward wo is that of its mean plane; radiance toward wo
    per unit radiance from wi, light cosine included, like pf_vmf_sum_specular).
@@ -322,30 +310,28 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
    normals, slope form pf_vmf_sum_add with base_var = base_sigma^2), masking per `masking`:
    PF_VMF_SCALE_UNMASKED (eq. 5 as written: R carries all the masking-shadowing),
    PF_VMF_SCALE_G_GAUSSIAN (pf_vmf_sum_specular), PF_VMF_SCALE_G_MIXTURE
-   (pf_vmf_sum_specular_mixture). Samples per patch (pf_vmf_scale_patch): one direction set,
+   (pf_vmf_sum_specular_mixture). Samples per patch (pfi_vmf_scale_patch): one direction set,
    the nt theta nodes times A = 2 (np - 1) azimuths a pi/(np - 1), and every (wo, wi) pair of
    it: phi_d falls on the np phi_d nodes exactly, each node gets A (ends) or 2 A (inner)
    samples per patch and theta pair, and the mirror pairs are among them (a narrow highlight
    is sampled at its peak). Sample order ((k_to A + a_o) nt + k_ti) A + a_i.
-   T and S (pf_vmf_scale_factor): the rank-1 fit of eq. 21 minimizing the error IN BRDF UNITS,
+   T and S (pfi_vmf_scale_factor): the rank-1 fit of eq. 21 minimizing the error IN BRDF UNITS,
    sum_{x, samples} (f_eff - T(x) S(cell) f_lobes)^2, by alternating least squares (T(x) =
    sum f_eff f_lobes S / sum (f_lobes S)^2 over the patch's samples, S likewise over the
-   patches), then T scaled to mean 1 (Wu et al. sec. 7). Why not eqs. 22-24's plain means of
-   R: where the narrow lobes put almost no energy R is a ratio of two tiny numbers (the paper
-   adds an epsilon), and a plain mean weights those samples as much as the highlight; the fit
-   in BRDF units weights them by their energy, and is still exact when R is separable (the
-   plain means are exact then too). Cells or patches without energy get 1.
-   REGULARIZATION: the samples are node directions, so a patch whose highlight falls between
-   them, or a cell that only the lobes' far tails reach (where f_eff, whose facets skip the
-   base lobe's tail, is exactly 0), is decided by a few tiny samples: unregularized, S had
-   cells of exactly 0 at every level of the bench's maps (trilinear reads spread them onto the
-   highlights) and T ranged 0.13-10.8 at 64-256 texels. Each T and S is therefore the
-   least-squares value with a prior pulling it toward 1 whose weight is `shrink` times the
-   average energy sum (S f_lobes)^2 of a patch (for T) or sum (T f_lobes)^2 of a cell (for S):
-   well-sampled values keep their fit, poorly sampled ones stay near 1 (no scaling). */
-#define PF_VMF_SCALE_UNMASKED 0
+   patches), then T scaled to mean 1 (Wu et al. sec. 7). Not eqs. 22-24's plain means of R:
+   where the lobes put almost no energy R is a ratio of two tiny numbers, which a plain mean
+   weights as much as the highlight; the fit in BRDF units weights them by their energy and is
+   still exact for a separable R. Cells or patches without energy get 1.
+   REGULARIZATION: a patch whose highlight falls between the node directions, or a cell only
+   the lobes' far tails reach (f_eff exactly 0 there), is decided by a few tiny samples:
+   unregularized, S had cells of exactly 0 at every level of the bench's maps and T ranged
+   0.13-10.8 at 64-256 texels. So each T and S is the least-squares value with a prior toward
+   1 of weight `shrink` times the mean energy sum (S f_lobes)^2 of a patch (for T) or
+   sum (T f_lobes)^2 of a cell (for S): well-sampled values keep their fit, poor ones stay near
+   1. */
 #define PF_VMF_SCALE_G_GAUSSIAN 1
 #define PF_VMF_SCALE_G_MIXTURE 2
+#define PF_VMF_SCALE_UNMASKED 3
 
 /* argument and size checks shared by the scaling functions (no data read) */
 PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texel, long long n)
@@ -356,8 +342,7 @@ PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texe
     return PF_OK;
 }
 
-/* the data check, after every size check: finite heights in the patch and its one-node ring;
-   *top gets the highest of them */
+/* after every size check: finite heights in the patch and its ring, *top the highest */
 PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, long long y0, long long n, pf_real *top)
 {
     long long i, j;
@@ -372,8 +357,7 @@ PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, 
     return PF_OK;
 }
 
-/* f_eff accumulation over the patch, visibility either marched (vis_o NULL) or read from two
-   n x n byte maps (both given) */
+/* f_eff over the patch, visibility marched (vis_o NULL) or read from two n x n byte maps */
 PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real texel, long long x0, long long y0,
                                      long long n, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0, pf_real top,
                                      const unsigned char *vis_o, const unsigned char *vis_i)
@@ -397,14 +381,11 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
     return area > PF_R(0.0) ? num / area : PF_R(0.0);
 }
 
-/* The single-bounce effective BRDF of the n x n patch from (x0, y0) (Wu et al. 2019 eqs. 6-8;
-   see the block comment) toward wo from wi (unit, tangent frame) into *out; 0 when either
-   direction is on or below the macrosurface or the patch's mean plane faces away.
-   Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
-   below 1, n > w or n > h, texel or base_sigma not finite and > 0, a non-finite height in the
-   patch or its one-texel ring; PF_ERR_SIZE for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
-   Cost: 2 n^2 marches of at most n cells. Reads only heights[0 .. w h). */
-PF_CPU_DEF int pf_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
+/* f_eff of the n x n patch from (x0, y0) toward wo from wi (unit) into *out; 0 when either is
+   on or below the macrosurface or the mean plane faces away. Errors (*out 0): PF_ERR_ARG for
+   NULL heights or out, n, w or h below 1, n > w or h, texel or base_sigma not finite > 0, a
+   non-finite height in the patch or its ring; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. */
+PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
                                      pf_vec3 wo, pf_vec3 wi, pf_real base_sigma, pf_real f0, pf_real *out)
 {
     pf_real top = PF_R(0.0);
@@ -420,8 +401,7 @@ PF_CPU_DEF int pf_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_re
     return PF_OK;
 }
 
-/* samples per patch, (2 nt (np - 1))^2 (every pair of nt thetas times 2 (np - 1) azimuths);
-   0 for nt or np below 2 or a count above PF_MAX_REALS */
+/* samples per patch, (2 nt (np - 1))^2 (direction pairs); 0 for nt, np < 2 or too large */
 PF_CPU_DEF long long pf_vmf_scale_sample_count(int nt, int np)
 {
     long long d;
@@ -438,8 +418,7 @@ PF_CPU_DEF long long pf_vmf_scale_cell_count(int nt, int np)
     return c < 0 ? 0 : c;
 }
 
-/* bytes of pf_vmf_scale_patch's visibility scratch: 2 nt (np - 1) n^2 (one n x n map per
-   direction); 0 for bad sizes */
+/* visibility bytes of one n x n patch: 2 nt (np - 1) n^2 (a map per direction); 0 for bad sizes */
 PF_CPU_DEF long long pf_vmf_scale_vis_bytes(int nt, int np, int n)
 {
     long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pf_size_mul3(2, nt, np - 1);
@@ -463,20 +442,16 @@ PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
     return (ti * nt + to) * np + k;
 }
 
-/* One patch's samples of the scaling function (see the block comment): for every sample s,
-   f_eff[s] (eqs. 6-8) and f_lobes[s] (eq. 5 with the patch's `lobes` fitted lobes, EM budget
-   `iterations`, masking PF_VMF_SCALE_*); R = f_eff / f_lobes. Directions: thetas
-   k theta_max / (nt - 1), theta_max in (0, pi/2). Caller buffers: normals_scratch 3 n^2 pf_reals,
-   vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff and f_lobes
-   pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing outside them is written.
-   Errors: those of pf_vmf_effective_brdf, and PF_ERR_ARG for a NULL buffer, lobes outside
-   [1, 16], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
-   PF_ERR_SIZE when a buffer's size exceeds PF_MAX_REALS (every size is checked before any
-   height is read). The fit cannot fail on finite heights (every normal has z = 2 texel > 0
-   before normalization); if it did, PF_ERR_ARG. Cost: 2 nt (np - 1) n^2 marches
-   and up to (2 nt (np - 1))^2 n^2 base-lobe evaluations (facets far from the half vector's
-   slope skip theirs). */
-PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n, int lobes,
+/* One patch's samples (block comment): for every sample s, f_eff[s] (eqs. 6-8) and f_lobes[s]
+   (eq. 5 with the patch's `lobes` fitted lobes, EM budget `iterations`, masking
+   PF_VMF_SCALE_*). Thetas k theta_max / (nt - 1), theta_max in (0, pi/2). Buffers:
+   normals_scratch 3 n^2 pf_reals, vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff
+   and f_lobes pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing else is written.
+   Errors: those of pfi_vmf_effective_brdf; PF_ERR_ARG for a NULL buffer, lobes outside [1, 16],
+   iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking, a failed fit;
+   PF_ERR_SIZE for a buffer above PF_MAX_REALS (sizes checked before any height is read).
+   Cost: 2 nt (np - 1) n^2 marches, up to (2 nt (np - 1))^2 n^2 base lobes. */
+PF_CPU_DEF int pfi_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n, int lobes,
                                   int iterations, pf_real base_sigma, pf_real f0, int masking, int nt, int np,
                                   pf_real theta_max, pf_real *normals_scratch, unsigned char *vis_scratch,
                                   pf_real *f_eff, pf_real *f_lobes)
@@ -487,7 +462,7 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
     int rc, d;
     if (!normals_scratch || !vis_scratch || !f_eff || !f_lobes || lobes < 1 || lobes > PF_VMF_MAX_LOBES ||
         iterations < 0 || nt < 2 || np < 2 || !(theta_max > PF_R(0.0)) || !(theta_max < PF_R(0.5) * PF_PI) ||
-        masking < PF_VMF_SCALE_UNMASKED || masking > PF_VMF_SCALE_G_MIXTURE)
+        masking < PF_VMF_SCALE_G_GAUSSIAN || masking > PF_VMF_SCALE_UNMASKED)
         return PF_ERR_ARG;
     if (!(base_sigma > PF_R(0.0)) || !(base_sigma < PF_R(1.0e15))) return PF_ERR_ARG;
     rc = pfi_vmf_patch_sizes(heights, w, h, texel, n);
@@ -540,22 +515,17 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
     return PF_OK;
 }
 
-/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
-   `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
-   patch after patch, as pf_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
-   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
-   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
-   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
-   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
-   pf_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
-   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
-   of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
-   for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
-   T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
-   not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
+/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np)) from the samples of `patches`
+   patches (patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares
+   fit in BRDF units, `iterations` (>= 1) alternating rounds, T scaled to mean 1, each value
+   pulled toward 1 by a prior `shrink` (>= 0) times the mean energy of a patch (T) or cell (S):
+   T(x) = (sum e l S + p) / (sum (l S)^2 + p). prior_out (NULL or 1): p for pfi_vmf_scale_t on
+   other patches of the level. scratch: 2 patches cells pf_reals. err (NULL or 3): the relative
+   L2 error of T S f_lobes against f_eff, of f_lobes alone, and of T S against R = f_eff /
+   f_lobes where f_lobes exceeds 1% of its RMS. Non-finite or negative samples count as 0.
    Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
    outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
-PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
+PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
                                    int iterations, pf_real shrink, pf_real *t_out, pf_real *s_out, pf_real *scratch,
                                    pf_real *prior_out, pf_real *err)
 {
@@ -626,7 +596,7 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
         for (x = 0; x < patches; ++x) t_out[x] /= mean;
         for (b = 0; b < cells; ++b) s_out[b] *= mean;
     }
-    /* the prior for pf_vmf_scale_t on other patches of the same level: shrink times the mean
+    /* the prior for pfi_vmf_scale_t on other patches of the same level: shrink times the mean
        patch energy sum_s (S f_lobes)^2 under the final S */
     if (prior_out) {
         pf_real e_sum = PF_R(0.0);
@@ -665,13 +635,11 @@ PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes,
     return PF_OK;
 }
 
-/* T of one patch given a level's S table (pf_vmf_scale_factor's s_out) from the patch's own
-   samples (f_eff, f_lobes: pf_vmf_scale_sample_count(nt, np) pf_reals each, as
-   pf_vmf_scale_patch writes them): (sum e l S + prior) / (sum (l S)^2 + prior), S of each
-   sample's cell, prior from pf_vmf_scale_factor's prior_out (>= 0). Non-finite or negative
-   samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, a patch
-   without energy and no prior, or sums that overflow. */
-PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
+/* T of one patch from its own samples (as pfi_vmf_scale_patch writes them) given a level's S
+   and prior (pfi_vmf_scale_factor's): (sum e l S + prior) / (sum (l S)^2 + prior); non-finite
+   or negative samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, no
+   energy and no prior, or sums that overflow. */
+PF_CPU_DEF pf_real pfi_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
                                   pf_real prior)
 {
     long long count = pf_vmf_scale_sample_count(nt, np), s;
@@ -689,9 +657,8 @@ PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, 
     return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
 }
 
-/* S at (wo, wi) from the table (CPU side of the shader lookup: pf_vmf_scale_coords,
-   pf_vmf_scale_texel_pos, 8 reads, pf_vmf_scale_trilinear). NULL table or bad sizes: 1 (no
-   scaling). */
+/* S at (wo, wi) from the table, as a shader reads it (pf_vmf_scale_coords, _texel_pos, 8 reads,
+   pf_vmf_scale_trilinear). NULL table or bad sizes: 1 (no scaling). */
 PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_real theta_max, pf_vec3 wo, pf_vec3 wi)
 {
     pf_vec3 c, f;
@@ -718,36 +685,32 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
 /* ================================================================ end of SCALING FUNCTION */
 
 /* ================================================================ the lobe pyramid
-   pf_map.h's pyramid layout restricted to power-of-two sides: level l of a w x h normal map has max(1, w >> l) x max(1, h >> l)
-   texels; texel (i, j) of level l covers the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1)
-   fy), fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
+   pf_map.h's pyramid layout for power-of-two sides: level l has max(1, w >> l) x max(1, h >> l)
+   texels, texel (i, j) covering the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1) fy),
+   fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
    FINEST NORMALS of its footprint (not merged from the level below: merging m lobes of four
    children into m is itself a fit, and the finest normals are at hand); cost ~ levels x
    texels x lobes x iterations exps (docs/vmf.md has the measured time).
    LAYOUT (what a shader fetches): levels one after another from level 0, texels row-major,
    4 * lobes pf_reals per texel: for each lobe (mu.x, mu.y, kappa, amp) - an RGBA texel per
    lobe (mu.z = sqrt(1 - x^2 - y^2)). A fit that returns fewer lobes pads with amp = 0,
-   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128, 256 for m = 1, 2, 4, 8, 16),
-   8 m in half floats (kappa <= 1e5 fits half's range; its 11-bit precision is 0.05% on kappa).
+   mu = +z, kappa = 1. Bytes per texel: 16 m in float32, 8 m in half floats (kappa <= 1e5 fits
+   half's range; its 11-bit precision is 0.05% on kappa).
    A texel whose footprint has no usable normal gets the flat lobe (amp 1, mu = +z, kappa =
    PF_VMF_KAPPA_MAX) and the call still returns PF_OK.
-   Errors: PF_ERR_ARG for NULL normals or pyr, w or h below 1 or not a power of two, lobes
-   outside [1, 16], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
-   PF_MAX_REALS.
-   normals: w * h * 3 pf_reals; weights: w * h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h)
-   * 4 * lobes pf_reals. Nothing outside these is read or written. */
+   Errors: PF_ERR_ARG for NULL normals or pyr, sides not powers of two, lobes outside [1, 16],
+   iterations < 0; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. normals: w h 3 pf_reals;
+   weights: w h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h) 4 lobes. Nothing else touched. */
 PF_CPU_DEF int pfi_vmf_pow2(long long n) { return pf_size_side_ok(n) && (n & (n - 1)) == 0; }
 
-/* levels of the lobe pyramid: pf_mip_level_count (pf_map.h's layout), 0 unless w and h are
-   powers of two in [1, PF_MAX_SIDE] */
+/* levels: pf_mip_level_count (pf_map.h), 0 unless w and h are powers of two <= PF_MAX_SIDE */
 PF_CPU_DEF int pf_vmf_pyramid_level_count(int w, int h)
 {
     if (!pfi_vmf_pow2(w) || !pfi_vmf_pow2(h)) return 0;
     return pf_mip_level_count(w, h);
 }
 
-/* texels before level `level` (level >= count: the total): pf_mip_level_offset; -1 for bad
-   sizes or a negative level */
+/* texels before `level` (>= count: the total), pf_mip_level_offset; -1 for bad sizes, level < 0 */
 PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
 {
     if (pf_vmf_pyramid_level_count(w, h) == 0 || level < 0) return -1;
@@ -802,9 +765,8 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
     return PF_OK;
 }
 
-/* The mixture stored at one texel of the pyramid (4 * lobes pf_reals): what a shader's
-   `lobes` RGBA fetches and pf_vmf_lobe_make calls give. Lobes with amp = 0 (padding) are
-   skipped. lobes is clamped to [1, 16]; texel NULL gives an empty mixture (count 0). */
+/* The mixture at one pyramid texel (4 lobes pf_reals), as a shader's RGBA fetches and
+   pf_vmf_lobe_make give it; padding (amp 0) skipped, lobes clamped to [1, 16], NULL: empty. */
 PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lobes)
 {
     pf_vmf_mixture m = pfi_vmf_mixture_empty();
@@ -817,6 +779,222 @@ PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lo
 }
 #undef PFI_VMF_FOREACH
 
+/* ================================================================ the scaling function of a lobe
+   pyramid, one call per level (Wu et al. 2019 eqs. 12-14, 21-24)
+   Per level l of a lobe pyramid (patches of n = 2^l texels, one per texel of level l): S, one
+   nt x nt x np node table (pf_vmf_scale_lookup; pf_vmf_scale_coords and _trilinear in a
+   shader), and T, one value per texel. Both come from the samples of the block comment above:
+   f_eff (pfi_vmf_scale_patch) against f_lobes, the pyramid texel's OWN lobes (what a shader
+   fetches, base_var = base_sigma^2, masked per `masking`). S and a prior are fitted on
+   `train_patches` patches evenly spaced over the level (texel p w_l h_l / P, p < P, row-major),
+   T of any other texel from its own samples (pf_vmf_scale_texel_t). The pyramids of one map
+   (different lobe counts) are fitted in one call: they share f_eff, the costly half.
+   pf_vmf_scale_desc describes the call: ZERO MEANS THE DEFAULT. */
+#define PF_VMF_SCALE_MAX_PYRAMIDS 4
+
+typedef struct pf_vmf_scale_desc {
+    const pf_real *heights;  /* the periodic height map, w x h row-major, world units (required) */
+    int w, h;                /* its sides: powers of two, those of the lobe pyramids (required) */
+    pf_real texel;           /* world units between height nodes (0: 1) */
+    pf_real base_sigma;      /* slope deviation of the base Beckmann lobe, > 0 (0: 0.1) */
+    pf_real f0;              /* Schlick f0 of the base BRDF (0: 1, no Fresnel) */
+    int pyramid_count;       /* lobe pyramids fitted together, 1 .. PF_VMF_SCALE_MAX_PYRAMIDS (0: 1) */
+    const pf_real *pyramid[PF_VMF_SCALE_MAX_PYRAMIDS]; /* pf_vmf_pyramid_from_normals of the map */
+    int lobes[PF_VMF_SCALE_MAX_PYRAMIDS];              /* lobes per texel of each (required) */
+    int masking;             /* f_lobes' G: PF_VMF_SCALE_G_GAUSSIAN (0 reads as it), _G_MIXTURE, _UNMASKED */
+    int nt, np;              /* S's nodes along theta_i, theta_o and along phi_d, >= 2 (0: 6, 5) */
+    pf_real theta_max;       /* the last theta node, in (0, pi/2) (0: 75 degrees) */
+    int train_patches;       /* patches S is fitted on (0: 16) */
+    int rounds;              /* alternating least-squares rounds (0: 8) */
+    pf_real shrink;          /* the prior toward 1 (REGULARIZATION; 0: 1; negative: 0, plain LSQ) */
+} pf_vmf_scale_desc;
+
+/* the description with every default applied; 0 when d is NULL */
+PF_CPU_DEF int pfi_vmf_scale_resolve(const pf_vmf_scale_desc *d, pf_vmf_scale_desc *r)
+{
+    if (!d) return 0;
+    *r = *d;
+    if (r->texel == PF_R(0.0)) r->texel = PF_R(1.0);
+    if (r->base_sigma == PF_R(0.0)) r->base_sigma = PF_R(0.1);
+    if (r->f0 == PF_R(0.0)) r->f0 = PF_R(1.0);
+    if (r->pyramid_count == 0) r->pyramid_count = 1;
+    if (r->masking == 0) r->masking = PF_VMF_SCALE_G_GAUSSIAN;
+    if (r->nt == 0) r->nt = 6;
+    if (r->np == 0) r->np = 5;
+    if (r->theta_max == PF_R(0.0)) r->theta_max = PF_R(1.3089969389957472); /* 75 degrees */
+    if (r->train_patches == 0) r->train_patches = 16;
+    if (r->rounds == 0) r->rounds = 8;
+    if (r->shrink == PF_R(0.0)) r->shrink = PF_R(1.0);
+    else if (r->shrink < PF_R(0.0)) r->shrink = PF_R(0.0);
+    return 1;
+}
+
+/* the checks every level call shares (no data read): PF_OK or the error */
+PF_CPU_DEF int pfi_vmf_scale_check(const pf_vmf_scale_desc *r, int level)
+{
+    int k;
+    if (!r->heights || r->pyramid_count < 1 || r->pyramid_count > PF_VMF_SCALE_MAX_PYRAMIDS || r->train_patches < 1 ||
+        r->rounds < 1 || level < 0 || level > 30)
+        return PF_ERR_ARG;
+    for (k = 0; k < r->pyramid_count; ++k)
+        if (!r->pyramid[k] || r->lobes[k] < 1 || r->lobes[k] > PF_VMF_MAX_LOBES) return PF_ERR_ARG;
+    if (pf_vmf_pyramid_level_count(r->w, r->h) <= level) return PF_ERR_ARG; /* not powers of two, or no such level */
+    if (pf_vmf_scale_sample_count(r->nt, r->np) == 0 || pf_vmf_scale_vis_bytes(r->nt, r->np, 1 << level) == 0)
+        return r->nt < 2 || r->np < 2 ? PF_ERR_ARG : PF_ERR_SIZE;
+    return PF_OK;
+}
+
+/* pf_reals of scratch the level calls need (the training patches' samples, the factorization,
+   a patch's normals and visibility bytes); 0 for a call they reject or above PF_MAX_REALS. */
+PF_CPU_DEF long long pf_vmf_scale_scratch_size(const pf_vmf_scale_desc *desc, int level)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, cells, n, gp, P, need, vis;
+    if (!pfi_vmf_scale_resolve(desc, &r) || pfi_vmf_scale_check(&r, level) != PF_OK) return 0;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    cells = pf_vmf_scale_cell_count(r.nt, r.np);
+    n = 1LL << level;
+    gp = (long long)(r.w >> level) * (long long)(r.h >> level);
+    P = gp < r.train_patches ? gp : r.train_patches;
+    vis = (pf_vmf_scale_vis_bytes(r.nt, r.np, (int)n) + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    /* f_eff and f_lobes of P patches, 2 P cells, T of P patches, normals, a junk f_lobes, vis */
+    need = pf_size_mul3(P, cnt, 1 + r.pyramid_count);
+    if (need < 0 || pf_size_mul3(2, P, cells) < 0 || pf_size_mul(3 * n, n) < 0) return 0;
+    need += 2 * P * cells + P + 3 * n * n + cnt + vis;
+    return need <= PF_MAX_REALS ? need : 0;
+}
+
+/* f_lobes of texel (tx, ty) of `level` of pyramid k for the patch's samples: the texel's lobes
+   shaded at each sample's directions */
+PF_CPU_DEF void pfi_vmf_scale_texel_lobes(const pf_vmf_scale_desc *r, int k, int level, long long tx, long long ty,
+                                          pf_real *f_lobes)
+{
+    long long count = pf_vmf_scale_sample_count(r->nt, r->np), A = 2LL * (r->np - 1), s;
+    long long lw = (r->w >> level) > 1 ? (r->w >> level) : 1;
+    const pf_real *t = r->pyramid[k] + (pf_vmf_pyramid_level_offset(r->w, r->h, level) + ty * lw + tx) * 4 * r->lobes[k];
+    pf_real bv = r->base_sigma * r->base_sigma;
+    for (s = 0; s < count; ++s) {
+        long long ai = s % A, ti = (s / A) % r->nt, ao = (s / (A * r->nt)) % A, to = s / (A * r->nt * A);
+        pf_vec3 wo = pfi_vmf_scale_dir((int)to, (int)ao, r->nt, r->np, r->theta_max);
+        pf_vec3 wi = pfi_vmf_scale_dir((int)ti, (int)ai, r->nt, r->np, r->theta_max);
+        pf_vmf_sum sum = pf_vmf_sum_zero();
+        int j;
+        for (j = 0; j < r->lobes[k]; ++j) { /* padding lobes (amp 0) add nothing */
+            pf_vmf_lobe lobe = pf_vmf_lobe_make(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]);
+            sum = pf_vmf_sum_add(sum, lobe, wo, wi, bv);
+            if (r->masking == PF_VMF_SCALE_G_MIXTURE) sum = pf_vmf_sum_add_masking(sum, lobe, wo, wi, bv);
+        }
+        f_lobes[s] = r->masking == PF_VMF_SCALE_UNMASKED    ? pf_vmf_sum_specular_unmasked(sum, wo, wi, r->f0)
+                     : r->masking == PF_VMF_SCALE_G_GAUSSIAN ? pf_vmf_sum_specular(sum, wo, wi, r->f0)
+                                                             : pf_vmf_sum_specular_mixture(sum, wo, wi, r->f0);
+    }
+}
+
+/* one texel's samples: f_eff into f_eff, f_lobes of every pyramid into f_lobes + k count */
+PF_CPU_DEF int pfi_vmf_scale_texel_samples(const pf_vmf_scale_desc *r, int level, long long tx, long long ty,
+                                           pf_real *f_eff, pf_real *f_lobes, long long stride, pf_real *work)
+{
+    long long count = pf_vmf_scale_sample_count(r->nt, r->np), n = 1LL << level;
+    pf_real *nrm = work, *junk = nrm + 3 * n * n;
+    unsigned char *vis = (unsigned char *)(void *)(junk + count);
+    int k, rc;
+    /* f_eff: the patch's own one-lobe fit without EM steps is computed too (cheap), not used */
+    rc = pfi_vmf_scale_patch(r->heights, r->w, r->h, r->texel, (int)(tx * n), (int)(ty * n), (int)n, 1, 0, r->base_sigma,
+                             r->f0, r->masking, r->nt, r->np, r->theta_max, nrm, vis, f_eff, junk);
+    if (rc != PF_OK) return rc;
+    for (k = 0; k < r->pyramid_count; ++k) pfi_vmf_scale_texel_lobes(r, k, level, tx, ty, f_lobes + k * stride);
+    return PF_OK;
+}
+
+/* S and the prior of `level` for each pyramid of desc from its training patches: s_out[k]
+   gets pf_vmf_scale_cell_count(nt, np) pf_reals, prior_out[k] one (for pf_vmf_scale_texel_t),
+   t_level[k] (NULL: none; one pf_real per texel of the level, row-major) T of the training
+   texels only. scratch_len >= pf_vmf_scale_scratch_size(desc, level). Errors: PF_ERR_ARG for a
+   NULL desc, heights, pyramid, s_out, prior_out or scratch, a short scratch, sides not powers
+   of two, a level the pyramid lacks, lobes outside [1, 16], and pfi_vmf_scale_patch's
+   (non-finite heights, bad texel, base_sigma, theta_max, nt, np, masking); PF_ERR_SIZE above
+   PF_MAX_REALS; outputs may then be partly written. Cost: train_patches pfi_vmf_scale_patch
+   calls: 16 patches of 64 x 64 at 6 x 6 x 5 nodes, ~30 s (docs/vmf_fit.md). */
+PF_CPU_DEF int pf_vmf_scale_fit_level(const pf_vmf_scale_desc *desc, int level, pf_real *const *s_out,
+                                      pf_real *prior_out, pf_real *const *t_level, pf_real *scratch,
+                                      long long scratch_len)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, cells, gw, gh, P, p, need;
+    pf_real *f_eff, *f_l, *fac, *t, *work;
+    int k, rc;
+    if (!pfi_vmf_scale_resolve(desc, &r) || !s_out || !prior_out || !scratch) return PF_ERR_ARG;
+    if ((rc = pfi_vmf_scale_check(&r, level)) != PF_OK) return rc;
+    for (k = 0; k < r.pyramid_count; ++k)
+        if (!s_out[k]) return PF_ERR_ARG;
+    need = pf_vmf_scale_scratch_size(&r, level);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    cells = pf_vmf_scale_cell_count(r.nt, r.np);
+    gw = r.w >> level;
+    gh = r.h >> level;
+    P = gw * gh < r.train_patches ? gw * gh : r.train_patches;
+    f_eff = scratch;
+    f_l = f_eff + P * cnt;
+    fac = f_l + r.pyramid_count * P * cnt;
+    t = fac + 2 * P * cells;
+    work = t + P;
+    for (p = 0; p < P; ++p) {
+        long long c = (p * gw * gh) / P;
+        rc = pfi_vmf_scale_texel_samples(&r, level, c % gw, c / gw, f_eff + p * cnt, f_l + p * cnt, P * cnt, work);
+        if (rc != PF_OK) return rc;
+    }
+    for (k = 0; k < r.pyramid_count; ++k) {
+        const pf_real *fk = f_l + k * P * cnt;
+        rc = pfi_vmf_scale_factor(f_eff, fk, (int)P, r.nt, r.np, r.rounds, r.shrink, t, s_out[k], fac, &prior_out[k], 0);
+        if (rc != PF_OK) return rc;
+        if (t_level && t_level[k])
+            for (p = 0; p < P; ++p)
+                t_level[k][(p * gw * gh) / P] = pfi_vmf_scale_t(f_eff + p * cnt, fk + p * cnt, r.nt, r.np, s_out[k], prior_out[k]);
+    }
+    return PF_OK;
+}
+
+/* T of texel (tx, ty) of `level` for each pyramid into t_out[k], from its own samples with the
+   level's S (s_table[k]) and prior[k] of pf_vmf_scale_fit_level; scratch and errors as there,
+   and PF_ERR_ARG for a NULL s_table, prior, t_out or a texel outside the level. */
+PF_CPU_DEF int pf_vmf_scale_texel_t(const pf_vmf_scale_desc *desc, int level, long long tx, long long ty,
+                                    const pf_real *const *s_table, const pf_real *prior, pf_real *t_out, pf_real *scratch,
+                                    long long scratch_len)
+{
+    pf_vmf_scale_desc r;
+    long long cnt, need;
+    int k, rc;
+    if (!pfi_vmf_scale_resolve(desc, &r) || !s_table || !prior || !t_out || !scratch) return PF_ERR_ARG;
+    if ((rc = pfi_vmf_scale_check(&r, level)) != PF_OK) return rc;
+    if (tx < 0 || ty < 0 || tx >= (r.w >> level) || ty >= (r.h >> level)) return PF_ERR_ARG;
+    for (k = 0; k < r.pyramid_count; ++k)
+        if (!s_table[k]) return PF_ERR_ARG;
+    need = pf_vmf_scale_scratch_size(&r, level);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    cnt = pf_vmf_scale_sample_count(r.nt, r.np);
+    rc = pfi_vmf_scale_texel_samples(&r, level, tx, ty, scratch, scratch + cnt, cnt, scratch + (1 + r.pyramid_count) * cnt);
+    if (rc != PF_OK) return rc;
+    for (k = 0; k < r.pyramid_count; ++k)
+        t_out[k] = pfi_vmf_scale_t(scratch, scratch + (1 + k) * cnt, r.nt, r.np, s_table[k], prior[k]);
+    return PF_OK;
+}
+
+/* The in-footprint effective BRDF (eqs. 6-8) of the n x n patch from (x0, y0) of desc's map
+   (heights, w, h, texel, base_sigma, f0) toward wo from wi into *out; errors as
+   pfi_vmf_effective_brdf's (NULL desc: PF_ERR_ARG), *out 0 on an error. Cost: 2 n^2 marches. */
+PF_CPU_DEF int pf_vmf_effective_brdf(const pf_vmf_scale_desc *desc, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi,
+                                     pf_real *out)
+{
+    pf_vmf_scale_desc r;
+    if (!pfi_vmf_scale_resolve(desc, &r)) {
+        if (out) *out = PF_R(0.0);
+        return PF_ERR_ARG;
+    }
+    return pfi_vmf_effective_brdf(r.heights, r.w, r.h, r.texel, x0, y0, n, wo, wi, r.base_sigma, r.f0, out);
+}
 #endif /* !PF_GLSL */
 
 #endif /* PF_VMF_FIT_H */

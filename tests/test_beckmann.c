@@ -562,7 +562,7 @@ static long double facing_def(bcfg k, long double wx, long double wy, long doubl
     return a * 0.5L * erfcl(-a / (sd * sqrtl(2.0L))) + sd * expl(-a * a / (2.0L * sd * sd)) / sqrtl(2.0L * PF_TEST_PI);
 }
 
-/* the light's Lambda of pf_leadr_specular (pfi_beckmann_light_lambda): Smith's lam above the
+/* the light's Lambda of pf_leadr_specular (pf_beckmann_light_lambda): Smith's lam above the
    mean plane; on or below it max(P_i(0), wi.z) / wi.z - 1, P_i(0) the facing area with A_i
    counted as 0 */
 static long double light_lambda_def(bcfg k, long double lam, long double wx, long double wy, long double wz)
@@ -645,7 +645,7 @@ static void test_specular_pointwise(void)
 
 /* A light above the macrosurface but on or below the footprint's mean plane (A_i <= 0 <
    wi.z), the view above it: pf_leadr_specular gives F D / (4 A_o (1 + Lambda_o + Lambda_i'))
-   with Lambda_i' = max(P_i(0), wi.z) / wi.z - 1 (pfi_beckmann_light_lambda below the mean plane, P_i(0)
+   with Lambda_i' = max(P_i(0), wi.z) / wi.z - 1 (pf_beckmann_light_lambda below the mean plane, P_i(0)
    = sqrt(var_i / (2 pi)) in closed form); composed in long double as test_specular_pointwise
    does, the same bound. Smith's Lambda_i is infinite there, and the function used to return 0
    (issue 15: bench/pictures.c's lit pixels returned 0). */
@@ -983,7 +983,7 @@ static void edge_directions(void)
     PF_CHECK(pf_leadr_specular(below, up, s, PF_R(1.0)) == zero, "view below the horizon");
     PF_CHECK(pf_leadr_specular_masking(up, below, s, PF_R(1.0)) == zero, "masking: light below");
     /* a light below the mesosurface but above the macrosurface lights the facets facing it
-       (issue 15, bench/pictures.c: Lambda_i capped, pfi_beckmann_light_lambda) */
+       (issue 15, bench/pictures.c: Lambda_i capped, pf_beckmann_light_lambda) */
     PF_CHECK(pf_leadr_specular(up, under_meso, s, PF_R(1.0)) > zero &&
                  finite_nonneg(pf_leadr_specular(up, under_meso, s, PF_R(1.0))),
              "light below the mesosurface");
@@ -1188,7 +1188,7 @@ static void edge_leadr_lean(void)
     PF_CHECK(pf_leadr_specular(pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(-1.0)), up, z0, PF_R(1.0)) == PF_R(0.0), "view below");
     /* mean slope 2 in x: (1, 0, 1)/sqrt2 is below the mean plane (area 1 - 2 < 0) */
     /* ... where the light still reaches the facets facing it (Lambda_i capped,
-       pfi_beckmann_light_lambda): positive and finite */
+       pf_beckmann_light_lambda): positive and finite */
     {
         pf_real v = pf_leadr_specular(up, pf_vec3_make(PF_R(0.7071), PF_R(0.0), PF_R(0.7071)),
                                       pf_slope_stats_make(PF_R(2.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)), PF_R(1.0));

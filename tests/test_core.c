@@ -682,18 +682,18 @@ static void edge_size_helpers(void)
              "side limits");
     /* floor to a clamped index: huge values never reach the conversion; NaN and infinities
        neither (not under -ffast-math, which lets the compiler assume they never occur) */
-    PF_CHECK(pfi_floor_index(PF_REAL_MAX, 0, 2147483647LL) == 2147483647LL &&
-                 pfi_floor_index(-PF_REAL_MAX, -3, 9) == -3 && pfi_floor_index(PF_R(2.5), 0, 9) == 2 &&
-                 pfi_floor_index(PF_R(-0.5), -3, 9) == -1 && pfi_floor_index(PF_R(8.99), 0, 9) == 8 &&
-                 pfi_floor_index(PF_R(1.0e6), 0, 1LL << 24) == 1000000,
-             "pfi_floor_index finite values");
+    PF_CHECK(pf_floor_index(PF_REAL_MAX, 0, 2147483647LL) == 2147483647LL &&
+                 pf_floor_index(-PF_REAL_MAX, -3, 9) == -3 && pf_floor_index(PF_R(2.5), 0, 9) == 2 &&
+                 pf_floor_index(PF_R(-0.5), -3, 9) == -1 && pf_floor_index(PF_R(8.99), 0, 9) == 8 &&
+                 pf_floor_index(PF_R(1.0e6), 0, 1LL << 24) == 1000000,
+             "pf_floor_index finite values");
 #ifndef __FAST_MATH__
     {
         volatile pf_real zero = PF_R(0.0);
         pf_real nan = zero / zero, inf = PF_R(1.0) / zero;
-        PF_CHECK(pfi_floor_index(nan, 0, 9) == 0 && pfi_floor_index(inf, 0, 9) == 9 &&
-                     pfi_floor_index(-inf, 0, 9) == 0,
-                 "pfi_floor_index NaN and infinities");
+        PF_CHECK(pf_floor_index(nan, 0, 9) == 0 && pf_floor_index(inf, 0, 9) == 9 &&
+                     pf_floor_index(-inf, 0, 9) == 0,
+                 "pf_floor_index NaN and infinities");
     }
 #endif
 }

@@ -704,7 +704,7 @@ static void test_diffuse_sh_vs_direct(void)
    17's G / A_o read as 1 / (P_o + max(A_o, 0) Lambda_i), P_o = E[max(0, w_o.z - x w_o.x - y
    w_o.y)] (pf_leadr_specular; pf_gg_grid_make). The oracle integrates the slope plane in long
    double: P_o itself (the facing facets' projected area, by quadrature, not from the closed
-   form pfi_beckmann_facing_area), then eq. 19's (environment env_poly, F = 1) and eq. 21's
+   form pf_beckmann_facing_area), then eq. 19's (environment env_poly, F = 1) and eq. 21's
    numerators divided by it. Measured errors are the grids' (N = 9) quadrature errors: only the
    tail of the slope density faces such a view, and the uniform and Hermite nodes resolve it
    worst (at nu_o = -1.26: up to 13% and 29%, the matched grid 6%). */

@@ -184,7 +184,7 @@ static void test_downsample_dense_oracle(void)
         pf_real res = PF_R(-1.0);
         ds_bumpy(fine, w, h, 11u + (unsigned)c, 1.0);
         PF_CHECK(pf_map_downsample_scratch_size(w, h, f) == 6LL * n, "scratch size %lld", pf_map_downsample_scratch_size(w, h, f));
-        rc = pf_map_downsample_slopes(fine, w, h, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 400, tol, coarse,
+        rc = pfi_map_downsample_slopes(fine, w, h, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 400, tol, coarse,
                                       scratch, 6LL * n, &it, &res);
         PF_CHECK(rc == PF_OK, "case %d rc %d", c, rc);
         PF_CHECK(ds_dense(fine, w, h, f, wrap, 0.01L, ref), "case %d: oracle singular", c);
@@ -206,7 +206,7 @@ static void test_downsample_dense_oracle(void)
         worst_mean = fmaxl(worst_mean, fabsl(m - mref) / dev);
         if (it > worst_it) worst_it = it;
         /* deterministic: the same bits again */
-        rc = pf_map_downsample_slopes(fine, w, h, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 400, tol, again,
+        rc = pfi_map_downsample_slopes(fine, w, h, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 400, tol, again,
                                       scratch, 6LL * n, NULL, NULL);
         PF_CHECK(rc == PF_OK && memcmp(coarse, again, (size_t)n * sizeof(pf_real)) == 0, "case %d not deterministic", c);
     }
@@ -230,7 +230,7 @@ static void test_downsample_beats_box(void)
             for (i = 0; i < n; ++i) box[i] = PF_R(0.0);
             for (j = 0; j < N; ++j)
                 for (i = 0; i < N; ++i) box[(j / f) * W + i / f] += fine[j * N + i] / (pf_real)(f * f);
-            rc = pf_map_downsample_slopes(fine, N, N, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 2000,
+            rc = pfi_map_downsample_slopes(fine, N, N, f, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(0.01), 2000,
                                           sizeof(pf_real) == 4 ? PF_R(1e-5) : PF_R(1e-10), coarse, scratch, 6LL * n, &it, NULL);
             PF_CHECK(rc == PF_OK, "rc %d", rc);
             ds_target(fine, N, N, f, wrap, sx, sy);
@@ -262,7 +262,7 @@ static void test_downsample_bad_input(void)
         return;
     }
 #define DS_CALL(fn_, w_, h_, f_, b_, reg_, mi_, tol_, sl_) \
-    pf_map_downsample_slopes(fn_, w_, h_, f_, b_, reg_, mi_, tol_, coarse, scratch, sl_, &it, &res)
+    pfi_map_downsample_slopes(fn_, w_, h_, f_, b_, reg_, mi_, tol_, coarse, scratch, sl_, &it, &res)
 #define DS_UNTOUCHED() (untouched = 1, (void)0)
     ds_bumpy(fine, W, H, 3u, 1.0);
     for (i = 0; i < NC; ++i) coarse[i] = PF_R(-777.0);
@@ -280,8 +280,8 @@ static void test_downsample_bad_input(void)
     PF_CHECK(DS_CALL(fine, W, H, F, PF_BORDER_CLAMP, PF_R(0.01), 10, PF_R(0.0), 6 * NC) == PF_ERR_ARG, "inf height");
     fine[9] = PF_R(0.25);
     PF_CHECK(DS_CALL(NULL, W, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), 6 * NC) == PF_ERR_ARG, "NULL fine");
-    PF_CHECK(pf_map_downsample_slopes(fine, W, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), NULL, scratch, 6 * NC, &it, &res) == PF_ERR_ARG, "NULL coarse");
-    PF_CHECK(pf_map_downsample_slopes(fine, W, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), coarse, NULL, 6 * NC, &it, &res) == PF_ERR_ARG, "NULL scratch");
+    PF_CHECK(pfi_map_downsample_slopes(fine, W, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), NULL, scratch, 6 * NC, &it, &res) == PF_ERR_ARG, "NULL coarse");
+    PF_CHECK(pfi_map_downsample_slopes(fine, W, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), coarse, NULL, 6 * NC, &it, &res) == PF_ERR_ARG, "NULL scratch");
     PF_CHECK(DS_CALL(fine, 0, H, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), 6 * NC) == PF_ERR_ARG, "w = 0");
     PF_CHECK(DS_CALL(fine, W, -3, F, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), 6 * NC) == PF_ERR_ARG, "h < 0");
     PF_CHECK(DS_CALL(fine, W, H, 0, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), 6 * NC) == PF_ERR_ARG, "factor 0");
@@ -351,7 +351,7 @@ static void edge_downsample_finite(void)
     long double m = 0.0L, mf = 0.0L;
     int i, it = 0, rc, bad = 0;
     ds_bumpy(fine, N, N, 9u, 3.0);
-    rc = pf_map_downsample_slopes(fine, N, N, 2, PF_BORDER_CLAMP, PF_R(0.01), 300, PF_R(1e-5), coarse, scratch,
+    rc = pfi_map_downsample_slopes(fine, N, N, 2, PF_BORDER_CLAMP, PF_R(0.01), 300, PF_R(1e-5), coarse, scratch,
                                   6 * N * N / 4, &it, NULL);
     for (i = 0; i < N * N / 4; ++i) {
         if (!isfinite((double)coarse[i])) bad++;
@@ -416,10 +416,87 @@ static void test_wrap_index(void)
     }
 }
 
+/* ------------------------------------------------------------------ unit normals, descriptions */
+/* pf_map_normals_from_heights: the unit normals of exactly the slopes of
+   pf_slope_moments_map_from_heights (bit for bit: the same stencil, then
+   pf_normal_avg_from_slope), wrap and clamp, and against the analytic normal of a sinusoid;
+   bad arguments rejected with nothing written. */
+static void test_normals_from_heights(void)
+{
+    enum { W = 24, H = 16 };
+    static pf_real hm[W * H], sl[W * H * 5], nr[W * H * 3 + 1];
+    int i, j, b, bad = 0;
+    long double worst = 0.0L;
+    const long double tau = 6.283185307179586476925L;
+    for (j = 0; j < H; ++j)
+        for (i = 0; i < W; ++i)
+            hm[j * W + i] = (pf_real)(0.3L * sinl(tau * i / W) + 0.2L * cosl(2.0L * tau * j / H));
+    for (b = 0; b < 2; ++b) {
+        int border = b ? PF_BORDER_WRAP : PF_BORDER_CLAMP;
+        nr[W * H * 3] = PF_R(-7.0);
+        PF_CHECK(pf_slope_moments_map_from_heights(hm, W, H, PF_R(0.5), PF_R(0.25), PF_R(1.5), border, sl) == PF_OK &&
+                     pf_map_normals_from_heights(hm, W, H, PF_R(0.5), PF_R(0.25), PF_R(1.5), border, nr) == PF_OK,
+                 "build");
+        for (i = 0; i < W * H; ++i) {
+            pf_vec3 m = pf_normal_avg_from_slope(sl[5 * i], sl[5 * i + 1]);
+            bad += nr[3 * i] != m.x || nr[3 * i + 1] != m.y || nr[3 * i + 2] != m.z;
+        }
+        PF_CHECK(nr[W * H * 3] == PF_R(-7.0), "wrote past the map");
+    }
+    PF_CHECK(bad == 0, "%d normals differ from the slopes' normals", bad);
+    /* wrap: against the analytic gradient (central differences: error (d^2/6) h''') */
+    for (j = 0; j < H; ++j)
+        for (i = 0; i < W; ++i) {
+            long double sx = 1.5L * 0.3L * tau / (W * 0.5L) * cosl(tau * i / W);
+            long double sy = -1.5L * 0.2L * 2.0L * tau / (H * 0.25L) * sinl(2.0L * tau * j / H);
+            long double n = sqrtl(1.0L + sx * sx + sy * sy), e;
+            e = fabsl((long double)nr[3 * (j * W + i)] + sx / n) + fabsl((long double)nr[3 * (j * W + i) + 1] + sy / n) +
+                fabsl((long double)nr[3 * (j * W + i) + 2] - 1.0L / n);
+            if (e > worst) worst = e;
+        }
+    PF_CHECK(worst <= 0.08L, "normals %.3Lg from the analytic ones (bound 0.08: the stencil's h''' term)", worst);
+    nr[0] = PF_R(-7.0);
+    PF_CHECK(pf_map_normals_from_heights(NULL, W, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP, nr) == PF_ERR_ARG &&
+                 pf_map_normals_from_heights(hm, W, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), 7, nr) == PF_ERR_ARG &&
+                 pf_map_normals_from_heights(hm, 0, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP, nr) == PF_ERR_ARG &&
+                 pf_map_normals_from_heights(hm, (int)PF_MAX_SIDE + 1, 1, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP, nr) ==
+                     PF_ERR_SIZE && nr[0] == PF_R(-7.0),
+             "bad arguments");
+}
+
+/* pf_map_downsample_slopes(desc): the positional solve bit for bit; zero fields read as the
+   documented defaults (factor 2, reg_weight 0.01, max_iter 400, tol 1e-5), negative ones as 0 */
+static void test_downsample_desc(void)
+{
+    enum { W = 16, H = 16 };
+    static pf_real fine[W * H], a[W * H], b[W * H], scr[6 * W * H];
+    pf_map_downsample_desc d;
+    int ia = -1, ib = -2, i;
+    pf_real ra, rb;
+    ds_bumpy(fine, W, H, 77ULL, 0.5);
+    memset(&d, 0, sizeof d);
+    d.fine = fine, d.w = W, d.h = H, d.border = PF_BORDER_WRAP;
+    PF_CHECK(pf_map_downsample_slopes(&d, a, scr, 6 * W * H, &ia, &ra) == PF_OK &&
+                 pfi_map_downsample_slopes(fine, W, H, 2, PF_BORDER_WRAP, PF_R(0.01), 400, PF_R(1.0e-5), b, scr, 6 * W * H, &ib,
+                                           &rb) == PF_OK &&
+                 memcmp(a, b, sizeof(pf_real) * (W / 2) * (H / 2)) == 0 && ia == ib && ra == rb,
+             "defaults");
+    d.factor = 4, d.reg_weight = PF_R(-1.0), d.max_iter = -1, d.tol = PF_R(-1.0);
+    PF_CHECK(pf_map_downsample_slopes(&d, a, scr, 6 * W * H, &ia, &ra) == PF_OK &&
+                 pfi_map_downsample_slopes(fine, W, H, 4, PF_BORDER_WRAP, PF_R(0.0), 0, PF_R(0.0), b, scr, 6 * W * H, &ib, &rb) ==
+                     PF_OK &&
+                 memcmp(a, b, sizeof(pf_real) * (W / 4) * (H / 4)) == 0 && ia == 0 && ib == 0,
+             "negative fields read as 0 (the box map)");
+    for (i = 0; i < (W / 4) * (H / 4); ++i) a[i] = PF_R(-7.0);
+    PF_CHECK(pf_map_downsample_slopes(NULL, a, scr, 6 * W * H, &ia, &ra) == PF_ERR_ARG && a[0] == PF_R(-7.0), "NULL desc");
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
     PF_TEST_RUN(test_wrap_index);
+    PF_TEST_RUN(test_normals_from_heights);
+    PF_TEST_RUN(test_downsample_desc);
     PF_TEST_RUN(test_downsample_dense_oracle);
     PF_TEST_RUN(test_downsample_beats_box);
     PF_TEST_RUN(test_downsample_bad_input);

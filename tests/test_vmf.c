@@ -708,7 +708,7 @@ static void test_specular_view_below_mean_plane(void)
    pf_vmf_sum_specular(_mixture) with the LIGHT below the mixture's mean plane but above the
    macrosurface (area_i < 0 < wi.z) and the view above it: Smith's Lambda_i is infinite there,
    and the BRDF uses pf_leadr_specular's cap, Lambda_i' = max(P_i, wi.z) / wi.z - 1 (issue 15,
-   bench/pictures.c; pfi_beckmann_light_lambda), so I = F D' / (4 (P_o + A_o Lambda_i')).
+   bench/pictures.c; pf_beckmann_light_lambda), so I = F D' / (4 (P_o + A_o Lambda_i')).
    Oracle: P_o and P_i by 1D quadrature (below_facing) of each lobe's Gaussian slopes, summed
    with the amplitudes (mixture form: the exact P_i), or of the sum's one Gaussian (P_i with
    A_i counted as 0, as pf_leadr_specular holds it below the mean plane); A_o in long double.
@@ -791,7 +791,7 @@ static void test_specular_light_below_mean_plane(void)
     PF_CHECK(worst_mix <= 1e-3L && worst_one <= 1e-4L, "rel %.3Le %.3Le", worst_mix, worst_one);
 #endif
     /* the value jumps at area_i = 0 by design (Smith's 0 just above the mean plane, the facing
-       facets' share just below: pfi_beckmann_light_lambda); only checked finite and positive */
+       facets' share just below: pf_beckmann_light_lambda); only checked finite and positive */
 }
 
 int main(int argc, char **argv)

@@ -250,7 +250,7 @@ static void test_scale_flat_patch_is_base(void)
                 pf_real got = PF_R(-1.0);
                 dir_deg(5.0 + 17.0 * a, 0.0, wo);
                 dir_deg(3.0 + 18.0 * b, 180.0 - 40.0 * c, wi);
-                PF_CHECK(pf_vmf_effective_brdf(hm, 16, 16, PF_R(0.5), 3, 5, 8, V(wo), V(wi), PF_R(0.2), PF_R(0.04), &got) ==
+                PF_CHECK(pfi_vmf_effective_brdf(hm, 16, 16, PF_R(0.5), 3, 5, 8, V(wo), V(wi), PF_R(0.2), PF_R(0.04), &got) ==
                              PF_OK,
                          "call");
                 ref = pfm_base_specular(wo, wi, 0.0, 0.0, 0.2, 0.04) / wo[2];
@@ -280,8 +280,8 @@ static void test_scale_reciprocity(void)
         long double l, r;
         dir_deg(5.0 + 1.7 * a, 11.0 * a, wo);
         dir_deg(70.0 - 1.6 * a, 180.0 + 7.0 * a, wi);
-        PF_CHECK(pf_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &f1) == PF_OK &&
-                     pf_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wi), V(wo), PF_R(0.1), PF_R(0.04), &f2) == PF_OK,
+        PF_CHECK(pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &f1) == PF_OK &&
+                     pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wi), V(wo), PF_R(0.1), PF_R(0.04), &f2) == PF_OK,
                  "call");
         /* whole periodic map: the projected area is n^2 w.z, so f / cos(light) is symmetric */
         l = (long double)f1 / (long double)(pf_real)wi[2];
@@ -321,7 +321,7 @@ static void test_scale_vs_microsurface_reference(void)
             pfm_visibility_map_box(&s, wo, 8, 24, 32, NULL, vo);
             pfm_visibility_map_box(&s, wi, 8, 24, 32, NULL, vi);
             sh = pfm_reference_shade(&s, vo, vi, 8, 24, 32, wo, wi, 0.1, 0.04);
-            PF_CHECK(pf_vmf_effective_brdf(hm, 64, 64, PF_R(1.0), 8, 24, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &got) ==
+            PF_CHECK(pfi_vmf_effective_brdf(hm, 64, 64, PF_R(1.0), 8, 24, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &got) ==
                          PF_OK,
                      "call");
             num += ((long double)got - (long double)sh.spec) * ((long double)got - (long double)sh.spec);
@@ -340,7 +340,7 @@ static void test_scale_vs_microsurface_reference(void)
 
 /* the prior toward 1 (shrink): well-sampled values keep their least-squares fit, a cell that
    only tails reach (f_eff exactly 0, f_lobes tiny: the case that left cells of S at 0 in the
-   bench) and a patch without energy stay near 1; pf_vmf_scale_t with the returned prior gives
+   bench) and a patch without energy stay near 1; pfi_vmf_scale_t with the returned prior gives
    a training patch's own T back, and every value against a closed form computed here */
 static void test_scale_factor_shrink(void)
 {
@@ -358,8 +358,8 @@ static void test_scale_factor_shrink(void)
             /* R = 1.5 on patch 0, 0.8 elsewhere; the tail cell's f_eff is exactly 0 */
             fe[x * cnt + s] = c == tail_cell ? PF_R(0.0) : (x == 0 ? PF_R(1.5) : PF_R(0.8)) * fl[x * cnt + s];
         }
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.0), T0, S0, scr, NULL, NULL) == PF_OK, "plain");
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.1), T, S, scr, &prior, NULL) == PF_OK, "shrink");
+    PF_CHECK(pfi_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.0), T0, S0, scr, NULL, NULL) == PF_OK, "plain");
+    PF_CHECK(pfi_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.1), T, S, scr, &prior, NULL) == PF_OK, "shrink");
     pf_test_note("tail cell: S %.3g (plain %.3g); weak patch T %.3g (plain %.3g); patch 0 / patch 1 T ratio %.4g (plain %.4g)",
                  (double)S[tail_cell], (double)S0[tail_cell], (double)T[weak], (double)T0[weak], (double)(T[0] / T[1]),
                  (double)(T0[0] / T0[1]));
@@ -379,18 +379,18 @@ static void test_scale_factor_shrink(void)
        mean 1), so T S is the unnormalized S, a few % from 1 here; plain least squares gave it
        its data's 0.8 relative to patch 1 */
     PF_CHECK(fabsl((long double)T[weak] * (long double)S[0] - 1.0L) <= 0.05L, "weak patch T S = %g", (double)(T[weak] * S[0]));
-    /* pf_vmf_scale_t: the closed form (sum e l S + p) / (sum (l S)^2 + p), computed here */
+    /* pfi_vmf_scale_t: the closed form (sum e l S + p) / (sum (l S)^2 + p), computed here */
     for (s = 0; s < cnt; ++s) {
         long double l = (long double)fl[cnt + s] * (long double)S[pfi_vmf_scale_cell(s, NT, NP)];
         a += (long double)fe[cnt + s] * l;
         q += l * l;
     }
-    t_one = pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, prior);
+    t_one = pfi_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, prior);
     a = (a + (long double)prior) / (q + (long double)prior); /* the closed form */
-    PF_CHECK(prior > PF_R(0.0) && fabsl((long double)t_one / a - 1.0L) <= 1e3L * PF_TEST_EPS, "pf_vmf_scale_t %g against %Lg",
+    PF_CHECK(prior > PF_R(0.0) && fabsl((long double)t_one / a - 1.0L) <= 1e3L * PF_TEST_EPS, "pfi_vmf_scale_t %g against %Lg",
              (double)t_one, a);
-    PF_CHECK(pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) == PF_R(1.0) ||
-                 fabs((double)pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) - 1.0) <= 1e-6,
+    PF_CHECK(pfi_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) == PF_R(1.0) ||
+                 fabs((double)pfi_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) - 1.0) <= 1e-6,
              "a huge prior gives 1");
 }
 
@@ -418,7 +418,7 @@ static void test_scale_factor_separable(void)
             fl[x * cnt + s] = (pf_real)(trng_u(&r) * trng_u(&r) * 3.0);
             fe[x * cnt + s] = t0[x] * s0[pfi_vmf_scale_cell(s, NT, NP)] * fl[x * cnt + s];
         }
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 60, PF_R(0.0), T, S, scr, NULL, err) == PF_OK, "factor");
+    PF_CHECK(pfi_vmf_scale_factor(fe, fl, P, NT, NP, 60, PF_R(0.0), T, S, scr, NULL, err) == PF_OK, "factor");
     ratio = (long double)T[0] / (long double)t0[0];
     for (x = 0; x < P; ++x) worst = fmaxl(worst, fabsl((long double)T[x] / (long double)t0[x] / ratio - 1.0L));
     for (c = 0; c < cells; ++c) worst = fmaxl(worst, fabsl((long double)S[c] * ratio / (long double)s0[c] - 1.0L));
@@ -488,57 +488,57 @@ static void test_scale_bad_input_guarded(void)
     }
     for (i = 0; i < W * W; ++i) hm[i] = (pf_real)(0.3 * sin(0.7 * i) + 0.2 * cos(1.3 * (i / W)));
     /* valid calls at the patch in the map's last corner (wrapping reads) touch nothing outside */
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), W - 3, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_OK &&
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), W - 3, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_OK &&
                  pf_test_finite(out) && out >= PF_R(0.0),
              "valid brdf %g", (double)out);
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), W - 3, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_G_MIXTURE, NT,
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), W - 3, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_G_MIXTURE, NT,
                                 NP, PF_R(1.2), nr, vis, fe, fl) == PF_OK,
              "valid patch");
     for (i = 0; i < cnt; ++i) PF_CHECK(pf_test_finite(fe[i]) && pf_test_finite(fl[i]) && fe[i] >= 0 && fl[i] >= 0, "sample %d", i);
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(1.0), T, S, scr, &prior, err) == PF_OK && pf_test_finite(T[0]) &&
+    PF_CHECK(pfi_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(1.0), T, S, scr, &prior, err) == PF_OK && pf_test_finite(T[0]) &&
                  pf_test_finite(prior) && prior >= 0,
              "valid factor");
-    PF_CHECK(pf_test_finite(pf_vmf_scale_t(fe, fl, NT, NP, S, prior)), "valid T");
+    PF_CHECK(pf_test_finite(pfi_vmf_scale_t(fe, fl, NT, NP, S, prior)), "valid T");
     /* errors */
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), NULL) == PF_ERR_ARG, "NULL out");
-    PF_CHECK(pf_vmf_effective_brdf(NULL, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), NULL) == PF_ERR_ARG, "NULL out");
+    PF_CHECK(pfi_vmf_effective_brdf(NULL, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
              "NULL heights");
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, W + 1, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n > w");
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, 0, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n = 0");
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(0.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "texel 0");
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, (pf_real)NAN, PF_R(1.0), &out) == PF_ERR_ARG, "sigma NaN");
-    PF_CHECK(pf_vmf_effective_brdf(hm, (int)(PF_MAX_SIDE + 1), 1, PF_R(1.0), 0, 0, 1, z, z, PF_R(0.1), PF_R(1.0), &out) ==
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, W + 1, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n > w");
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, 0, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n = 0");
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(0.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "texel 0");
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, (pf_real)NAN, PF_R(1.0), &out) == PF_ERR_ARG, "sigma NaN");
+    PF_CHECK(pfi_vmf_effective_brdf(hm, (int)(PF_MAX_SIDE + 1), 1, PF_R(1.0), 0, 0, 1, z, z, PF_R(0.1), PF_R(1.0), &out) ==
                  PF_ERR_SIZE,
              "side");
     hm[(W - 4) * W + 2] = (pf_real)NAN; /* inside the patch (0, W - 5, N): rows W - 5 .. W + 2 wrap */
-    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
+    PF_CHECK(pfi_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
              "NaN height");
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, vis, fe,
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_UNMASKED, NT, NP, PF_R(1.2), nr, vis, fe,
                                 fl) == PF_ERR_ARG,
              "NaN height, patch");
     hm[(W - 4) * W + 2] = PF_R(0.0);
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, PF_VMF_MAX_LOBES + 1, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP,
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, PF_VMF_MAX_LOBES + 1, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_UNMASKED, NT, NP,
                                 PF_R(1.2), nr, vis, fe, fl) == PF_ERR_ARG,
              "lobes 17");
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 3, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
                  PF_ERR_ARG,
-             "masking 3");
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.6), nr, vis, fe, fl) ==
+             "masking 0 (unknown)");
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_UNMASKED, NT, NP, PF_R(1.6), nr, vis, fe, fl) ==
                  PF_ERR_ARG,
              "theta_max >= pi/2");
-    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, NULL, fe, fl) ==
+    PF_CHECK(pfi_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_UNMASKED, NT, NP, PF_R(1.2), nr, NULL, fe, fl) ==
                  PF_ERR_ARG,
              "NULL scratch");
-    PF_CHECK(pf_vmf_scale_factor(fe, fl, 0, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 0, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, NULL, 1, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(-1.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, (pf_real)NAN, T, S, scr, NULL, err) == PF_ERR_ARG &&
-                 pf_vmf_scale_factor(fe, fl, 1, 1 << 30, 1 << 30, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_SIZE,
+    PF_CHECK(pfi_vmf_scale_factor(fe, fl, 0, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pfi_vmf_scale_factor(fe, fl, 1, NT, NP, 0, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pfi_vmf_scale_factor(fe, NULL, 1, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pfi_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(-1.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pfi_vmf_scale_factor(fe, fl, 1, NT, NP, 4, (pf_real)NAN, T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pfi_vmf_scale_factor(fe, fl, 1, 1 << 30, 1 << 30, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_SIZE,
              "factor errors");
-    PF_CHECK(pf_vmf_scale_t(NULL, fl, NT, NP, S, PF_R(0.0)) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, 1, NP, S, PF_R(0.0)) == PF_R(1.0) &&
-                 pf_vmf_scale_t(fe, fl, NT, NP, NULL, PF_R(0.0)) == PF_R(1.0) &&
-                 pf_vmf_scale_t(fe, fl, NT, NP, S, (pf_real)NAN) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, NT, NP, S, PF_R(-1.0)) == PF_R(1.0),
+    PF_CHECK(pfi_vmf_scale_t(NULL, fl, NT, NP, S, PF_R(0.0)) == PF_R(1.0) && pfi_vmf_scale_t(fe, fl, 1, NP, S, PF_R(0.0)) == PF_R(1.0) &&
+                 pfi_vmf_scale_t(fe, fl, NT, NP, NULL, PF_R(0.0)) == PF_R(1.0) &&
+                 pfi_vmf_scale_t(fe, fl, NT, NP, S, (pf_real)NAN) == PF_R(1.0) && pfi_vmf_scale_t(fe, fl, NT, NP, S, PF_R(-1.0)) == PF_R(1.0),
              "T errors");
     PF_CHECK(pf_vmf_scale_sample_count(1, 2) == 0 && pf_vmf_scale_cell_count(2, 1) == 0 && pf_vmf_scale_vis_bytes(2, 2, 0) == 0,
              "size queries");
@@ -552,6 +552,159 @@ static void test_scale_bad_input_guarded(void)
     pf_test_guarded_free(vis, (size_t)vb);
 }
 /* ================================================================== end of scaling function tests */
+
+/* ------------------------------------------------------------------ the level calls
+   pf_vmf_scale_fit_level and pf_vmf_scale_texel_t against the orchestration written out here
+   from the per-patch pieces (pfi_vmf_scale_patch for f_eff, the texel's lobes shaded at the
+   node-direction pairs in the documented sample order, pfi_vmf_scale_factor, pfi_vmf_scale_t):
+   the same operations, so the results must be bit-identical; a zeroed description field
+   reads as its documented default; pf_vmf_effective_brdf(desc) is the positional call;
+   bad descriptions, levels and scratch sizes (guarded) are rejected. */
+#define LV_W 32
+#define LV_L 2 /* level: 4 x 4 patches, 8 x 8 of them */
+#define LV_NT 3
+#define LV_NP 3
+#define LV_P 4 /* training patches */
+static void lv_texel_lobes(const pf_real *pyr, int m, long long tx, long long ty, pf_real *fl)
+{
+    const long long A = 2 * (LV_NP - 1), cnt = pf_vmf_scale_sample_count(LV_NT, LV_NP), lw = LV_W >> LV_L;
+    const pf_real *t = pyr + (pf_vmf_pyramid_level_offset(LV_W, LV_W, LV_L) + ty * lw + tx) * 4 * m;
+    const pf_real tm = PF_R(1.2);
+    long long s;
+    for (s = 0; s < cnt; ++s) {
+        long long ai = s % A, ti = (s / A) % LV_NT, ao = (s / (A * LV_NT)) % A, to = s / (A * LV_NT * A);
+        pf_vec3 wo = pfi_vmf_scale_dir((int)to, (int)ao, LV_NT, LV_NP, tm), wi = pfi_vmf_scale_dir((int)ti, (int)ai, LV_NT, LV_NP, tm);
+        pf_vmf_sum sum = pf_vmf_sum_zero();
+        int j;
+        for (j = 0; j < m; ++j)
+            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(t[4 * j + 3], t[4 * j], t[4 * j + 1], t[4 * j + 2]), wo, wi,
+                                 PF_R(0.1) * PF_R(0.1));
+        fl[s] = pf_vmf_sum_specular(sum, wo, wi, PF_R(1.0));
+    }
+}
+static void test_scale_level_calls(void)
+{
+    enum { CNT = (2 * LV_NT * (LV_NP - 1)) * (2 * LV_NT * (LV_NP - 1)), CELLS = LV_NT * LV_NT * LV_NP, N = 1 << LV_L };
+    static pf_real fe[LV_P * CNT], fl[2][LV_P * CNT], junk[CNT], nr[3 * N * N], T[LV_P], fac[2 * LV_P * CELLS];
+    static pf_real S_want[2][CELLS], S_got[2][CELLS], t_got[2][(LV_W >> LV_L) * (LV_W >> LV_L)];
+    static unsigned char vis[2 * LV_NT * (LV_NP - 1) * N * N];
+    const int ms[2] = { 2, 4 }, gp = (LV_W >> LV_L) * (LV_W >> LV_L);
+    pf_real prior_want[2], prior_got[2], *pyr[2] = { 0, 0 }, *hm = 0, *scratch = 0, *s_out[2], *t_lv[2], t_one[2];
+    const pf_real *s_in[2];
+    pfm_surface s;
+    pf_vmf_scale_desc d, z;
+    long long need, p, i;
+    int k, bad = 0, rc;
+    if (pfm_surface_make(&s, LV_W, LV_W, 1.0, pfm_params_default(PFM_CRATERS)) != 0 || !(hm = scale_heights(&s))) {
+        PF_CHECK(0, "no memory");
+        return;
+    }
+    {   /* the map's normals and two lobe pyramids */
+        pf_real *nm = (pf_real *)malloc((size_t)LV_W * LV_W * 3 * sizeof(pf_real));
+        for (k = 0; k < 2 && nm; ++k) pyr[k] = (pf_real *)malloc((size_t)pf_vmf_pyramid_texel_count(LV_W, LV_W) * 4 * ms[k] * sizeof(pf_real));
+        if (!nm || !pyr[0] || !pyr[1]) { PF_CHECK(0, "no memory"); free(nm); goto done; }
+        for (i = 0; i < (long long)LV_W * LV_W; ++i) {
+            double m3[3];
+            pfm_normal(&s, (int)(i % LV_W), (int)(i / LV_W), m3);
+            for (k = 0; k < 3; ++k) nm[3 * i + k] = (pf_real)m3[k];
+        }
+        for (k = 0; k < 2; ++k) PF_CHECK(pf_vmf_pyramid_from_normals(nm, NULL, LV_W, LV_W, ms[k], 8, pyr[k]) == PF_OK, "pyramid");
+        free(nm);
+    }
+    /* the orchestration, written out */
+    for (p = 0; p < LV_P; ++p) {
+        long long c = (p * gp) / LV_P, tx = c % (LV_W >> LV_L), ty = c / (LV_W >> LV_L);
+        PF_CHECK(pfi_vmf_scale_patch(hm, LV_W, LV_W, PF_R(1.0), (int)(tx * N), (int)(ty * N), N, 1, 0, PF_R(0.1), PF_R(1.0),
+                                     PF_VMF_SCALE_G_GAUSSIAN, LV_NT, LV_NP, PF_R(1.2), nr, vis, fe + p * CNT, junk) == PF_OK,
+                 "patch");
+        for (k = 0; k < 2; ++k) lv_texel_lobes(pyr[k], ms[k], tx, ty, fl[k] + p * CNT);
+    }
+    for (k = 0; k < 2; ++k)
+        PF_CHECK(pfi_vmf_scale_factor(fe, fl[k], LV_P, LV_NT, LV_NP, 5, PF_R(0.5), T, S_want[k], fac, &prior_want[k], NULL) == PF_OK,
+                 "factor");
+    /* the library's level call, every field given */
+    memset(&d, 0, sizeof d);
+    d.heights = hm, d.w = LV_W, d.h = LV_W, d.texel = PF_R(1.0), d.base_sigma = PF_R(0.1), d.f0 = PF_R(1.0);
+    d.pyramid_count = 2, d.pyramid[0] = pyr[0], d.pyramid[1] = pyr[1], d.lobes[0] = ms[0], d.lobes[1] = ms[1];
+    d.masking = PF_VMF_SCALE_G_GAUSSIAN, d.nt = LV_NT, d.np = LV_NP, d.theta_max = PF_R(1.2);
+    d.train_patches = LV_P, d.rounds = 5, d.shrink = PF_R(0.5);
+    need = pf_vmf_scale_scratch_size(&d, LV_L);
+    PF_CHECK(need == LV_P * CNT * 3 + 2 * LV_P * CELLS + LV_P + 3 * N * N + CNT + (long long)((sizeof vis + sizeof(pf_real) - 1) / sizeof(pf_real)),
+             "scratch size %lld", need);
+    scratch = (pf_real *)pf_test_guarded_alloc((size_t)need * sizeof(pf_real));
+    if (!scratch) { pf_test_note("guarded mapping unavailable: level calls skipped"); goto done; }
+    for (k = 0; k < 2; ++k) {
+        s_out[k] = S_got[k], t_lv[k] = t_got[k], s_in[k] = S_got[k];
+        for (i = 0; i < gp; ++i) t_got[k][i] = PF_R(-7.0);
+    }
+    PF_CHECK(pf_vmf_scale_fit_level(&d, LV_L, s_out, prior_got, t_lv, scratch, need) == PF_OK, "fit_level");
+    for (k = 0; k < 2; ++k) {
+        for (i = 0; i < CELLS; ++i) bad += S_got[k][i] != S_want[k][i];
+        bad += prior_got[k] != prior_want[k];
+        for (p = 0; p < LV_P; ++p) {
+            pf_real tw = pfi_vmf_scale_t(fe + p * CNT, fl[k] + p * CNT, LV_NT, LV_NP, S_want[k], prior_want[k]);
+            bad += t_got[k][(p * gp) / LV_P] != tw;
+        }
+        for (i = 0, p = 0; i < gp; ++i) p += t_got[k][i] == PF_R(-7.0);
+        bad += p != gp - LV_P; /* only the training texels written */
+    }
+    PF_CHECK(bad == 0, "%d values of the level call differ from the written-out orchestration", bad);
+    /* T of a texel that is not a training one, from its own samples */
+    {
+        long long tx = 3, ty = 5;
+        PF_CHECK(pfi_vmf_scale_patch(hm, LV_W, LV_W, PF_R(1.0), (int)(tx * N), (int)(ty * N), N, 1, 0, PF_R(0.1), PF_R(1.0),
+                                     PF_VMF_SCALE_G_GAUSSIAN, LV_NT, LV_NP, PF_R(1.2), nr, vis, fe, junk) == PF_OK, "patch");
+        PF_CHECK(pf_vmf_scale_texel_t(&d, LV_L, tx, ty, s_in, prior_got, t_one, scratch, need) == PF_OK, "texel_t");
+        for (k = 0; k < 2; ++k) {
+            lv_texel_lobes(pyr[k], ms[k], tx, ty, fl[k]);
+            PF_CHECK(t_one[k] == pfi_vmf_scale_t(fe, fl[k], LV_NT, LV_NP, S_want[k], prior_want[k]), "texel_t %d: %g", k,
+                     (double)t_one[k]);
+        }
+    }
+    /* zero means the default: texel 1, base_sigma 0.1, f0 1, masking G_GAUSSIAN, shrink 1 */
+    z = d;
+    z.texel = PF_R(0.0), z.base_sigma = PF_R(0.0), z.f0 = PF_R(0.0), z.masking = 0, z.shrink = PF_R(0.0);
+    d.shrink = PF_R(1.0);
+    {
+        pf_real sa[2][CELLS], sb[2][CELLS], pa[2], pb[2], *oa[2] = { sa[0], sa[1] }, *ob[2] = { sb[0], sb[1] };
+        rc = pf_vmf_scale_fit_level(&d, LV_L, oa, pa, NULL, scratch, need);
+        PF_CHECK(rc == PF_OK && pf_vmf_scale_fit_level(&z, LV_L, ob, pb, NULL, scratch, need) == PF_OK &&
+                     memcmp(sa, sb, sizeof sa) == 0 && pa[0] == pb[0] && pa[1] == pb[1],
+                 "zeroed fields read as the defaults");
+    }
+    /* the effective BRDF through the description */
+    {
+        pf_vec3 wo = pf_vec3_make(PF_R(0.3), PF_R(0.1), PF_R(0.948683)), wi = pf_vec3_make(PF_R(-0.2), PF_R(0.2), PF_R(0.958166));
+        pf_real a = PF_R(-1.0), b = PF_R(-2.0);
+        PF_CHECK(pf_vmf_effective_brdf(&z, 4, 8, 8, wo, wi, &a) == PF_OK &&
+                     pfi_vmf_effective_brdf(hm, LV_W, LV_W, PF_R(1.0), 4, 8, 8, wo, wi, PF_R(0.1), PF_R(1.0), &b) == PF_OK && a == b,
+                 "pf_vmf_effective_brdf(desc) %g, positional %g", (double)a, (double)b);
+        PF_CHECK(pf_vmf_effective_brdf(NULL, 0, 0, 1, wo, wi, &a) == PF_ERR_ARG && a == PF_R(0.0), "NULL desc");
+    }
+    /* bad descriptions, levels, scratch */
+    PF_CHECK(pf_vmf_scale_fit_level(NULL, LV_L, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "NULL desc");
+    PF_CHECK(pf_vmf_scale_fit_level(&d, LV_L, s_out, prior_got, NULL, scratch, need - 1) == PF_ERR_ARG, "short scratch");
+    PF_CHECK(pf_vmf_scale_fit_level(&d, 6, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "no level 6 in 32 x 32");
+    PF_CHECK(pf_vmf_scale_scratch_size(&d, 6) == 0 && pf_vmf_scale_scratch_size(NULL, 0) == 0, "scratch size of bad calls");
+    PF_CHECK(pf_vmf_scale_texel_t(&d, LV_L, 8, 0, s_in, prior_got, t_one, scratch, need) == PF_ERR_ARG, "texel outside");
+    z = d, z.w = 24;
+    PF_CHECK(pf_vmf_scale_fit_level(&z, LV_L, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "w not a power of two");
+    z = d, z.lobes[1] = 0;
+    PF_CHECK(pf_vmf_scale_fit_level(&z, LV_L, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "lobes 0");
+    z = d, z.pyramid[0] = NULL;
+    PF_CHECK(pf_vmf_scale_fit_level(&z, LV_L, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "NULL pyramid");
+    z = d, z.pyramid_count = PF_VMF_SCALE_MAX_PYRAMIDS + 1;
+    PF_CHECK(pf_vmf_scale_fit_level(&z, LV_L, s_out, prior_got, NULL, scratch, need) == PF_ERR_ARG, "too many pyramids");
+    z = d, z.masking = 7;
+    PF_CHECK(pf_vmf_scale_fit_level(&z, LV_L, s_out, prior_got, NULL, scratch, pf_vmf_scale_scratch_size(&z, LV_L)) == PF_ERR_ARG,
+             "unknown masking");
+    pf_test_guarded_free(scratch, (size_t)need * sizeof(pf_real));
+done:
+    free(pyr[0]);
+    free(pyr[1]);
+    free(hm);
+    pfm_surface_free(&s);
+}
 
 int main(int argc, char **argv)
 {
@@ -567,5 +720,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_scale_factor_shrink);
     PF_TEST_RUN(test_scale_lookup);
     PF_TEST_RUN(test_scale_bad_input_guarded);
+    PF_TEST_RUN(test_scale_level_calls);
     return PF_TEST_END();
 }

@@ -561,6 +561,20 @@ static void pfb_d_core(pfc_ctx *c)
     if (got != (a >= 1 && a <= PFB_MAX_SIDE)) pfb_fail(PFB_VALUE, "pf_size_side_ok = %lld", got);
 }
 
+/* pf_floor_index: in [lo, hi] for every x (NaN, infinities, huge), floor(x) inside the range */
+static void pfb_d_floor_index(pfc_ctx *c, int a)
+{
+    pf_real x = pfb_coord(c, PF_R(-1.0e6), PF_R(1.0e6));
+    long long lo = pfb_int(c, -40, 40), hi = pfb_int(c, -40, 40), r;
+    (void)a;
+    if (lo > hi) { long long t = lo; lo = hi; hi = t; }
+    pfb_setcall("pf_floor_index(%a, %lld, %lld)", (double)x, lo, hi);
+    r = pf_floor_index(x, lo, hi);
+    if (r < lo || r > hi) pfb_fail(PFB_VALUE, "pf_floor_index = %lld outside [%lld, %lld]", r, lo, hi);
+    else if (x >= (pf_real)lo && x < (pf_real)hi && (pf_real)r != PF_FLOOR(x))
+        pfb_fail(PFB_VALUE, "pf_floor_index = %lld, floor %a", r, (double)PF_FLOOR(x));
+}
+
 /* ---------------------------------------------------------------- pf_moments.h: layout */
 static void pfb_d_mip_layout(pfc_ctx *c)
 {
@@ -636,7 +650,9 @@ static void pfb_d_mip_build(pfc_ctx *c, int which)
 /* which: 0 pf_slope_moments_map_from_heights (level 0 only), 1 pf_slope_pyramid_from_heights */
 static void pfb_d_slope(pfc_ctx *c, int which)
 {
-    const char *fn = which ? "pf_slope_pyramid_from_heights" : "pf_slope_moments_map_from_heights";
+    static const char *const fns[] = { "pf_slope_moments_map_from_heights", "pf_slope_pyramid_from_heights",
+                                       "pf_map_normals_from_heights" };
+    const char *fn = fns[which];
     int w = pfb_int(c, 1, 40), h = pfb_int(c, 1, 40), border = pfb_border(c), null = pfb_null(c, 2);
     int at_start = PFC_R(pfc_next(c)) < 4, rc, allowed;
     pf_real dx = pfc_mag(PFC_B(pfc_next(c)), -8, 8), dy = pfc_mag(PFC_B(pfc_next(c)), -8, 8);
@@ -652,7 +668,7 @@ static void pfb_d_slope(pfc_ctx *c, int which)
     if (!pfb_border_ok(border)) ex.arg = 1;
     if (!ex.small && !ex.size) {
         nh = pfb_mul(w, h);
-        nout = which ? pfb_pyr_reals(w, h, 5) : pfb_mul(nh, 5);
+        nout = which == 1 ? pfb_pyr_reals(w, h, 5) : pfb_mul(nh, which == 2 ? 3 : 5);
         if (nh < 0 || nout < 0) ex.size = 1;
     }
     allowed = pfb_allowed(ex);
@@ -660,8 +676,9 @@ static void pfb_d_slope(pfc_ctx *c, int which)
         pf_real *b[2];
         b[0] = null == 1 ? 0 : pfb_small();
         b[1] = null == 2 ? 0 : pfb_small();
-        rc = which ? (pf_slope_pyramid_from_heights(b[0], w, h, dx, dy, hs, border, b[1]))
-                   : (pf_slope_moments_map_from_heights(b[0], w, h, dx, dy, hs, border, b[1]));
+        rc = which == 2 ? pf_map_normals_from_heights(b[0], w, h, dx, dy, hs, border, b[1])
+             : which    ? (pf_slope_pyramid_from_heights(b[0], w, h, dx, dy, hs, border, b[1]))
+                        : (pf_slope_moments_map_from_heights(b[0], w, h, dx, dy, hs, border, b[1]));
         pfb_rc_check(rc, allowed, fn);
         pfb_check_untouched(b, 2);
         return;
@@ -673,11 +690,22 @@ static void pfb_d_slope(pfc_ctx *c, int which)
     pfb_fill(c, hm, nh, 20);
     pfb_fill_canary(out, nout);
     if (pfb_t) pfb_t->run += 1;
-    rc = which ? (pf_slope_pyramid_from_heights(hm, w, h, dx, dy, hs, border, out))
-               : (pf_slope_moments_map_from_heights(hm, w, h, dx, dy, hs, border, out));
+    rc = which == 2 ? pf_map_normals_from_heights(hm, w, h, dx, dy, hs, border, out)
+         : which    ? (pf_slope_pyramid_from_heights(hm, w, h, dx, dy, hs, border, out))
+                    : (pf_slope_moments_map_from_heights(hm, w, h, dx, dy, hs, border, out));
     if (!pfb_rc_check(rc, allowed, fn)) return;
     pfb_check_written(out, nout, "out", 1);
-    {
+    if (which == 2) { /* unit normals facing up */
+        long long i;
+        for (i = 0; i < (long long)w * h; ++i) {
+            long double l = (long double)out[3 * i] * out[3 * i] + (long double)out[3 * i + 1] * out[3 * i + 1] +
+                            (long double)out[3 * i + 2] * out[3 * i + 2];
+            if (!(fabsl(l - 1.0L) <= 1e-5L) || !(out[3 * i + 2] > 0)) {
+                pfb_fail(PFB_VALUE, "normal %lld: |n|^2 = %Lg, z %a", i, l, (double)out[3 * i + 2]);
+                break;
+            }
+        }
+    } else {
         long long i;
         for (i = 0; i < (long long)w * h; ++i)
             if (!(out[5 * i + 2] >= 0 && out[5 * i + 3] >= 0)) {
@@ -685,7 +713,7 @@ static void pfb_d_slope(pfc_ctx *c, int which)
                 break;
             }
     }
-    if (which) pfb_check_levels(out, w, h, 5, 0, fn);
+    if (which == 1) pfb_check_levels(out, w, h, 5, 0, fn);
     if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
 }
 
@@ -1958,7 +1986,7 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
         b[0] = null == 1 ? 0 : pfb_small();
         b[1] = null == 2 ? 0 : pfb_small();
         b[2] = null == 3 ? 0 : pfb_small();
-        rc = pf_map_downsample_slopes(b[0], w, h, f, border, reg, max_iter, tol, b[1], b[2], slen, &it, &res);
+        rc = pfi_map_downsample_slopes(b[0], w, h, f, border, reg, max_iter, tol, b[1], b[2], slen, &it, &res);
         pfb_rc_check(rc, allowed, fn);
         pfb_check_untouched(b, 3);
         if (it != -7 || res != PF_R(-7.0)) pfb_fail(PFB_WROTE, "iters/residual written on error");
@@ -1973,7 +2001,17 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
     if (PFC_R(bad_u) < 2) hm[PFC_B(bad_u) % (pfc_u32)nf] = pfc_from_bits(PFC_R(bad_u) ? 0x7F800000u : 0x7FC00000u);
     pfb_fill_canary(out, nc);
     if (pfb_t) pfb_t->run += 1;
-    rc = pf_map_downsample_slopes(hm, w, h, f, border, reg, max_iter, tol, out, scr, slen, &it, &res);
+    rc = pfi_map_downsample_slopes(hm, w, h, f, border, reg, max_iter, tol, out, scr, slen, &it, &res);
+    if (rc == PF_OK && reg > PF_R(0.0) && max_iter > 0 && tol > PF_R(0.0)) { /* the description passes them through */
+        pf_map_downsample_desc dd;
+        pf_real *o2 = pfb_map(nc, !at_start), res2 = PF_R(-7.0);
+        int it2 = -7;
+        memset(&dd, 0, sizeof dd);
+        dd.fine = hm, dd.w = w, dd.h = h, dd.factor = f, dd.border = border, dd.reg_weight = reg, dd.max_iter = max_iter, dd.tol = tol;
+        if (o2 && (pf_map_downsample_slopes(&dd, o2, scr, slen, &it2, &res2) != PF_OK || it2 != it ||
+                   memcmp(o2, out, (size_t)nc * sizeof(pf_real)) != 0))
+            pfb_fail(PFB_VALUE, "pf_map_downsample_slopes(desc) differs from the positional solve");
+    }
     if (PFC_R(bad_u) < 2) {
         pfb_rc_check(rc, PFB_A_ARG, fn);
         if (pfb_count_changed(out, nc) || it != -7) pfb_fail(PFB_WROTE, "rejected NaN/inf heights but wrote");
@@ -1993,10 +2031,10 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
 }
 
 /* ---------------------------------------------------------------- pf_vmf.h: scaling function
-   (helper J) pf_vmf_effective_brdf (which 0), pf_vmf_scale_patch (1), the size queries (2),
-   pf_vmf_scale_factor and pf_vmf_scale_t on its result (3), pf_vmf_scale_lookup (4). Accepted patch calls run on maps of at most
+   (helper J) pfi_vmf_effective_brdf (which 0), pfi_vmf_scale_patch (1), the size queries (2),
+   pfi_vmf_scale_factor and pfi_vmf_scale_t on its result (3), pf_vmf_scale_lookup (4). Accepted patch calls run on maps of at most
    16 x 16 with nt, np <= 3 and n <= 8; heights finite, or one NaN/inf (then PF_ERR_ARG or, when
-   it lies outside the patch and its ring, PF_OK). The byte scratch of pf_vmf_scale_patch is
+   it lies outside the patch and its ring, PF_OK). The byte scratch of pfi_vmf_scale_patch is
    mapped as whole pf_reals (at most sizeof(pf_real) - 1 bytes of slack before the guard). */
 static long long pfb_scale_count(long long nt, long long np)
 {
@@ -2017,10 +2055,19 @@ static long long pfb_scale_vis(long long nt, long long np, long long n)
     d = d < 0 ? -1 : pfb_mul(pfb_mul(d, n), n);
     return d < 0 ? 0 : d;
 }
+/* pf_vmf_effective_brdf through its description (the fields the effective BRDF reads) */
+static int pfb_eff(const pf_real *hm, int w, int h, pf_real texel, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi,
+                   pf_real sigma, pf_real f0, pf_real *out)
+{
+    pf_vmf_scale_desc d;
+    memset(&d, 0, sizeof d);
+    d.heights = hm, d.w = w, d.h = h, d.texel = texel, d.base_sigma = sigma, d.f0 = f0;
+    return pf_vmf_effective_brdf(&d, x0, y0, n, wo, wi, out);
+}
 static void pfb_d_vmf_scale(pfc_ctx *c, int which)
 {
-    static const char *const fns[] = { "pf_vmf_effective_brdf", "pf_vmf_scale_patch", "pf_vmf_scale_sample_count",
-                                       "pf_vmf_scale_factor", "pf_vmf_scale_lookup" };
+    static const char *const fns[] = { "pf_vmf_effective_brdf", "pfi_vmf_scale_patch", "pf_vmf_scale_sample_count",
+                                       "pfi_vmf_scale_factor", "pf_vmf_scale_lookup" };
     const char *fn = fns[which];
     pfb_expect ex = { 0, 0, 0 };
     int allowed, rc, at_start = PFC_R(pfc_next(c)) < 4;
@@ -2080,7 +2127,7 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
             /* 4 pool buffers (pfb_small's limit), the last two pointers reuse two of them */
             for (k = 0; k < 4; ++k) pool[k] = pfb_small();
             for (k = 0; k < 6; ++k) q[k] = null == k + 1 ? 0 : pool[k % 4];
-            rc = pf_vmf_scale_factor(q[0], q[1], patches, nt, np, iters, shrink, q[2], q[3], q[4], no_prior ? 0 : q[0],
+            rc = pfi_vmf_scale_factor(q[0], q[1], patches, nt, np, iters, shrink, q[2], q[3], q[4], no_prior ? 0 : q[0],
                                      no_err ? 0 : q[5]);
             pfb_rc_check(rc, allowed, fn);
             pfb_check_untouched(pool, 4);
@@ -2102,7 +2149,7 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
         if (b[5]) pfb_fill_canary(b[5], 3);
         if (b[6]) pfb_fill_canary(b[6], 1);
         if (pfb_t) pfb_t->run += 1;
-        rc = pf_vmf_scale_factor(b[0], b[1], patches, nt, np, iters, shrink, b[2], b[3], b[4], b[6], b[5]);
+        rc = pfi_vmf_scale_factor(b[0], b[1], patches, nt, np, iters, shrink, b[2], b[3], b[4], b[6], b[5]);
         if (pfb_rc_check(rc, PFB_A_OK, fn)) {
             pfb_check_written(b[2], patches, "T", 1);
             pfb_check_written(b[3], cells, "S", 1);
@@ -2111,18 +2158,18 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
                 pf_real t1;
                 pfb_check_written(b[6], 1, "prior", 1);
                 if (!(b[6][0] >= PF_R(0.0))) pfb_fail(PFB_VALUE, "prior %a", (double)b[6][0]);
-                /* pf_vmf_scale_t on the first patch's samples with that prior: finite */
-                t1 = pf_vmf_scale_t(b[0], b[1], nt, np, b[3], b[6][0]);
-                if (!pfb_finite(t1)) pfb_fail(PFB_VALUE, "pf_vmf_scale_t %a", (double)t1);
+                /* pfi_vmf_scale_t on the first patch's samples with that prior: finite */
+                t1 = pfi_vmf_scale_t(b[0], b[1], nt, np, b[3], b[6][0]);
+                if (!pfb_finite(t1)) pfb_fail(PFB_VALUE, "pfi_vmf_scale_t %a", (double)t1);
             }
         }
         if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
         return;
     }
     {
-        /* 0: pf_vmf_effective_brdf, 1: pf_vmf_scale_patch */
+        /* 0: pfi_vmf_effective_brdf, 1: pfi_vmf_scale_patch */
         int w = pfb_int(c, 1, 16), h = pfb_int(c, 1, 16), n = pfb_int(c, 0, 8), x0 = pfb_int(c, -20, 20), y0 = pfb_int(c, -20, 20);
-        int lobes = pfb_int(c, 1, 8), iters = pfb_int(c, 0, 4), masking = pfb_int(c, 0, 2), nt = pfb_int(c, 2, 3), np = pfb_int(c, 2, 3);
+        int lobes = pfb_int(c, 1, 8), iters = pfb_int(c, 0, 4), masking = pfb_int(c, 1, 3), nt = pfb_int(c, 2, 3), np = pfb_int(c, 2, 3);
         int null = pfb_null(c, which ? 5 : 2);
         pf_real texel = pfb_coord(c, PF_R(0.25), PF_R(2.0)), sigma = pfb_coord(c, PF_R(0.02), PF_R(0.5));
         pf_real tm = pfb_coord(c, PF_R(0.2), PF_R(1.5)), f0 = pfc_u01(c), out = PF_R(-7.0);
@@ -2136,8 +2183,12 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
         else
             pfb_setcall("%s(heights, %d, %d, %a, %d, %d, %d, %d, %d, %a, %a, %d, %d, %d, %a, ...) null %d", fn, w, h, (double)texel, x0,
                         y0, n, lobes, iters, (double)sigma, (double)f0, masking, nt, np, (double)tm, null);
+        if (which == 0) { /* the description reads a zero texel, base_sigma or f0 as its default */
+            if (texel == PF_R(0.0)) texel = PF_R(1.0);
+            if (sigma == PF_R(0.0)) sigma = PF_R(0.1);
+        }
         if (null || n < 1 || !(texel > 0 && texel < PF_REAL_MAX) || !(sigma > 0 && sigma < PF_R(1.0e15))) ex.arg = 1;
-        if (which == 1 && (lobes < 1 || lobes > PF_VMF_MAX_LOBES || iters < 0 || nt < 2 || np < 2 || masking < 0 || masking > 2 ||
+        if (which == 1 && (lobes < 1 || lobes > PF_VMF_MAX_LOBES || iters < 0 || nt < 2 || np < 2 || masking < PF_VMF_SCALE_G_GAUSSIAN || masking > PF_VMF_SCALE_UNMASKED ||
                            !(tm > 0 && tm < PF_R(1.5707963))))
             ex.arg = 1;
         pfb_side(&ex, w, 1);
@@ -2157,10 +2208,10 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
             for (k = 0; k < 4; ++k) b[k] = pfb_small();
             b[4] = b[3]; /* 4 pool buffers (pfb_small's limit): f_eff and f_lobes share one */
             if (which == 0) {
-                rc = pf_vmf_effective_brdf(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, null == 2 ? 0 : &out);
+                rc = pfb_eff(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, null == 2 ? 0 : &out);
                 if (null != 2 && out != PF_R(0.0)) pfb_fail(PFB_WROTE, "*out %a on error, documented 0", (double)out);
             } else
-                rc = pf_vmf_scale_patch(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm,
+                rc = pfi_vmf_scale_patch(null == 1 ? 0 : b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm,
                                         null == 2 ? 0 : b[1], null == 3 ? 0 : (unsigned char *)(void *)b[2], null == 4 ? 0 : b[3],
                                         null == 5 ? 0 : b[4]);
             pfb_rc_check(rc, allowed, fn);
@@ -2175,7 +2226,7 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
         if (PFC_R(bad_u) < 2) b[0][PFC_B(bad_u) % (pfc_u32)nh] = pfc_from_bits(PFC_R(bad_u) ? 0x7F800000u : 0x7FC00000u);
         if (pfb_t) pfb_t->run += 1;
         if (which == 0) {
-            rc = pf_vmf_effective_brdf(b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, &out);
+            rc = pfb_eff(b[0], w, h, texel, x0, y0, n, wo, wi, sigma, f0, &out);
             if (pfb_rc_check(rc, PFC_R(bad_u) < 2 ? PFB_A_OK | PFB_A_ARG : PFB_A_OK, fn)) {
                 if (rc == PF_OK && (!pfb_finite(out) || out < 0)) pfb_fail(PFB_NONFINITE, "out %a", (double)out);
                 if (rc != PF_OK && out != PF_R(0.0)) pfb_fail(PFB_WROTE, "*out %a on error", (double)out);
@@ -2188,7 +2239,7 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
             if (!b[1] || !b[2] || !b[3] || !b[4]) return;
             pfb_fill_canary(b[3], cnt);
             pfb_fill_canary(b[4], cnt);
-            rc = pf_vmf_scale_patch(b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm, b[1],
+            rc = pfi_vmf_scale_patch(b[0], w, h, texel, x0, y0, n, lobes, iters, sigma, f0, masking, nt, np, tm, b[1],
                                     (unsigned char *)(void *)b[2], b[3], b[4]);
             if (pfb_rc_check(rc, PFC_R(bad_u) < 2 ? PFB_A_OK | PFB_A_ARG : PFB_A_OK, fn) && rc == PF_OK) {
                 long long i;
@@ -2202,13 +2253,99 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
     }
 }
 
+/* pf_vmf_scale_fit_level (which 0), pf_vmf_scale_texel_t (1), pf_vmf_scale_scratch_size (2):
+   descriptions drawn over every field (zero: the default; bad sides, levels, lobes, node
+   counts, maskings, NULL pointers), maps of at most 16 x 16, levels up to 3, lobe pyramids
+   fitted here from drawn normals; the scratch is an exact-size guarded buffer (1 draw in 8
+   one real short: PF_ERR_ARG). Accepted calls must give finite S, priors and T. */
+static void pfb_d_vmf_level(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_vmf_scale_fit_level", "pf_vmf_scale_texel_t", "pf_vmf_scale_scratch_size" };
+    const char *fn = fns[which];
+    pf_vmf_scale_desc d;
+    int pw = (int)(pfc_next(c) % 5u), ph = (int)(pfc_next(c) % 5u), odd = PFC_R(pfc_next(c)) == 0;
+    int w = odd ? pfb_int(c, 1, 16) : 1 << pw, h = odd ? pfb_int(c, 1, 16) : 1 << ph, level = pfb_int(c, 0, 3), k, rc;
+    int short_scratch = PFC_R(pfc_next(c)) < 2, nulls = pfb_null(c, 3);
+    long long need, tx = pfb_int(c, 0, 3), ty = pfb_int(c, 0, 3), i, cells;
+    pf_real *hm = 0, *nm = 0, *pyr[2] = { 0, 0 }, *scratch, S[2][6 * 6 * 5], prior[2] = { 0, 0 }, t[2] = { 0, 0 };
+    pf_real *s_out[2] = { S[0], S[1] };
+    const pf_real *s_in[2] = { S[0], S[1] };
+    memset(&d, 0, sizeof d);
+    d.pyramid_count = pfb_int(c, 0, 2);
+    d.lobes[0] = pfb_int(c, 1, 4), d.lobes[1] = pfb_int(c, 1, 4);
+    d.masking = pfb_int(c, 0, 3), d.nt = pfb_int(c, 0, 3), d.np = pfb_int(c, 0, 3);
+    d.train_patches = pfb_int(c, 0, 3), d.rounds = pfb_int(c, 0, 3);
+    d.texel = pfb_coord(c, PF_R(0.25), PF_R(2.0)), d.base_sigma = pfb_coord(c, PF_R(0.02), PF_R(0.5));
+    d.f0 = pfc_u01(c), d.shrink = pfb_coord(c, PF_R(0.0), PF_R(2.0)), d.theta_max = pfb_coord(c, PF_R(0.2), PF_R(1.5));
+    if (PFC_R(pfc_next(c)) < 8) d.nt = 0, d.np = 0; /* the default 6 x 5 nodes half the time: S fits S[] */
+    if (d.nt > 6 || d.np > 5 || d.nt < 0 || d.np < 0) d.nt = d.np = 0;
+    if (d.rounds > 8) d.rounds = 8; /* the cost is rounds x cells x patches: keep a call fast */
+    pfb_setcall("%s(desc %dx%d, %d pyramids, lobes %d %d, masking %d, nt %d, np %d, train %d, rounds %d, level %d, texel (%lld, %lld))",
+                fn, w, h, d.pyramid_count, d.lobes[0], d.lobes[1], d.masking, d.nt, d.np, d.train_patches, d.rounds, level, tx, ty);
+    if (w >= 1 && h >= 1 && w <= 16 && h <= 16) {
+        hm = pfb_map((long long)w * h, 0);
+        nm = pfb_map(3LL * w * h, 1);
+        if (!hm || !nm) return;
+        pfb_fill(c, hm, (long long)w * h, 3);
+        pfb_fill(c, nm, 3LL * w * h, 2);
+        for (k = 0; k < 2; ++k) {
+            long long tc = pf_vmf_pyramid_texel_count(w, h);
+            int lk = d.lobes[k] >= 1 && d.lobes[k] <= 4 ? d.lobes[k] : 1;
+            if (tc <= 0) break;
+            pyr[k] = pfb_map(tc * 4 * lk, k);
+            if (!pyr[k] || pf_vmf_pyramid_from_normals(nm, NULL, w, h, lk, 2, pyr[k]) != PF_OK) return;
+        }
+    }
+    d.heights = nulls == 1 ? 0 : hm, d.w = w, d.h = h;
+    d.pyramid[0] = nulls == 2 ? 0 : pyr[0], d.pyramid[1] = pyr[1];
+    need = pf_vmf_scale_scratch_size(nulls == 3 ? 0 : &d, level);
+    if (which == 2) {
+        if (need < 0) pfb_fail(PFB_VALUE, "scratch size %lld", need);
+        return;
+    }
+    if (need <= 0) { /* a description the calls reject: any buffer, an error */
+        scratch = pfb_small();
+        rc = which == 0 ? pf_vmf_scale_fit_level(nulls == 3 ? 0 : &d, level, s_out, prior, 0, scratch, 16)
+                        : pf_vmf_scale_texel_t(nulls == 3 ? 0 : &d, level, tx, ty, s_in, prior, t, scratch, 16);
+        if (rc != PF_ERR_ARG && rc != PF_ERR_SIZE) pfb_fail(PFB_VALUE, "%s: rc %d for a rejected description", fn, rc);
+        return;
+    }
+    if (need > pfb_work_cap) return;
+    cells = pf_vmf_scale_cell_count(d.nt ? d.nt : 6, d.np ? d.np : 5);
+    scratch = pfb_map(need, PFC_R(pfc_next(c)) < 8);
+    if (!scratch) return;
+    if (pfb_t) pfb_t->run += 1;
+    rc = pf_vmf_scale_fit_level(&d, level, s_out, prior, 0, scratch, short_scratch ? need - 1 : need);
+    if (short_scratch) {
+        if (rc != PF_ERR_ARG) pfb_fail(PFB_VALUE, "%s: rc %d with a short scratch", fn, rc);
+        return;
+    }
+    if (rc != PF_OK) { /* non-finite heights in a patch, a bad texel, sigma, theta_max */
+        if (rc != PF_ERR_ARG) pfb_fail(PFB_VALUE, "%s: rc %d", fn, rc);
+        return;
+    }
+    for (k = 0; k < (d.pyramid_count ? d.pyramid_count : 1); ++k) {
+        if (!pfb_finite(prior[k])) pfb_fail(PFB_NONFINITE, "prior %d", k);
+        for (i = 0; i < cells; ++i)
+            if (!pfb_finite(S[k][i])) { pfb_fail(PFB_NONFINITE, "S[%d][%lld]", k, i); break; }
+    }
+    if (which == 1) {
+        rc = pf_vmf_scale_texel_t(&d, level, tx, ty, s_in, prior, t, scratch, need);
+        if (rc == PF_OK && (!pfb_finite(t[0]) || !pfb_finite(t[1]))) pfb_fail(PFB_NONFINITE, "T");
+        if (rc != PF_OK && rc != PF_ERR_ARG) pfb_fail(PFB_VALUE, "%s: rc %d", fn, rc);
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
 static const pfb_entry pfb_table[] = {
     { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
+    { "pf_floor_index", "core", pfb_d_floor_index, 0 },
     { "pf_mip_texel_count pf_mip_level_count pf_mip_level_offset pf_mip_level_size pf_depth_moment_channels", "map", pfb_w_layout, 0 },
     { "pf_mip_build", "map", pfb_d_mip_build, 0 },
     { "pf_mip_build_log", "map", pfb_d_mip_build, 1 },
     { "pf_slope_moments_map_from_heights", "map", pfb_d_slope, 0 },
     { "pf_slope_pyramid_from_heights", "map", pfb_d_slope, 1 },
+    { "pf_map_normals_from_heights", "map", pfb_d_slope, 2 },
     { "pf_depth_pyramid_from_depths", "map", pfb_d_pyramid_from, 0 },
     { "pf_scalar_pyramid_from_values", "map", pfb_d_pyramid_from, 1 },
     { "pf_normal_pyramid_from_normals", "map", pfb_d_pyramid_from, 2 },
@@ -2250,9 +2387,12 @@ static const pfb_entry pfb_table[] = {
     { "pf_map_downsample_slopes", "map", pfb_d_vmf_downsample, 0 },
     { "pf_map_downsample_scratch_size", "map", pfb_d_vmf_downsample, 1 },
     { "pf_vmf_effective_brdf", "vmf_fit", pfb_d_vmf_scale, 0 },
-    { "pf_vmf_scale_patch", "vmf_fit", pfb_d_vmf_scale, 1 },
+    { "pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_scale, 1 }, /* the per-patch samples it builds on */
+    { "pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_level, 0 },
+    { "pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_level, 1 },
+    { "pf_vmf_scale_scratch_size", "vmf_fit", pfb_d_vmf_level, 2 },
     { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_fit", pfb_d_vmf_scale, 2 },
-    { "pf_vmf_scale_factor pf_vmf_scale_t", "vmf_fit", pfb_d_vmf_scale, 3 },
+    { "pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
     { "pf_vmf_scale_lookup", "vmf_fit", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))

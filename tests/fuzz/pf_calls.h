@@ -668,6 +668,12 @@ static pf_real pfc_sigma(pfc_ctx *c)
 /* ---- core */
 static void pfc_f_pf_min(pfc_ctx *c) { pfc_out(c, pf_min(pfc_sym(c, 100), pfc_sym(c, 100))); }
 static void pfc_f_pf_max(pfc_ctx *c) { pfc_out(c, pf_max(pfc_sym(c, 100), pfc_sym(c, 100))); }
+static void pfc_f_pf_clamp_nan_lo(pfc_ctx *c)
+{
+    pf_real x = pfc_sym(c, 100), lo = pfc_sym(c, 8), hi = pfc_sym(c, 8);
+    if (lo > hi) { pf_real t = lo; lo = hi; hi = t; }
+    pfc_in(c, pf_clamp_nan_lo(x, lo, hi), lo, hi);
+}
 static void pfc_f_pf_clamp(pfc_ctx *c)
 {
     pf_real x = pfc_sym(c, 100), lo = pfc_sym(c, 8), hi = pfc_sym(c, 8);
@@ -723,6 +729,8 @@ static void pfc_f_pf_smith_nu_iso(pfc_ctx *c)
     pf_real ct = pfc_cos(c);
     pfc_in(c, pf_smith_nu_iso(ct, pfc_pos(c, 10)), PF_R(0.0), PF_NU_MAX);
 }
+static void pfc_f_pf_smith_k(pfc_ctx *c) { pfc_in(c, pf_smith_k(PF_R(2.0) * pfc_u01(c)), PF_R(0.0), PF_R(1.0)); }
+static void pfc_f_pf_smith_nu_over_g1(pfc_ctx *c) { pfc_ge0(c, pf_smith_nu_over_g1(pfc_nu(c))); }
 static void pfc_f_pf_lambda_beckmann(pfc_ctx *c) { pfc_in(c, pf_lambda_beckmann(pfc_nu(c)), PF_R(0.0), PF_LAMBDA_MAX); }
 static void pfc_f_pf_g1_beckmann(pfc_ctx *c) { pfc_01(c, pf_g1_beckmann(pfc_nu(c))); }
 static void pfc_f_pf_lambda_beckmann_walter(pfc_ctx *c) { pfc_in(c, pf_lambda_beckmann_walter(pfc_nu(c)), PF_R(0.0), PF_LAMBDA_MAX); }
@@ -805,6 +813,19 @@ static void pfc_f_pf_beckmann_p22(pfc_ctx *c)
 }
 static void pfc_f_pf_beckmann_d(pfc_ctx *c) { pf_vec3 m = pfc_dir_any(c); pfc_ge0(c, pf_beckmann_d(m, pfc_stats(c, 1))); }
 static void pfc_f_pf_beckmann_mesonormal(pfc_ctx *c) { pfc_unit_vec3(c, pf_beckmann_mesonormal(pfc_stats(c, 1))); }
+static void pfc_f_pf_beckmann_facing_area(pfc_ctx *c) { pf_vec3 w = pfc_dir_any(c); pfc_ge0(c, pf_beckmann_facing_area(w, pfc_stats(c, 1))); }
+static void pfc_f_pf_beckmann_light_lambda(pfc_ctx *c)
+{
+    pf_real nu = pfc_sym(c, 8), rs = pf_max(pfc_u01(c), PF_R(1.0e-6)), wz = pf_max(pfc_u01(c), PF_R(1.0e-6));
+    pfc_ge0(c, pf_beckmann_light_lambda(nu, rs, wz));
+}
+static void pfc_f_pf_beckmann_light_lambda_stats(pfc_ctx *c)
+{
+    pf_vec3 w = pfc_dir(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    if (!(w.z > PF_R(0.0))) w.z = PF_R(1.0e-6); /* the contract: a light above the macrosurface */
+    pfc_ge0(c, pf_beckmann_light_lambda_stats(w, s));
+}
 static void pfc_f_pf_beckmann_projected_area(pfc_ctx *c) { pf_vec3 w = pfc_dir(c); pfc_ge0(c, pf_beckmann_projected_area(w, pfc_stats(c, 1))); }
 static void pfc_f_pf_beckmann_lambda(pfc_ctx *c) { pf_vec3 w = pfc_dir_any(c); pfc_in(c, pf_beckmann_lambda(w, pfc_stats(c, 1)), PF_R(0.0), PF_LAMBDA_MAX); }
 static void pfc_f_pf_beckmann_g1(pfc_ctx *c) { pf_vec3 w = pfc_dir_any(c); pfc_01(c, pf_beckmann_g1(w, pfc_stats(c, 1))); }
@@ -1370,6 +1391,12 @@ static void pfc_out_sample(pfc_ctx *c, pf_gg_sample s)
     pfc_out(c, s.slope_x); pfc_out(c, s.slope_y); pfc_01(c, s.weight);
     pfc_unit_vec3(c, s.normal); pfc_ge0(c, s.proj); pfc_ge0(c, s.cell);
 }
+static void pfc_f_pf_gg_sample_nodes(pfc_ctx *c)
+{
+    pf_gg_grid g = pfc_grid(c);
+    pf_real pj = pfc_sym(c, 3), wj = pfc_u01(c), pk = pfc_sym(c, 3);
+    pfc_out_sample(c, pf_gg_sample_nodes(g, pj, wj, pk, pfc_u01(c)));
+}
 static void pfc_f_pf_gg_sample_at(pfc_ctx *c)
 {
     pf_gg_grid g = pfc_grid(c);
@@ -1934,6 +1961,7 @@ static const pfc_entry pfc_table[] = {
     /* core */
     PFC_E(core, pf_min, 0, "+-[0, 2^100]", "comparison; NaN in b returns b, NaN in a returns b"),
     PFC_E(core, pf_max, 0, "+-[0, 2^100]", "comparison; pf_max(NaN, 0) = 0 (used as a sanitizer)"),
+    PFC_E(core, pf_clamp_nan_lo, 0, "x +-[0, 2^100], lo <= hi", "in [lo, hi]; NaN x returns lo"),
     PFC_E(core, pf_clamp, 0, "x +-[0, 2^100], lo <= hi", "NaN x returns hi"),
     PFC_E(core, pf_saturate, 0, "+-[0, 2^100]", "range [0, 1]; NaN returns 1"),
     PFC_E(core, pf_sq, 0, "+-[0, 2^60]", "overflows past sqrt(PF_REAL_MAX)"),
@@ -1957,6 +1985,8 @@ static const pfc_entry pfc_table[] = {
     PFC_E(smith, pf_slope_along, 0, "any-length w (grazing, below, zero), stats", "normal incidence (r = 0): azimuth taken as the x axis; negative variance along w clamped to 0; statistics beyond PF_REAL_MAX/4 can overflow the exact mean or variance (not all finite)"),
     PFC_E(smith, pf_smith_nu, PFC_WIDE, "any-length w (grazing, below, zero), stats", "0 on/below the mesosurface; PF_NU_MAX at normal incidence or zero deviation along w"),
     PFC_E(smith, pf_smith_nu_iso, PFC_WIDE, "cos in [-1, 1] (grazing, 0, below), sigma >= 0", "0 for cos <= 0; PF_NU_MAX for sigma = 0 or cos = 1"),
+    PFC_E(smith, pf_smith_k, 0, "nu in [0, 2]", "K(nu) in (0, 1]"),
+    PFC_E(smith, pf_smith_nu_over_g1, 0, "nu as pf_g1_beckmann", ">= 1/(2 sqrt(pi))"),
     PFC_E(smith, pf_lambda_beckmann, PFC_WIDE, "every finite nu", "PF_LAMBDA_MAX (1e30) for nu <= 0 or tiny nu; 0 past nu = 10.5 (f) / 27.5 (d)"),
     PFC_E(smith, pf_g1_beckmann, PFC_WIDE, "every finite nu", "0 for nu <= 0 (and NaN); 1 past nu = 3.3 (f)"),
     PFC_E(smith, pf_lambda_beckmann_walter, PFC_WIDE, "every finite nu", "Walter rational: 3.1e-3 relative error in G1; clamped at 0 on [1.548, 1.6); PF_LAMBDA_MAX for nu <= 0"),
@@ -1985,6 +2015,9 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_beckmann_p22, PFC_WIDE, "slopes +-2^20, stats incl. singular and indefinite covariances", "variance floored at 1e-15 (f) / 1e-140 (d) and capped at 1e15 / 1e150, determinant at 4 eps vx vy: singular |r| = 1 gives a finite peak (<= 2.3e17 in f); exponent capped"),
     PFC_E(beckmann, pf_beckmann_d, 0, "any-length m (grazing, below), stats incl. singular", "0 for m.z <= 0; 1/cos^4 capped at 1e9; as p22 for singular covariance; m.z^2 must be finite (m.z < 1.8e19 (f)), so not all finite"),
     PFC_E(beckmann, pf_beckmann_mesonormal, PFC_WIDE, "stats domain", "normalized with the scaled pf_vec3_normalize: huge mean slopes stay unit"),
+    PFC_E(beckmann, pf_beckmann_facing_area, 0, "any-length w, stats incl. singular", ">= 0; max(A, 0) for zero deviation"),
+    PFC_E(beckmann, pf_beckmann_light_lambda, 0, "nu +-2^8, rs and wz in [1e-6, 1]", ">= 0"),
+    PFC_E(beckmann, pf_beckmann_light_lambda_stats, 0, "unit wi above the macrosurface, stats", ">= 0"),
     PFC_E(beckmann, pf_beckmann_projected_area, 0, "unit w (grazing, below), stats", "clamped at 0 on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_lambda, PFC_WIDE, "any-length w, stats", "PF_LAMBDA_MAX on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_g1, PFC_WIDE, "any-length w, stats", "0 on/below the mean plane"),
@@ -2116,6 +2149,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(gaussgrid, pf_gg_uniform_variance_any, PFC_SLOW, "n in [-2, 64], lambda [0, 16]", "0 for n <= 0"),
     PFC_E(gaussgrid, pf_gg_grid_make, 0, "unit wo (grazing, below), stats incl. singular/negative variance, any set, n in [-1, 12]", "negative variance read as 0, |r| clamped to 1; inv_proj = 0 at/below the macrosurface, 1/P_o (facing area) below the mesosurface"),
     PFC_E(gaussgrid, pf_gg_grid_count, 0, "grids as grid_make", "N^2 with N in [1, 9]"),
+    PFC_E(gaussgrid, pf_gg_sample_nodes, 0, "grids, nodes +-2^3, weights [0, 1]", "as pf_gg_sample_at"),
     PFC_E(gaussgrid, pf_gg_sample_at, 0, "grids, every int i", "index outside: weight 0"),
     PFC_E(gaussgrid, pf_gg_jacobian, 0, "unit wn, wo", "-"),
     PFC_E(gaussgrid, pf_gg_env_sample_at, 0, "grids, every int i", "reflected direction below the mesosurface: weight exactly 0; cos_d clamped to [0, 1]"),
