@@ -232,7 +232,7 @@ typedef float pf_real;
    one minss/maxss). pf_max(x, 0) with x NaN returns 0 (the comparison is false), a useful
    sanitizer: the library puts the value that may be NaN first. pf_clamp(NaN, lo, hi) is NaN.
    GLSL and CUDA: the native min/max/clamp, one instruction each where the comparison form
-   compiled to a compare and a select (issue 17). CUDA's fminf/fmaxf return the non-NaN
+   compiled to a compare and a select. CUDA's fminf/fmaxf return the non-NaN
    operand, so every pf_max(x, c) above stays a sanitizer there, and pf_clamp(NaN, lo, hi) is
    lo. GLSL leaves the operand returned for a NaN to the implementation (GLSL.std.450 FMin:
    one of the two), as it leaves NaN comparisons themselves; the hardware of the main vendors
@@ -327,7 +327,7 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
    fma(-a, 2^12, t)) computes the same values as separate operations. (Veltkamp's
    c - (c - a), c = 4097 a, is not: contracted to fma(4097, a, -a) it returns a itself, no
    split, and the error-free products downstream lose bits: pf_erfc reached 2.09 ulp with
-   -ffp-contract=fast -mfma, issue 17.) t = fl(a + s) = fl(4097 a) is Veltkamp's c, and
+   -ffp-contract=fast -mfma.) t = fl(a + s) = fl(4097 a) is Veltkamp's c, and
    t - s = a + (t - 4097 a) is exact, a multiple of 2^12 ulp(a). */
 PF_DEF pf_real pfi_split_hi(pf_real a)
 {
@@ -1061,7 +1061,7 @@ PF_DEF pf_real pf_g1_beckmann_fast(pf_real nu)
            n * PF_R(-0.07668278205)))) / (PF_R(1.133668816) + n * (PF_R(1.815881917) + n));
 }
 
-/* Lambda of the fast tier: relative accuracy at shader cost (issue 17), the Lambda analogue
+/* Lambda of the fast tier: relative accuracy at shader cost, the Lambda analogue
    of pf_erfc_fast. Lambda = exp(-nu^2) K(nu) / (2 sqrt(pi) nu) (see the exact path above),
    and K(nu) (nu + 2.5)^2 / (2 sqrt(pi)) is flat (0.5 .. 0.16), so with z = 1/(nu + 2.5)
        Lambda = exp(-nu^2) z^2 L(z) / nu,
@@ -1352,8 +1352,8 @@ PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real 
 PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
 { return pf_depth_moments2_make(z, z * z); }
 /* MSM texel: powers of the reversed depth u = 1 - z, (u, u^2, u^3, u^4): fp32 keeps them to
-   2^-24 relative near the far plane, where z-powers lose the differences MSM needs (issue 17;
-   pf_shadow.h's MSM section). */
+   2^-24 relative near the far plane, where z-powers lose the differences MSM needs
+   (pf_shadow.h's MSM section). */
 PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
 { pf_real u = PF_R(1.0) - z, u2 = u * u; return pf_depth_moments4_make(u, u2, u2 * u, u2 * u2); }
 /* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
@@ -1614,8 +1614,7 @@ PF_STRUCT_END(pf_esm_log_sum)
 
 PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
 { pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
-/* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
-   in the portability generator). */
+/* The empty sum: lmax = -PF_REAL_MAX and no weight (the first texel added sets lmax). */
 #define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
 
 /* The sum of one texel l of weight w > 0 (a start without the empty state). */
@@ -1708,7 +1707,7 @@ PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, con
         if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
     for (i = 0; i < n; ++i) {
         /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
-           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
+           which overflows for weights near PF_REAL_MAX */
         volatile pf_real wd = weights[i] / d;
         pf_real w = wd / wsum;
         if (!(weights[i] > PF_R(0.0))) continue;
@@ -1801,7 +1800,7 @@ PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *
    oracles, bench/bench_beckmann.c the timings)
      D, P22: relative error a few eps times the condition number (1 + q/2)(1 + 1/(1 - r^2) + ...)
      of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
-     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh; issue 17): pf_beckmann_d 31
+     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh): pf_beckmann_d 31
      ops, branch-free; the LEAN lobe as shipped, for a unit half vector and no guards: 27;
      pf_leadr_specular 116 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
      with the exact G1 of pf_smith.h, not Walter's 3e-3 rational. Every guard is a floor or a
@@ -1954,7 +1953,7 @@ PF_DEF pf_real pf_beckmann_p22(pf_real x, pf_real y, pf_slope_stats s0)
     return pfi_beckmann_gauss(q, det) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det);
 }
 
-/* Lean evaluation of D (issue 17: close to the LEAN lobe's cost, robustness kept). Floors
+/* Lean evaluation of D (close to the LEAN lobe's cost, robustness kept). Floors
    and caps, each applied once:
    - the variances clamped to [PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL] as in P22 (a
      determinant floor alone would keep det > 0 but flatten a degenerate axis: q/det along it
@@ -2081,14 +2080,14 @@ PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
     return front + sd * t;
 }
 
-/* Lambda of the LIGHT in the specular BRDFs (pfi_leadr_specular; pf_vmf.h), from nu_i =
+/* Lambda of the LIGHT in the specular BRDFs (pf_leadr_specular; pf_vmf.h), from nu_i =
    A_i / sqrt(2 var_i) (A_i the mean plane's projected area toward wi, eq. 1), rs_i =
    1 / sqrt(2 var_i) and wi.z:
        Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
        Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
    P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
    A_i counted as 0 (as A_o is for the view; pf_beckmann_facing_area).
-   Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
+   Why (our model): Smith's Lambda_i takes the footprint's mean
    plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
    flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
    macrosurface still reaches the facets that face it, and the brute force lights them
@@ -2097,9 +2096,8 @@ PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
    fraction is at least wi.z / P_i (Smith's G1 of the macrosurface's own plane). ABOVE the
    mean plane Smith's Lambda_i is kept exactly: it is exact for a footprint whose mean plane is
    real geometry (a single tilted facet, tests/test_microsurface.c's identity; LEADR's displaced
-   mesosurface), and a first version that capped it there too (min(Lambda_i, max(P_i, wi.z) /
-   wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
-   bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
+   mesosurface), which capping it there too (min(Lambda_i, max(P_i, wi.z) / wi.z - 1) for every
+   light) breaks (up to 14x at grazing lights). The price: the value jumps at A_i = 0, from Smith's 0
    just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
    max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pf_smith_nu_over_g1), d = nu_i
    above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
@@ -2145,10 +2143,10 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
    is pf_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
    (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
-   taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
+   taken as unbounded, shadows everything; bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
 
-   Projected area of the facets facing the view (the pic_plane fix, issue 15 item 6). Eq. 17
+   Projected area of the facets facing the view (bench/pictures.c's pic_plane). Eq. 17
    divides by the signed projected area A_o of the mean plane (eq. 1), and G = 0 when A_o <= 0:
    LEADR renders displaced geometry, where such a patch faces away and is backface-culled
    (sec. 4.3). On a flat macrosurface (normal or bump mapping) nothing else covers the pixel,
@@ -2525,7 +2523,7 @@ PF_DEF int pfi_gg_half_index(int n, int j)
    normal. n is clamped to [1, PF_GG_MAX_N]; j outside 0 .. n-1 (for the clamped n) gives 0;
    a node_set other than PF_GG_HERMITE and PF_GG_MATCHED reads as PF_GG_UNIFORM (so every int
    is a valid set: pf_gg_node, pf_gg_weight and the grid agree on it). The range is tested
-   before the table index is formed: j = -1 used to fold onto the table's other half (the
+   before the table index is formed, so j = -1 cannot fold onto the table's other half (the
    n = 4 node 0.5196 for j = -1, n = 3). */
 PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 {
@@ -4961,7 +4959,7 @@ PF_CPU_DEF int pf_map_downsample_slopes(const pf_map_downsample_desc *desc, pf_r
    with the per-texel horizon distribution p_x = delta(t - Theta_x) (eq. 25), visibility is
    linear in p_x, and the footprint's visible fraction is the HDF p_A = mean of p_x:
        V_A(e, phi) = integral_{-pi/2}^{e} p_A(t, phi) dt     (eq. 26)
-   Everything stored here is a linear moment of p_x, mip-mapped by pf_moments.h's pyramid:
+   Everything stored here is a linear moment of p_x, mip-mapped by pf_map.h's pyramid:
      PF_HORIZON_MOMENTS  per azimuth E[T], E[T^2] (T = Theta, radians; Fournier 1992, Tan et al.
                          2008) and E[S T], S the texel's slope along the azimuth (ours: the
                          correlation of horizon and facet that the masking term below needs);
@@ -5045,7 +5043,7 @@ PF_CPU_DEF int pf_map_downsample_slopes(const pf_map_downsample_desc *desc, pf_r
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
-     (columns) toward +y (rows), the frame of pf_moments.h's height maps; azimuth phi is the
+     (columns) toward +y (rows), the frame of pf_map.h's height maps; azimuth phi is the
      direction toward the viewer or light, w = (sin z cos phi, sin z sin phi, cos z).
      Elevations in radians, in (-pi/2, pi/2); a horizon below the tangent plane is negative
      (peaks), not clamped to 0: the Gaussian fit then sees the whole distribution.
@@ -5688,7 +5686,7 @@ PF_CPU_DEF int pf_horizon_map(const pf_real *heights, int w, int h, pf_real spac
     return PF_OK;
 }
 
-/* The whole pyramid (pf_moments.h layout): level 0 by pf_horizon_map, levels above by
+/* The whole pyramid (pf_map.h layout): level 0 by pf_horizon_map, levels above by
    pf_mip_build (the HDF moments and Legendre coefficients are linear, so the box mean of a
    level is the filtered HDF). pyr: pf_mip_texel_count(w, h) pf_horizon_channels(...) pf_reals.
    PF_HORIZON_ANGLES is accepted (a plain mip-mapped horizon, the wrong filter the survey warns
@@ -6265,7 +6263,7 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
    in z, so filtering the depths gives nothing useful; each method below stores a few
    functions of z per texel (moments, exponentials) that ARE linear in p_A, so that a mip
    pyramid, a bilinear/anisotropic sampler or a blur may average them, and then reconstructs
-   an estimate of U_A(d) from the averaged values. pf_moments.h builds and filters those
+   an estimate of U_A(d) from the averaged values. pf_moments.h and pf_map.h build and filter those
    values; this header evaluates them.
 
    CONVENTIONS
@@ -6312,7 +6310,7 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
    ACCURACY AND COST
      Measured against brute-force depth tests on synthetic depth maps (tests/test_shadow.c,
      bench/bench_shadow.c); the tables are in docs/shadow.md.
-     VSM, EVSM-2 and EVSM-4 cost what their textbook formulas cost (issue 17): SPIR-V ops
+     VSM, EVSM-2 and EVSM-4 cost what their textbook formulas cost: SPIR-V ops
      after spirv-opt -O 13 / 20 / 37 against 12 / 19 / 36 (bench/gpu/count.sh), no
      conditional branch; on a CPU (gcc -O2) 0.94-0.99x the textbook's instructions
      (bench_shadow vs_textbook_* families). The robustness above costs one op each: the
@@ -6376,7 +6374,7 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
 #define PF_SHADOW_BYTES_MSM 16
 
 /* ---------------------------------------------------------------- Chebyshev
-   One lean form serves VSM, EVSM and the any-scale bound (issue 17: the textbook formula's
+   One lean form serves VSM, EVSM and the any-scale bound (the textbook formula's
    cost, with the library's robustness), branch-free in every language (C -ffast-math builds
    excepted, below):
        ratio = var / (var + t^2),   t = max(x - mean, 0),   var in [PF_REAL_MIN, PF_REAL_MAX/4].
@@ -6578,7 +6576,7 @@ PF_DEF pf_real pf_shadow_evsm4(pf_evsm_moments m, pf_real d, pf_real c_pos, pf_r
    every intermediate is finite for every finite input (a large b4 only makes i33 small), and
    the square root's argument is >= 0 (C reads qb^2 - 4 qa as qb^2 + 4 |qa|, the same where
    it is used). No input gives inf or NaN in the result.
-   One square root, five divisions, no branch (issue 17: bench/gpu/count.sh 58 SPIR-V ops
+   One square root, five divisions, no branch (bench/gpu/count.sh: 58 SPIR-V ops
    against the textbook's 54; CPU: see docs/shadow.md). */
 #define PFI_MSM_D22_FLOOR PF_R(1.0e-9)
 #define PFI_MSM_D33_FLOOR PF_R(1.0e-12)
@@ -6683,7 +6681,7 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
     return pfi_shadow_msm_core(m, d, moment_bias, depth_bias).x;
 }
 
-/* ---------------------------------------------------------------- CSM (helper L, issue 16)
+/* ---------------------------------------------------------------- CSM
    Convolution shadow maps (Annen, Mertens, Bekaert, Seidel, Kautz 2007; B&N 2012 eqs. 36-37).
    The depth test H(x), x = z - d, is replaced by its Fourier series truncated to M terms.
    Extended to period 2 as the square wave that is 1 on (0, 1) and 0 on (-1, 0) (the
@@ -6693,7 +6691,7 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
    it separates into functions of the stored depth z and of the receiver (eq. 36):
        S_M(z - e) = 1/2 + sum_k (2 / c_k) [ E[sin(c_k z)] cos(c_k e) - E[cos(c_k z)] sin(c_k e) ]
    which is linear in the per-texel basis values (cos(c_k z), sin(c_k z)), so filtering them
-   filters the test (eq. 37). pf_moments.h stores them (pf_csm_pair, PF_DEPTH_CSM4/8/16).
+   filters the test (eq. 37). pf_moments.h stores them (pf_csm_pair; pf_map.h builds PF_DEPTH_CSM4/8/16 pyramids).
    Ringing: S_M overshoots by up to 9% (Gibbs) and has a ramp of slope 2M at the step, so a
    receiver at its occluder's depth reads 1/2. The evaluation therefore moves the receiver
    toward the light by `offset` (e = d - offset) and sharpens around 1/2 with `scale`:
@@ -7984,7 +7982,7 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
    still exact for a separable R. Cells or patches without energy get 1.
    REGULARIZATION: a patch whose highlight falls between the node directions, or a cell only
    the lobes' far tails reach (f_eff exactly 0 there), is decided by a few tiny samples:
-   unregularized, S had cells of exactly 0 at every level of the bench's maps and T ranged
+   unregularized, S has cells of exactly 0 at every level of the bench's maps and T ranges
    0.13-10.8 at 64-256 texels. So each T and S is the least-squares value with a prior toward
    1 of weight `shrink` times the mean energy sum (S f_lobes)^2 of a patch (for T) or
    sum (T f_lobes)^2 of a cell (for S): well-sampled values keep their fit, poor ones stay near

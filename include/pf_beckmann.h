@@ -40,7 +40,7 @@
    oracles, bench/bench_beckmann.c the timings)
      D, P22: relative error a few eps times the condition number (1 + q/2)(1 + 1/(1 - r^2) + ...)
      of the Gaussian (q/2 its exponent, r the correlation); the LEADR BRDF inherits it.
-     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh; issue 17): pf_beckmann_d 31
+     GPU cost (SPIR-V ops after spirv-opt -O, bench/gpu/count.sh): pf_beckmann_d 31
      ops, branch-free; the LEAN lobe as shipped, for a unit half vector and no guards: 27;
      pf_leadr_specular 116 ops (LEAN lobe x Walter G1(o) G1(i) x Schlick / (4 cos): 97),
      with the exact G1 of pf_smith.h, not Walter's 3e-3 rational. Every guard is a floor or a
@@ -193,7 +193,7 @@ PF_DEF pf_real pf_beckmann_p22(pf_real x, pf_real y, pf_slope_stats s0)
     return pfi_beckmann_gauss(q, det) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det);
 }
 
-/* Lean evaluation of D (issue 17: close to the LEAN lobe's cost, robustness kept). Floors
+/* Lean evaluation of D (close to the LEAN lobe's cost, robustness kept). Floors
    and caps, each applied once:
    - the variances clamped to [PFI_BECKMANN_VAR_FLOOR, PFI_BECKMANN_VAR_CEIL] as in P22 (a
      determinant floor alone would keep det > 0 but flatten a degenerate axis: q/det along it
@@ -320,14 +320,14 @@ PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
     return front + sd * t;
 }
 
-/* Lambda of the LIGHT in the specular BRDFs (pfi_leadr_specular; pf_vmf.h), from nu_i =
+/* Lambda of the LIGHT in the specular BRDFs (pf_leadr_specular; pf_vmf.h), from nu_i =
    A_i / sqrt(2 var_i) (A_i the mean plane's projected area toward wi, eq. 1), rs_i =
    1 / sqrt(2 var_i) and wi.z:
        Lambda_i' = Lambda_i (Smith)                          for a light above the mean plane,
        Lambda_i' = max(P_i(0), wi.z) / wi.z - 1               on or below it (A_i <= 0),
    P_i(0) = sqrt(var_i / (2 pi)) the projected area toward wi of the facets that face it, with
    A_i counted as 0 (as A_o is for the view; pf_beckmann_facing_area).
-   Why (issue 15, the pictures' target; our model): Smith's Lambda_i takes the footprint's mean
+   Why (our model): Smith's Lambda_i takes the footprint's mean
    plane as unbounded, so a light on or below it shadows everything and eq. 17 gave 0. On a
    flat macrosurface (normal or bump mapping) the footprint's tilt is local: a light above the
    macrosurface still reaches the facets that face it, and the brute force lights them
@@ -336,9 +336,8 @@ PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
    fraction is at least wi.z / P_i (Smith's G1 of the macrosurface's own plane). ABOVE the
    mean plane Smith's Lambda_i is kept exactly: it is exact for a footprint whose mean plane is
    real geometry (a single tilted facet, tests/test_microsurface.c's identity; LEADR's displaced
-   mesosurface), and a first version that capped it there too (min(Lambda_i, max(P_i, wi.z) /
-   wi.z - 1) for every light) broke that identity (up to 14x at grazing lights) and moved the
-   bench's errors by -0.007 .. +0.007. The price: the value jumps at A_i = 0, from Smith's 0
+   mesosurface), which capping it there too (min(Lambda_i, max(P_i, wi.z) / wi.z - 1) for every
+   light) breaks (up to 14x at grazing lights). The price: the value jumps at A_i = 0, from Smith's 0
    just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
    max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pf_smith_nu_over_g1), d = nu_i
    above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
@@ -384,10 +383,10 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    light above the macrosurface but on or below the mesosurface is not culled either: Lambda_i
    is pf_beckmann_light_lambda's, Smith's capped by the macrosurface's share of the light
    (Dupuy et al. 2013 after eq. 15 have Lambda_i = inf there: the footprint's mean plane,
-   taken as unbounded, shadows everything; issue 15, bench/pictures.c). Fresnel uses w_h . w_i =
+   taken as unbounded, shadows everything; bench/pictures.c). Fresnel uses w_h . w_i =
    sqrt((1 + w_o . w_i)/2) (no normalization of w_h needed); f0 = 1 turns it off.
 
-   Projected area of the facets facing the view (the pic_plane fix, issue 15 item 6). Eq. 17
+   Projected area of the facets facing the view (bench/pictures.c's pic_plane). Eq. 17
    divides by the signed projected area A_o of the mean plane (eq. 1), and G = 0 when A_o <= 0:
    LEADR renders displaced geometry, where such a patch faces away and is backface-culled
    (sec. 4.3). On a flat macrosurface (normal or bump mapping) nothing else covers the pixel,

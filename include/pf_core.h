@@ -195,7 +195,7 @@ typedef float pf_real;
    one minss/maxss). pf_max(x, 0) with x NaN returns 0 (the comparison is false), a useful
    sanitizer: the library puts the value that may be NaN first. pf_clamp(NaN, lo, hi) is NaN.
    GLSL and CUDA: the native min/max/clamp, one instruction each where the comparison form
-   compiled to a compare and a select (issue 17). CUDA's fminf/fmaxf return the non-NaN
+   compiled to a compare and a select. CUDA's fminf/fmaxf return the non-NaN
    operand, so every pf_max(x, c) above stays a sanitizer there, and pf_clamp(NaN, lo, hi) is
    lo. GLSL leaves the operand returned for a NaN to the implementation (GLSL.std.450 FMin:
    one of the two), as it leaves NaN comparisons themselves; the hardware of the main vendors
@@ -290,7 +290,7 @@ PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
    fma(-a, 2^12, t)) computes the same values as separate operations. (Veltkamp's
    c - (c - a), c = 4097 a, is not: contracted to fma(4097, a, -a) it returns a itself, no
    split, and the error-free products downstream lose bits: pf_erfc reached 2.09 ulp with
-   -ffp-contract=fast -mfma, issue 17.) t = fl(a + s) = fl(4097 a) is Veltkamp's c, and
+   -ffp-contract=fast -mfma.) t = fl(a + s) = fl(4097 a) is Veltkamp's c, and
    t - s = a + (t - 4097 a) is exact, a multiple of 2^12 ulp(a). */
 PF_DEF pf_real pfi_split_hi(pf_real a)
 {

@@ -285,7 +285,7 @@ PF_DEF int pfi_gg_half_index(int n, int j)
    normal. n is clamped to [1, PF_GG_MAX_N]; j outside 0 .. n-1 (for the clamped n) gives 0;
    a node_set other than PF_GG_HERMITE and PF_GG_MATCHED reads as PF_GG_UNIFORM (so every int
    is a valid set: pf_gg_node, pf_gg_weight and the grid agree on it). The range is tested
-   before the table index is formed: j = -1 used to fold onto the table's other half (the
+   before the table index is formed, so j = -1 cannot fold onto the table's other half (the
    n = 4 node 0.5196 for j = -1, n = 3). */
 PF_DEF pf_real pf_gg_node(int node_set, int n, int j)
 {

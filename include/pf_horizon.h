@@ -9,7 +9,7 @@
    with the per-texel horizon distribution p_x = delta(t - Theta_x) (eq. 25), visibility is
    linear in p_x, and the footprint's visible fraction is the HDF p_A = mean of p_x:
        V_A(e, phi) = integral_{-pi/2}^{e} p_A(t, phi) dt     (eq. 26)
-   Everything stored here is a linear moment of p_x, mip-mapped by pf_moments.h's pyramid:
+   Everything stored here is a linear moment of p_x, mip-mapped by pf_map.h's pyramid:
      PF_HORIZON_MOMENTS  per azimuth E[T], E[T^2] (T = Theta, radians; Fournier 1992, Tan et al.
                          2008) and E[S T], S the texel's slope along the azimuth (ours: the
                          correlation of horizon and facet that the masking term below needs);
@@ -93,7 +93,7 @@
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
-     (columns) toward +y (rows), the frame of pf_moments.h's height maps; azimuth phi is the
+     (columns) toward +y (rows), the frame of pf_map.h's height maps; azimuth phi is the
      direction toward the viewer or light, w = (sin z cos phi, sin z sin phi, cos z).
      Elevations in radians, in (-pi/2, pi/2); a horizon below the tangent plane is negative
      (peaks), not clamped to 0: the Gaussian fit then sees the whole distribution.
@@ -736,7 +736,7 @@ PF_CPU_DEF int pf_horizon_map(const pf_real *heights, int w, int h, pf_real spac
     return PF_OK;
 }
 
-/* The whole pyramid (pf_moments.h layout): level 0 by pf_horizon_map, levels above by
+/* The whole pyramid (pf_map.h layout): level 0 by pf_horizon_map, levels above by
    pf_mip_build (the HDF moments and Legendre coefficients are linear, so the box mean of a
    level is the filtered HDF). pyr: pf_mip_texel_count(w, h) pf_horizon_channels(...) pf_reals.
    PF_HORIZON_ANGLES is accepted (a plain mip-mapped horizon, the wrong filter the survey warns

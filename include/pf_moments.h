@@ -176,8 +176,8 @@ PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real 
 PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
 { return pf_depth_moments2_make(z, z * z); }
 /* MSM texel: powers of the reversed depth u = 1 - z, (u, u^2, u^3, u^4): fp32 keeps them to
-   2^-24 relative near the far plane, where z-powers lose the differences MSM needs (issue 17;
-   pf_shadow.h's MSM section). */
+   2^-24 relative near the far plane, where z-powers lose the differences MSM needs
+   (pf_shadow.h's MSM section). */
 PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
 { pf_real u = PF_R(1.0) - z, u2 = u * u; return pf_depth_moments4_make(u, u2, u2 * u, u2 * u2); }
 /* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
@@ -438,8 +438,7 @@ PF_STRUCT_END(pf_esm_log_sum)
 
 PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
 { pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
-/* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
-   in the portability generator). */
+/* The empty sum: lmax = -PF_REAL_MAX and no weight (the first texel added sets lmax). */
 #define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
 
 /* The sum of one texel l of weight w > 0 (a start without the empty state). */
@@ -532,7 +531,7 @@ PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, con
         if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
     for (i = 0; i < n; ++i) {
         /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
-           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
+           which overflows for weights near PF_REAL_MAX */
         volatile pf_real wd = weights[i] / d;
         pf_real w = wd / wsum;
         if (!(weights[i] > PF_R(0.0))) continue;

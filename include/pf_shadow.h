@@ -9,7 +9,7 @@
    in z, so filtering the depths gives nothing useful; each method below stores a few
    functions of z per texel (moments, exponentials) that ARE linear in p_A, so that a mip
    pyramid, a bilinear/anisotropic sampler or a blur may average them, and then reconstructs
-   an estimate of U_A(d) from the averaged values. pf_moments.h builds and filters those
+   an estimate of U_A(d) from the averaged values. pf_moments.h and pf_map.h build and filter those
    values; this header evaluates them.
 
    CONVENTIONS
@@ -56,7 +56,7 @@
    ACCURACY AND COST
      Measured against brute-force depth tests on synthetic depth maps (tests/test_shadow.c,
      bench/bench_shadow.c); the tables are in docs/shadow.md.
-     VSM, EVSM-2 and EVSM-4 cost what their textbook formulas cost (issue 17): SPIR-V ops
+     VSM, EVSM-2 and EVSM-4 cost what their textbook formulas cost: SPIR-V ops
      after spirv-opt -O 13 / 20 / 37 against 12 / 19 / 36 (bench/gpu/count.sh), no
      conditional branch; on a CPU (gcc -O2) 0.94-0.99x the textbook's instructions
      (bench_shadow vs_textbook_* families). The robustness above costs one op each: the
@@ -120,7 +120,7 @@
 #define PF_SHADOW_BYTES_MSM 16
 
 /* ---------------------------------------------------------------- Chebyshev
-   One lean form serves VSM, EVSM and the any-scale bound (issue 17: the textbook formula's
+   One lean form serves VSM, EVSM and the any-scale bound (the textbook formula's
    cost, with the library's robustness), branch-free in every language (C -ffast-math builds
    excepted, below):
        ratio = var / (var + t^2),   t = max(x - mean, 0),   var in [PF_REAL_MIN, PF_REAL_MAX/4].
@@ -322,7 +322,7 @@ PF_DEF pf_real pf_shadow_evsm4(pf_evsm_moments m, pf_real d, pf_real c_pos, pf_r
    every intermediate is finite for every finite input (a large b4 only makes i33 small), and
    the square root's argument is >= 0 (C reads qb^2 - 4 qa as qb^2 + 4 |qa|, the same where
    it is used). No input gives inf or NaN in the result.
-   One square root, five divisions, no branch (issue 17: bench/gpu/count.sh 58 SPIR-V ops
+   One square root, five divisions, no branch (bench/gpu/count.sh: 58 SPIR-V ops
    against the textbook's 54; CPU: see docs/shadow.md). */
 #define PFI_MSM_D22_FLOOR PF_R(1.0e-9)
 #define PFI_MSM_D33_FLOOR PF_R(1.0e-12)
@@ -427,7 +427,7 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
     return pfi_shadow_msm_core(m, d, moment_bias, depth_bias).x;
 }
 
-/* ---------------------------------------------------------------- CSM (helper L, issue 16)
+/* ---------------------------------------------------------------- CSM
    Convolution shadow maps (Annen, Mertens, Bekaert, Seidel, Kautz 2007; B&N 2012 eqs. 36-37).
    The depth test H(x), x = z - d, is replaced by its Fourier series truncated to M terms.
    Extended to period 2 as the square wave that is 1 on (0, 1) and 0 on (-1, 0) (the
@@ -437,7 +437,7 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
    it separates into functions of the stored depth z and of the receiver (eq. 36):
        S_M(z - e) = 1/2 + sum_k (2 / c_k) [ E[sin(c_k z)] cos(c_k e) - E[cos(c_k z)] sin(c_k e) ]
    which is linear in the per-texel basis values (cos(c_k z), sin(c_k z)), so filtering them
-   filters the test (eq. 37). pf_moments.h stores them (pf_csm_pair, PF_DEPTH_CSM4/8/16).
+   filters the test (eq. 37). pf_moments.h stores them (pf_csm_pair; pf_map.h builds PF_DEPTH_CSM4/8/16 pyramids).
    Ringing: S_M overshoots by up to 9% (Gibbs) and has a ramp of slope 2M at the step, so a
    receiver at its occluder's depth reads 1/2. The evaluation therefore moves the receiver
    toward the light by `offset` (e = d - offset) and sharpens around 1/2 with `scale`:

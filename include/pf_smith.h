@@ -341,7 +341,7 @@ PF_DEF pf_real pf_g1_beckmann_fast(pf_real nu)
            n * PF_R(-0.07668278205)))) / (PF_R(1.133668816) + n * (PF_R(1.815881917) + n));
 }
 
-/* Lambda of the fast tier: relative accuracy at shader cost (issue 17), the Lambda analogue
+/* Lambda of the fast tier: relative accuracy at shader cost, the Lambda analogue
    of pf_erfc_fast. Lambda = exp(-nu^2) K(nu) / (2 sqrt(pi) nu) (see the exact path above),
    and K(nu) (nu + 2.5)^2 / (2 sqrt(pi)) is flat (0.5 .. 0.16), so with z = 1/(nu + 2.5)
        Lambda = exp(-nu^2) z^2 L(z) / nu,

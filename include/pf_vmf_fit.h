@@ -324,7 +324,7 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
    still exact for a separable R. Cells or patches without energy get 1.
    REGULARIZATION: a patch whose highlight falls between the node directions, or a cell only
    the lobes' far tails reach (f_eff exactly 0 there), is decided by a few tiny samples:
-   unregularized, S had cells of exactly 0 at every level of the bench's maps and T ranged
+   unregularized, S has cells of exactly 0 at every level of the bench's maps and T ranges
    0.13-10.8 at 64-256 texels. So each T and S is the least-squares value with a prior toward
    1 of weight `shrink` times the mean energy sum (S f_lobes)^2 of a patch (for T) or
    sum (T f_lobes)^2 of a cell (for S): well-sampled values keep their fit, poor ones stay near

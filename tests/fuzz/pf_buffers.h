@@ -2290,7 +2290,7 @@ static void pfb_d_vmf_level(pfc_ctx *c, int which)
         pfb_fill(c, nm, 3LL * w * h, 2);
         for (k = 0; k < 2; ++k) {
             long long tc = pf_vmf_pyramid_texel_count(w, h);
-            int lk = d.lobes[k] >= 1 && d.lobes[k] <= 4 ? d.lobes[k] : 1;
+            int lk = d.lobes[k] >= 1 && d.lobes[k] <= PF_VMF_MAX_LOBES ? d.lobes[k] : 1; /* the size desc says */
             if (tc <= 0) break;
             pyr[k] = pfb_map(tc * 4 * lk, k);
             if (!pyr[k] || pf_vmf_pyramid_from_normals(nm, NULL, w, h, lk, 2, pyr[k]) != PF_OK) return;
