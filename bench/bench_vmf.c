@@ -244,9 +244,9 @@ static const pfb_family families[] = {
    `bench_vmf-float --scaling [size] [lobes] [masking] [nt] [np] [kind]` (defaults 256 4 1 6 5,
    every kind): on
    tests/pf_microsurface.h maps of `size`^2 texels cut into 64 x 64 patches (4096-texel
-   footprints), builds the scaling function of Wu et al. 2019 (pf_vmf_scale_patch on every
-   patch, pf_vmf_scale_factor: T per patch, S over nt x nt x np cells, theta_max 75 deg,
-   masking PF_VMF_SCALE_*) and prints per kind: the factorization's error on its own samples
+   footprints), builds the scaling function of Wu et al. 2019 (pfi_vmf_scale_patch on every
+   patch, pfi_vmf_scale_factor: T per patch, S over nt x nt x np cells, theta_max 75 deg,
+   masking PF_VMF_SCALE_*: 1 G_GAUSSIAN, 2 G_MIXTURE, 3 UNMASKED) and prints per kind: the factorization's error on its own samples
    (T S f_lobes against f_eff, and T S against R), then on 400 held-out direction pairs per
    patch (uniform in theta_o, theta_i <= 75 deg and both azimuths, seeded) the specular error
    against the brute-force effective BRDF (the in-footprint reference: pf_vmf_effective_brdf,
