@@ -2100,7 +2100,9 @@ PF_DEF pf_real pf_beckmann_facing_area(pf_vec3 w, pf_slope_stats s)
    light) breaks (up to 14x at grazing lights). The price: the value jumps at A_i = 0, from Smith's 0
    just above the plane to the facing facets' share just below. Form: 1 + Lambda_i' =
    max(r / d, 1), r = nu / G1(nu) at nu = max(nu_i, 1e-20) (pf_smith_nu_over_g1), d = nu_i
-   above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0. */
+   above the plane (1/G1), wi.z rs_i below (P_i(0) / wi.z). Finite for wi.z > 0, rs_i > 0 and
+   nu_i = 0 or |nu_i| >= 1e-20: as nu_i -> 0+ (a light grazing the mean plane) it grows as
+   0.28 / nu_i, +inf once that overflows (G = 0 in the BRDFs). */
 PF_DEF pf_real pf_beckmann_light_lambda(pf_real nu, pf_real rs, pf_real wz)
 {
     pf_real below = wz * rs; /* a plain variable: the select below compiles to a select, not a branch */

@@ -817,6 +817,7 @@ static void pfc_f_pf_beckmann_facing_area(pfc_ctx *c) { pf_vec3 w = pfc_dir_any(
 static void pfc_f_pf_beckmann_light_lambda(pfc_ctx *c)
 {
     pf_real nu = pfc_sym(c, 8), rs = pf_max(pfc_u01(c), PF_R(1.0e-6)), wz = pf_max(pfc_u01(c), PF_R(1.0e-6));
+    if (PF_FABS(nu) < PF_R(1.0e-20)) nu = PF_R(0.0); /* the domain: Lambda ~ 0.28 / nu as nu -> 0+ */
     pfc_ge0(c, pf_beckmann_light_lambda(nu, rs, wz));
 }
 static void pfc_f_pf_beckmann_light_lambda_stats(pfc_ctx *c)
@@ -2016,7 +2017,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_beckmann_d, 0, "any-length m (grazing, below), stats incl. singular", "0 for m.z <= 0; 1/cos^4 capped at 1e9; as p22 for singular covariance; m.z^2 must be finite (m.z < 1.8e19 (f)), so not all finite"),
     PFC_E(beckmann, pf_beckmann_mesonormal, PFC_WIDE, "stats domain", "normalized with the scaled pf_vec3_normalize: huge mean slopes stay unit"),
     PFC_E(beckmann, pf_beckmann_facing_area, 0, "any-length w, stats incl. singular", ">= 0; max(A, 0) for zero deviation"),
-    PFC_E(beckmann, pf_beckmann_light_lambda, 0, "nu +-2^8, rs and wz in [1e-6, 1]", ">= 0"),
+    PFC_E(beckmann, pf_beckmann_light_lambda, 0, "nu 0 or 1e-20 <= |nu| <= 2^8, rs and wz in [1e-6, 1]", ">= 0; grows as 0.28 / nu as nu -> 0+"),
     PFC_E(beckmann, pf_beckmann_light_lambda_stats, 0, "unit wi above the macrosurface, stats", ">= 0"),
     PFC_E(beckmann, pf_beckmann_projected_area, 0, "unit w (grazing, below), stats", "clamped at 0 on/below the mean plane"),
     PFC_E(beckmann, pf_beckmann_lambda, PFC_WIDE, "any-length w, stats", "PF_LAMBDA_MAX on/below the mean plane"),
