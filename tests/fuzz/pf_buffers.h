@@ -2387,12 +2387,12 @@ static const pfb_entry pfb_table[] = {
     { "pf_map_downsample_slopes", "map", pfb_d_vmf_downsample, 0 },
     { "pf_map_downsample_scratch_size", "map", pfb_d_vmf_downsample, 1 },
     { "pf_vmf_effective_brdf", "vmf_fit", pfb_d_vmf_scale, 0 },
-    { "pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_scale, 1 }, /* the per-patch samples it builds on */
+    { "pf_vmf_scale_sample_count pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_scale, 1 }, /* the per-patch samples it builds on */
     { "pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_level, 0 },
     { "pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_level, 1 },
     { "pf_vmf_scale_scratch_size", "vmf_fit", pfb_d_vmf_level, 2 },
     { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_fit", pfb_d_vmf_scale, 2 },
-    { "pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
+    { "pf_vmf_scale_cell_count pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
     { "pf_vmf_scale_lookup", "vmf_fit", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
