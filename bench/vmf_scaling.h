@@ -33,7 +33,7 @@
 
 /* the specular of texel (tx, ty) of a level of an m-lobe pyramid, its lobes alone (the slope
    form with base_var added, Smith G of the mixture's moments: pf_vmf_sum_specular) */
-static pf_real vs_texel_spec(const pf_real *pyr, int w, int h, int m, int level, long long tx, long long ty, pf_vec3 wo,
+static inline pf_real vs_texel_spec(const pf_real *pyr, int w, int h, int m, int level, long long tx, long long ty, pf_vec3 wo,
                              pf_vec3 wi, pf_real base_var, pf_real f0)
 {
     long long lw = (w >> level) > 1 ? (w >> level) : 1;
