@@ -2679,10 +2679,13 @@ int main(int argc, char **argv)
     } else {
         for (i = 0; i < NKIND; ++i) run_kinds[i] = kind_order[i];
         n_run_kinds = NKIND;
+        pfb_progress kinds = pfb_progress_start("microsurface: the corpus (kinds)", NKIND);
         for (kind = 0; kind < NKIND; ++kind) {
             run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
             fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
+            pfb_progress_update(&kinds, kind + 1);
         }
+        pfb_progress_end(&kinds);
         have_gauss = 1;
     }
     if (map_path) have_gauss = 1;
