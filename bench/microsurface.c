@@ -1336,6 +1336,20 @@ static void fp_item_run(void *ctx, long long it)
     free(box_m);
 }
 
+/* the full visibility maps of the kept kind's views (the cost section's kind), kept for the
+   cost section: its view is one of them (60 degrees, azimuth 10), not marched again */
+#define NVIEWDIR (NVIEW * 8)
+static unsigned char *kept_view_map[NVIEWDIR];
+static double kept_view_dir[NVIEWDIR][3];
+static void kept_views_free(void)
+{
+    int v;
+    for (v = 0; v < NVIEWDIR; ++v) {
+        free(kept_view_map[v]);
+        kept_view_map[v] = NULL;
+    }
+}
+
 static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *keep_maps)
 {
     pfm_surface surf;
@@ -1346,12 +1360,12 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     int si, vi, ai, li, p, v, t, r, nviews = 0;
     long long i, q, npos_all = 0;
     double (*lights)[3] = (double (*)[3])pfb_xcalloc((size_t)S->nlights, sizeof *lights);
-    view_dir views[NVIEW * 8];
+    view_dir views[NVIEWDIR];
     corpus_info *ci = &info[kind];
     pfb_rng rg = pfb_rng_make(0x6d6963726f000000ULL + (unsigned long long)kind);
     double t0 = pfb_now_ns();
     kind_job J;
-    long long pos_off[NVIEW * 8 * NSIZE + 1], used_off[NSIZE + 1];
+    long long pos_off[NVIEWDIR * NSIZE + 1], used_off[NSIZE + 1];
     int *pos;
     char label[200];
     const char *kn = kname(kind);
@@ -1505,7 +1519,12 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     for (r = 0; r < NREF; ++r) ci->mean_masking_60[r] = ci->mask_n ? ci->mask_sum[r] / (double)ci->mask_n : 0.0;
     ci->seconds = (pfb_now_ns() - t0) * 1e-9;
     for (li = 0; li < S->nlights; ++li) free(J.vis_l[li]);
-    for (v = 0; v < nviews; ++v) free(J.vis_v[v]);
+    for (v = 0; v < nviews; ++v)
+        if (keep) {
+            kept_view_map[v] = J.vis_v[v];
+            memcpy(kept_view_dir[v], views[v].wo, sizeof kept_view_dir[v]);
+        } else
+            free(J.vis_v[v]);
     for (i = 0; i < (long long)NSIZE * S->nlights; ++i) free(J.box_l[i]);
     free(J.vis_l);
     free(J.vis_v);
@@ -1558,6 +1577,7 @@ static int cost_find(const char *name)
 /* the cost section's full visibility maps (the view's, the lights'), in parallel */
 typedef struct cost_vis_job {
     const pfm_surface *surf;
+    int n;
     const double *dirs[1 + COST_LIGHTS];
     unsigned char *maps[1 + COST_LIGHTS];
 } cost_vis_job;
@@ -1604,17 +1624,24 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
     memset(sv_o, 0, npix);
     memset(sv_i, 0, npix);
     VJ.surf = surf;
-    VJ.dirs[0] = wo_d;
-    VJ.maps[0] = vis_o;
+    VJ.n = 0;
+    for (k = 0; k < NVIEWDIR; ++k) /* the view's map from the error run, when it marched it */
+        if (kept_view_map[k] && !memcmp(kept_view_dir[k], wo_d, sizeof wo_d)) break;
+    if (k < NVIEWDIR) {
+        memcpy(vis_o, kept_view_map[k], npix);
+    } else {
+        VJ.dirs[VJ.n] = wo_d;
+        VJ.maps[VJ.n++] = vis_o;
+    }
     for (li = 0; li < COST_LIGHTS; ++li) {
         double cz = cos(80.0 * DEG) + (1.0 - cos(80.0 * DEG)) * pfb_unif(&r);
         dir_from_angles(acos(cz), 2.0 * 3.14159265358979323846 * pfb_unif(&r), lights[li]);
         wil[li] = v3(lights[li]);
         vis_l[li] = (unsigned char *)pfb_xcalloc(npix, 1);
-        VJ.dirs[1 + li] = lights[li];
-        VJ.maps[1 + li] = vis_l[li];
+        VJ.dirs[VJ.n] = lights[li];
+        VJ.maps[VJ.n++] = vis_l[li];
     }
-    pfb_parallel_for(1 + COST_LIGHTS, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
+    pfb_parallel_for(VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
     /* the seeded footprints and lights of every size (drawn in the order of the timing loop) */
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si, g = W / n;
@@ -2699,6 +2726,7 @@ int main(int argc, char **argv)
         if (have_gauss && !no_cost) write_cost_csv(&S);
         if (have_gauss) {
             lib_maps_free(&gauss_maps);
+            kept_views_free();
             pfm_surface_free(&gauss_surf);
         }
         printf("microsurface: wrote %s/microsurface_errors.csv%s (%.1f s)\n", S.out,
@@ -2710,6 +2738,7 @@ int main(int argc, char **argv)
     if (map_path) write_md_map(&S, (pfb_now_ns() - t0) * 1e-9);
     else write_md(&S, (pfb_now_ns() - t0) * 1e-9);
     lib_maps_free(&gauss_maps);
+    kept_views_free();
     pfm_surface_free(&gauss_surf);
     pfm_surface_free(&map_surf);
     printf("microsurface: wrote %s/microsurface.md, microsurface_errors.csv, microsurface_cost.csv, %d charts (%.1f s)\n",
