@@ -36,7 +36,8 @@
    Full visibility maps (one per direction) are cached and shared by every footprint; the
    mirror light differs per footprint, so its visibility is marched for the footprint's texels
    only; the in-footprint maps are per footprint (only the texels the full map occludes are
-   re-marched: the box only removes occluders).
+   re-marched: the box only removes occluders), those toward the lights marched once per
+   footprint and shared by every view that shades it.
 
    TASKS AND METHODS (each method from the pyramids only: what a shader can fetch)
      masking   reference: the visible fraction of the footprint's front-facing projected
@@ -104,8 +105,9 @@
                mean-visibility factor of eq. 13), gauss_unmasked = the same filter with Lambda
                = 0 (Gaussian heights, no visibility), naive_mip = the mip-mapped a_t,
                mean_height = C(E[h]).
-   Every method is evaluated by eval_method (fetch + evaluation), the same code the cost
-   section times.
+   Each method is one row of the registry (`methods`, below: its tasks, name, evaluator, what a
+   shader fetches for it, oracle or not) and one evaluator function (fetch + evaluation), the
+   same code the cost section times; adding a method is a row and a function.
    ERROR. Per cell (kind, reference, task, method, footprint size, view angle) over its lights,
    azimuths and positions: rel_l2 = sqrt(sum_sq_err / sum_sq_ref), sum_sq_err = sum (f - ref)^2,
    sum_sq_ref = sum ref^2 (both in the CSV, so cells pool: sqrt(sum sum_sq_err / sum
@@ -123,6 +125,16 @@
    footprint's visibility toward view and light, full or in-footprint, then shade; the shading
    sum alone with cached visibility maps; the same in the library's float arithmetic), medians
    over repetitions.
+   EVERY CORE (bench/pf_parallel.h; PFB_THREADS=N threads, default every core): per kind, the
+   lobe fits (one item per lobe count) with the horizon pyramid, the scaling function's patches,
+   the full visibility maps, the in-footprint maps toward the lights and the footprints (runs of
+   about FP_ITEM_TEXELS texels) are parallel work items; random numbers are drawn before, in the
+   serial order, each item writes only its own outputs, and the reductions run in item order (the
+   serial loop's), so every CSV is the same for any thread count, bit for bit. The cost section's
+   timing loop runs alone on one thread, after every parallel step. Steps that run longer than
+   2 s print progress with an estimate of the time left on stderr. MICROSURFACE_CHECK=1 compares
+   the shortcuts (patches sampled in parallel, the n = 16 horizon pyramid read from the n = 32
+   one) with the serial calls they replace, bit for bit.
 
    OUTPUT (directory --out, default bench/out): microsurface_errors.csv, microsurface_cost.csv,
    microsurface.md (report fragment), microsurface_*.svg (gnuplot, bench/microsurface.gp; the
@@ -133,12 +145,13 @@
    --kinds gaussian,tiles) and writes only microsurface_errors.csv (plus microsurface_cost.csv
    when gaussian is among them and --no-cost is not given) and a summary of the specular task
    at 4096 texels on stdout: a cheap way to measure a change on the kinds it concerns. */
-#define _POSIX_C_SOURCE 199309L
+#include "pf_bench_base.h" /* first: _POSIX_C_SOURCE; the rng, the clock, checked allocation */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <math.h>
 #include <time.h>
+#include "pf_parallel.h"
 
 #include "pf_beckmann.h"
 #include "pf_moments.h"
@@ -156,7 +169,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define NMETH 17
+#define MAX_TASK_METHODS 24 /* methods of one task at most (the registry is checked against it) */
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
@@ -164,6 +177,7 @@
                           footprint's (wo.z) are skipped (near edge-on; see run_kind) */
 #define DEG (3.14159265358979323846 / 180.0)
 #define POOL_VIEW_HI 6 /* pooled view range of tables and size charts: 0 .. 75 degrees */
+#define FP_ITEM_TEXELS 4096 /* footprint texels per parallel work item (at least one footprint) */
 
 enum { T_MASK, T_SPEC, T_DIFF, T_RAMP, T_BANDS };
 enum { R_FULL, R_BOX };
@@ -178,8 +192,6 @@ static pfmap_options map_opt;
 static pfmap_stats map_stats;
 static const char *map_path = NULL;
 static const char *kname(int kind) { return kind == KIND_MAP ? "map" : pfm_kind_name(kind); }
-/* methods that read every texel (not shader methods: no cost row, not candidates) */
-static int is_oracle(int t, int k) { return (t == 1 || t == 2) && (k == 5 || k == 6); }
 
 static const double view_deg[NVIEW] = { 0, 15, 30, 45, 60, 70, 75, 80, 85 };
 static const char *task_name[NTASK] = { "masking", "specular", "diffuse", "colour_ramp", "colour_bands" };
@@ -187,19 +199,6 @@ static const char *task_title[NTASK] = { "Masking G1", "Specular (narrow Beckman
                                          "Diffuse (Lambertian base)",
                                          "Height-correlated colour, ramp map",
                                          "Height-correlated colour, banded map" };
-static const int task_nmeth[NTASK] = { 7, 17, 10, 4, 4 };
-static const char *meth_name[NTASK][NMETH] = {
-    { "smith_g1_exact", "smith_g1_fast", "smith_g1_walter", "no_masking", "horizon_masking_n16", "horizon_masking_n32",
-      "horizon_masking_lod_n32" },
-    { "leadr_joint", "leadr_masking", "lean", "toksvig", "naive_mip_normal", "oracle_histogram_smith",
-      "oracle_histogram_no_vis", "vmf_m1", "vmf_m2", "vmf_m4", "vmf_m8", "vmf_m4_mix_smith", "vmf_m8_mix_smith",
-      "vmf_m16", "vmf_m4_scaled", "vmf_m8_scaled", "vmf_m8_scaled_s" },
-    { "leadr_gg_matched3", "leadr_gg_matched5", "leadr_gg_hermite3", "lambert_mesonormal", "lambert_macro",
-      "oracle_histogram_smith", "oracle_histogram_no_vis", "leadr_gg_matched3_horizon_n32", "horizon_diffuse_n32",
-      "horizon_diffuse_lod_n32" },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height" },
-    { "height_visible", "gauss_unmasked", "naive_mip", "mean_height" },
-};
 
 /* ---------------------------------------------------------------- settings */
 typedef struct settings {
@@ -213,18 +212,6 @@ typedef struct settings {
     int charts;
 } settings;
 
-/* ---------------------------------------------------------------- rng (splitmix64) */
-typedef struct rng { unsigned long long s; } rng;
-static unsigned long long rng_next(rng *r)
-{
-    unsigned long long z = (r->s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-}
-static double rng_unif(rng *r) { return (double)(rng_next(r) >> 11) * (1.0 / 9007199254740992.0); }
-static int rng_int(rng *r, int n) { return (int)(rng_unif(r) * n) % n; }
-
 /* ---------------------------------------------------------------- small helpers */
 static pf_vec3 v3(const double w[3]) { return pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]); }
 static void dir_from_angles(double theta, double phi, double w[3])
@@ -233,25 +220,10 @@ static void dir_from_angles(double theta, double phi, double w[3])
     w[1] = sin(theta) * sin(phi);
     w[2] = cos(theta);
 }
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec * 1e9 + (double)t.tv_nsec;
-}
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : (x > y ? 1 : 0);
-}
-static void *xmalloc(size_t n)
-{
-    void *p = calloc(n ? n : 1, 1); /* zeroed: also keeps gcc's maybe-uninitialized quiet */
-    if (!p) {
-        fprintf(stderr, "microsurface: out of memory\n");
-        exit(1);
-    }
-    return p;
 }
 static int ilog2(int n)
 {
@@ -310,34 +282,27 @@ static pf_real cmap_filter(const cmap *m, pf_real mean, pf_real dev)
 
 /* ---------------------------------------------------------------- the library's view of a map */
 /* the multi-lobe specular methods (pf_vmf.h): m lobes per texel, fitted by EM from the finest
-   normals of each texel's footprint, VMF_ITER iterations at most */
+   normals of each texel's footprint, VMF_ITER iterations at most; one pyramid per lobe count */
 #define NVMF 5
 #define VMF_ITER 24
-#define K_VMF 7 /* first vmf_m* method of the specular task; then vmf_m4_mix_smith, vmf_m8_mix_smith, vmf_m16,
-                   vmf_m4_scaled, vmf_m8_scaled, vmf_m8_scaled_s */
-#define NVMF_METH 10
+enum { V1, V2, V4, V8, V16 }; /* the lobe pyramids, by index into vmf_lobes */
 static const int vmf_lobes[NVMF] = { 1, 2, 4, 8, 16 };
-/* per vmf method (k - K_VMF): its lobe pyramid (index into vmf_lobes), its masking (0: Smith G
-   of the mixture's moments, 1: the mixture's exact Smith) and its scaling function (-1: none;
-   else the index into scale_pyr, then whether T is applied (1) or S alone (0)) */
-static const int vmf_meth_pyr[NVMF_METH] = { 0, 1, 2, 3, 2, 3, 4, 2, 3, 3 };
-static const int vmf_meth_mix[NVMF_METH] = { 0, 0, 0, 0, 1, 1, 0, 0, 0, 0 };
-static const int vmf_meth_scale[NVMF_METH] = { -1, -1, -1, -1, -1, -1, -1, 0, 1, 1 };
-static const int vmf_meth_use_t[NVMF_METH] = { 0, 0, 0, 0, 0, 0, 0, 1, 1, 0 };
 /* The scaling function of Wu et al. 2019 (eqs. 12-14, sec. 6; pf_vmf.h "SCALING FUNCTION",
    docs/vmf.md) as methods vmf_m4_scaled, vmf_m8_scaled (T(x) S(wi, wo) times vmf_m4, vmf_m8)
    and vmf_m8_scaled_s (S alone, T = 1), built per kind at the footprint levels from
    sc_min_level to sc_max_level (4096 texels; see there why not below) as the paper builds them
    per map and level; at other levels these methods return the unscaled lobes:
      S per level and m (a 6 x 6 x 5 node table fitted over 16 patches of the level, with a
-       prior toward 1) and T per pyramid texel (the patch's own samples given S): built by
-       bench/vmf_scaling.h, which says how; the training patches' T when S is built, any
-       other's the first time its footprint is shaded, cached (every footprint of the error
-       run and the cost section's footprints, before the cost is timed).
+       prior toward 1) and T per pyramid texel (the patch's own samples given S), as
+       bench/vmf_scaling.h says (its vs_fit_level and vs_texel_t, with the patches sampled in
+       parallel here: scale_patches); the training patches' T when S is built, every other
+       texel's before the footprints that read it are shaded (scale_T_fill: the error run's
+       footprints, then the cost section's, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
    trilinear) and multiplies (pf_vmf_scale_apply). */
 #define NSCALE 2
-static const int scale_pyr[NSCALE] = { 2, 3 }; /* m = 4, 8 */
+static const int scale_pyr[NSCALE] = { V4, V8 };
+enum { SC4, SC8 }; /* the scaling functions, by index into scale_pyr */
 /* the levels the scaling function is built and applied at: 4096-texel footprints (level 6)
    only; at other levels the scaled methods return the unscaled lobes. Why: with the node
    direction set of pf_vmf_scale_patch, T and S are fitted from samples that often miss a
@@ -351,8 +316,7 @@ static int sc_min_level = NSIZE - 1, sc_max_level = NSIZE - 1;
    64 and 128 give the same errors to +-0.001 at n = 16) */
 #define NHOR 2
 #define HOR_STEPS 64
-#define K_HOR 4 /* first horizon method of the masking task */
-#define K_HOR_LOD (K_HOR + NHOR) /* horizon_masking_lod_n32 */
+enum { H16, H32 }; /* the horizon pyramids, by index into hor_n */
 /* the lod fade of pf_horizon_masking_lod: the horizon term whole up to level HOR_LOD_FULL
    (16 texels), Smith alone from HOR_LOD_SMITH (4096 texels) on (docs/horizon.md) */
 #define HOR_LOD_FULL 2.0
@@ -379,70 +343,290 @@ typedef struct lib_maps {
     double mean_h, sd_h;
 } lib_maps;
 
+static void fatal(const char *what)
+{
+    fprintf(stderr, "microsurface: %s\n", what);
+    exit(1);
+}
+/* MICROSURFACE_CHECK=1: the shortcuts of this file (the scaling function's patches sampled in
+   parallel, the n = 16 horizon pyramid taken from the n = 32 one) are compared bit for bit with
+   the serial calls they replace (vs_fit_level, vs_texel_t, pf_horizon_pyramid), which costs
+   their time again; a difference stops the run */
+static int check_on(void)
+{
+    const char *e = getenv("MICROSURFACE_CHECK");
+    return e && *e && strcmp(e, "0") != 0;
+}
+static void check_same(const void *a, const void *b, size_t bytes, const char *what)
+{
+    if (memcmp(a, b, bytes) != 0) {
+        fprintf(stderr, "microsurface: MICROSURFACE_CHECK: %s differs from the serial computation\n", what);
+        exit(1);
+    }
+    fprintf(stderr, "microsurface: MICROSURFACE_CHECK: %s is the serial computation's, bit for bit\n", what);
+}
+
 /* ---- the scaling function (see above; bench/vmf_scaling.h) */
-/* S per lobe count at the scaled levels, and the training patches' T; the T caches emptied */
-static void scale_build(lib_maps *L)
+/* The samples of patches (texels of `level`), as vs_patch_samples computes them: f_eff by
+   pf_vmf_scale_patch (the in-footprint effective BRDF at every pair of node directions) and,
+   per scaled lobe count, the texel's own lobes at the same pairs (vs_texel_spec); each work
+   item with its own scratch (vs_patch_samples' is static, so it cannot run on two threads). */
+typedef struct scale_job {
+    const lib_maps *L;
+    int level;
+    const long long *texels;  /* item i: texel texels[i] of the level (row-major) */
+    pf_real *f_eff;           /* item i: VS_SAMPLES values at i VS_SAMPLES */
+    pf_real *f_l[NSCALE];     /* the same per scaled lobe count */
+    pf_real *t_out;           /* NULL, or T per item and lobe count: t_out[i NSCALE + j] (S given) */
+} scale_job;
+
+static void scale_patch_item(void *ctx, long long i)
+{
+    const scale_job *J = (const scale_job *)ctx;
+    const lib_maps *L = J->L;
+    const int n = 1 << J->level, gw = L->w >> J->level;
+    const long long tx = J->texels[i] % gw, ty = J->texels[i] / gw;
+    const pf_real base_sigma = PF_R(BASE_SIGMA), f0 = PF_R(F0);
+    pf_real *nrm = (pf_real *)pfb_xcalloc((size_t)3 * n * n, sizeof(pf_real));
+    unsigned char *vis = (unsigned char *)pfb_xcalloc((size_t)pf_vmf_scale_vis_bytes(VS_NT, VS_NP, n), 1);
+    pf_real *junk = (pf_real *)pfb_xcalloc(VS_SAMPLES, sizeof(pf_real));
+    pf_real *fe = J->f_eff + i * VS_SAMPLES;
+    long s;
+    int j;
+    if (pf_vmf_scale_patch(L->heights, L->w, L->h, PF_R(1.0), (int)(tx * n), (int)(ty * n), n, 1, 0, base_sigma, f0,
+                           PF_VMF_SCALE_G_GAUSSIAN, VS_NT, VS_NP, (pf_real)VS_THETA_MAX, nrm, vis, fe, junk) != PF_OK)
+        fatal("the scaling function's patch samples failed");
+    for (s = 0; s < VS_SAMPLES; ++s) {
+        pf_vec3 wo, wi;
+        vs_sample_dirs(s, &wo, &wi);
+        for (j = 0; j < NSCALE; ++j)
+            J->f_l[j][i * VS_SAMPLES + s] = vs_texel_spec(L->vmf[scale_pyr[j]], L->w, L->h, vmf_lobes[scale_pyr[j]],
+                                                         J->level, tx, ty, wo, wi, base_sigma * base_sigma, f0);
+    }
+    if (J->t_out) /* both lobe counts from the same f_eff */
+        for (j = 0; j < NSCALE; ++j)
+            J->t_out[i * NSCALE + j] = pf_vmf_scale_t(fe, J->f_l[j] + i * VS_SAMPLES, VS_NT, VS_NP,
+                                                      L->sc_S[J->level][j], L->sc_prior[J->level][j]);
+    free(nrm);
+    free(vis);
+    free(junk);
+}
+
+/* the samples of `count` texels of `level` in parallel (t_out: also their T, S given) */
+static void scale_patches(const lib_maps *L, int level, const long long *texels, long long count, pf_real *f_eff,
+                          pf_real **f_l, pf_real *t_out, const char *label)
+{
+    scale_job J;
+    int j;
+    J.L = L;
+    J.level = level;
+    J.texels = texels;
+    J.f_eff = f_eff;
+    for (j = 0; j < NSCALE; ++j) J.f_l[j] = f_l[j];
+    J.t_out = t_out;
+    pfb_parallel_for(count, scale_patch_item, &J, label);
+}
+
+/* S and the prior per lobe count at the scaled levels, from VS_TRAIN evenly spaced patches of
+   the level, and the training patches' T (vs_fit_level's fit, on samples from scale_patches);
+   every other texel's T NaN (scale_T_fill computes them) */
+static void scale_build(lib_maps *L, const char *kind_name)
 {
     long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
-    const pf_real *pyrs[NSCALE];
-    int ms[NSCALE], si, j, np;
-    double t0 = now_ns();
+    int si, j, p, np;
+    double t0 = pfb_now_ns();
+    char label[160];
     for (j = 0; j < NSCALE; ++j) {
-        L->sc_T[j] = (pf_real *)xmalloc((size_t)tc * sizeof(pf_real));
+        L->sc_T[j] = (pf_real *)pfb_xcalloc((size_t)tc, sizeof(pf_real));
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
-        pyrs[j] = L->vmf[scale_pyr[j]];
-        ms[j] = vmf_lobes[scale_pyr[j]];
     }
     L->sc_patches = 0;
     for (si = sc_min_level; si <= sc_max_level; ++si) {
-        pf_real *tl[NSCALE];
-        for (j = 0; j < NSCALE; ++j) tl[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
-        np = vs_fit_level(L->heights, L->w, L->h, si, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, L->sc_S[si], L->sc_prior[si],
-                          tl);
-        if (np < 0) {
-            fprintf(stderr, "microsurface: the scaling function's fit failed\n");
-            exit(1);
+        const int gw = L->w >> si, gh = L->h >> si;
+        long long texels[VS_TRAIN];
+        pf_real *f_eff = (pf_real *)pfb_xcalloc((size_t)VS_TRAIN * VS_SAMPLES, sizeof(pf_real)), *f_l[NSCALE];
+        pf_real scratch[2 * VS_TRAIN * VS_CELLS], t[VS_TRAIN];
+        if (gw < 1 || gh < 1) fatal("the scaling function's fit failed");
+        np = gw * gh < VS_TRAIN ? gw * gh : VS_TRAIN;
+        for (p = 0; p < np; ++p) texels[p] = ((long long)p * gw * gh) / np;
+        for (j = 0; j < NSCALE; ++j) f_l[j] = (pf_real *)pfb_xcalloc((size_t)VS_TRAIN * VS_SAMPLES, sizeof(pf_real));
+        snprintf(label, sizeof label, "microsurface: %s: scaling function, %d training patches", kind_name, np);
+        scale_patches(L, si, texels, np, f_eff, f_l, NULL, label);
+        for (j = 0; j < NSCALE; ++j) {
+            pf_real *tl = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
+            if (pf_vmf_scale_factor(f_eff, f_l[j], np, VS_NT, VS_NP, VS_ALS, VS_SHRINK, t, L->sc_S[si][j], scratch,
+                                    &L->sc_prior[si][j], NULL) != PF_OK)
+                fatal("the scaling function's fit failed");
+            for (p = 0; p < np; ++p)
+                tl[texels[p]] = pf_vmf_scale_t(f_eff + (size_t)p * VS_SAMPLES, f_l[j] + (size_t)p * VS_SAMPLES, VS_NT, VS_NP,
+                                               L->sc_S[si][j], L->sc_prior[si][j]);
+            free(f_l[j]);
         }
+        free(f_eff);
         L->sc_patches += np;
+        if (check_on()) { /* vs_fit_level: the same fit, the patches sampled serially */
+            const pf_real *pyrs[NSCALE];
+            pf_real s2[NSCALE][VS_CELLS], prior2[NSCALE], *tl2[NSCALE];
+            int ms[NSCALE];
+            for (j = 0; j < NSCALE; ++j) {
+                pyrs[j] = L->vmf[scale_pyr[j]];
+                ms[j] = vmf_lobes[scale_pyr[j]];
+                tl2[j] = (pf_real *)pfb_xcalloc((size_t)gw * gh, sizeof(pf_real));
+            }
+            if (vs_fit_level(L->heights, L->w, L->h, si, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, s2, prior2, tl2) != np)
+                fatal("MICROSURFACE_CHECK: vs_fit_level failed");
+            check_same(s2, L->sc_S[si], sizeof s2, "the scaling function S");
+            check_same(prior2, L->sc_prior[si], sizeof prior2, "the scaling function's prior");
+            for (j = 0; j < NSCALE; ++j) {
+                pf_real *mine = (pf_real *)pfb_xcalloc((size_t)gw * gh, sizeof(pf_real));
+                for (p = 0; p < np; ++p) mine[texels[p]] = L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[p]];
+                check_same(tl2[j], mine, (size_t)gw * gh * sizeof(pf_real), "the training patches' T");
+                free(mine);
+                free(tl2[j]);
+            }
+        }
     }
-    L->sc_seconds = (now_ns() - t0) * 1e-9;
+    L->sc_seconds = (pfb_now_ns() - t0) * 1e-9;
     fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
             VS_NT, VS_NT, VS_NP, VS_TRAIN, L->sc_seconds);
 }
-/* T of the footprint's pyramid texel (level log2 n) for scaled lobe count j: cached */
-static pf_real scale_T(const lib_maps *Lc, int j, int x0, int y0, int n)
+
+/* the id of footprint (x0, y0, n)'s texel in the level-log2(n) T table */
+static long long scale_texel(const lib_maps *L, int x0, int y0, int n)
 {
-    lib_maps *L = (lib_maps *)Lc; /* the cache only */
-    long long id = pf_vmf_pyramid_level_offset(L->w, L->h, ilog2(n)) + (long long)(y0 / n) * (L->w / n) + x0 / n;
-    if (L->sc_T[j][id] != L->sc_T[j][id]) {
-        const pf_real *pyrs[NSCALE];
-        pf_real t[NSCALE];
-        int k, ms[NSCALE], si = ilog2(n);
-        double t0 = now_ns();
-        for (k = 0; k < NSCALE; ++k) {
-            pyrs[k] = L->vmf[scale_pyr[k]];
-            ms[k] = vmf_lobes[scale_pyr[k]];
-        }
-        if (vs_texel_t(L->heights, L->w, L->h, si, x0 / n, y0 / n, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, L->sc_S[si],
-                       L->sc_prior[si], t) != 0) {
-            fprintf(stderr, "microsurface: the scaling function's T failed\n");
-            exit(1);
-        }
-        for (k = 0; k < NSCALE; ++k) L->sc_T[k][id] = t[k]; /* both lobe counts from the same f_eff */
-        L->sc_patches++;
-        L->sc_seconds += (now_ns() - t0) * 1e-9;
-    }
-    return L->sc_T[j][id];
+    return pf_vmf_pyramid_level_offset(L->w, L->h, ilog2(n)) + (long long)(y0 / n) * (L->w / n) + x0 / n;
 }
 
-static void lib_maps_build(lib_maps *L, const pfm_surface *s)
+/* T of every footprint of the list (size n; x0[i], y0[i]) whose T is not computed yet, in
+   parallel; a no-op outside the scaled levels */
+static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long long count, const char *label)
+{
+    const int si = ilog2(n), gw = L->w / n;
+    long long i, m = 0, k;
+    long long *texels;
+    pf_real *f_eff, *f_l[NSCALE], *t;
+    char *seen;
+    int j;
+    double t0 = pfb_now_ns();
+    if (si < sc_min_level || si > sc_max_level || count <= 0) return;
+    texels = (long long *)pfb_xcalloc((size_t)count, sizeof *texels);
+    seen = (char *)pfb_xcalloc((size_t)gw * (size_t)(L->h / n), 1);
+    for (i = 0; i < count; ++i) {
+        long long c = (long long)(y0[i] / n) * gw + x0[i] / n;
+        if (seen[c] || L->sc_T[0][scale_texel(L, x0[i], y0[i], n)] == L->sc_T[0][scale_texel(L, x0[i], y0[i], n)])
+            continue; /* listed already, or computed (not NaN) */
+        seen[c] = 1;
+        texels[m++] = c;
+    }
+    if (m > 0) {
+        f_eff = (pf_real *)pfb_xcalloc((size_t)m * VS_SAMPLES, sizeof(pf_real));
+        for (j = 0; j < NSCALE; ++j) f_l[j] = (pf_real *)pfb_xcalloc((size_t)m * VS_SAMPLES, sizeof(pf_real));
+        t = (pf_real *)pfb_xcalloc((size_t)m * NSCALE, sizeof(pf_real));
+        scale_patches(L, si, texels, m, f_eff, f_l, t, label);
+        for (k = 0; k < m; ++k)
+            for (j = 0; j < NSCALE; ++j)
+                L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[k]] = t[k * NSCALE + j];
+        if (check_on()) { /* vs_texel_t on the first texel of the list */
+            const pf_real *pyrs[NSCALE];
+            pf_real t2[NSCALE];
+            int ms[NSCALE];
+            for (j = 0; j < NSCALE; ++j) {
+                pyrs[j] = L->vmf[scale_pyr[j]];
+                ms[j] = vmf_lobes[scale_pyr[j]];
+            }
+            if (vs_texel_t(L->heights, L->w, L->h, si, texels[0] % gw, texels[0] / gw, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs,
+                           ms, L->sc_S[si], L->sc_prior[si], t2) != 0)
+                fatal("MICROSURFACE_CHECK: vs_texel_t failed");
+            check_same(t2, t, sizeof t2, "a texel's T");
+        }
+        free(f_eff);
+        for (j = 0; j < NSCALE; ++j) free(f_l[j]);
+        free(t);
+        L->sc_patches += m;
+        L->sc_seconds += (pfb_now_ns() - t0) * 1e-9;
+    }
+    free(texels);
+    free(seen);
+}
+
+/* T of the footprint's pyramid texel (level log2 n) for scaled lobe count j: computed before
+   (scale_build, scale_T_fill), so that the evaluation only reads */
+static pf_real scale_T(const lib_maps *L, int j, int x0, int y0, int n)
+{
+    pf_real t = L->sc_T[j][scale_texel(L, x0, y0, n)];
+    if (t != t) fatal("internal: the scaling function's T of a shaded footprint was not computed first");
+    return t;
+}
+
+/* ---- the pyramids: the lobe fits (one per lobe count) and the horizon pyramid are the
+   costly ones, built in parallel (one work item each, the costliest first) */
+typedef struct maps_job {
+    lib_maps *L;
+    const pf_real *nr, *hr;
+    double texel;
+} maps_job;
+#define MAPS_ITEMS (NVMF + 1)
+static void maps_item(void *ctx, long long item)
+{
+    maps_job *J = (maps_job *)ctx;
+    lib_maps *L = J->L;
+    const int w = L->w, h = L->h;
+    const long long tc = pf_mip_texel_count(w, h);
+    double t0 = pfb_now_ns();
+    if (item == 1) { /* the n = 32 horizon pyramid (the n = 16 one is its even azimuths: lib_maps_build) */
+        int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
+        L->hor[H32] = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C, sizeof(pf_real));
+        if (pf_horizon_pyramid(J->hr, w, h, PF_R(J->texel), hor_n[H32], HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0,
+                               L->hor[H32]) != PF_OK)
+            fatal("pf_horizon_pyramid failed");
+        L->hor_seconds[H32] = (pfb_now_ns() - t0) * 1e-9;
+    } else { /* items 0, 2, 3, ...: lobe counts 16, 8, 4, 2, 1 */
+        int k = NVMF - 1 - (item == 0 ? 0 : (int)item - 1);
+        L->vmf[k] = (pf_real *)pfb_xcalloc((size_t)tc * 4 * (size_t)vmf_lobes[k], sizeof(pf_real));
+        if (pf_vmf_pyramid_from_normals(J->nr, NULL, w, h, vmf_lobes[k], VMF_ITER, L->vmf[k]) != PF_OK)
+            fatal("pf_vmf_pyramid_from_normals failed");
+        L->vmf_fit_seconds[k] = (pfb_now_ns() - t0) * 1e-9;
+    }
+}
+
+/* The n = 16 horizon pyramid from the n = 32 one: azimuth a of 16 is azimuth 2a of 32 (phi =
+   2 pi a / n is the same float for both: the factor 2 is exact), marched by the same code, and
+   pf_mip_build filters each channel alone, so its channels are those of pf_horizon_pyramid at
+   n = 16 bit for bit (MICROSURFACE_CHECK=1 builds both and compares) without marching
+   the same rays twice. */
+static void horizon_even_azimuths(lib_maps *L, const pf_real *hr, double texel)
+{
+    const long long tc = pf_mip_texel_count(L->w, L->h);
+    const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
+    const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
+    long long t;
+    int a, q;
+    double t0 = pfb_now_ns();
+    L->hor[H16] = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
+    for (t = 0; t < tc; ++t)
+        for (a = 0; a < hor_n[H16]; ++a)
+            for (q = 0; q < 3; ++q) L->hor[H16][t * C16 + 3 * a + q] = L->hor[H32][t * C32 + 3 * (2 * a) + q];
+    L->hor_seconds[H16] = (pfb_now_ns() - t0) * 1e-9;
+    if (check_on()) {
+        pf_real *ref = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
+        if (pf_horizon_pyramid(hr, L->w, L->h, PF_R(texel), hor_n[H16], HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0,
+                               ref) != PF_OK)
+            fatal("pf_horizon_pyramid failed");
+        check_same(ref, L->hor[H16], (size_t)tc * (size_t)C16 * sizeof(pf_real), "the n = 16 horizon pyramid");
+        free(ref);
+    }
+}
+
+static void lib_maps_build(lib_maps *L, const pfm_surface *s, const char *kind_name)
 {
     int w = s->w, h = s->h, k;
     long long n = (long long)w * h, t, tc = pf_mip_texel_count(w, h);
-    pf_real *hr = (pf_real *)xmalloc((size_t)n * sizeof *hr);
-    pf_real *nr = (pf_real *)xmalloc((size_t)n * 3 * sizeof *nr);
-    pf_real *ar = (pf_real *)xmalloc((size_t)n * sizeof *ar);
+    pf_real *hr = (pf_real *)pfb_xcalloc((size_t)n, sizeof *hr);
+    pf_real *nr = (pf_real *)pfb_xcalloc((size_t)n * 3, sizeof *nr);
+    pf_real *ar = (pf_real *)pfb_xcalloc((size_t)n, sizeof *ar);
     double sum = 0, sum2 = 0;
+    maps_job J;
+    char label[160];
     L->w = w;
     L->h = h;
     for (t = 0; t < n; ++t) sum += s->height[t];
@@ -450,7 +634,7 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
     for (t = 0; t < n; ++t) sum2 += (s->height[t] - L->mean_h) * (s->height[t] - L->mean_h);
     L->sd_h = sqrt(sum2 / (double)n);
     for (t = 0; t < n; ++t) hr[t] = (pf_real)(s->height[t] - L->mean_h);
-    L->slope = (pf_real *)xmalloc((size_t)tc * 5 * sizeof(pf_real));
+    L->slope = (pf_real *)pfb_xcalloc((size_t)tc * 5, sizeof(pf_real));
     pf_slope_pyramid_from_heights(hr, w, h, PF_R(s->texel), PF_R(s->texel), PF_R(1.0), PF_BORDER_WRAP,
                                   L->slope);
     /* unit micro-normals from the level-0 slopes (the same central differences) */
@@ -460,48 +644,35 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s)
         nr[3 * t + 1] = m.y;
         nr[3 * t + 2] = m.z;
     }
-    for (k = 0; k < NVMF; ++k) {
-        double t0 = now_ns();
-        L->vmf[k] = (pf_real *)xmalloc((size_t)tc * 4 * (size_t)vmf_lobes[k] * sizeof(pf_real));
-        if (pf_vmf_pyramid_from_normals(nr, NULL, w, h, vmf_lobes[k], VMF_ITER, L->vmf[k]) != PF_OK) {
-            fprintf(stderr, "microsurface: pf_vmf_pyramid_from_normals failed\n");
-            exit(1);
-        }
-        L->vmf_fit_seconds[k] = (now_ns() - t0) * 1e-9;
-    }
+    J.L = L;
+    J.nr = nr;
+    J.hr = hr;
+    J.texel = s->texel;
+    snprintf(label, sizeof label, "microsurface: %s: vMF lobe fits and horizon pyramid", kind_name);
+    pfb_parallel_for(MAPS_ITEMS, maps_item, &J, label);
+    horizon_even_azimuths(L, hr, s->texel);
     fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8, 16: %.2f %.2f %.2f %.2f %.2f s\n", w, h,
             L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3],
             L->vmf_fit_seconds[4]);
-    for (k = 0; k < NHOR; ++k) {
-        double t0 = now_ns();
-        int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
-        L->hor[k] = (pf_real *)xmalloc((size_t)tc * (size_t)C * sizeof(pf_real));
-        if (pf_horizon_pyramid(hr, w, h, PF_R(s->texel), hor_n[k], HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0,
-                               L->hor[k]) != PF_OK) {
-            fprintf(stderr, "microsurface: pf_horizon_pyramid failed\n");
-            exit(1);
-        }
-        L->hor_seconds[k] = (now_ns() - t0) * 1e-9;
-    }
-    fprintf(stderr, "microsurface: horizon pyramids %d x %d, n = %d, %d (march %d texels): %.2f %.2f s\n", w, h,
-            hor_n[0], hor_n[1], HOR_STEPS, L->hor_seconds[0], L->hor_seconds[1]);
-    L->normal = (pf_real *)xmalloc((size_t)tc * 3 * sizeof(pf_real));
+    fprintf(stderr, "microsurface: horizon pyramids %d x %d, n = %d (its even azimuths), %d (march %d texels): %.2f %.2f s\n",
+            w, h, hor_n[H16], hor_n[H32], HOR_STEPS, L->hor_seconds[H16], L->hor_seconds[H32]);
+    L->normal = (pf_real *)pfb_xcalloc((size_t)tc * 3, sizeof(pf_real));
     pf_normal_pyramid_from_normals(nr, w, h, L->normal);
-    L->height = (pf_real *)xmalloc((size_t)tc * 2 * sizeof(pf_real));
+    L->height = (pf_real *)pfb_xcalloc((size_t)tc * 2, sizeof(pf_real));
     pf_scalar_pyramid_from_values(hr, w, h, L->height);
     L->cm[0] = cmap_make(ramp_z, ramp_c, 2, L->sd_h);
     L->cm[1] = cmap_make(bands_z, bands_c, 6, L->sd_h);
     for (k = 0; k < 2; ++k) {
-        L->attr_d[k] = (double *)xmalloc((size_t)n * sizeof(double));
+        L->attr_d[k] = (double *)pfb_xcalloc((size_t)n, sizeof(double));
         for (t = 0; t < n; ++t) {
             L->attr_d[k][t] = cmap_eval(&L->cm[k], s->height[t] - L->mean_h);
             ar[t] = (pf_real)L->attr_d[k][t];
         }
-        L->attr[k] = (pf_real *)xmalloc((size_t)tc * 2 * sizeof(pf_real));
+        L->attr[k] = (pf_real *)pfb_xcalloc((size_t)tc * 2, sizeof(pf_real));
         pf_scalar_pyramid_from_values(ar, w, h, L->attr[k]);
     }
     L->heights = hr;
-    scale_build(L);
+    scale_build(L, kind_name);
     free(nr);
     free(ar);
 }
@@ -586,8 +757,36 @@ static pf_real horizon_area(const lib_maps *L, int i, int x0, int y0, int n, pf_
 /* ---------------------------------------------------------------- one method = fetch + evaluation
    What a shader does for a footprint: fetch one texel of level log2(n) of the pyramids the
    method needs (a bilinear sample at its centre reads exactly that texel), then evaluate.
-   The error runs and the cost section both call this, so the timed code is the measured one.
-   Colour tasks: T_RAMP uses the ramp map, T_BANDS the banded one. */
+   The error runs and the cost section both call a method's evaluator, so the timed code is the
+   measured one. */
+/* what a method sees: the maps, the task (the colour tasks: T_RAMP shades with the ramp map,
+   T_BANDS with the banded one), the footprint (texel (x0/n, y0/n) of level log2 n), the view and
+   the light; oracles also the reference shading with every texel visible (NULL in the cost
+   section, which times shader methods only) */
+typedef struct mctx {
+    const lib_maps *L;
+    int task, x0, y0, n;
+    pf_vec3 wo, wi;
+    const pfm_shade *novis;
+} mctx;
+static pf_real ctx_lod(const mctx *c) { return PF_R(ilog2(c->n)); }
+static pf_real ctx_u(const mctx *c) { return (PF_R(c->x0 / c->n) + PF_R(0.5)) / PF_R(c->L->w / c->n); }
+static pf_real ctx_v(const mctx *c) { return (PF_R(c->y0 / c->n) + PF_R(0.5)) / PF_R(c->L->h / c->n); }
+/* the footprint's slope statistics (one texel of the 5-moment pyramid) with base_var added */
+static pf_slope_stats fetch_slope(const mctx *c, pf_real base_var)
+{
+    const lib_maps *L = c->L;
+    return pf_slope_moments_stats(pf_slope_moments_sample(L->slope, L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP),
+                                  base_var);
+}
+static pf_slope_stats fetch_slope_spec(const mctx *c) { return fetch_slope(c, PF_R(BASE_SIGMA * BASE_SIGMA)); }
+/* the footprint's (E[h], E[h^2]) texel and the task's colour map */
+static pf_scalar_moments fetch_height(const mctx *c)
+{
+    return pf_scalar_moments_sample(c->L->height, c->L->w, c->L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP);
+}
+static const cmap *task_cmap(const mctx *c) { return &c->L->cm[c->task == T_BANDS]; }
+
 /* the lobes of texel (x0/n, y0/n) of level log2(n) of vMF pyramid p: m RGBA fetches, shaded
    with Smith G of the mixture's moments (mix = 0) or the mixture's exact Smith (mix = 1) */
 static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix)
@@ -607,78 +806,238 @@ static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, p
     return pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0));
 }
 
-static pf_real eval_method(const lib_maps *L, int t, int k, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi)
+
+/* vMF lobe pyramid p (mix: the mixture's exact Smith), times the scaling function sc (-1: none;
+   use_t: T S, else S alone) at the scaled levels; the unscaled lobes elsewhere (sc_min_level) */
+static double vmf_method(const mctx *c, int p, int mix, int sc, int use_t)
 {
-    const int W = L->w, H = L->h, c = t == T_BANDS;
-    const pf_real lod = PF_R(ilog2(n));
-    const pf_real u = (PF_R(x0 / n) + PF_R(0.5)) / PF_R(W / n), v = (PF_R(y0 / n) + PF_R(0.5)) / PF_R(H / n);
-    pf_slope_moments m;
-    pf_slope_stats s0;
-    pf_scalar_moments hm;
-    if (t == T_MASK) {
-        pf_real nu;
-        if (k == 3) return PF_R(1.0); /* no masking: nothing to fetch */
-        m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
-        s0 = pf_slope_moments_stats(m, PF_R(0.0));
-        if (k == 0) return pf_beckmann_g1(wo, s0);
-        if (k == K_HOR_LOD)
-            return pf_horizon_masking_lod(wo, horizon_hdf(L, 1, x0, y0, n, wo), s0, lod, PF_R(HOR_LOD_FULL),
-                                          PF_R(HOR_LOD_SMITH));
-        if (k >= K_HOR) return pf_horizon_masking(wo, horizon_hdf(L, k - K_HOR, x0, y0, n, wo), s0);
-        nu = pf_smith_nu(wo, s0);
-        return k == 1 ? pf_g1_beckmann_fast(nu) : pf_g1_beckmann_walter(nu);
-    }
-    if (t == T_SPEC) {
-        if (k >= K_VMF) {
-            const int q = k - K_VMF, sc = vmf_meth_scale[q];
-            pf_real f = vmf_texel_spec(L, vmf_meth_pyr[q], x0, y0, n, wo, wi, vmf_meth_mix[q]);
-            if (sc < 0 || ilog2(n) < sc_min_level || ilog2(n) > sc_max_level) return f; /* see sc_min_level */
-            /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
-            return pf_vmf_scale_apply(vmf_meth_use_t[q] ? scale_T(L, sc, x0, y0, n) : PF_R(1.0),
-                                      pf_vmf_scale_lookup(L->sc_S[ilog2(n)][sc], VS_NT, VS_NP, (pf_real)VS_THETA_MAX, wo, wi),
+    const lib_maps *L = c->L;
+    const int lev = ilog2(c->n);
+    pf_real f = vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix);
+    if (sc < 0 || lev < sc_min_level || lev > sc_max_level) return (double)f;
+    /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
+    return (double)pf_vmf_scale_apply(use_t ? scale_T(L, sc, c->x0, c->y0, c->n) : PF_R(1.0),
+                                      pf_vmf_scale_lookup(L->sc_S[lev][sc], VS_NT, VS_NP, (pf_real)VS_THETA_MAX, c->wo, c->wi),
                                       f);
-        }
-        if (k == 3 || k == 4) /* Toksvig, naive: the average-normal pyramid */
-            return toksvig_spec(pf_normal_avg_sample(L->normal, W, H, lod, u, v, PF_BORDER_WRAP), wo, wi, k == 3);
-        m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
-        s0 = pf_slope_moments_stats(m, PF_R(BASE_SIGMA * BASE_SIGMA));
-        if (k == 0) return pf_leadr_specular(wo, wi, s0, PF_R(F0));
-        if (k == 1) return pf_leadr_specular_masking(wo, wi, s0, PF_R(F0));
-        return lean_lobe(wo, wi, s0);
+}
+/* the HDF moments of horizon pyramid i toward w at the footprint's texel */
+static pf_hdf_moments ctx_hdf(const mctx *c, int i, pf_vec3 w) { return horizon_hdf(c->L, i, c->x0, c->y0, c->n, w); }
+
+/* ---- the evaluators, one per method (the registry below says what each one is) */
+/* masking */
+static double m_smith_g1_exact(const mctx *c) { return (double)pf_beckmann_g1(c->wo, fetch_slope(c, PF_R(0.0))); }
+static double m_smith_g1_fast(const mctx *c)
+{
+    return (double)pf_g1_beckmann_fast(pf_smith_nu(c->wo, fetch_slope(c, PF_R(0.0))));
+}
+static double m_smith_g1_walter(const mctx *c)
+{
+    return (double)pf_g1_beckmann_walter(pf_smith_nu(c->wo, fetch_slope(c, PF_R(0.0))));
+}
+static double m_no_masking(const mctx *c)
+{
+    (void)c;
+    return 1.0;
+}
+static double m_horizon_masking_n16(const mctx *c)
+{
+    return (double)pf_horizon_masking(c->wo, ctx_hdf(c, H16, c->wo), fetch_slope(c, PF_R(0.0)));
+}
+static double m_horizon_masking_n32(const mctx *c)
+{
+    return (double)pf_horizon_masking(c->wo, ctx_hdf(c, H32, c->wo), fetch_slope(c, PF_R(0.0)));
+}
+static double m_horizon_masking_lod_n32(const mctx *c)
+{
+    return (double)pf_horizon_masking_lod(c->wo, ctx_hdf(c, H32, c->wo), fetch_slope(c, PF_R(0.0)), ctx_lod(c),
+                                          PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+}
+/* specular */
+static double m_leadr_joint(const mctx *c) { return (double)pf_leadr_specular(c->wo, c->wi, fetch_slope_spec(c), PF_R(F0)); }
+static double m_leadr_masking(const mctx *c)
+{
+    return (double)pf_leadr_specular_masking(c->wo, c->wi, fetch_slope_spec(c), PF_R(F0));
+}
+static double m_lean(const mctx *c) { return (double)lean_lobe(c->wo, c->wi, fetch_slope_spec(c)); }
+static pf_vec3 fetch_normal(const mctx *c)
+{
+    return pf_normal_avg_sample(c->L->normal, c->L->w, c->L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP);
+}
+static double m_toksvig(const mctx *c) { return (double)toksvig_spec(fetch_normal(c), c->wo, c->wi, 1); }
+static double m_naive_mip_normal(const mctx *c) { return (double)toksvig_spec(fetch_normal(c), c->wo, c->wi, 0); }
+static double m_vmf_m1(const mctx *c) { return vmf_method(c, V1, 0, -1, 0); }
+static double m_vmf_m2(const mctx *c) { return vmf_method(c, V2, 0, -1, 0); }
+static double m_vmf_m4(const mctx *c) { return vmf_method(c, V4, 0, -1, 0); }
+static double m_vmf_m8(const mctx *c) { return vmf_method(c, V8, 0, -1, 0); }
+static double m_vmf_m4_mix_smith(const mctx *c) { return vmf_method(c, V4, 1, -1, 0); }
+static double m_vmf_m8_mix_smith(const mctx *c) { return vmf_method(c, V8, 1, -1, 0); }
+static double m_vmf_m16(const mctx *c) { return vmf_method(c, V16, 0, -1, 0); }
+static double m_vmf_m4_scaled(const mctx *c) { return vmf_method(c, V4, 0, SC4, 1); }
+static double m_vmf_m8_scaled(const mctx *c) { return vmf_method(c, V8, 0, SC8, 1); }
+static double m_vmf_m8_scaled_s(const mctx *c) { return vmf_method(c, V8, 0, SC8, 0); }
+/* diffuse */
+static double gg_diffuse(const mctx *c, int nodes, int n)
+{
+    return (double)pf_gg_diffuse_directional(pf_gg_grid_make(c->wo, fetch_slope(c, PF_R(0.0)), nodes, n), c->wi);
+}
+static double m_leadr_gg_matched3(const mctx *c) { return gg_diffuse(c, PF_GG_MATCHED, 3); }
+static double m_leadr_gg_matched5(const mctx *c) { return gg_diffuse(c, PF_GG_MATCHED, 5); }
+static double m_leadr_gg_hermite3(const mctx *c) { return gg_diffuse(c, PF_GG_HERMITE, 3); }
+static double m_lambert_mesonormal(const mctx *c)
+{
+    return (double)(pf_max(pf_vec3_dot(pf_beckmann_mesonormal(fetch_slope(c, PF_R(0.0))), c->wi), PF_R(0.0)) * PF_INV_PI);
+}
+static double m_lambert_macro(const mctx *c) { return (double)(pf_max(c->wi.z, PF_R(0.0)) * PF_INV_PI); }
+/* ours, not from the module: LEADR's grid times the horizon's visible-area ratios toward the
+   view (as in pf_horizon_masking) and the light (capped at 1) */
+static double m_leadr_gg_matched3_horizon_n32(const mctx *c)
+{
+    pf_slope_stats s0 = fetch_slope(c, PF_R(0.0));
+    return (double)(pf_gg_diffuse_directional(pf_gg_grid_make(c->wo, s0, PF_GG_MATCHED, 3), c->wi) *
+                    horizon_area(c->L, H32, c->x0, c->y0, c->n, c->wo, s0) *
+                    pf_saturate(horizon_area(c->L, H32, c->x0, c->y0, c->n, c->wi, s0)));
+}
+/* pf_horizon.h: the matched grid with the HDF's visibility per facet */
+static double m_horizon_diffuse_n32(const mctx *c)
+{
+    pf_gg_grid g = pf_gg_grid_make(c->wo, fetch_slope(c, PF_R(0.0)), PF_GG_MATCHED, 3);
+    return (double)pf_horizon_diffuse_directional(g, c->wi, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi));
+}
+static double m_horizon_diffuse_lod_n32(const mctx *c)
+{
+    pf_gg_grid g = pf_gg_grid_make(c->wo, fetch_slope(c, PF_R(0.0)), PF_GG_MATCHED, 3);
+    return (double)pf_horizon_diffuse_lod(g, c->wi, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), ctx_lod(c),
+                                          PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+}
+/* oracles (specular and diffuse): the reference with every texel visible, alone or times the
+   footprint's Smith 1/(1 + Lambda_o + Lambda_i) */
+static double novis_value(const mctx *c) { return c->task == T_SPEC ? c->novis->spec : c->novis->diffuse; }
+static double m_oracle_histogram_no_vis(const mctx *c) { return novis_value(c); }
+static double m_oracle_histogram_smith(const mctx *c)
+{
+    return novis_value(c) * (double)pf_beckmann_masking_shadowing(c->wo, c->wi, fetch_slope(c, PF_R(0.0)));
+}
+/* colour (either map: task_cmap) */
+static double m_height_visible(const mctx *c)
+{
+    pf_slope_stats s0 = fetch_slope(c, PF_R(0.0));
+    return (double)colour_visible(task_cmap(c), fetch_height(c), pf_beckmann_lambda(c->wo, s0), pf_beckmann_lambda(c->wi, s0));
+}
+static double m_gauss_unmasked(const mctx *c) { return (double)colour_visible(task_cmap(c), fetch_height(c), PF_R(0.0), PF_R(0.0)); }
+static double m_naive_mip(const mctx *c)
+{
+    const lib_maps *L = c->L;
+    return (double)pf_scalar_moments_mean(
+        pf_scalar_moments_sample(L->attr[c->task == T_BANDS], L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP));
+}
+static double m_mean_height(const mctx *c)
+{
+    return (double)cmap_filter(task_cmap(c), pf_scalar_moments_mean(fetch_height(c)), PF_R(0.0));
+}
+
+/* ---------------------------------------------------------------- the method registry
+   One row per method: the tasks it answers (a bit per task; the colour methods answer both
+   colour maps), its name (CSV, tables, charts), its evaluator, what a shader fetches for it (one
+   texel of level log2 n of each pyramid named; "" nothing), and whether it is an oracle (it reads
+   every texel of the footprint: not a shader method, so no cost row and never a candidate for
+   "most accurate"). A task's methods are its rows in table order; its first is the library's
+   default (the headline of the charts and tables). Everything downstream (samples, the CSVs,
+   cost rows, charts, tables) follows this table: adding a method is a row here and its
+   evaluator above. */
+#define TB(t) (1u << (t))
+#define TB_COLOUR (TB(T_RAMP) | TB(T_BANDS))
+typedef double (*method_fn)(const mctx *c);
+typedef struct method {
+    unsigned tasks;
+    const char *name;
+    method_fn eval;
+    const char *fetch;
+    int oracle;
+} method;
+static const method methods[] = {
+    { TB(T_MASK), "smith_g1_exact", m_smith_g1_exact, "slope moments", 0 },
+    { TB(T_MASK), "smith_g1_fast", m_smith_g1_fast, "slope moments", 0 },
+    { TB(T_MASK), "smith_g1_walter", m_smith_g1_walter, "slope moments", 0 },
+    { TB(T_MASK), "no_masking", m_no_masking, "", 0 },
+    { TB(T_MASK), "horizon_masking_n16", m_horizon_masking_n16, "slope moments, 2 azimuths of the n = 16 HDF moments", 0 },
+    { TB(T_MASK), "horizon_masking_n32", m_horizon_masking_n32, "slope moments, 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_MASK), "horizon_masking_lod_n32", m_horizon_masking_lod_n32, "slope moments, 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_SPEC), "leadr_joint", m_leadr_joint, "slope moments", 0 },
+    { TB(T_SPEC), "leadr_masking", m_leadr_masking, "slope moments", 0 },
+    { TB(T_SPEC), "lean", m_lean, "slope moments", 0 },
+    { TB(T_SPEC), "toksvig", m_toksvig, "average normal", 0 },
+    { TB(T_SPEC), "naive_mip_normal", m_naive_mip_normal, "average normal", 0 },
+    { TB(T_SPEC), "oracle_histogram_smith", m_oracle_histogram_smith, "every texel", 1 },
+    { TB(T_SPEC), "oracle_histogram_no_vis", m_oracle_histogram_no_vis, "every texel", 1 },
+    { TB(T_SPEC), "vmf_m1", m_vmf_m1, "1 vMF lobe texel", 0 },
+    { TB(T_SPEC), "vmf_m2", m_vmf_m2, "2 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4", m_vmf_m4, "4 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m8", m_vmf_m8, "8 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4_mix_smith", m_vmf_m4_mix_smith, "4 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m8_mix_smith", m_vmf_m8_mix_smith, "8 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m16", m_vmf_m16, "16 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4_scaled", m_vmf_m4_scaled, "4 vMF lobe texels, T, 8 nodes of S", 0 },
+    { TB(T_SPEC), "vmf_m8_scaled", m_vmf_m8_scaled, "8 vMF lobe texels, T, 8 nodes of S", 0 },
+    { TB(T_SPEC), "vmf_m8_scaled_s", m_vmf_m8_scaled_s, "8 vMF lobe texels, 8 nodes of S", 0 },
+    { TB(T_DIFF), "leadr_gg_matched3", m_leadr_gg_matched3, "slope moments", 0 },
+    { TB(T_DIFF), "leadr_gg_matched5", m_leadr_gg_matched5, "slope moments", 0 },
+    { TB(T_DIFF), "leadr_gg_hermite3", m_leadr_gg_hermite3, "slope moments", 0 },
+    { TB(T_DIFF), "lambert_mesonormal", m_lambert_mesonormal, "slope moments", 0 },
+    { TB(T_DIFF), "lambert_macro", m_lambert_macro, "", 0 },
+    { TB(T_DIFF), "oracle_histogram_smith", m_oracle_histogram_smith, "every texel", 1 },
+    { TB(T_DIFF), "oracle_histogram_no_vis", m_oracle_histogram_no_vis, "every texel", 1 },
+    { TB(T_DIFF), "leadr_gg_matched3_horizon_n32", m_leadr_gg_matched3_horizon_n32,
+      "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_DIFF), "horizon_diffuse_n32", m_horizon_diffuse_n32, "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_DIFF), "horizon_diffuse_lod_n32", m_horizon_diffuse_lod_n32,
+      "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB_COLOUR, "height_visible", m_height_visible, "(E[h], E[h^2]), slope moments", 0 },
+    { TB_COLOUR, "gauss_unmasked", m_gauss_unmasked, "(E[h], E[h^2])", 0 },
+    { TB_COLOUR, "naive_mip", m_naive_mip, "the mip-mapped colour", 0 },
+    { TB_COLOUR, "mean_height", m_mean_height, "(E[h], E[h^2])", 0 },
+};
+#define NMETHODS ((int)(sizeof methods / sizeof methods[0]))
+
+/* a task's methods: task_meth[t][k] = the row of its k-th method (registry_init) */
+static int task_meth[NTASK][MAX_TASK_METHODS], task_n[NTASK];
+static void registry_init(void)
+{
+    int t, i;
+    for (t = 0; t < NTASK; ++t) {
+        task_n[t] = 0;
+        for (i = 0; i < NMETHODS; ++i)
+            if (methods[i].tasks & TB(t)) {
+                if (task_n[t] == MAX_TASK_METHODS) fatal("more methods in a task than MAX_TASK_METHODS");
+                task_meth[t][task_n[t]++] = i;
+            }
     }
-    if (t == T_DIFF) {
-        if (k == 4) return pf_max(wi.z, PF_R(0.0)) * PF_INV_PI; /* macro normal: nothing to fetch */
-        m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
-        s0 = pf_slope_moments_stats(m, PF_R(0.0));
-        if (k == 3) return pf_max(pf_vec3_dot(pf_beckmann_mesonormal(s0), wi), PF_R(0.0)) * PF_INV_PI;
-        if (k == 8 || k == 9) { /* pf_horizon.h: the matched grid with the HDF's visibility per facet */
-            pf_gg_grid g = pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3);
-            pf_hdf_moments mo = horizon_hdf(L, 1, x0, y0, n, wo), mi = horizon_hdf(L, 1, x0, y0, n, wi);
-            if (k == 8) return pf_horizon_diffuse_directional(g, wi, mo, mi);
-            return pf_horizon_diffuse_lod(g, wi, mo, mi, lod, PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
-        }
-        if (k == 7) /* ours, not from the module: LEADR's grid times the horizon's visible-area
-                       ratios toward the view (as in pf_horizon_masking) and the light (capped at 1) */
-            return pf_gg_diffuse_directional(pf_gg_grid_make(wo, s0, PF_GG_MATCHED, 3), wi) *
-                   horizon_area(L, 1, x0, y0, n, wo, s0) * pf_saturate(horizon_area(L, 1, x0, y0, n, wi, s0));
-        return pf_gg_diffuse_directional(
-            pf_gg_grid_make(wo, s0, k == 2 ? PF_GG_HERMITE : PF_GG_MATCHED, k == 1 ? 5 : 3), wi);
-    }
-    /* colour */
-    if (k == 2) return pf_scalar_moments_mean(pf_scalar_moments_sample(L->attr[c], W, H, lod, u, v, PF_BORDER_WRAP));
-    hm = pf_scalar_moments_sample(L->height, W, H, lod, u, v, PF_BORDER_WRAP);
-    if (k == 3) return cmap_filter(&L->cm[c], pf_scalar_moments_mean(hm), PF_R(0.0));
-    if (k == 1) return colour_visible(&L->cm[c], hm, PF_R(0.0), PF_R(0.0));
-    m = pf_slope_moments_sample(L->slope, W, H, lod, u, v, PF_BORDER_WRAP);
-    s0 = pf_slope_moments_stats(m, PF_R(0.0));
-    return colour_visible(&L->cm[c], hm, pf_beckmann_lambda(wo, s0), pf_beckmann_lambda(wi, s0));
+}
+static const method *meth(int t, int k) { return &methods[task_meth[t][k]]; }
+static const char *mname(int t, int k) { return meth(t, k)->name; }
+/* the index of method `name` in task t (the report's named columns); a missing name is a bug */
+static int mk(int t, const char *name)
+{
+    int k;
+    for (k = 0; k < task_n[t]; ++k)
+        if (!strcmp(mname(t, k), name)) return k;
+    fprintf(stderr, "microsurface: internal: no method %s in task %s\n", name, task_name[t]);
+    exit(1);
+}
+/* the task the cost section times a method in: its last (the colour methods: the banded map,
+   6 knots, the costlier of the two) */
+static int cost_task(const method *m)
+{
+    int t = NTASK - 1;
+    while (t > 0 && !(m->tasks & TB(t))) --t;
+    return t;
 }
 
 /* ---------------------------------------------------------------- sample store per cell */
-#define ROW (NREF + NMETH) /* a sample: the references (full, in-footprint), then the methods */
+/* a sample of task t: the references (full, in-footprint), then the task's methods */
+#define ROWW(t) (NREF + task_n[t])
 typedef struct cell {
     double *v;
-    int n, cap;
+    long n, cap;
 } cell;
 
 typedef struct stat {
@@ -688,43 +1047,42 @@ typedef struct stat {
 } stat;
 
 static cell cells[NTASK][NSIZE][NVIEW];
-static stat stats[NKIND + 1][NREF][NTASK][NMETH][NSIZE][NVIEW];
+static stat stats[NKIND + 1][NREF][NTASK][MAX_TASK_METHODS][NSIZE][NVIEW];
 
-static void cell_add(cell *c, const double *ref, const double *f, int nm)
+/* append nrow samples of task t (ROWW(t) doubles each) */
+static void cell_add_rows(cell *c, int t, const double *rows, long nrow)
 {
-    int k;
-    if (c->n == c->cap) {
-        c->cap = c->cap ? 2 * c->cap : 256;
-        c->v = (double *)realloc(c->v, (size_t)c->cap * ROW * sizeof(double));
-        if (!c->v) {
-            fprintf(stderr, "microsurface: out of memory\n");
-            exit(1);
-        }
+    const int w = ROWW(t);
+    if (c->n + nrow > c->cap) {
+        while (c->n + nrow > c->cap) c->cap = c->cap ? 2 * c->cap : 256;
+        c->v = (double *)realloc(c->v, (size_t)c->cap * (size_t)w * sizeof(double));
+        if (!c->v) fatal("out of memory");
     }
-    for (k = 0; k < NREF; ++k) c->v[(size_t)c->n * ROW + k] = ref[k];
-    for (k = 0; k < NMETH; ++k) c->v[(size_t)c->n * ROW + NREF + k] = k < nm ? f[k] : 0.0;
-    c->n++;
+    memcpy(c->v + (size_t)c->n * w, rows, (size_t)nrow * (size_t)w * sizeof(double));
+    c->n += nrow;
 }
 
 static void cells_reduce(int kind)
 {
-    int t, s, v, k, i, r;
+    int t, s, v, k, r;
+    long i;
     for (t = 0; t < NTASK; ++t)
         for (s = 0; s < NSIZE; ++s)
             for (v = 0; v < NVIEW; ++v) {
                 cell *c = &cells[t][s][v];
+                const int w = ROWW(t);
                 for (r = 0; r < NREF; ++r) {
                     double rmax = 0, r2 = 0;
                     for (i = 0; i < c->n; ++i) {
-                        double x = c->v[(size_t)i * ROW + r];
+                        double x = c->v[(size_t)i * w + r];
                         r2 += x * x;
                         if (fabs(x) > rmax) rmax = fabs(x);
                     }
-                    for (k = 0; k < task_nmeth[t]; ++k) {
+                    for (k = 0; k < task_n[t]; ++k) {
                         stat *st = &stats[kind][r][t][k][s][v];
                         double d2 = 0, mr = 0;
                         for (i = 0; i < c->n; ++i) {
-                            double x = c->v[(size_t)i * ROW + r], f = c->v[(size_t)i * ROW + NREF + k];
+                            double x = c->v[(size_t)i * w + r], f = c->v[(size_t)i * w + NREF + k];
                             d2 += (f - x) * (f - x);
                             if (fabs(x) >= 0.1 * rmax && x != 0.0 && fabs(f - x) / fabs(x) > mr) mr = fabs(f - x) / fabs(x);
                         }
@@ -795,175 +1153,388 @@ static void slope_moments_info(const pfm_surface *s, corpus_info *ci)
     ci->var_in_4096 = cnt ? acc / cnt / tot : 0.0;
 }
 
+/* ---- one kind's samples, in parallel (pf_parallel.h). Every work item writes only its own
+   outputs (sample rows, per-footprint records); the reduction then appends them in item order,
+   which is the order of the serial loop (view, azimuth, size, position, light), so every sum and
+   every number of the CSVs is the same for any thread count. Random numbers (lights, footprint
+   positions) are drawn before, serially, in the serial loop's order. */
+typedef struct view_dir {
+    int vi, ai;
+    double wo[3];
+} view_dir;
+/* per footprint-view: what the corpus table needs (culling counts, mean masking, visible area) */
+typedef struct fp_rec {
+    int state; /* 0 shaded, 1 culled near edge-on, 2 back-facing */
+    double mask[NREF], vis_num, vis_den;
+} fp_rec;
+typedef struct fp_item {
+    int v, si, p0, p1; /* view v (views[]), size si, positions [p0, p1) of that list */
+    double *rows[NTASK];
+    long nrows[NTASK], cap[NTASK];
+    fp_rec *rec;
+    int nrec;
+} fp_item;
+typedef struct kind_job {
+    const pfm_surface *surf;
+    const lib_maps *L;
+    int nlights, nviews;
+    const double (*lights)[3];
+    const view_dir *views;
+    unsigned char **vis_l, **vis_v; /* full visibility maps: per light, per view */
+    unsigned char **box_l;          /* per size and light (si nlights + li): every footprint's in-footprint map */
+    const int *pos;                 /* footprint cells per (view, size): pos + pos_off[v NSIZE + si] */
+    const long long *pos_off;
+    int *used_x0, *used_y0;         /* distinct footprints per size (the light box maps' items) */
+    const long long *used_off;
+    fp_item *items;
+    long long nitems;
+    long long *box_item_off; /* box items: [box_item_off[i], box_item_off[i + 1]) of the used list */
+} kind_job;
+
+/* a full visibility map per direction: the lights', then the views' */
+static void vis_item(void *ctx, long long i)
+{
+    kind_job *J = (kind_job *)ctx;
+    if (i < J->nlights) pfm_visibility_map(J->surf, J->lights[i], J->vis_l[i]);
+    else pfm_visibility_map(J->surf, J->views[i - J->nlights].wo, J->vis_v[i - J->nlights]);
+}
+
+/* the in-footprint visibility toward every light of some footprints of one size, written into
+   that size's box maps (footprints of one size do not overlap): marched once per footprint and
+   light, read by every view */
+static void box_item(void *ctx, long long i)
+{
+    kind_job *J = (kind_job *)ctx;
+    long long q;
+    int si = 0, li;
+    while (J->used_off[si + 1] <= J->box_item_off[i]) ++si;
+    for (q = J->box_item_off[i]; q < J->box_item_off[i + 1]; ++q)
+        for (li = 0; li < J->nlights; ++li)
+            pfm_visibility_map_box(J->surf, J->lights[li], J->used_x0[q], J->used_y0[q], 1 << si, J->vis_l[li],
+                                   J->box_l[si * J->nlights + li]);
+}
+
+static double *item_row(fp_item *I, int t)
+{
+    const int w = ROWW(t);
+    if (I->nrows[t] == I->cap[t]) {
+        I->cap[t] = I->cap[t] ? 2 * I->cap[t] : 64;
+        I->rows[t] = (double *)realloc(I->rows[t], (size_t)I->cap[t] * (size_t)w * sizeof(double));
+        if (!I->rows[t]) fatal("out of memory");
+    }
+    return I->rows[t] + (size_t)I->nrows[t]++ * w;
+}
+
+/* the footprints of one item: references (full, in-footprint, no visibility) and every method,
+   for every light and the mirror direction */
+static void fp_item_run(void *ctx, long long it)
+{
+    kind_job *J = (kind_job *)ctx;
+    fp_item *I = &J->items[it];
+    const pfm_surface *surf = J->surf;
+    const lib_maps *L = J->L;
+    const view_dir *V = &J->views[I->v];
+    const int W = surf->w, n = 1 << I->si, g = W / n, si = I->si;
+    const size_t npix = (size_t)W * W;
+    const double *wo_d = V->wo;
+    const pf_vec3 wo = v3(wo_d);
+    unsigned char *box_o = (unsigned char *)pfb_xcalloc(npix, 1), *vis_m = (unsigned char *)pfb_xcalloc(npix, 1);
+    unsigned char *box_m = (unsigned char *)pfb_xcalloc(npix, 1);
+    int p, li, k, r, t;
+    I->rec = (fp_rec *)pfb_xcalloc((size_t)(I->p1 - I->p0), sizeof(fp_rec));
+    for (p = I->p0; p < I->p1; ++p) {
+        int cellid = J->pos[J->pos_off[I->v * NSIZE + si] + p];
+        int x0 = (cellid % g) * n, y0 = (cellid / g) * n, lod = ilog2(n), first = 1;
+        pf_real u = (PF_R(x0 / n) + PF_R(0.5)) / PF_R(g), v = (PF_R(y0 / n) + PF_R(0.5)) / PF_R(g);
+        pf_slope_stats s0 = pf_slope_moments_stats(
+            pf_slope_moments_sample(L->slope, W, W, PF_R(lod), u, v, PF_BORDER_WRAP), PF_R(0.0));
+        pf_vec3 nbar = pf_beckmann_mesonormal(s0);
+        fp_rec *rec = &I->rec[I->nrec++];
+        pfm_visibility_map_box(surf, wo_d, x0, y0, n, J->vis_v[I->v], box_o);
+        for (li = 0; li <= J->nlights; ++li) {
+            double wi_d[3], *row;
+            const unsigned char *vo_set[3], *vi_set[3];
+            pfm_shade sh[3];
+            mctx c;
+            if (li < J->nlights) {
+                memcpy(wi_d, J->lights[li], sizeof wi_d);
+                vi_set[0] = J->vis_l[li];
+                vi_set[1] = J->box_l[si * J->nlights + li]; /* box_item */
+            } else {
+                /* mirror of the view about the mesonormal (the specular peak) */
+                double nb[3], d, len;
+                int x, y;
+                nb[0] = (double)nbar.x;
+                nb[1] = (double)nbar.y;
+                nb[2] = (double)nbar.z;
+                len = sqrt(nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2]);
+                for (k = 0; k < 3; ++k) nb[k] /= len;
+                d = nb[0] * wo_d[0] + nb[1] * wo_d[1] + nb[2] * wo_d[2];
+                for (k = 0; k < 3; ++k) wi_d[k] = 2.0 * d * nb[k] - wo_d[k];
+                if (!(wi_d[2] > 0.02)) continue;
+                for (y = 0; y < n; ++y)
+                    for (x = 0; x < n; ++x) {
+                        int xx = (x0 + x) % W, yy = (y0 + y) % W;
+                        vis_m[(size_t)yy * W + xx] = (unsigned char)pfm_visible(surf, xx, yy, wi_d);
+                    }
+                pfm_visibility_map_box(surf, wi_d, x0, y0, n, vis_m, box_m);
+                vi_set[0] = vis_m;
+                vi_set[1] = box_m;
+            }
+            /* the full reference, the in-footprint one and the exact histogram without
+               visibility (oracle), in one pass */
+            vo_set[0] = J->vis_v[I->v];
+            vo_set[1] = box_o;
+            vo_set[2] = NULL;
+            vi_set[2] = NULL;
+            pfm_reference_shade_set(surf, 3, vo_set, vi_set, x0, y0, n, wo_d, wi_d, BASE_SIGMA, F0, sh);
+            /* the view at or below the footprint's mesosurface (culled by a renderer), or within
+               CULL_AREA of edge-on: LEADR's normalization by the mesosurface's projected area A
+               (eqs. 2-3) assumes the visible projected micro-area is A, and an n x n footprint
+               seen nearly edge-on breaks that (visible area up to ~30 A measured), so its
+               reference radiance ~1/A is meaningless (and a renderer gives it a share ~A of a
+               pixel) */
+            if (!(sh[0].area > CULL_AREA * wo_d[2])) {
+                rec->state = sh[0].area > 0.0 ? 1 : 2;
+                break; /* A does not depend on the light: the first one decides */
+            }
+            c.L = L;
+            c.x0 = x0;
+            c.y0 = y0;
+            c.n = n;
+            c.wo = wo;
+            c.wi = v3(wi_d);
+            c.novis = &sh[2];
+            if (first) { /* masking depends on the view only */
+                c.task = T_MASK;
+                row = item_row(I, T_MASK);
+                for (r = 0; r < NREF; ++r) row[r] = sh[r].masking;
+                for (k = 0; k < task_n[T_MASK]; ++k) row[NREF + k] = meth(T_MASK, k)->eval(&c);
+                for (r = 0; r < NREF; ++r) rec->mask[r] = sh[r].masking;
+                rec->vis_num = sh[0].visible_area * sh[0].area;
+                rec->vis_den = sh[0].area;
+                first = 0;
+            }
+            for (t = T_SPEC; t <= T_DIFF; ++t) {
+                c.task = t;
+                row = item_row(I, t);
+                for (r = 0; r < NREF; ++r) row[r] = t == T_SPEC ? sh[r].spec : sh[r].diffuse;
+                for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+            }
+            if (sh[0].joint > 1e-9)
+                for (t = T_RAMP; t <= T_BANDS; ++t) {
+                    c.task = t;
+                    row = item_row(I, t);
+                    for (r = 0; r < NREF; ++r)
+                        row[r] = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
+                    for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                }
+        }
+    }
+    free(box_o);
+    free(vis_m);
+    free(box_m);
+}
+
+/* the full visibility maps of the kept kind's views (the cost section's kind), kept for the
+   cost section: its view is one of them (60 degrees, azimuth 10), not marched again */
+#define NVIEWDIR (NVIEW * 8)
+static unsigned char *kept_view_map[NVIEWDIR];
+static double kept_view_dir[NVIEWDIR][3];
+static void kept_views_free(void)
+{
+    int v;
+    for (v = 0; v < NVIEWDIR; ++v) {
+        free(kept_view_map[v]);
+        kept_view_map[v] = NULL;
+    }
+}
+
 static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *keep_maps)
 {
     pfm_surface surf;
     lib_maps L;
     pfm_params P = pfm_params_default(kind == KIND_MAP ? PFM_GAUSSIAN : kind);
-    int W = kind == KIND_MAP ? map_surf.w : S->map, si, vi, ai, li, k, r;
-    size_t npix = (size_t)W * W;
-    unsigned char *vis_o = (unsigned char *)xmalloc(npix), *vis_m = (unsigned char *)xmalloc(npix);
-    unsigned char *box_o = (unsigned char *)xmalloc(npix), *box_m = (unsigned char *)xmalloc(npix);
-    unsigned char **vis_l = (unsigned char **)xmalloc((size_t)S->nlights * sizeof *vis_l);
-    unsigned char **box_l = (unsigned char **)xmalloc((size_t)S->nlights * sizeof *box_l);
-    double (*lights)[3] = (double (*)[3])xmalloc((size_t)S->nlights * sizeof *lights);
+    const int W = kind == KIND_MAP ? map_surf.w : S->map;
+    const size_t npix = (size_t)W * W;
+    int si, vi, ai, li, p, v, t, r, nviews = 0;
+    long long i, q, npos_all = 0;
+    double (*lights)[3] = (double (*)[3])pfb_xcalloc((size_t)S->nlights, sizeof *lights);
+    view_dir views[NVIEWDIR];
     corpus_info *ci = &info[kind];
-    rng rg;
-    double t0 = now_ns();
-    rg.s = 0x6d6963726f000000ULL + (unsigned long long)kind;
+    pfb_rng rg = pfb_rng_make(0x6d6963726f000000ULL + (unsigned long long)kind);
+    double t0 = pfb_now_ns();
+    kind_job J;
+    long long pos_off[NVIEWDIR * NSIZE + 1], used_off[NSIZE + 1];
+    int *pos;
+    char label[200];
+    const char *kn = kname(kind);
+    if (S->naz > 8) fatal("at most 8 view azimuths");
     if (kind == KIND_MAP) { /* a copy: the loaded map stays for the cost section */
-        if (pfm_surface_alloc(&surf, W, W, 1.0) != 0) {
-            fprintf(stderr, "microsurface: out of memory\n");
-            exit(1);
-        }
+        if (pfm_surface_alloc(&surf, W, W, 1.0) != 0) fatal("out of memory");
         memcpy(surf.height, map_surf.height, npix * sizeof(double));
         pfm_surface_bounds(&surf);
     } else if (pfm_surface_make(&surf, W, W, 1.0, P) != 0) {
         fprintf(stderr, "microsurface: pfm_surface_make failed for %s\n", pfm_kind_name(kind));
         exit(1);
     }
-    lib_maps_build(&L, &surf);
+    lib_maps_build(&L, &surf, kn);
     slope_moments_info(&surf, ci);
     ci->corr = kind == KIND_MAP ? map_stats.corr : P.corr_texels;
     /* hemisphere lights: uniform in solid angle, theta_i <= 85 degrees */
     for (li = 0; li < S->nlights; ++li) {
-        double cz = cos(85.0 * DEG) + (1.0 - cos(85.0 * DEG)) * rng_unif(&rg);
-        double ph = 2.0 * 3.14159265358979323846 * rng_unif(&rg);
+        double cz = cos(85.0 * DEG) + (1.0 - cos(85.0 * DEG)) * pfb_unif(&rg);
+        double ph = 2.0 * 3.14159265358979323846 * pfb_unif(&rg);
         dir_from_angles(acos(cz), ph, lights[li]);
-        vis_l[li] = (unsigned char *)xmalloc(npix);
-        box_l[li] = (unsigned char *)xmalloc(npix);
-        pfm_visibility_map(&surf, lights[li], vis_l[li]);
     }
+    /* the views, and the footprints of each view and size: every position where there are at
+       most maxpos, else a seeded subset (drawn here, in the order of the serial loop) */
     for (vi = 0; vi < NVIEW; ++vi) {
         int naz = view_deg[vi] == 0.0 ? 1 : S->naz;
-        for (ai = 0; ai < naz; ++ai) {
-            double wo_d[3];
-            pf_vec3 wo;
-            dir_from_angles(view_deg[vi] * DEG, (10.0 + 90.0 * ai) * DEG, wo_d);
-            wo = v3(wo_d);
-            pfm_visibility_map(&surf, wo_d, vis_o);
+        for (ai = 0; ai < naz; ++ai, ++nviews) {
+            views[nviews].vi = vi;
+            views[nviews].ai = ai;
+            dir_from_angles(view_deg[vi] * DEG, (10.0 + 90.0 * ai) * DEG, views[nviews].wo);
             for (si = 0; si < NSIZE; ++si) {
-                int n = 1 << si, g = W / n, npos = g * g, p, maxpos = n <= 16 ? 4 * S->maxpos : S->maxpos;
-                int count = npos < maxpos ? npos : maxpos;
-                for (p = 0; p < count; ++p) {
-                    int cellid = npos <= maxpos ? p : rng_int(&rg, npos);
-                    int x0 = (cellid % g) * n, y0 = (cellid / g) * n;
-                    int lod = ilog2(n), first = 1;
-                    pf_real u = (PF_R(x0 / n) + PF_R(0.5)) / PF_R(g), v = (PF_R(y0 / n) + PF_R(0.5)) / PF_R(g);
-                    pf_slope_stats s0 = pf_slope_moments_stats(
-                        pf_slope_moments_sample(L.slope, W, W, PF_R(lod), u, v, PF_BORDER_WRAP), PF_R(0.0));
-                    pf_vec3 nbar = pf_beckmann_mesonormal(s0);
-                    pfm_visibility_map_box(&surf, wo_d, x0, y0, n, vis_o, box_o);
-                    for (li = 0; li <= S->nlights; ++li) {
-                        double wi_d[3], refs[NREF], fm[NMETH], g2;
-                        const unsigned char *vo_set[3], *vi_set[3];
-                        pf_vec3 wi;
-                        pfm_shade sh[3];
-                        if (li < S->nlights) {
-                            memcpy(wi_d, lights[li], sizeof wi_d);
-                            pfm_visibility_map_box(&surf, wi_d, x0, y0, n, vis_l[li], box_l[li]);
-                            vi_set[0] = vis_l[li];
-                            vi_set[1] = box_l[li];
-                        } else {
-                            /* mirror of the view about the mesonormal (the specular peak) */
-                            double nb[3], d, len;
-                            int x, y;
-                            nb[0] = (double)nbar.x;
-                            nb[1] = (double)nbar.y;
-                            nb[2] = (double)nbar.z;
-                            len = sqrt(nb[0] * nb[0] + nb[1] * nb[1] + nb[2] * nb[2]);
-                            for (k = 0; k < 3; ++k) nb[k] /= len;
-                            d = nb[0] * wo_d[0] + nb[1] * wo_d[1] + nb[2] * wo_d[2];
-                            for (k = 0; k < 3; ++k) wi_d[k] = 2.0 * d * nb[k] - wo_d[k];
-                            if (!(wi_d[2] > 0.02)) continue;
-                            for (y = 0; y < n; ++y)
-                                for (x = 0; x < n; ++x) {
-                                    int xx = (x0 + x) % W, yy = (y0 + y) % W;
-                                    vis_m[(size_t)yy * W + xx] = (unsigned char)pfm_visible(&surf, xx, yy, wi_d);
-                                }
-                            pfm_visibility_map_box(&surf, wi_d, x0, y0, n, vis_m, box_m);
-                            vi_set[0] = vis_m;
-                            vi_set[1] = box_m;
-                        }
-                        wi = v3(wi_d);
-                        /* the full reference, the in-footprint one and the exact histogram
-                           without visibility (oracle), in one pass */
-                        vo_set[0] = vis_o;
-                        vo_set[1] = box_o;
-                        vo_set[2] = NULL;
-                        vi_set[2] = NULL;
-                        pfm_reference_shade_set(&surf, 3, vo_set, vi_set, x0, y0, n, wo_d, wi_d, BASE_SIGMA, F0, sh);
-                        /* the view at or below the footprint's mesosurface (culled by a renderer),
-                           or within CULL_AREA of edge-on: LEADR's normalization by the mesosurface's
-                           projected area A (eqs. 2-3) assumes the visible projected micro-area is
-                           A, and an n x n footprint seen nearly edge-on breaks that (visible area
-                           up to ~30 A measured), so its reference radiance ~1/A is meaningless
-                           (and a renderer gives it a share ~A of a pixel) */
-                        if (first) ci->samples_all++; /* footprint-views */
-                        if (!(sh[0].area > CULL_AREA * wo_d[2])) {
-                            ci->samples_culled += sh[0].area > 0.0;
-                            ci->samples_backfacing += !(sh[0].area > 0.0);
-                            break; /* A does not depend on the light: the first one decides */
-                        }
-                        g2 = (double)pf_beckmann_masking_shadowing(wo, wi, s0);
-                        if (first) {
-                            for (k = 0; k < task_nmeth[T_MASK]; ++k)
-                                fm[k] = (double)eval_method(&L, T_MASK, k, x0, y0, n, wo, wi);
-                            for (r = 0; r < NREF; ++r) refs[r] = sh[r].masking;
-                            cell_add(&cells[T_MASK][si][vi], refs, fm, task_nmeth[T_MASK]);
-                            if (vi == 4) {
-                                for (r = 0; r < NREF; ++r) ci->mask_sum[r] += sh[r].masking;
-                                ci->mask_n++;
-                            }
-                            if (vi == 6 && si == NSIZE - 1) {
-                                ci->vis_num += sh[0].visible_area * sh[0].area;
-                                ci->vis_den += sh[0].area;
-                            }
-                            first = 0;
-                        }
-                        for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_SPEC, k, x0, y0, n, wo, wi);
-                        fm[5] = sh[2].spec * g2;
-                        fm[6] = sh[2].spec;
-                        for (k = K_VMF; k < K_VMF + NVMF_METH; ++k) fm[k] = (double)eval_method(&L, T_SPEC, k, x0, y0, n, wo, wi);
-                        for (r = 0; r < NREF; ++r) refs[r] = sh[r].spec;
-                        cell_add(&cells[T_SPEC][si][vi], refs, fm, K_VMF + NVMF_METH);
-                        for (k = 0; k < 5; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
-                        fm[5] = sh[2].diffuse * g2;
-                        fm[6] = sh[2].diffuse;
-                        for (k = 7; k < task_nmeth[T_DIFF]; ++k) fm[k] = (double)eval_method(&L, T_DIFF, k, x0, y0, n, wo, wi);
-                        for (r = 0; r < NREF; ++r) refs[r] = sh[r].diffuse;
-                        cell_add(&cells[T_DIFF][si][vi], refs, fm, task_nmeth[T_DIFF]);
-                        if (sh[0].joint > 1e-9) {
-                            int c;
-                            for (c = 0; c < 2; ++c) {
-                                for (r = 0; r < NREF; ++r)
-                                    refs[r] = pfm_reference_visible_mean(&surf, vo_set[r], vi_set[r], x0, y0, n, wo_d,
-                                                                         L.attr_d[c]);
-                                for (k = 0; k < 4; ++k) fm[k] = (double)eval_method(&L, T_RAMP + c, k, x0, y0, n, wo, wi);
-                                cell_add(&cells[T_RAMP + c][si][vi], refs, fm, 4);
-                            }
-                        }
-                    }
-                }
+                int n = 1 << si, g = W / n, npos = g * g, maxpos = n <= 16 ? 4 * S->maxpos : S->maxpos;
+                npos_all += npos < maxpos ? npos : maxpos;
             }
         }
     }
+    pos = (int *)pfb_xcalloc((size_t)npos_all, sizeof *pos);
+    q = 0;
+    for (v = 0; v < nviews; ++v)
+        for (si = 0; si < NSIZE; ++si) {
+            int n = 1 << si, g = W / n, npos = g * g, maxpos = n <= 16 ? 4 * S->maxpos : S->maxpos;
+            int count = npos < maxpos ? npos : maxpos;
+            pos_off[v * NSIZE + si] = q;
+            for (p = 0; p < count; ++p) pos[q++] = npos <= maxpos ? p : pfb_int(&rg, npos);
+        }
+    pos_off[nviews * NSIZE] = q;
+    memset(&J, 0, sizeof J);
+    J.surf = &surf;
+    J.L = &L;
+    J.nlights = S->nlights;
+    J.nviews = nviews;
+    J.lights = (const double (*)[3])lights;
+    J.views = views;
+    J.pos = pos;
+    J.pos_off = pos_off;
+    /* full visibility maps, one per light and per view, shared by every footprint */
+    J.vis_l = (unsigned char **)pfb_xcalloc((size_t)S->nlights, sizeof *J.vis_l);
+    J.vis_v = (unsigned char **)pfb_xcalloc((size_t)nviews, sizeof *J.vis_v);
+    for (li = 0; li < S->nlights; ++li) J.vis_l[li] = (unsigned char *)pfb_xcalloc(npix, 1);
+    for (v = 0; v < nviews; ++v) J.vis_v[v] = (unsigned char *)pfb_xcalloc(npix, 1);
+    snprintf(label, sizeof label, "microsurface: %s: full visibility maps", kn);
+    pfb_parallel_for(S->nlights + nviews, vis_item, &J, label);
+    /* the distinct footprints per size over every view: their in-footprint visibility toward
+       each light (box_item), and the scaling function's T at the scaled levels */
+    J.used_x0 = (int *)pfb_xcalloc((size_t)npos_all, sizeof(int));
+    J.used_y0 = (int *)pfb_xcalloc((size_t)npos_all, sizeof(int));
+    q = 0;
+    for (si = 0; si < NSIZE; ++si) {
+        int n = 1 << si, g = W / n;
+        char *seen = (char *)pfb_xcalloc((size_t)g * g, 1);
+        used_off[si] = q;
+        for (v = 0; v < nviews; ++v)
+            for (i = pos_off[v * NSIZE + si]; i < pos_off[v * NSIZE + si + 1]; ++i)
+                if (!seen[pos[i]]) {
+                    seen[pos[i]] = 1;
+                    J.used_x0[q] = (pos[i] % g) * n;
+                    J.used_y0[q] = (pos[i] / g) * n;
+                    ++q;
+                }
+        free(seen);
+        snprintf(label, sizeof label, "microsurface: %s: scaling function T of the shaded texels", kn);
+        scale_T_fill(&L, n, J.used_x0 + used_off[si], J.used_y0 + used_off[si], q - used_off[si], label);
+    }
+    used_off[NSIZE] = q;
+    J.used_off = used_off;
+    J.box_l = (unsigned char **)pfb_xcalloc((size_t)NSIZE * S->nlights, sizeof *J.box_l);
+    for (i = 0; i < (long long)NSIZE * S->nlights; ++i) J.box_l[i] = (unsigned char *)pfb_xcalloc(npix, 1);
+    /* box items: runs of footprints of one size, about FP_ITEM_TEXELS texels each */
+    {
+        long long nb = 0;
+        J.box_item_off = (long long *)pfb_xcalloc((size_t)q + 1, sizeof(long long));
+        for (si = 0; si < NSIZE; ++si) {
+            long long per = FP_ITEM_TEXELS >> (2 * si) > 0 ? FP_ITEM_TEXELS >> (2 * si) : 1;
+            for (i = used_off[si]; i < used_off[si + 1]; i += per) J.box_item_off[nb++] = i;
+        }
+        J.box_item_off[nb] = q;
+        snprintf(label, sizeof label, "microsurface: %s: in-footprint visibility toward the lights", kn);
+        pfb_parallel_for(nb, box_item, &J, label);
+    }
+    /* footprint items, in the serial loop's order: view (and azimuth), size, runs of positions */
+    for (i = 0; i < 2; ++i) { /* pass 0 counts, pass 1 fills */
+        long long m = 0;
+        for (v = 0; v < nviews; ++v)
+            for (si = 0; si < NSIZE; ++si) {
+                int count = (int)(pos_off[v * NSIZE + si + 1] - pos_off[v * NSIZE + si]);
+                int per = FP_ITEM_TEXELS >> (2 * si) > 0 ? FP_ITEM_TEXELS >> (2 * si) : 1;
+                for (p = 0; p < count; p += per, ++m)
+                    if (i) {
+                        J.items[m].v = v;
+                        J.items[m].si = si;
+                        J.items[m].p0 = p;
+                        J.items[m].p1 = p + per < count ? p + per : count;
+                    }
+            }
+        if (!i) {
+            J.nitems = m;
+            J.items = (fp_item *)pfb_xcalloc((size_t)m, sizeof(fp_item));
+        }
+    }
+    snprintf(label, sizeof label, "microsurface: %s: footprints (references and methods)", kn);
+    pfb_parallel_for(J.nitems, fp_item_run, &J, label);
+    /* the reduction, in item order (the serial loop's) */
+    for (i = 0; i < J.nitems; ++i) {
+        fp_item *I = &J.items[i];
+        vi = views[I->v].vi;
+        for (t = 0; t < NTASK; ++t) {
+            cell_add_rows(&cells[t][I->si][vi], t, I->rows[t], I->nrows[t]);
+            free(I->rows[t]);
+        }
+        for (p = 0; p < I->nrec; ++p) {
+            const fp_rec *rec = &I->rec[p];
+            ci->samples_all++; /* footprint-views */
+            if (rec->state) {
+                ci->samples_culled += rec->state == 1;
+                ci->samples_backfacing += rec->state == 2;
+                continue;
+            }
+            if (vi == 4) {
+                for (r = 0; r < NREF; ++r) ci->mask_sum[r] += rec->mask[r];
+                ci->mask_n++;
+            }
+            if (vi == 6 && I->si == NSIZE - 1) {
+                ci->vis_num += rec->vis_num;
+                ci->vis_den += rec->vis_den;
+            }
+        }
+        free(I->rec);
+    }
     cells_reduce(kind);
-    fprintf(stderr, "microsurface: %s: scaling function S and T: %.1f s, %ld patches' samples\n", kname(kind), L.sc_seconds,
+    fprintf(stderr, "microsurface: %s: scaling function S and T: %.1f s, %ld patches' samples\n", kn, L.sc_seconds,
             L.sc_patches);
     for (r = 0; r < NREF; ++r) ci->mean_masking_60[r] = ci->mask_n ? ci->mask_sum[r] / (double)ci->mask_n : 0.0;
-    ci->seconds = (now_ns() - t0) * 1e-9;
-    for (li = 0; li < S->nlights; ++li) {
-        free(vis_l[li]);
-        free(box_l[li]);
-    }
-    free(vis_l);
-    free(box_l);
+    ci->seconds = (pfb_now_ns() - t0) * 1e-9;
+    for (li = 0; li < S->nlights; ++li) free(J.vis_l[li]);
+    for (v = 0; v < nviews; ++v)
+        if (keep) {
+            kept_view_map[v] = J.vis_v[v];
+            memcpy(kept_view_dir[v], views[v].wo, sizeof kept_view_dir[v]);
+        } else
+            free(J.vis_v[v]);
+    for (i = 0; i < (long long)NSIZE * S->nlights; ++i) free(J.box_l[i]);
+    free(J.vis_l);
+    free(J.vis_v);
+    free(J.box_l);
+    free(J.box_item_off);
+    free(J.used_x0);
+    free(J.used_y0);
+    free(J.items);
+    free(pos);
     free(lights);
-    free(vis_o);
-    free(vis_m);
-    free(box_o);
-    free(box_m);
     if (keep) {
         *keep = surf;
         *keep_maps = L;
@@ -980,10 +1551,11 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
 enum { C_MARCH, C_BOX_MARCH, C_REF, C_FLOAT };
 static const char *brute_name[NBRUTE] = { "brute_force_march_and_shade", "brute_force_box_march_and_shade",
                                           "brute_force_shade_only", "brute_force_float_shade" };
-#define NCOST_MAX (NBRUTE + NTASK * NMETH)
+#define NCOST_MAX (NBRUTE + NMETHODS)
 typedef struct cost_row {
     const char *name;
-    int task, meth; /* -1 for the brute force */
+    const method *m; /* NULL for the brute force */
+    int task;        /* the task it is timed in (cost_task) */
     double med[NSIZE], q1[NSIZE], q3[NSIZE];
     int batch[NSIZE];
 } cost_row;
@@ -1002,61 +1574,89 @@ static int cost_find(const char *name)
     return -1;
 }
 
-static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps *L)
+/* the cost section's full visibility maps (the view's, the lights'), in parallel */
+typedef struct cost_vis_job {
+    const pfm_surface *surf;
+    int n;
+    const double *dirs[1 + COST_LIGHTS];
+    unsigned char *maps[1 + COST_LIGHTS];
+} cost_vis_job;
+static void cost_vis_item(void *ctx, long long i)
 {
-    int W = surf->w, si, mi, rep, b, li, k, t;
+    cost_vis_job *J = (cost_vis_job *)ctx;
+    pfm_visibility_map(J->surf, J->dirs[i], J->maps[i]);
+}
+
+/* Everything the timings need (visibility maps, the scaling function's T of the timed
+   footprints) is computed first, in parallel; the timing loop itself runs alone on one thread,
+   after every parallel step of the run. */
+static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
+{
+    int W = surf->w, si, mi, rep, b, li, k;
     size_t npix = (size_t)W * W;
     double wo_d[3], lights[COST_LIGHTS][3];
-    unsigned char *vis_o = (unsigned char *)xmalloc(npix), *vis_l[COST_LIGHTS];
-    unsigned char *sv_o = (unsigned char *)xmalloc(npix), *sv_i = (unsigned char *)xmalloc(npix);
-    int fx[COST_FP], fy[COST_FP], fl[COST_FP];
-    double *times = (double *)xmalloc((size_t)S->cost_reps * sizeof(double));
+    unsigned char *vis_o = (unsigned char *)pfb_xcalloc(1, npix), *vis_l[COST_LIGHTS];
+    unsigned char *sv_o = (unsigned char *)pfb_xcalloc(1, npix), *sv_i = (unsigned char *)pfb_xcalloc(1, npix);
+    int fx[NSIZE][COST_FP], fy[NSIZE][COST_FP], fl[NSIZE][COST_FP];
+    double *times = (double *)pfb_xcalloc((size_t)S->cost_reps, sizeof(double));
     pf_vec3 wo, wil[COST_LIGHTS];
-    rng r;
+    pfb_rng r = pfb_rng_make(0xc057c057ULL);
+    cost_vis_job VJ;
+    pfb_progress prog;
     /* the rows */
     ncost = 0;
     for (k = 0; k < NBRUTE; ++k) {
         cost[ncost].name = brute_name[k];
-        cost[ncost].task = cost[ncost].meth = -1;
+        cost[ncost].m = NULL;
+        cost[ncost].task = -1;
         ++ncost;
     }
-    for (t = 0; t < NTASK; ++t) {
-        if (t == T_RAMP) continue; /* same names as T_BANDS: timed with the banded map */
-        for (k = 0; k < task_nmeth[t]; ++k) {
-            if (is_oracle(t, k)) continue;
-            cost[ncost].name = meth_name[t][k];
-            cost[ncost].task = t;
-            cost[ncost].meth = k;
-            ++ncost;
-        }
+    for (k = 0; k < NMETHODS; ++k) { /* every shader method once, in registry order */
+        if (methods[k].oracle) continue;
+        cost[ncost].name = methods[k].name;
+        cost[ncost].m = &methods[k];
+        cost[ncost].task = cost_task(&methods[k]);
+        ++ncost;
     }
     c_leadr = cost_find("leadr_joint");
-    r.s = 0xc057c057ULL;
     dir_from_angles(60.0 * DEG, 10.0 * DEG, wo_d);
     wo = v3(wo_d);
-    pfm_visibility_map(surf, wo_d, vis_o);
     memset(sv_o, 0, npix);
     memset(sv_i, 0, npix);
-    for (li = 0; li < COST_LIGHTS; ++li) {
-        double cz = cos(80.0 * DEG) + (1.0 - cos(80.0 * DEG)) * rng_unif(&r);
-        dir_from_angles(acos(cz), 2.0 * 3.14159265358979323846 * rng_unif(&r), lights[li]);
-        wil[li] = v3(lights[li]);
-        vis_l[li] = (unsigned char *)xmalloc(npix);
-        pfm_visibility_map(surf, lights[li], vis_l[li]);
+    VJ.surf = surf;
+    VJ.n = 0;
+    for (k = 0; k < NVIEWDIR; ++k) /* the view's map from the error run, when it marched it */
+        if (kept_view_map[k] && !memcmp(kept_view_dir[k], wo_d, sizeof wo_d)) break;
+    if (k < NVIEWDIR) {
+        memcpy(vis_o, kept_view_map[k], npix);
+    } else {
+        VJ.dirs[VJ.n] = wo_d;
+        VJ.maps[VJ.n++] = vis_o;
     }
+    for (li = 0; li < COST_LIGHTS; ++li) {
+        double cz = cos(80.0 * DEG) + (1.0 - cos(80.0 * DEG)) * pfb_unif(&r);
+        dir_from_angles(acos(cz), 2.0 * 3.14159265358979323846 * pfb_unif(&r), lights[li]);
+        wil[li] = v3(lights[li]);
+        vis_l[li] = (unsigned char *)pfb_xcalloc(npix, 1);
+        VJ.dirs[VJ.n] = lights[li];
+        VJ.maps[VJ.n++] = vis_l[li];
+    }
+    pfb_parallel_for(VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
+    /* the seeded footprints and lights of every size (drawn in the order of the timing loop) */
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si, g = W / n;
         for (k = 0; k < COST_FP; ++k) {
-            int c = rng_int(&r, g * g);
-            fx[k] = (c % g) * n;
-            fy[k] = (c / g) * n;
-            fl[k] = rng_int(&r, COST_LIGHTS);
+            int c = pfb_int(&r, g * g);
+            fx[si][k] = (c % g) * n;
+            fy[si][k] = (c / g) * n;
+            fl[si][k] = pfb_int(&r, COST_LIGHTS);
         }
         /* the scaling function's T of these footprints, computed (and cached) before timing */
-        for (k = 0; k < COST_FP; ++k) {
-            int j;
-            for (j = 0; j < NSCALE && si >= sc_min_level && si <= sc_max_level; ++j) (void)scale_T(L, j, fx[k], fy[k], n);
-        }
+        scale_T_fill(L, n, fx[si], fy[si], COST_FP, "microsurface: cost: scaling function T of the timed texels");
+    }
+    prog = pfb_progress_start("microsurface: cost (timed alone, one thread)", (long long)NSIZE * ncost);
+    for (si = 0; si < NSIZE; ++si) {
+        int n = 1 << si;
         for (mi = 0; mi < ncost; ++mi) {
             cost_row *cr = &cost[mi];
             /* batch: about 1-4 ms of work per repetition */
@@ -1066,10 +1666,10 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
                       : mi == C_FLOAT ? (n * n >= 1024 ? 128 : 2048) : 4096;
             if (S->quick && batch > 8) batch /= 2;
             for (rep = 0; rep < S->cost_reps; ++rep) {
-                double t0 = now_ns(), acc = 0;
+                double t0 = pfb_now_ns(), acc = 0;
                 for (b = 0; b < batch; ++b) {
-                    int q = (b + rep * 7) % COST_FP, x0 = fx[q], y0 = fy[q];
-                    const double *wi_d = lights[fl[q]];
+                    int q = (b + rep * 7) % COST_FP, x0 = fx[si][q], y0 = fy[si][q], lq = fl[si][q];
+                    const double *wi_d = lights[lq];
                     if (mi == C_MARCH || mi == C_BOX_MARCH) {
                         /* march the footprint's texels toward the view and the light (every
                            occluder, or the box's only), then shade */
@@ -1093,8 +1693,8 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
                         /* the brute force in the library's own arithmetic: every texel's base lobe
                            (pf_leadr_specular of a one-slope footprint) from level 0 of the slope
                            pyramid, cached visibility, projected-area weights (eqs. 1-3) */
-                        const unsigned char *vl = vis_l[fl[q]];
-                        pf_vec3 wi = wil[fl[q]];
+                        const unsigned char *vl = vis_l[lq];
+                        pf_vec3 wi = wil[lq];
                         pf_real sum = PF_R(0.0), area = PF_R(0.0);
                         int x, y;
                         for (y = 0; y < n; ++y)
@@ -1110,14 +1710,23 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
                             }
                         acc += area > PF_R(0.0) ? (double)(sum / area) : 0.0;
                     } else if (mi == C_REF) {
-                        pfm_shade sh = pfm_reference_shade(surf, vis_o, vis_l[fl[q]], x0, y0, n, wo_d, wi_d,
+                        pfm_shade sh = pfm_reference_shade(surf, vis_o, vis_l[lq], x0, y0, n, wo_d, wi_d,
                                                            BASE_SIGMA, F0);
                         acc += sh.spec + sh.diffuse;
                     } else {
-                        acc += (double)eval_method(L, cr->task, cr->meth, x0, y0, n, wo, wil[fl[q]]);
+                        mctx c;
+                        c.L = L;
+                        c.task = cr->task;
+                        c.x0 = x0;
+                        c.y0 = y0;
+                        c.n = n;
+                        c.wo = wo;
+                        c.wi = wil[lq];
+                        c.novis = NULL;
+                        acc += cr->m->eval(&c);
                     }
                 }
-                times[rep] = (now_ns() - t0) / (double)batch;
+                times[rep] = (pfb_now_ns() - t0) / (double)batch;
                 sink += acc;
             }
             qsort(times, (size_t)S->cost_reps, sizeof(double), cmp_double);
@@ -1125,8 +1734,10 @@ static void run_cost(const settings *S, const pfm_surface *surf, const lib_maps 
             cr->q1[si] = times[S->cost_reps / 4];
             cr->q3[si] = times[(3 * S->cost_reps) / 4];
             cr->batch[si] = batch;
+            pfb_progress_update(&prog, (long long)si * ncost + mi + 1);
         }
     }
+    pfb_progress_end(&prog);
     for (li = 0; li < COST_LIGHTS; ++li) free(vis_l[li]);
     free(vis_o);
     free(sv_o);
@@ -1212,7 +1823,7 @@ static void write_errors_csv(const settings *S)
     int ko, kind, t, k, s, v, r;
     fprintf(f, "task,method,kind,reference,footprint_texels,view_deg,rel_l2,max_rel,samples,sum_sq_err,sum_sq_ref\n");
     for (t = 0; t < NTASK; ++t)
-        for (k = 0; k < task_nmeth[t]; ++k)
+        for (k = 0; k < task_n[t]; ++k)
             for (ko = 0; ko < n_run_kinds; ++ko)
                 for (r = 0; r < NREF; ++r)
                     for (s = 0; s < NSIZE; ++s)
@@ -1221,7 +1832,7 @@ static void write_errors_csv(const settings *S)
                             kind = run_kinds[ko];
                             st = &stats[kind][r][t][k][s][v];
                             if (!st->valid) continue;
-                            fprintf(f, "%s,%s,%s,%s,%d,%g,%.6g,%.6g,%ld,%.9g,%.9g\n", task_name[t], meth_name[t][k],
+                            fprintf(f, "%s,%s,%s,%s,%d,%g,%.6g,%.6g,%ld,%.9g,%.9g\n", task_name[t], mname(t, k),
                                     kname(kind), ref_name[r], 1 << (2 * s), view_deg[v], st->rel_l2,
                                     st->max_rel, st->samples, st->sum_d2, st->sum_r2);
                         }
@@ -1262,6 +1873,8 @@ static void write_dat(const settings *S, const char *name, int ncol, const char 
 }
 
 static int charts_made = 0;
+static pfb_progress chart_progress; /* gnuplot runs, counted by make_charts */
+static long long charts_tried = 0;
 static void chart(const settings *S, const char *name, const char *title, const char *xlabel,
                   const char *ylabel, int logx, int ncol, double ymin)
 {
@@ -1279,6 +1892,7 @@ static void chart(const settings *S, const char *name, const char *title, const 
         charts_made++;
     }
     remove(dat);
+    pfb_progress_update(&chart_progress, ++charts_tried);
 }
 
 #define YMIN 1e-4 /* lower end of the error charts' y axes */
@@ -1287,18 +1901,21 @@ static int chart_kind = PFM_GAUSSIAN_FINE;
 #define CHART_KIND chart_kind
 static void make_charts(const settings *S)
 {
-    static char colbuf[NMETH + 2][96];
-    double x[32], y[32 * (NMETH + 2)];
-    const char *cols[NMETH + 2];
+    static char colbuf[MAX_TASK_METHODS + 2][96];
+    double x[32], y[32 * (MAX_TASK_METHODS + 2)];
+    const char *cols[MAX_TASK_METHODS + 2];
     char name[256], title[512], dat[300];
     int t, k, s, v, ko, nc;
+    /* per task: size, view (and on the corpus: kinds, features); cost; error against cost */
+    chart_progress = pfb_progress_start(S->charts ? "microsurface: charts (gnuplot)" : NULL,
+                                        NTASK * (map_path ? 2 : 4) + 1 + (NTASK - 1) * NEC);
     for (t = 0; t < NTASK; ++t) {
-        int nm = task_nmeth[t];
+        int nm = task_n[t];
         /* error vs footprint size: every method against the in-footprint reference, the
            library's method also against the full one */
         nc = nm + 1;
-        for (k = 0; k < nm; ++k) cols[k] = meth_name[t][k];
-        snprintf(colbuf[0], sizeof colbuf[0], "%s vs full reference", meth_name[t][0]);
+        for (k = 0; k < nm; ++k) cols[k] = mname(t, k);
+        snprintf(colbuf[0], sizeof colbuf[0], "%s vs full reference", mname(t, 0));
         cols[nm] = colbuf[0];
         for (s = 0; s < NSIZE; ++s) {
             x[s] = (double)(1 << (2 * s));
@@ -1334,7 +1951,7 @@ static void make_charts(const settings *S)
         snprintf(dat, sizeof dat, "%s.dat", name);
         write_dat(S, dat, NKIND, cols, NSIZE, x, y);
         snprintf(title, sizeof title, "%s: %s on every kind, in-footprint reference (views 0-75 deg)", task_name[t],
-                 meth_name[t][0]);
+                 mname(t, 0));
         chart(S, name, title, "footprint (texels, log)", "relative L2 error (log)", 1, NKIND, YMIN);
         /* error vs features per footprint: the two isotropic Gaussian kinds, both references;
            rows of the two kinds interleaved by x, '?' where a column has no point */
@@ -1360,7 +1977,7 @@ static void make_charts(const settings *S)
             snprintf(dat, sizeof dat, "%s.dat", name);
             write_dat(S, dat, 4, cols, i, x, y);
             snprintf(title, sizeof title, "%s: %s vs features per footprint (views 0-75 deg)", task_name[t],
-                     meth_name[t][0]);
+                     mname(t, 0));
             chart(S, name, title, "footprint texels / (pi L^2), L = correlation length (log)",
                   "relative L2 error (log)", 1, 4, YMIN);
         }
@@ -1392,16 +2009,16 @@ static void make_charts(const settings *S)
         if (t == T_RAMP) continue; /* the colour methods are timed with the banded map */
         for (e = 0; e < NEC; ++e) {
             int n = 0, cs = e == 0 ? 2 : NSIZE - 1;
-            for (k = 0; k < task_nmeth[t] && n < NMETH + 2; ++k) {
-                int c = cost_find(meth_name[t][k]);
-                if (is_oracle(t, k) || c < 0) continue;
-                cols[n] = meth_name[t][k];
+            for (k = 0; k < task_n[t] && n < MAX_TASK_METHODS + 2; ++k) {
+                int c = cost_find(mname(t, k));
+                if (meth(t, k)->oracle || c < 0) continue;
+                cols[n] = mname(t, k);
                 x[n] = cost[c].med[cs] > 0.0 ? cost[c].med[cs] : 1e-3;
                 ++n;
             }
-            for (k = 0, j = 0; k < task_nmeth[t] && j < n; ++k) {
+            for (k = 0, j = 0; k < task_n[t] && j < n; ++k) {
                 int i;
-                if (is_oracle(t, k) || cost_find(meth_name[t][k]) < 0) continue;
+                if (meth(t, k)->oracle || cost_find(mname(t, k)) < 0) continue;
                 for (i = 0; i < n; ++i) y[j * n + i] = -1.0;
                 y[j * n + j] = pooled_all(ec_ref[e], t, k, ec_lo[e], ec_hi[e], 0, POOL_VIEW_HI);
                 ++j;
@@ -1415,6 +2032,7 @@ static void make_charts(const settings *S)
                   YMIN);
         }
     }
+    pfb_progress_end(&chart_progress);
 }
 
 /* "in / full" pooled pair in a ring of static buffers (several in one printf) */
@@ -1436,8 +2054,8 @@ static void kinds_table(FILE *f, int si)
     for (ko = 0; ko < NKIND; ++ko) fprintf(f, "--:|");
     fprintf(f, "\n");
     for (t = 0; t < NTASK; ++t)
-        for (k = 0; k < task_nmeth[t]; ++k) {
-            fprintf(f, "| %s | %s |", k == 0 ? task_name[t] : "", meth_name[t][k]);
+        for (k = 0; k < task_n[t]; ++k) {
+            fprintf(f, "| %s | %s |", k == 0 ? task_name[t] : "", mname(t, k));
             for (ko = 0; ko < NKIND; ++ko) fprintf(f, " %s |", PR(kind_order[ko], t, k, si, si, 0, POOL_VIEW_HI));
             fprintf(f, "\n");
         }
@@ -1460,10 +2078,10 @@ static void write_task_tables(FILE *f)
         fprintf(f, " 0-75 deg pooled |\n|---|--:|");
         for (i = 0; i < 7; ++i) fprintf(f, "--:|");
         fprintf(f, "\n");
-        for (k = 0; k < task_nmeth[t]; ++k)
+        for (k = 0; k < task_n[t]; ++k)
             for (s = 0; s < 4; ++s) {
                 int si = tab_sizes[s];
-                fprintf(f, "| %s | %d |", s == 0 ? meth_name[t][k] : "", 1 << (2 * si));
+                fprintf(f, "| %s | %d |", s == 0 ? mname(t, k) : "", 1 << (2 * si));
                 for (i = 0; i < 6; ++i)
                     fprintf(f, " %s |", PR(CHART_KIND, t, k, si, si, tab_views[i], tab_views[i]));
                 fprintf(f, " %s |\n", PR(CHART_KIND, t, k, si, si, 0, VH));
@@ -1525,6 +2143,8 @@ static void write_md(const settings *S, double total_s)
 {
     FILE *f = open_out(S, "microsurface.md");
     const int G = PFM_GAUSSIAN, FN = PFM_GAUSSIAN_FINE, TOP = NSIZE - 1, VH = POOL_VIEW_HI;
+    const int k_hor16 = mk(T_MASK, "horizon_masking_n16"), k_hor32 = mk(T_MASK, "horizon_masking_n32");
+    const int k_oracle = mk(T_SPEC, "oracle_histogram_smith"), k_toksvig = mk(T_SPEC, "toksvig");
     int t, ko, kind;
     fprintf(f, "## Ground truth on synthetic microsurfaces\n\n");
     fprintf(f, "Generated by `bench/microsurface.c` (%s mode, %.0f s); every number below is computed "
@@ -1652,23 +2272,23 @@ static void write_md(const settings *S, double total_s)
                    "footprint), `horizon_masking_n32` / `horizon_masking_n16` / `pf_beckmann_g1`:");
         for (ko = 0; ko < NKIND; ++ko) {
             kind = kind_order[ko];
-            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_MASK, K_HOR + 1, 2, 2, 0, VH));
-            fmt_err(b, sizeof b, pooled(kind, R_FULL, T_MASK, K_HOR, 2, 2, 0, VH));
+            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_MASK, k_hor32, 2, 2, 0, VH));
+            fmt_err(b, sizeof b, pooled(kind, R_FULL, T_MASK, k_hor16, 2, 2, 0, VH));
             fmt_err(c, sizeof c, pooled(kind, R_FULL, T_MASK, 0, 2, 2, 0, VH));
             fprintf(f, "%s %s %s / %s / %s", ko ? ";" : "", pfm_kind_name(kind), a, b, c);
         }
-        fmt_err(a, sizeof a, pooled_all(R_BOX, T_MASK, K_HOR + 1, TOP, TOP, 0, VH));
+        fmt_err(a, sizeof a, pooled_all(R_BOX, T_MASK, k_hor32, TOP, TOP, 0, VH));
         fmt_err(b, sizeof b, pooled_all(R_BOX, T_MASK, 0, TOP, TOP, 0, VH));
-        fmt_err(c, sizeof c, pooled_all(R_BOX, T_MASK, K_HOR_LOD, TOP, TOP, 0, VH));
+        fmt_err(c, sizeof c, pooled_all(R_BOX, T_MASK, mk(T_MASK, "horizon_masking_lod_n32"), TOP, TOP, 0, VH));
         fprintf(f, ". At 4096 texels against the in-footprint reference, every kind pooled: `horizon_masking_n32` "
                    "%s, `horizon_masking_lod_n32` %s, `pf_beckmann_g1` %s.\n", a, c, b);
         fprintf(f, "- diffuse at 16 texels against the **full** reference, `horizon_diffuse_n32` / "
                    "`leadr_gg_matched3_horizon_n32` / `leadr_gg_matched3`:");
         for (ko = 0; ko < NKIND; ++ko) {
             kind = kind_order[ko];
-            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_DIFF, 7, 2, 2, 0, VH));
+            fmt_err(a, sizeof a, pooled(kind, R_FULL, T_DIFF, mk(T_DIFF, "leadr_gg_matched3_horizon_n32"), 2, 2, 0, VH));
             fmt_err(b, sizeof b, pooled(kind, R_FULL, T_DIFF, 0, 2, 2, 0, VH));
-            fmt_err(c, sizeof c, pooled(kind, R_FULL, T_DIFF, 8, 2, 2, 0, VH));
+            fmt_err(c, sizeof c, pooled(kind, R_FULL, T_DIFF, mk(T_DIFF, "horizon_diffuse_n32"), 2, 2, 0, VH));
             fprintf(f, "%s %s %s / %s / %s", ko ? ";" : "", pfm_kind_name(kind), c, a, b);
         }
         fprintf(f, ".\n");
@@ -1678,21 +2298,23 @@ static void write_md(const settings *S, double total_s)
                "Toksvig %s, LEAN %s, naive mip-mapped normal %s, the exact slope histogram with the same "
                "Smith term (oracle) %s; diffuse LEADR grid (matched, N = 3) %s, Lambert on the mesonormal "
                "%s; colour (banded map) visible-height filtering %s, mip-mapped colour %s.\n",
-            info[FN].corr, features(FN, TOP), PR(FN, T_MASK, 0, TOP, TOP, 0, VH), PR(FN, T_MASK, 3, TOP, TOP, 0, VH),
-            PR(FN, T_SPEC, 0, TOP, TOP, 0, VH), PR(FN, T_SPEC, 3, TOP, TOP, 0, VH), PR(FN, T_SPEC, 2, TOP, TOP, 0, VH),
-            PR(FN, T_SPEC, 4, TOP, TOP, 0, VH), PR(FN, T_SPEC, 5, TOP, TOP, 0, VH), PR(FN, T_DIFF, 0, TOP, TOP, 0, VH),
-            PR(FN, T_DIFF, 3, TOP, TOP, 0, VH), PR(FN, T_BANDS, 0, TOP, TOP, 0, VH), PR(FN, T_BANDS, 2, TOP, TOP, 0, VH));
+            info[FN].corr, features(FN, TOP), PR(FN, T_MASK, 0, TOP, TOP, 0, VH),
+            PR(FN, T_MASK, mk(T_MASK, "no_masking"), TOP, TOP, 0, VH), PR(FN, T_SPEC, 0, TOP, TOP, 0, VH),
+            PR(FN, T_SPEC, k_toksvig, TOP, TOP, 0, VH), PR(FN, T_SPEC, mk(T_SPEC, "lean"), TOP, TOP, 0, VH),
+            PR(FN, T_SPEC, mk(T_SPEC, "naive_mip_normal"), TOP, TOP, 0, VH), PR(FN, T_SPEC, k_oracle, TOP, TOP, 0, VH),
+            PR(FN, T_DIFF, 0, TOP, TOP, 0, VH), PR(FN, T_DIFF, mk(T_DIFF, "lambert_mesonormal"), TOP, TOP, 0, VH),
+            PR(FN, T_BANDS, 0, TOP, TOP, 0, VH), PR(FN, T_BANDS, mk(T_BANDS, "naive_mip"), TOP, TOP, 0, VH));
     fprintf(f, "- the same at 256 texels (~%.0f correlation areas): masking %s, specular `pf_leadr_specular` %s "
                "(oracle %s), diffuse %s.\n",
             features(FN, 4), PR(FN, T_MASK, 0, 4, 4, 0, VH), PR(FN, T_SPEC, 0, 4, 4, 0, VH),
-            PR(FN, T_SPEC, 5, 4, 4, 0, VH), PR(FN, T_DIFF, 0, 4, 4, 0, VH));
+            PR(FN, T_SPEC, k_oracle, 4, 4, 0, VH), PR(FN, T_DIFF, 0, 4, 4, 0, VH));
     fprintf(f, "- `gaussian` (L = %g texels, ~%.0f correlation areas per 4096 texels): at 4096 texels masking "
                "%s, specular `pf_leadr_specular` %s (oracle %s%s), diffuse %s; at 16 texels, where the "
                "features are larger than the footprint, specular %s and diffuse %s, masking %s: the gap "
                "between the two references is the occlusion cast from outside the footprint.\n",
             info[G].corr, features(G, TOP), PR(G, T_MASK, 0, TOP, TOP, 0, VH), PR(G, T_SPEC, 0, TOP, TOP, 0, VH),
-            PR(G, T_SPEC, 5, TOP, TOP, 0, VH),
-            pooled(G, R_BOX, T_SPEC, 5, TOP, TOP, 0, VH) < 0.5 * pooled(G, R_BOX, T_SPEC, 0, TOP, TOP, 0, VH)
+            PR(G, T_SPEC, k_oracle, TOP, TOP, 0, VH),
+            pooled(G, R_BOX, T_SPEC, k_oracle, TOP, TOP, 0, VH) < 0.5 * pooled(G, R_BOX, T_SPEC, 0, TOP, TOP, 0, VH)
                 ? ": most of LEADR's error there is the Gaussian fit of a slope histogram made of few features, "
                   "not the masking model"
                 : "",
@@ -1709,7 +2331,7 @@ static void write_md(const settings *S, double total_s)
                "textures, unimodal), 4096 texels: masking `pf_beckmann_g1` %s; specular `pf_leadr_specular` %s "
                "(oracle %s), Toksvig %s; diffuse LEADR grid %s; at 256 texels specular %s, diffuse %s.\n",
             info[PFM_PEAKED].kurt_x, PR(PFM_PEAKED, T_MASK, 0, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 0, TOP, TOP, 0, VH),
-            PR(PFM_PEAKED, T_SPEC, 5, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 3, TOP, TOP, 0, VH),
+            PR(PFM_PEAKED, T_SPEC, k_oracle, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, k_toksvig, TOP, TOP, 0, VH),
             PR(PFM_PEAKED, T_DIFF, 0, TOP, TOP, 0, VH), PR(PFM_PEAKED, T_SPEC, 0, 4, 4, 0, VH),
             PR(PFM_PEAKED, T_DIFF, 0, 4, 4, 0, VH));
     {
@@ -1741,7 +2363,7 @@ static void write_md(const settings *S, double total_s)
             kind = kk[use0 ? 0 : 1];
             fprintf(f, "| %s | %d | %.2g | %s | %s | %s | %s | %s |\n", pfm_kind_name(kind), 1 << (2 * s2),
                     features(kind, s2), PR(kind, T_MASK, 0, s2, s2, 0, VH), PR(kind, T_SPEC, 0, s2, s2, 0, VH),
-                    PR(kind, T_SPEC, 5, s2, s2, 0, VH), PR(kind, T_DIFF, 0, s2, s2, 0, VH),
+                    PR(kind, T_SPEC, k_oracle, s2, s2, 0, VH), PR(kind, T_DIFF, 0, s2, s2, 0, VH),
                     PR(kind, T_BANDS, 0, s2, s2, 0, VH));
         }
     }
@@ -1770,9 +2392,9 @@ static int best_method(int kind, int t, int s_lo, int s_hi)
 {
     int k, best = -1;
     double be = 1e300;
-    for (k = 0; k < task_nmeth[t]; ++k) {
+    for (k = 0; k < task_n[t]; ++k) {
         double e;
-        if (is_oracle(t, k)) continue;
+        if (meth(t, k)->oracle) continue;
         e = pooled(kind, R_BOX, t, k, s_lo, s_hi, 0, POOL_VIEW_HI);
         if (e >= 0.0 && e < be) {
             be = e;
@@ -1906,7 +2528,7 @@ static void write_md_map(const settings *S, double total_s)
             int b = best_method(M, t, sz[j], sz[j]);
             if (b < 0) continue;
             fprintf(f, "| %s | %d | `%s` | %s | `%s` | %s |\n", j == 0 ? task_name[t] : "", 1 << (2 * sz[j]),
-                    meth_name[t][b], PR(M, t, b, sz[j], sz[j], 0, VH), meth_name[t][0], PR(M, t, 0, sz[j], sz[j], 0, VH));
+                    mname(t, b), PR(M, t, b, sz[j], sz[j], 0, VH), mname(t, 0), PR(M, t, 0, sz[j], sz[j], 0, VH));
         }
     }
     fprintf(f, "\nThe oracles (`oracle_histogram_smith`: the exact slope histogram of the footprint with Smith's "
@@ -1928,8 +2550,8 @@ static void print_subset_summary(int with_cost)
         printf("specular, %s reference, 4096 texels, views 0-75 pooled\n%-26s", ref_name[r], "method");
         for (ko = 0; ko < n_run_kinds; ++ko) printf(" %14s", kname(run_kinds[ko]));
         printf("\n");
-        for (k = 0; k < task_nmeth[T_SPEC]; ++k) {
-            printf("%-26s", meth_name[T_SPEC][k]);
+        for (k = 0; k < task_n[T_SPEC]; ++k) {
+            printf("%-26s", mname(T_SPEC, k));
             for (ko = 0; ko < n_run_kinds; ++ko)
                 printf(" %14.3f", pooled(run_kinds[ko], r, T_SPEC, k, NSIZE - 1, NSIZE - 1, 0, POOL_VIEW_HI));
             printf("\n");
@@ -1956,8 +2578,9 @@ int main(int argc, char **argv)
     pfm_surface gauss_surf;
     lib_maps gauss_maps;
     int have_gauss = 0;
-    double t0 = now_ns();
+    double t0 = pfb_now_ns();
     char err[1024];
+    registry_init();
     map_opt = pfmap_options_default();
     memset(&S, 0, sizeof S);
     S.quick = q && *q && strcmp(q, "0") != 0 && strcmp(q, "no") != 0;
@@ -2083,16 +2706,19 @@ int main(int argc, char **argv)
     } else {
         for (i = 0; i < NKIND; ++i) run_kinds[i] = kind_order[i];
         n_run_kinds = NKIND;
+        pfb_progress kinds = pfb_progress_start("microsurface: the corpus (kinds)", NKIND);
         for (kind = 0; kind < NKIND; ++kind) {
             run_kind(kind, &S, kind == PFM_GAUSSIAN ? &gauss_surf : NULL, &gauss_maps);
             fprintf(stderr, "microsurface: %s done (%.1f s)\n", pfm_kind_name(kind), info[kind].seconds);
+            pfb_progress_update(&kinds, kind + 1);
         }
+        pfb_progress_end(&kinds);
         have_gauss = 1;
     }
     if (map_path) have_gauss = 1;
     if (have_gauss && !no_cost) {
         run_cost(&S, &gauss_surf, &gauss_maps);
-        fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (now_ns() - t0) * 1e-9);
+        fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (pfb_now_ns() - t0) * 1e-9);
     }
     write_errors_csv(&S);
     if (kinds_arg && !map_path) {
@@ -2100,20 +2726,22 @@ int main(int argc, char **argv)
         if (have_gauss && !no_cost) write_cost_csv(&S);
         if (have_gauss) {
             lib_maps_free(&gauss_maps);
+            kept_views_free();
             pfm_surface_free(&gauss_surf);
         }
         printf("microsurface: wrote %s/microsurface_errors.csv%s (%.1f s)\n", S.out,
-               have_gauss && !no_cost ? ", microsurface_cost.csv" : "", (now_ns() - t0) * 1e-9);
+               have_gauss && !no_cost ? ", microsurface_cost.csv" : "", (pfb_now_ns() - t0) * 1e-9);
         return 0;
     }
     write_cost_csv(&S);
     make_charts(&S);
-    if (map_path) write_md_map(&S, (now_ns() - t0) * 1e-9);
-    else write_md(&S, (now_ns() - t0) * 1e-9);
+    if (map_path) write_md_map(&S, (pfb_now_ns() - t0) * 1e-9);
+    else write_md(&S, (pfb_now_ns() - t0) * 1e-9);
     lib_maps_free(&gauss_maps);
+    kept_views_free();
     pfm_surface_free(&gauss_surf);
     pfm_surface_free(&map_surf);
     printf("microsurface: wrote %s/microsurface.md, microsurface_errors.csv, microsurface_cost.csv, %d charts (%.1f s)\n",
-           S.out, charts_made, (now_ns() - t0) * 1e-9);
+           S.out, charts_made, (pfb_now_ns() - t0) * 1e-9);
     return 0;
 }
