@@ -62,9 +62,7 @@
 #ifndef PF_BENCH_H
 #define PF_BENCH_H
 
-#ifndef _POSIX_C_SOURCE
-#  define _POSIX_C_SOURCE 199309L
-#endif
+#include "pf_bench_base.h" /* first: _POSIX_C_SOURCE; the rng, the clock, allocation */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -170,10 +168,6 @@ typedef struct pfb_method {
     int abs_error; /* 1: see PFB_ENTRY_ABS */
 } pfb_method;
 
-typedef struct pfb_rng {
-    uint64_t s;
-} pfb_rng;
-
 typedef struct pfb_family {
     const char *name;
     int n_in;                 /* inputs shown in worst_input: 1 (x) or 2 (x, y) */
@@ -187,35 +181,6 @@ typedef struct pfb_family {
     int n_methods;
     pfb_method m[PFB_MAX_METHODS];
 } pfb_family;
-
-/* ---------------------------------------------------------------- random numbers (splitmix64) */
-PFB_FN uint64_t pfb_next(pfb_rng *r)
-{
-    uint64_t z = (r->s += 0x9e3779b97f4a7c15u);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
-    return z ^ (z >> 31);
-}
-
-/* uniform double in [0, 1) */
-PFB_FN double pfb_unif(pfb_rng *r) { return (double)(pfb_next(r) >> 11) * (1.0 / 9007199254740992.0); }
-
-/* uniform in [lo, hi) */
-PFB_FN double pfb_unif_in(pfb_rng *r, double lo, double hi) { return lo + (hi - lo) * pfb_unif(r); }
-
-/* log-uniform in [lo, hi), lo > 0 */
-PFB_FN double pfb_logunif(pfb_rng *r, double lo, double hi)
-{
-    return lo * exp(log(hi / lo) * pfb_unif(r));
-}
-
-/* ---------------------------------------------------------------- timing */
-PFB_FN double pfb_now_ns(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
-}
 
 static volatile pf_real pfb_sink;
 
