@@ -74,10 +74,24 @@
    that the comparison relies on (frames, footprints, the recombination of the reference,
    conventions of the two shaders).
 
-   TIMES. The per-pixel geometry is computed first; then the brute-force reference and the
-   filtered shading are timed over the same pixels on one core (filtered: best of several
-   passes; pyramid building timed separately, it is a one-off per map; the in-box variant is
-   timed apart and not counted in the reference's time).
+   METHODS. Each method is one row of pic_methods (name, shading function, what it fetches,
+   oracle or not, its picture panel, its self-check bound) and one shading function; everything
+   else loops over the rows (see "the method registry" below).
+
+   EVERY CORE (bench/pf_parallel.h, PFB_THREADS threads, default all). The maps are built once
+   per height map and shared by both scenes (the two lobe pyramids fitted in parallel); the
+   brute force of both scenes runs as one parallel step over image rows, with the scaling
+   function as one more item beside them (its code keeps static scratch: one item, serial);
+   the filtered methods' values are one parallel step over rows per scene. Every pixel's value
+   depends on that pixel alone, so every output is the same for any thread count. Steps longer
+   than 2 s print their progress and the time left on stderr.
+
+   TIMES. Measured apart, after the parallel steps, on one thread: the brute force (and its
+   in-box variant, apart) on about PIC_TIME_REF_PIXELS surface pixels evenly spread over the
+   image, the filtered methods on about PIC_TIME_METHOD_PIXELS (best of 5 passes), each scaled
+   to all the surface pixels; the pyramids once (a one-off per map: not counted in the
+   methods' times), the lobe pyramids and the scaling function by the CPU time of the thread
+   that built them.
 
    OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] [--map PATH --map-kind K --map-scale S
    --map-rms-slope R --map-border B --map-raw-size WxH] (defaults bench/out, bench/pictures.gp;
@@ -194,6 +208,7 @@ typedef struct {
     double at;         /* projected area (m.wo)/(m.z) */
     double term;       /* its specular term times at, when visible both ways in the full march */
     signed char vo, vi; /* full-march visibility toward wo, wi (-1: not marched) */
+    signed char cut;    /* 1: below the lobe cutoff, not marched (its term is taken as 0) */
 } ref_texel;
 
 /* The maps of one height map, built once and shared by both scenes (and the self-check's flat
@@ -384,11 +399,14 @@ typedef struct {
    through pfm_reference_shade (n = 1, visibility handled here), recombined with the texels'
    projected areas a_t = (m_t . wo)/(m_t . z) = wo.z - sx wo.x - sy wo.y (LEADR eq. 1): the
    footprint's value is sum_t V_o V_i spec_t a_t / sum_t a_t, which is pfm_reference_shade over
-   the whole box when the box is shaded completely. Texels hidden from the viewer contribute
-   0 to the numerator and their a_t to the denominator, so they are not marched toward the
-   light. Second pass (the in-box variant): the texels occluded in the full march are marched
-   again with only the box's own height field as occluder (pfm_visible_box; a texel free in the
-   full march is free in the box). */
+   the whole box when the box is shaded completely. A texel hidden in one direction contributes
+   0 to the numerator and its a_t to the denominator, so the other direction is marched only
+   when the first sees: the light first when its visibility is the map vis_light (the plane:
+   one light direction in every pixel's frame; a lookup) or when it is the flatter direction
+   (more often occluded, and an occluded march stops early), else the view first. Second pass
+   (the in-box variant): the texels occluded in the full march are marched again with only the
+   box's own height field as occluder (pfm_visible_box; a texel free in the full march is free
+   in the box). scratch: REF_SCRATCH^2 texels, the caller's (one per parallel item). */
 static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_light, const pic_sample *p,
                                   int ref_max, ref_texel *scratch)
 {
@@ -401,6 +419,11 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
        s_h|^2 / (2 sigma^2) (eq. 10) */
     double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
     int lit = p->wi[2] > 0.0 && hz > 0.0;
+    /* march toward the light first when its visibility is a map lookup, or when it is the
+       flatter direction (more often occluded, and an occluded march stops early) */
+    int light_first = vis_light != NULL ||
+                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
+                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
     ref_result r;
     memset(&r, 0, sizeof r);
     if (lit) {
@@ -419,6 +442,7 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
             e->at = p->wo[2] - sx * p->wo[0] - sy * p->wo[1];
             e->term = 0.0;
             e->vo = e->vi = -1;
+            e->cut = 1;
             area += e->at;
             half_area[(a + b) & 1] += e->at;
             mom[0] += sx;
@@ -438,11 +462,20 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
                         (2.0 * BASE_SIGMA * BASE_SIGMA) >
                     LOBE_CUTOFF)
                 continue;
-            e->vo = (signed char)pfm_visible(s, x, y, p->wo);
-            if (vis_light) e->vi = (signed char)vis_light[(size_t)y * s->w + x];
-            if (!e->vo) continue;
-            if (e->vi < 0) e->vi = (signed char)pfm_visible(s, x, y, p->wi);
-            if (!e->vi) continue;
+            e->cut = 0;
+            /* the term needs both directions visible: the second march only when the first
+               sees (light_first: the light's map, or the flatter direction, first) */
+            if (light_first) {
+                e->vi = (signed char)(vis_light ? vis_light[(size_t)y * s->w + x] : pfm_visible(s, x, y, p->wi));
+                if (!e->vi) continue;
+                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
+                if (!e->vo) continue;
+            } else {
+                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
+                if (!e->vo) continue;
+                e->vi = (signed char)pfm_visible(s, x, y, p->wi);
+                if (!e->vi) continue;
+            }
             e->term = pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
                           .spec * e->at;
             num += e->term;
@@ -467,13 +500,20 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
         const ref_texel *e = &scratch[q];
         int x = wrap_index(e->x, s->w), y = wrap_index(e->y, s->h);
         int bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h);
-        if (e->vo < 0) continue; /* not marched: negligible */
-        if (e->vo && e->vi == 1) {
+        if (e->cut) continue; /* not marched: negligible */
+        if (e->vo == 1 && e->vi == 1) {
             num_box += e->term;
             continue;
         }
-        if (!e->vo && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
-        if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+        /* visible in the box where visible in full (the box only removes occluders); else
+           marched in the box, in the order of the full march */
+        if (light_first) {
+            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
+        } else {
+            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
+            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+        }
         num_box += pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
                        .spec * e->at;
     }
