@@ -1768,6 +1768,9 @@ int main(int argc, char **argv)
     }
     fclose(gpf);
     check = self_check(&check_vmf, &check_over);
+    for (s = 0; s < M_COUNT; ++s)
+        printf("pictures: method %-28s %-6s reads %s\n", pic_methods[s].label, pic_methods[s].oracle ? "oracle" : "",
+               pic_methods[s].fetches);
     printf("pictures: self-check on a flat map, max relative error %.2e (bound %.0e), vMF %.2e "
            "(bound %.0e)\n", check, check_bound, check_vmf, VMF_CHECK_BOUND);
     if (!(check <= check_bound) || check_over > 0) {
