@@ -313,25 +313,29 @@ static int maps_make(pic_maps *m, int flat)
 /* The scaling function of both lobe pyramids at SC_LEVEL (when m->sc_ok): S and the prior from
    the training patches (vs_fit_level), T of every other texel of the level (vs_texel_t). Serial:
    bench/vmf_scaling.h keeps static scratch, so at most one thread may be in it; the brute force
-   runs it as one item of its parallel step (maps_scale_item), beside the pixels. Sets
-   sc_failed on failure. */
-static void maps_scale(pic_maps *m)
+   runs it as one item of its parallel step, beside the pixels (label NULL: no progress), or
+   alone before it on one thread (with its progress under label). Sets sc_failed on failure. */
+static void maps_scale(pic_maps *m, const char *label)
 {
     const int W = m->surf.w, H = m->surf.h;
     const pf_real *pyrs[NVMF_PIC];
     long long gw = W >> SC_LEVEL, gh = H >> SC_LEVEL, t;
     double t0 = thread_cpu_seconds();
-    int k;
+    int k, done;
+    pfb_progress pr;
     if (!m->sc_ok) return;
+    pr = pfb_progress_start(label, gw * gh);
     for (k = 0; k < NVMF_PIC; ++k) {
         pyrs[k] = m->vmf_pyr[k];
         for (t = 0; t < gw * gh; ++t) m->sc_T[k][t] = (pf_real)NAN;
     }
-    if (vs_fit_level(m->heights, W, H, SC_LEVEL, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs, vmf_pic_lobes, m->sc_S,
-                     m->sc_prior, m->sc_T) < 0) {
+    done = vs_fit_level(m->heights, W, H, SC_LEVEL, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs, vmf_pic_lobes,
+                        m->sc_S, m->sc_prior, m->sc_T);
+    if (done < 0) {
         m->sc_failed = 1;
         return;
     }
+    pfb_progress_update(&pr, done);
     for (t = 0; t < gw * gh; ++t)
         if (m->sc_T[0][t] != m->sc_T[0][t]) { /* not a training patch */
             pf_real tv[NVMF_PIC];
@@ -341,7 +345,9 @@ static void maps_scale(pic_maps *m)
                 return;
             }
             for (k = 0; k < NVMF_PIC; ++k) m->sc_T[k][t] = tv[k];
+            pfb_progress_update(&pr, ++done);
         }
+    pfb_progress_end(&pr);
     m->t_scale = thread_cpu_seconds() - t0;
 }
 
@@ -1027,7 +1033,7 @@ static void bf_item(void *ctx, long long it)
     int k;
     if (st->scale) {
         if (it == 0) {
-            maps_scale(st->scale);
+            maps_scale(st->scale, NULL);
             return;
         }
         --it;
@@ -1814,7 +1820,12 @@ int main(int argc, char **argv)
         scp[1 - s] = &scn[s];
         resp[1 - s] = &res[s];
     }
-    brute_force(&m, &m, 2, scp, resp, "pictures: brute force (sphere, plane) and the scaling function");
+    if (pfb_thread_count() > 1)
+        brute_force(&m, &m, 2, scp, resp, "pictures: brute force (sphere, plane) and the scaling function");
+    else { /* one thread: nothing to run beside; apart, each step's progress counts like items */
+        maps_scale(&m, "pictures: scaling function (level-6 texels)");
+        brute_force(&m, NULL, 2, scp, resp, "pictures: brute force (sphere, plane)");
+    }
     if (m.sc_failed) {
         fprintf(stderr, "pictures: the scaling function failed (bench/vmf_scaling.h)\n");
         return 1;
