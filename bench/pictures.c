@@ -82,6 +82,7 @@
    per height map and shared by both scenes (the two lobe pyramids fitted in parallel); the
    brute force of both scenes runs as one parallel step over image rows, with the scaling
    function as one more item beside them (its code keeps static scratch: one item, serial);
+   with one thread the scaling function runs alone first, each step with its own progress;
    the filtered methods' values are one parallel step over rows per scene. Every pixel's value
    depends on that pixel alone, so every output is the same for any thread count. Steps longer
    than 2 s print their progress and the time left on stderr.
@@ -181,8 +182,6 @@ static void v3_set(double a[3], double x, double y, double z)
     a[2] = z;
 }
 
-static double now_seconds(void) { return pfb_now_s(); }
-
 /* CPU seconds of the calling thread: the one-off builds that run inside a parallel step are
    timed by their own thread's CPU time (not the wall clock, which other threads share). */
 static double thread_cpu_seconds(void)
@@ -273,11 +272,11 @@ static int maps_make(pic_maps *m, int flat)
             pfm_normal(&m->surf, x, y, n);
             for (k = 0; k < 3; ++k) normals[3 * (y * W + x) + k] = (pf_real)n[k];
         }
-    t0 = now_seconds();
+    t0 = pfb_now_s();
     pf_slope_pyramid_from_heights(m->heights, W, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP,
                                   m->slope_pyr);
     pf_normal_pyramid_from_normals(normals, W, H, m->normal_pyr);
-    m->t_pyramid = now_seconds() - t0;
+    m->t_pyramid = pfb_now_s() - t0;
     /* the lobe pyramids: independent fits, one parallel item each */
     for (k = 0; k < NVMF_PIC; ++k)
         m->vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_pic_lobes[k] *
@@ -420,7 +419,7 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
     int n = footprint_side(p->fp), ns = n < ref_max ? n : ref_max, a, b, k = 0, q;
     int x0 = footprint_start(p->tx, n), y0 = footprint_start(p->ty, n);
     double num = 0.0, area = 0.0, half_num[2] = {0.0, 0.0}, half_area[2] = {0.0, 0.0};
-    double num_box = 0.0, t0 = now_seconds(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
+    double num_box = 0.0, t0 = pfb_now_s(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
     /* slope of the half vector: the texel's lobe at h is exp(-q) of its peak, q = |s_t -
        s_h|^2 / (2 sigma^2) (eq. 10) */
     double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
@@ -488,7 +487,7 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
             half_num[(a + b) & 1] += e->term;
         }
     }
-    t1 = now_seconds();
+    t1 = pfb_now_s();
     r.t_full = t1 - t0;
     r.full = area > 0.0 ? num / area : 0.0;
     if (ns < n && half_area[0] > 0.0 && half_area[1] > 0.0)
@@ -524,7 +523,7 @@ static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_li
                        .spec * e->at;
     }
     r.inbox = area > 0.0 ? num_box / area : 0.0;
-    r.t_inbox = now_seconds() - t1;
+    r.t_inbox = pfb_now_s() - t1;
     return r;
 }
 
@@ -917,7 +916,7 @@ static double quantile(const double *v, int n, double q)
     double *c, r;
     int i;
     if (n <= 0) return 0.0;
-    c = (double *)malloc(sizeof(double) * (size_t)n);
+    c = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
     memcpy(c, v, sizeof(double) * (size_t)n);
     qsort(c, (size_t)n, sizeof(double), cmp_double);
     i = (int)ceil(q * n) - 1;
@@ -1109,9 +1108,9 @@ static void time_scene(const pic_maps *m, const pic_scene *sc, pic_result *r)
     for (mth = 1; mth < M_COUNT; ++mth) {
         double best = 1e30;
         for (k = 0; k < 5; ++k) {
-            double t0 = now_seconds(), t;
+            double t0 = pfb_now_s(), t;
             for (i = 0; i < ns; ++i) sink += pic_methods[mth].shade(m, &sc->px[timed[i]]);
-            t = now_seconds() - t0;
+            t = pfb_now_s() - t0;
             if (t < best) best = t;
         }
         r->seconds[mth] = ns ? best * r->n_surface / ns : 0.0;
@@ -1713,7 +1712,7 @@ int main(int argc, char **argv)
     pic_result *resp[2];
     char path[1024];
     FILE *md;
-    double t_start = now_seconds(), t_png = 0.0;
+    double t_start = pfb_now_s(), t_png = 0.0;
     long png_bytes[2] = {0, 0};
     FILE *gpf;
     const char *map_path = NULL;
@@ -1839,15 +1838,15 @@ int main(int argc, char **argv)
         snprintf(png, sizeof png, "pic_%s.png", sc.name);
         snprintf(path, sizeof path, "%s/%s", outdir, png);
         {
-            double t0 = now_seconds();
+            double t0 = pfb_now_s();
             if (write_picture(&sc, rr, outdir, png, gp) != 0) {
                 fprintf(stderr, "pictures: cannot write %s\n", path);
                 return 1;
             }
-            t_png += now_seconds() - t0;
+            t_png += pfb_now_s() - t0;
             png_bytes[s] = file_size(path);
             printf("  %s: %ld bytes, drawn by gnuplot in %.0f ms\n", path, png_bytes[s],
-                   1e3 * (now_seconds() - t0));
+                   1e3 * (pfb_now_s() - t0));
         }
         if (s == 0)
             fprintf(md, "Moment pyramids (five slope moments, average normals) of the %dx%d "
@@ -1883,9 +1882,9 @@ int main(int argc, char **argv)
             FLAT_RMS_SLOPE, check, check_bound, check_vmf, VMF_CHECK_BOUND,
             sizeof(pf_real) == sizeof(float) ? "float" : "double",
             quick ? " (BENCH_QUICK: half-size images)" : "", png_bytes[0], png_bytes[1],
-            1e3 * t_png, now_seconds() - t_start);
+            1e3 * t_png, pfb_now_s() - t_start);
     fclose(md);
     pfm_surface_free(&map_surf);
-    printf("pictures: done in %.1f s\n", now_seconds() - t_start);
+    printf("pictures: done in %.1f s\n", pfb_now_s() - t_start);
     return 0;
 }
