@@ -998,7 +998,7 @@ static void result_alloc(pic_result *r, int n)
 /* The brute force of a few scenes tiling the same maps as one parallel step whose items are
    image rows (every pixel's reference depends on that pixel alone: the results do not depend
    on the thread count), and, as its item 0 when `scale` is set, the scaling function of those
-   maps (maps_scale: serial code, so one item; it runs beside the rows). */
+   maps (maps_scale: serial code, so one item; the longest, so first; it runs beside the rows). */
 #define PIC_MAX_SCENES 2
 typedef struct {
     const pic_maps *m;
@@ -1052,6 +1052,10 @@ static void brute_force(const pic_maps *m, pic_maps *scale, int nscene, const pi
     pic_bf_step st;
     long long items = scale ? 1 : 0;
     int k;
+    if (nscene > PIC_MAX_SCENES) {
+        fprintf(stderr, "pictures: brute_force takes %d scenes at most\n", PIC_MAX_SCENES);
+        exit(1);
+    }
     st.m = m;
     st.scale = scale;
     st.nscene = nscene;
