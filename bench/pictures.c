@@ -74,10 +74,25 @@
    that the comparison relies on (frames, footprints, the recombination of the reference,
    conventions of the two shaders).
 
-   TIMES. The per-pixel geometry is computed first; then the brute-force reference and the
-   filtered shading are timed over the same pixels on one core (filtered: best of several
-   passes; pyramid building timed separately, it is a one-off per map; the in-box variant is
-   timed apart and not counted in the reference's time).
+   METHODS. Each method is one row of pic_methods (name, shading function, what it fetches,
+   oracle or not, its picture panel, its self-check bound) and one shading function; everything
+   else loops over the rows (see "the method registry" below).
+
+   EVERY CORE (bench/pf_parallel.h, PFB_THREADS threads, default all). The maps are built once
+   per height map and shared by both scenes (the two lobe pyramids fitted in parallel); the
+   brute force of both scenes runs as one parallel step over image rows, with the scaling
+   function as one more item beside them (its code keeps static scratch: one item, serial);
+   with one thread the scaling function runs alone first, each step with its own progress;
+   the filtered methods' values are one parallel step over rows per scene. Every pixel's value
+   depends on that pixel alone, so every output is the same for any thread count. Steps longer
+   than 2 s print their progress and the time left on stderr.
+
+   TIMES. Measured apart, after the parallel steps, on one thread: the brute force (and its
+   in-box variant, apart) on about PIC_TIME_REF_PIXELS surface pixels evenly spread over the
+   image, the filtered methods on about PIC_TIME_METHOD_PIXELS (best of 5 passes), each scaled
+   to all the surface pixels; the pyramids once (a one-off per map: not counted in the
+   methods' times), the lobe pyramids and the scaling function by the CPU time of the thread
+   that built them.
 
    OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] [--map PATH --map-kind K --map-scale S
    --map-rms-slope R --map-border B --map-raw-size WxH] (defaults bench/out, bench/pictures.gp;
@@ -94,9 +109,8 @@
    cannot, and adds no library to link. This program writes the values (radiance, footprint,
    error) as float32 planes and the titles; bench/pictures.gp maps them through the display
    curve and the colour maps (write_picture). Without gnuplot the program stops at once. */
-#ifndef _POSIX_C_SOURCE
-#  define _POSIX_C_SOURCE 199309L
-#endif
+#include "pf_bench_base.h" /* first: _POSIX_C_SOURCE; the clock and checked allocation */
+#include "pf_parallel.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -168,10 +182,12 @@ static void v3_set(double a[3], double x, double y, double z)
     a[2] = z;
 }
 
-static double now_seconds(void)
+/* CPU seconds of the calling thread: the one-off builds that run inside a parallel step are
+   timed by their own thread's CPU time (not the wall clock, which other threads share). */
+static double thread_cpu_seconds(void)
 {
     struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
@@ -191,32 +207,50 @@ typedef struct {
     double at;         /* projected area (m.wo)/(m.z) */
     double term;       /* its specular term times at, when visible both ways in the full march */
     signed char vo, vi; /* full-march visibility toward wo, wi (-1: not marched) */
+    signed char cut;    /* 1: below the lobe cutoff, not marched (its term is taken as 0) */
 } ref_texel;
 
+/* The maps of one height map, built once and shared by both scenes (and the self-check's flat
+   map by both of its scenes): pyramids, lobe pyramids, the scaling function, a summed-area table. */
 typedef struct {
     pfm_surface surf;
+    pf_real *heights;     /* the heights in pf_real (the scaling function's input) */
     pf_real *slope_pyr;   /* 5-moment pyramid */
     pf_real *normal_pyr;  /* average-normal pyramid */
     double *sat;          /* (W + 1) (H + 1) 5 summed-area table of the level-0 moments */
-    unsigned char *vis_light_map; /* visibility toward a constant light (plane), or NULL */
-    ref_texel *ref_scratch; /* the reference's texels of one pixel (REF_SCRATCH^2) */
     double t_pyramid;     /* seconds to build both pyramids */
     pf_real *vmf_pyr[NVMF_PIC]; /* vMF lobe pyramids (pf_vmf.h), vmf_pic_lobes[i] lobes per texel */
-    double t_vmf[NVMF_PIC];     /* seconds to fit each */
+    double t_vmf[NVMF_PIC];     /* CPU seconds of the thread that fitted each */
+    const pf_real *vmf_normals; /* the unit normals the lobe pyramids are fitted to (maps_make only) */
     /* the scaling function (bench/vmf_scaling.h) of both lobe pyramids at level SC_LEVEL:
-       S, the prior, T per texel of the level; sc_ok = 0 when the map has no such level */
-    int sc_ok;
+       S, the prior, T per texel of the level; sc_ok = 0 when the map has no such level.
+       Built by maps_scale (run as one item of the brute force's parallel step) */
+    int sc_ok, sc_failed;
     pf_real sc_S[NVMF_PIC][VS_CELLS], sc_prior[NVMF_PIC], *sc_T[NVMF_PIC];
-    double t_scale;
+    double t_scale;       /* CPU seconds of the thread that built it */
 } pic_maps;
 
-/* flat = 1: the same map scaled to an RMS slope of FLAT_RMS_SLOPE (the pipeline self-check). */
+/* parallel item k: lobe pyramid k (m = vmf_pic_lobes[k]), timed by its thread's CPU time */
+static void maps_vmf_item(void *ctx, long long k)
+{
+    pic_maps *m = (pic_maps *)ctx;
+    double t0 = thread_cpu_seconds();
+    if (pf_vmf_pyramid_from_normals(m->vmf_normals, NULL, m->surf.w, m->surf.h, vmf_pic_lobes[k], VMF_ITER,
+                                    m->vmf_pyr[k]) != PF_OK) {
+        fprintf(stderr, "pictures: pf_vmf_pyramid_from_normals failed (m = %d)\n", vmf_pic_lobes[k]);
+        exit(1);
+    }
+    m->t_vmf[k] = thread_cpu_seconds() - t0;
+}
+
+/* flat = 1: the same map scaled to an RMS slope of FLAT_RMS_SLOPE (the pipeline self-check).
+   Everything but the scaling function (maps_scale). */
 static int maps_make(pic_maps *m, int flat)
 {
     pfm_params p = pfm_params_default(PFM_GAUSSIAN);
     int W = (user_map && !flat) ? user_map->w : MAP_SIZE, H = (user_map && !flat) ? user_map->h : MAP_SIZE, x, y, k;
     long long nt = pf_mip_texel_count(W, H);
-    pf_real *heights, *normals;
+    pf_real *normals;
     double t0;
     if (flat) p.rms_slope = FLAT_RMS_SLOPE;
     memset(m, 0, sizeof *m);
@@ -226,61 +260,35 @@ static int maps_make(pic_maps *m, int flat)
         pfm_surface_bounds(&m->surf);
     } else if (pfm_surface_make(&m->surf, W, H, 1.0, p) != 0)
         return 1;
-    heights = (pf_real *)malloc(sizeof(pf_real) * (size_t)W * (size_t)H);
-    normals = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)W * (size_t)H);
-    m->slope_pyr = (pf_real *)malloc(sizeof(pf_real) * 5 * (size_t)nt);
-    m->normal_pyr = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)nt);
-    m->sat = (double *)calloc((size_t)(W + 1) * (size_t)(H + 1) * 5, sizeof(double));
-    m->ref_scratch = (ref_texel *)malloc(sizeof(ref_texel) * REF_SCRATCH * REF_SCRATCH);
-    if (!heights || !normals || !m->slope_pyr || !m->normal_pyr || !m->sat || !m->ref_scratch)
-        return 1;
-    for (k = 0; k < W * H; ++k) heights[k] = (pf_real)m->surf.height[k];
+    m->heights = (pf_real *)pfb_xmalloc(sizeof(pf_real) * (size_t)W * (size_t)H);
+    normals = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * (size_t)W * (size_t)H);
+    m->slope_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 5 * (size_t)nt);
+    m->normal_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * (size_t)nt);
+    m->sat = (double *)pfb_xcalloc((size_t)(W + 1) * (size_t)(H + 1) * 5, sizeof(double));
+    for (k = 0; k < W * H; ++k) m->heights[k] = (pf_real)m->surf.height[k];
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
             double n[3];
             pfm_normal(&m->surf, x, y, n);
             for (k = 0; k < 3; ++k) normals[3 * (y * W + x) + k] = (pf_real)n[k];
         }
-    t0 = now_seconds();
-    pf_slope_pyramid_from_heights(heights, W, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP,
+    t0 = pfb_now_s();
+    pf_slope_pyramid_from_heights(m->heights, W, H, PF_R(1.0), PF_R(1.0), PF_R(1.0), PF_BORDER_WRAP,
                                   m->slope_pyr);
     pf_normal_pyramid_from_normals(normals, W, H, m->normal_pyr);
-    m->t_pyramid = now_seconds() - t0;
-    for (k = 0; k < NVMF_PIC; ++k) {
-        t0 = now_seconds();
-        m->vmf_pyr[k] = (pf_real *)malloc(sizeof(pf_real) * 4 * (size_t)vmf_pic_lobes[k] *
-                                          (size_t)pf_vmf_pyramid_texel_count(W, H));
-        if (!m->vmf_pyr[k] ||
-            pf_vmf_pyramid_from_normals(normals, NULL, W, H, vmf_pic_lobes[k], VMF_ITER, m->vmf_pyr[k]) != PF_OK)
-            return 1;
-        m->t_vmf[k] = now_seconds() - t0;
-    }
-    /* the scaling function at SC_LEVEL (not for the flat self-check map) */
+    m->t_pyramid = pfb_now_s() - t0;
+    /* the lobe pyramids: independent fits, one parallel item each */
+    for (k = 0; k < NVMF_PIC; ++k)
+        m->vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_pic_lobes[k] *
+                                               (size_t)pf_vmf_pyramid_texel_count(W, H));
+    m->vmf_normals = normals;
+    pfb_parallel_for(NVMF_PIC, maps_vmf_item, m, flat ? NULL : "pictures: vMF lobe pyramids");
+    m->vmf_normals = NULL;
+    /* the scaling function at SC_LEVEL (not for the flat self-check map): maps_scale */
     m->sc_ok = !flat && (W >> SC_LEVEL) >= 1 && (H >> SC_LEVEL) >= 1 &&
                (long long)(W >> SC_LEVEL) * (H >> SC_LEVEL) <= 256; /* a 1024^2 map at most: ~0.4 s per T */
-    if (m->sc_ok) {
-        const pf_real *pyrs[NVMF_PIC];
-        long long gw = W >> SC_LEVEL, gh = H >> SC_LEVEL, t;
-        t0 = now_seconds();
-        for (k = 0; k < NVMF_PIC; ++k) {
-            pyrs[k] = m->vmf_pyr[k];
-            m->sc_T[k] = (pf_real *)malloc(sizeof(pf_real) * (size_t)(gw * gh));
-            if (!m->sc_T[k]) return 1;
-            for (t = 0; t < gw * gh; ++t) m->sc_T[k][t] = (pf_real)NAN;
-        }
-        if (vs_fit_level(heights, W, H, SC_LEVEL, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs, vmf_pic_lobes, m->sc_S,
-                         m->sc_prior, m->sc_T) < 0)
-            return 1;
-        for (t = 0; t < gw * gh; ++t)
-            if (m->sc_T[0][t] != m->sc_T[0][t]) { /* not a training patch */
-                pf_real tv[NVMF_PIC];
-                if (vs_texel_t(heights, W, H, SC_LEVEL, t % gw, t / gw, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs,
-                               vmf_pic_lobes, m->sc_S, m->sc_prior, tv) != 0)
-                    return 1;
-                for (k = 0; k < NVMF_PIC; ++k) m->sc_T[k][t] = tv[k];
-            }
-        m->t_scale = now_seconds() - t0;
-    }
+    for (k = 0; k < NVMF_PIC && m->sc_ok; ++k)
+        m->sc_T[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * (size_t)((W >> SC_LEVEL) * (H >> SC_LEVEL)));
     /* summed-area table of the level-0 moments, in double, from pfm's own slopes */
     for (y = 0; y < H; ++y)
         for (x = 0; x < W; ++x) {
@@ -297,23 +305,63 @@ static int maps_make(pic_maps *m, int flat)
             t[4] = sx * sy;
             for (k = 0; k < 5; ++k) o[k] = t[k] + l[k] + u[k] - ul[k];
         }
-    free(heights);
     free(normals);
     return 0;
 }
 
+/* The scaling function of both lobe pyramids at SC_LEVEL (when m->sc_ok): S and the prior from
+   the training patches (vs_fit_level), T of every other texel of the level (vs_texel_t). Serial:
+   bench/vmf_scaling.h keeps static scratch, so at most one thread may be in it; the brute force
+   runs it as one item of its parallel step, beside the pixels (label NULL: no progress), or
+   alone before it on one thread (with its progress under label). Sets sc_failed on failure. */
+static void maps_scale(pic_maps *m, const char *label)
+{
+    const int W = m->surf.w, H = m->surf.h;
+    const pf_real *pyrs[NVMF_PIC];
+    long long gw = W >> SC_LEVEL, gh = H >> SC_LEVEL, t;
+    double t0 = thread_cpu_seconds();
+    int k, done;
+    pfb_progress pr;
+    if (!m->sc_ok) return;
+    pr = pfb_progress_start(label, gw * gh);
+    for (k = 0; k < NVMF_PIC; ++k) {
+        pyrs[k] = m->vmf_pyr[k];
+        for (t = 0; t < gw * gh; ++t) m->sc_T[k][t] = (pf_real)NAN;
+    }
+    done = vs_fit_level(m->heights, W, H, SC_LEVEL, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs, vmf_pic_lobes,
+                        m->sc_S, m->sc_prior, m->sc_T);
+    if (done < 0) {
+        m->sc_failed = 1;
+        return;
+    }
+    pfb_progress_update(&pr, done);
+    for (t = 0; t < gw * gh; ++t)
+        if (m->sc_T[0][t] != m->sc_T[0][t]) { /* not a training patch */
+            pf_real tv[NVMF_PIC];
+            if (vs_texel_t(m->heights, W, H, SC_LEVEL, t % gw, t / gw, (pf_real)BASE_SIGMA, (pf_real)F0, NVMF_PIC, pyrs,
+                           vmf_pic_lobes, m->sc_S, m->sc_prior, tv) != 0) {
+                m->sc_failed = 1;
+                return;
+            }
+            for (k = 0; k < NVMF_PIC; ++k) m->sc_T[k][t] = tv[k];
+            pfb_progress_update(&pr, ++done);
+        }
+    pfb_progress_end(&pr);
+    m->t_scale = thread_cpu_seconds() - t0;
+}
+
 static void maps_free(pic_maps *m)
 {
+    int k;
     pfm_surface_free(&m->surf);
+    free(m->heights);
     free(m->slope_pyr);
     free(m->normal_pyr);
     free(m->sat);
-    free(m->vis_light_map);
-    free(m->ref_scratch);
-    free(m->vmf_pyr[0]);
-    free(m->vmf_pyr[1]);
-    free(m->sc_T[0]);
-    free(m->sc_T[1]);
+    for (k = 0; k < NVMF_PIC; ++k) {
+        free(m->vmf_pyr[k]);
+        free(m->sc_T[k]);
+    }
 }
 
 /* Sum of the level-0 moments over [0, x) x [0, y) of the periodic extension of the map. */
@@ -356,22 +404,31 @@ typedef struct {
    through pfm_reference_shade (n = 1, visibility handled here), recombined with the texels'
    projected areas a_t = (m_t . wo)/(m_t . z) = wo.z - sx wo.x - sy wo.y (LEADR eq. 1): the
    footprint's value is sum_t V_o V_i spec_t a_t / sum_t a_t, which is pfm_reference_shade over
-   the whole box when the box is shaded completely. Texels hidden from the viewer contribute
-   0 to the numerator and their a_t to the denominator, so they are not marched toward the
-   light. Second pass (the in-box variant): the texels occluded in the full march are marched
-   again with only the box's own height field as occluder (pfm_visible_box; a texel free in the
-   full march is free in the box). */
-static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
+   the whole box when the box is shaded completely. A texel hidden in one direction contributes
+   0 to the numerator and its a_t to the denominator, so the other direction is marched only
+   when the first sees: the light first when its visibility is the map vis_light (the plane:
+   one light direction in every pixel's frame; a lookup) or when it is the flatter direction
+   (more often occluded, and an occluded march stops early), else the view first. Second pass
+   (the in-box variant): the texels occluded in the full march are marched again with only the
+   box's own height field as occluder (pfm_visible_box; a texel free in the full march is free
+   in the box). scratch: REF_SCRATCH^2 texels, the caller's (one per parallel item). */
+static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_light, const pic_sample *p,
+                                  int ref_max, ref_texel *scratch)
 {
     const pfm_surface *s = &m->surf;
     int n = footprint_side(p->fp), ns = n < ref_max ? n : ref_max, a, b, k = 0, q;
     int x0 = footprint_start(p->tx, n), y0 = footprint_start(p->ty, n);
     double num = 0.0, area = 0.0, half_num[2] = {0.0, 0.0}, half_area[2] = {0.0, 0.0};
-    double num_box = 0.0, t0 = now_seconds(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
+    double num_box = 0.0, t0 = pfb_now_s(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
     /* slope of the half vector: the texel's lobe at h is exp(-q) of its peak, q = |s_t -
        s_h|^2 / (2 sigma^2) (eq. 10) */
     double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
     int lit = p->wi[2] > 0.0 && hz > 0.0;
+    /* march toward the light first when its visibility is a map lookup, or when it is the
+       flatter direction (more often occluded, and an occluded march stops early) */
+    int light_first = vis_light != NULL ||
+                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
+                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
     ref_result r;
     memset(&r, 0, sizeof r);
     if (lit) {
@@ -382,7 +439,7 @@ static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
         int yu = y0 + (int)(((double)b + 0.5) * n / ns), y = wrap_index(yu, s->h);
         for (a = 0; a < ns; ++a, ++k) {
             int xu = x0 + (int)(((double)a + 0.5) * n / ns), x = wrap_index(xu, s->w);
-            ref_texel *e = &m->ref_scratch[k];
+            ref_texel *e = &scratch[k];
             double sx, sy;
             pfm_slope(s, x, y, &sx, &sy);
             e->x = xu;
@@ -390,6 +447,7 @@ static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
             e->at = p->wo[2] - sx * p->wo[0] - sy * p->wo[1];
             e->term = 0.0;
             e->vo = e->vi = -1;
+            e->cut = 1;
             area += e->at;
             half_area[(a + b) & 1] += e->at;
             mom[0] += sx;
@@ -409,18 +467,27 @@ static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
                         (2.0 * BASE_SIGMA * BASE_SIGMA) >
                     LOBE_CUTOFF)
                 continue;
-            e->vo = (signed char)pfm_visible(s, x, y, p->wo);
-            if (m->vis_light_map) e->vi = (signed char)m->vis_light_map[(size_t)y * s->w + x];
-            if (!e->vo) continue;
-            if (e->vi < 0) e->vi = (signed char)pfm_visible(s, x, y, p->wi);
-            if (!e->vi) continue;
+            e->cut = 0;
+            /* the term needs both directions visible: the second march only when the first
+               sees (light_first: the light's map, or the flatter direction, first) */
+            if (light_first) {
+                e->vi = (signed char)(vis_light ? vis_light[(size_t)y * s->w + x] : pfm_visible(s, x, y, p->wi));
+                if (!e->vi) continue;
+                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
+                if (!e->vo) continue;
+            } else {
+                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
+                if (!e->vo) continue;
+                e->vi = (signed char)pfm_visible(s, x, y, p->wi);
+                if (!e->vi) continue;
+            }
             e->term = pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
                           .spec * e->at;
             num += e->term;
             half_num[(a + b) & 1] += e->term;
         }
     }
-    t1 = now_seconds();
+    t1 = pfb_now_s();
     r.t_full = t1 - t0;
     r.full = area > 0.0 ? num / area : 0.0;
     if (ns < n && half_area[0] > 0.0 && half_area[1] > 0.0)
@@ -435,21 +502,28 @@ static ref_result shade_reference(pic_maps *m, const pic_sample *p, int ref_max)
                       (2.0 * pic_pi * sqrt(det));
     }
     for (q = 0; q < k; ++q) {
-        const ref_texel *e = &m->ref_scratch[q];
+        const ref_texel *e = &scratch[q];
         int x = wrap_index(e->x, s->w), y = wrap_index(e->y, s->h);
         int bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h);
-        if (e->vo < 0) continue; /* not marched: negligible */
-        if (e->vo && e->vi == 1) {
+        if (e->cut) continue; /* not marched: negligible */
+        if (e->vo == 1 && e->vi == 1) {
             num_box += e->term;
             continue;
         }
-        if (!e->vo && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
-        if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+        /* visible in the box where visible in full (the box only removes occluders); else
+           marched in the box, in the order of the full march */
+        if (light_first) {
+            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
+        } else {
+            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
+            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
+        }
         num_box += pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
                        .spec * e->at;
     }
     r.inbox = area > 0.0 ? num_box / area : 0.0;
-    r.t_inbox = now_seconds() - t1;
+    r.t_inbox = pfb_now_s() - t1;
     return r;
 }
 
@@ -578,6 +652,63 @@ static double shade_vmf_scaled(const pic_maps *m, const pic_sample *p, int which
     return f * (1.0 + w * (t - 1.0));
 }
 
+static double shade_vmf_m4(const pic_maps *m, const pic_sample *p) { return shade_vmf(m, p, 0); }
+static double shade_vmf_m8(const pic_maps *m, const pic_sample *p) { return shade_vmf(m, p, 1); }
+static double shade_vmf_m4_scaled(const pic_maps *m, const pic_sample *p) { return shade_vmf_scaled(m, p, 0); }
+static double shade_vmf_m8_scaled(const pic_maps *m, const pic_sample *p) { return shade_vmf_scaled(m, p, 1); }
+
+/* ---------------------------------------------------------------- the method registry */
+/* Every method of the pictures is one row here and one shading function above; everything
+   else (the value and timing passes, the error statistics, the tables, the self-check, the
+   panels) loops over the rows. Row 0 is the brute-force reference (no shading function: it
+   is shade_reference, run by the brute-force step). To add a method: write
+   double shade_x(const pic_maps *, const pic_sample *) and add its row. */
+typedef struct {
+    const char *key;    /* short name (method_index) */
+    const char *label;  /* its row in the tables */
+    const char *column; /* its column in the by-footprint table */
+    double (*shade)(const pic_maps *m, const pic_sample *p); /* per pixel; NULL: the reference */
+    const char *fetches; /* what it reads per pixel (on a GPU: its texture fetches) */
+    int oracle;         /* 1: reads what a renderer does not have (the reference's own box) */
+    int panel;          /* drawn as picture column 1..NPANEL_COLS - 1 (0: not drawn) */
+    const char *panel_title, *panel_short;
+    double check_bound; /* flat-map self-check bound; 0: the library's rounding (main) */
+} pic_method;
+
+static const pic_method pic_methods[] = {
+    {"ref", "reference (brute force)", "reference", NULL,
+     "every texel of the footprint (at most ref_max^2), marched toward wo and wi", 1, 0,
+     "reference (brute force)", "reference", 0.0},
+    {"leadr", "LEADR (trilinear)", "LEADR (trilinear)", shade_leadr,
+     "5 slope moments, trilinear (8 texels x 5 values)", 0, 1, "LEADR (trilinear moments)", "LEADR", 0.0},
+    {"leadr_box", "LEADR, exact box moments", "LEADR, exact box", shade_leadr_box,
+     "the exact mean of the 5 moments over the reference's box (summed-area table, 4 x 5 doubles)", 1, 0,
+     NULL, NULL, 0.0},
+    {"naive", "naive mip-mapped normal", "naive", shade_naive,
+     "average normal, trilinear (8 texels x 3 values)", 0, 3, "naive mip-mapped normal", "naive", 0.0},
+    {"vmf4", "vMF m = 4 (trilinear lobes)", "vMF m = 4", shade_vmf_m4,
+     "4 lobes of the 8 trilinear texels (8 x 4 x 4 values)", 0, 0, NULL, NULL, VMF_CHECK_BOUND},
+    {"vmf8", "vMF m = 8 (trilinear lobes)", "vMF m = 8", shade_vmf_m8,
+     "8 lobes of the 8 trilinear texels (8 x 8 x 4 values)", 0, 2, "vMF m = 8 (trilinear lobes)", "vMF m = 8",
+     VMF_CHECK_BOUND},
+    {"vmf4s", "vMF m = 4, scaling function", "vMF m = 4, scaled", shade_vmf_m4_scaled,
+     "vMF m = 4's, and T bilinear (4 values) and S (a 6 x 6 x 5 table, 8 values)", 0, 0, NULL, NULL, VMF_CHECK_BOUND},
+    {"vmf8s", "vMF m = 8, scaling function", "vMF m = 8, scaled", shade_vmf_m8_scaled,
+     "vMF m = 8's, and T bilinear (4 values) and S (a 6 x 6 x 5 table, 8 values)", 0, 0, NULL, NULL, VMF_CHECK_BOUND},
+};
+#define M_COUNT ((int)(sizeof pic_methods / sizeof pic_methods[0]))
+#define M_REF   0
+
+/* The row of the method named key (the analyses name the methods they compare); exits if none. */
+static int method_index(const char *key)
+{
+    int k;
+    for (k = 0; k < M_COUNT; ++k)
+        if (!strcmp(pic_methods[k].key, key)) return k;
+    fprintf(stderr, "pictures: no method \"%s\" in pic_methods\n", key);
+    exit(1);
+}
+
 /* ---------------------------------------------------------------- scenes: per-pixel geometry */
 typedef struct {
     const char *name;
@@ -586,6 +717,8 @@ typedef struct {
     double bg[3];          /* background colour (linear) */
     int ref_max;           /* reference texels per footprint side, at most */
     pic_sample *px;
+    unsigned char *vis_light; /* visibility toward the light when it is one direction in every
+                                 pixel's frame (the plane: a map of the whole surface), or NULL */
 } pic_scene;
 
 /* Camera: position, orthonormal right/up/forward, tan of half the vertical field of view. */
@@ -671,7 +804,7 @@ static void camera_look(pic_camera *c, const double pos[3], const double fwd[3],
 #define PLANE_EXPOSURE   0.35   /* fixed; puts the reference's 99th percentile near 0.9 */
 
 /* Plane z = 0, tangent frame = world frame, texel = 1 world unit. */
-static void scene_plane(pic_scene *sc, pic_maps *m, int w, int h)
+static void scene_plane(pic_scene *sc, const pic_maps *m, int w, int h)
 {
     pic_camera cam;
     double pos[3] = {0.0, 0.0, PLANE_CAM_HEIGHT}, fwd[3], wi[3];
@@ -688,10 +821,10 @@ static void scene_plane(pic_scene *sc, pic_maps *m, int w, int h)
     sc->exposure = PLANE_EXPOSURE;
     sc->ref_max = REF_MAX_SAMPLES;
     v3_set(sc->bg, 0.30, 0.42, 0.60);
-    sc->px = (pic_sample *)calloc((size_t)w * (size_t)h, sizeof(pic_sample));
+    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
     /* the light is the same direction in every pixel's (world) frame: one visibility map */
-    m->vis_light_map = (unsigned char *)malloc((size_t)m->surf.w * (size_t)m->surf.h);
-    pfm_visibility_map(&m->surf, wi, m->vis_light_map);
+    sc->vis_light = (unsigned char *)pfb_xmalloc((size_t)m->surf.w * (size_t)m->surf.h);
+    pfm_visibility_map(&m->surf, wi, sc->vis_light);
     for (j = 0; j < h; ++j)
         for (i = 0; i < w; ++i) {
             pic_sample *p = &sc->px[(size_t)j * w + i];
@@ -714,7 +847,7 @@ static void scene_plane(pic_scene *sc, pic_maps *m, int w, int h)
 
 /* Sphere of radius R at the origin, pole along +z; longitude phi, colatitude theta; texture
    u = phi / (2 pi) * tiles, v = (1 - theta / pi) * tiles / 2 (texels square at the equator). */
-static void scene_sphere(pic_scene *sc, pic_maps *m, int w, int h)
+static void scene_sphere(pic_scene *sc, const pic_maps *m, int w, int h)
 {
     pic_camera cam;
     double pos[3] = {0.0, -SPHERE_CAM_DIST, 0.25 * SPHERE_RADIUS}, fwd[3], L[3];
@@ -730,8 +863,8 @@ static void scene_sphere(pic_scene *sc, pic_maps *m, int w, int h)
     sc->exposure = SPHERE_EXPOSURE;
     sc->ref_max = SPHERE_REF_MAX;
     v3_set(sc->bg, 0.08, 0.09, 0.11);
-    sc->px = (pic_sample *)calloc((size_t)w * (size_t)h, sizeof(pic_sample));
-    m->vis_light_map = NULL;
+    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
+    sc->vis_light = NULL;
     for (j = 0; j < h; ++j)
         for (i = 0; i < w; ++i) {
             pic_sample *p = &sc->px[(size_t)j * w + i];
@@ -783,7 +916,7 @@ static double quantile(const double *v, int n, double q)
     double *c, r;
     int i;
     if (n <= 0) return 0.0;
-    c = (double *)malloc(sizeof(double) * (size_t)n);
+    c = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
     memcpy(c, v, sizeof(double) * (size_t)n);
     qsort(c, (size_t)n, sizeof(double), cmp_double);
     i = (int)ceil(q * n) - 1;
@@ -802,15 +935,6 @@ static int footprint_bin(double fp)
     while (b < PIC_BINS - 1 && fp >= (double)(2 << b)) ++b;
     return b;
 }
-
-enum { M_REF = 0, M_LEADR, M_NAIVE, M_BOX, M_VMF4, M_VMF8, M_VMF4S, M_VMF8S, M_COUNT };
-static const char *const method_label[M_COUNT] = {"reference (brute force)", "LEADR (trilinear)",
-                                                  "naive mip-mapped normal",
-                                                  "LEADR, exact box moments",
-                                                  "vMF m = 4 (trilinear lobes)",
-                                                  "vMF m = 8 (trilinear lobes)",
-                                                  "vMF m = 4, scaling function",
-                                                  "vMF m = 8, scaling function"};
 
 typedef struct {
     double *val[M_COUNT];
@@ -856,71 +980,164 @@ static double pair_floor(const pic_result *r, int i)
     return m > r->floor ? m : r->floor;
 }
 
-static double run_method(pic_maps *m, const pic_scene *sc, int method, double *out)
+/* ---------------------------------------------------------------- rendering on every core */
+#define PIC_TIME_REF_PIXELS 400      /* the reference is timed on this many pixels (about) */
+#define PIC_TIME_METHOD_PIXELS 16384 /* the filtered methods on this many (about), best of 5 */
+
+static void result_alloc(pic_result *r, int n)
 {
-    int i, n = sc->w * sc->h;
-    double t0 = now_seconds();
-    for (i = 0; i < n; ++i) {
-        const pic_sample *p = &sc->px[i];
-        if (!p->hit) {
-            out[i] = 0.0;
-            continue;
-        }
-        switch (method) {
-        case M_LEADR: out[i] = shade_leadr(m, p); break;
-        case M_NAIVE: out[i] = shade_naive(m, p); break;
-        case M_VMF4: out[i] = shade_vmf(m, p, 0); break;
-        case M_VMF8: out[i] = shade_vmf(m, p, 1); break;
-        case M_VMF4S: out[i] = shade_vmf_scaled(m, p, 0); break;
-        case M_VMF8S: out[i] = shade_vmf_scaled(m, p, 1); break;
-        default: out[i] = shade_leadr_box(m, p); break;
-        }
-    }
-    return now_seconds() - t0;
+    int mth;
+    memset(r, 0, sizeof *r);
+    for (mth = 0; mth < M_COUNT; ++mth) r->val[mth] = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    r->inbox = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    r->noise = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    r->ndf_t = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    r->ndf_g = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
 }
 
-/* The brute force over every surface pixel: the reference, its in-box variant and the
-   sampling deviation estimate; the two variants timed apart. */
-static void run_reference(pic_maps *m, const pic_scene *sc, pic_result *r)
+/* The brute force of a few scenes tiling the same maps as one parallel step whose items are
+   image rows (every pixel's reference depends on that pixel alone: the results do not depend
+   on the thread count), and, as its item 0 when `scale` is set, the scaling function of those
+   maps (maps_scale: serial code, so one item; the longest, so first; it runs beside the rows). */
+#define PIC_MAX_SCENES 2
+typedef struct {
+    const pic_maps *m;
+    pic_maps *scale;
+    int nscene;
+    const pic_scene *sc[PIC_MAX_SCENES];
+    pic_result *r[PIC_MAX_SCENES];
+} pic_bf_step;
+
+static void bf_row(const pic_maps *m, const pic_scene *sc, pic_result *r, int j)
 {
-    int i, n = sc->w * sc->h;
-    for (i = 0; i < n; ++i) {
+    ref_texel *scratch = (ref_texel *)pfb_xmalloc(sizeof(ref_texel) * REF_SCRATCH * REF_SCRATCH);
+    int i;
+    for (i = j * sc->w; i < (j + 1) * sc->w; ++i) {
         ref_result q;
         r->val[M_REF][i] = r->inbox[i] = r->noise[i] = r->ndf_t[i] = r->ndf_g[i] = 0.0;
         if (!sc->px[i].hit) continue;
-        q = shade_reference(m, &sc->px[i], sc->ref_max);
+        q = shade_reference(m, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
         r->val[M_REF][i] = q.full;
         r->inbox[i] = q.inbox;
         r->noise[i] = q.noise;
         r->ndf_t[i] = q.ndf_texels;
         r->ndf_g[i] = q.ndf_gauss;
-        r->seconds[M_REF] += q.t_full;
-        r->seconds_inbox += q.t_inbox;
+    }
+    free(scratch);
+}
+
+static void bf_item(void *ctx, long long it)
+{
+    pic_bf_step *st = (pic_bf_step *)ctx;
+    int k;
+    if (st->scale) {
+        if (it == 0) {
+            maps_scale(st->scale, NULL);
+            return;
+        }
+        --it;
+    }
+    for (k = 0; k < st->nscene; ++k) {
+        if (it < st->sc[k]->h) {
+            bf_row(st->m, st->sc[k], st->r[k], (int)it);
+            return;
+        }
+        it -= st->sc[k]->h;
     }
 }
 
-static void render_scene(pic_maps *m, const pic_scene *sc, pic_result *r)
+static void brute_force(const pic_maps *m, pic_maps *scale, int nscene, const pic_scene *const *sc, pic_result *const *r,
+                        const char *label)
+{
+    pic_bf_step st;
+    long long items = scale ? 1 : 0;
+    int k;
+    if (nscene > PIC_MAX_SCENES) {
+        fprintf(stderr, "pictures: brute_force takes %d scenes at most\n", PIC_MAX_SCENES);
+        exit(1);
+    }
+    st.m = m;
+    st.scale = scale;
+    st.nscene = nscene;
+    for (k = 0; k < nscene; ++k) {
+        st.sc[k] = sc[k];
+        st.r[k] = r[k];
+        items += sc[k]->h;
+    }
+    pfb_parallel_for(items, bf_item, &st, label);
+}
+
+/* The filtered methods' values, one parallel item per image row. */
+typedef struct {
+    const pic_maps *m;
+    const pic_scene *sc;
+    pic_result *r;
+} pic_method_step;
+
+static void methods_item(void *ctx, long long j)
+{
+    const pic_method_step *st = (const pic_method_step *)ctx;
+    int i, mth;
+    for (i = (int)j * st->sc->w; i < ((int)j + 1) * st->sc->w; ++i) {
+        const pic_sample *p = &st->sc->px[i];
+        for (mth = 1; mth < M_COUNT; ++mth) st->r->val[mth][i] = p->hit ? pic_methods[mth].shade(st->m, p) : 0.0;
+    }
+}
+
+/* Times, single-threaded and apart from the parallel steps: the reference (full and in-box
+   variant) over about PIC_TIME_REF_PIXELS surface pixels evenly spread over the image, each
+   filtered method over about PIC_TIME_METHOD_PIXELS (best of 5 passes); scaled to all the
+   surface pixels (seconds[], seconds_inbox). The values computed here are discarded: they are
+   those of the parallel steps. */
+static void time_scene(const pic_maps *m, const pic_scene *sc, pic_result *r)
+{
+    int n = sc->w * sc->h, i, k, mth, nt = 0, ns = 0;
+    int stride_ref = r->n_surface / PIC_TIME_REF_PIXELS, stride = r->n_surface / PIC_TIME_METHOD_PIXELS;
+    int *timed = (int *)pfb_xmalloc(sizeof(int) * (size_t)(n > 0 ? n : 1));
+    ref_texel *scratch = (ref_texel *)pfb_xmalloc(sizeof(ref_texel) * REF_SCRATCH * REF_SCRATCH);
+    double t_full = 0.0, t_inbox = 0.0, sink = 0.0;
+    if (stride_ref < 1) stride_ref = 1;
+    if (stride < 1) stride = 1;
+    for (i = 0, k = 0; i < n; ++i)
+        if (sc->px[i].hit && k++ % stride_ref == 0) {
+            ref_result q = shade_reference(m, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
+            t_full += q.t_full;
+            t_inbox += q.t_inbox;
+            ++nt;
+        }
+    r->seconds[M_REF] = nt ? t_full * r->n_surface / nt : 0.0;
+    r->seconds_inbox = nt ? t_inbox * r->n_surface / nt : 0.0;
+    for (i = 0, k = 0; i < n; ++i)
+        if (sc->px[i].hit && k++ % stride == 0) timed[ns++] = i;
+    for (mth = 1; mth < M_COUNT; ++mth) {
+        double best = 1e30;
+        for (k = 0; k < 5; ++k) {
+            double t0 = pfb_now_s(), t;
+            for (i = 0; i < ns; ++i) sink += pic_methods[mth].shade(m, &sc->px[timed[i]]);
+            t = pfb_now_s() - t0;
+            if (t < best) best = t;
+        }
+        r->seconds[mth] = ns ? best * r->n_surface / ns : 0.0;
+    }
+    if (sink != sink) fprintf(stderr, "pictures: a timed method returned NaN\n"); /* keeps the calls */
+    free(timed);
+    free(scratch);
+}
+
+/* The filtered methods on every core, and (timed = 1) the times, then the statistics of the
+   scene, given its brute force (brute_force). */
+static void render_scene(const pic_maps *m, const pic_scene *sc, pic_result *r, int timed, const char *label)
 {
     int n = sc->w * sc->h, i, k, mth, b;
-    double *tmp = (double *)malloc(sizeof(double) * (size_t)n);
-    double *tmp_in = (double *)malloc(sizeof(double) * (size_t)n);
-    double *fps = (double *)malloc(sizeof(double) * (size_t)n);
+    double *tmp = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    double *tmp_in = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
+    double *fps = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
     double samples = 0.0, sref[PIC_BINS];
-    memset(r, 0, sizeof *r);
-    for (mth = 0; mth < M_COUNT; ++mth)
-        r->val[mth] = (double *)malloc(sizeof(double) * (size_t)n);
-    r->inbox = (double *)malloc(sizeof(double) * (size_t)n);
-    r->noise = (double *)malloc(sizeof(double) * (size_t)n);
-    r->ndf_t = (double *)malloc(sizeof(double) * (size_t)n);
-    r->ndf_g = (double *)malloc(sizeof(double) * (size_t)n);
-    run_reference(m, sc, r);
-    for (mth = 1; mth < M_COUNT; ++mth) { /* cheap: best of 5 passes */
-        r->seconds[mth] = 1e30;
-        for (k = 0; k < 5; ++k) {
-            double t = run_method(m, sc, mth, r->val[mth]);
-            if (t < r->seconds[mth]) r->seconds[mth] = t;
-        }
-    }
+    pic_method_step ms;
+    ms.m = m;
+    ms.sc = sc;
+    ms.r = r;
+    pfb_parallel_for(sc->h, methods_item, &ms, label);
     for (i = 0; i < n; ++i)
         if (sc->px[i].hit) {
             int side = footprint_side(sc->px[i].fp);
@@ -931,6 +1148,7 @@ static void render_scene(pic_maps *m, const pic_scene *sc, pic_result *r)
             if (side > sc->ref_max) r->n_subsampled++;
         }
     r->samples_per_pixel = r->n_surface ? samples / r->n_surface : 0.0;
+    if (timed) time_scene(m, sc, r);
     r->floor = LIT_FRACTION * quantile(tmp, r->n_surface, 0.99);
     for (i = 0, k = 0; i < n; ++i)
         if (sc->px[i].hit) tmp_in[k++] = r->ndf_t[i];
@@ -1031,20 +1249,28 @@ static void result_free(pic_result *r)
    script's variables (sizes, exposure, colour ranges, and titles carrying this run's numbers);
    bench/pictures.gp (gp) lays out the NPANEL_COLS x 2 panels with a title and a numbered colour bar on
    each. Both files are removed once gnuplot has written the PNG. Returns 0 on success. */
-#define NPANEL_COLS 4 /* reference, LEADR, vMF m = 8, naive; below: footprint and their errors */
-static const char *const panel_title[NPANEL_COLS] = {"reference (brute force)", "LEADR (trilinear moments)",
-                                                     "vMF m = 8 (trilinear lobes)", "naive mip-mapped normal"};
-static const char *const panel_short[NPANEL_COLS] = {"reference", "LEADR", "vMF m = 8", "naive"};
+#define NPANEL_COLS 4 /* the reference and the methods with a panel (pic_methods: LEADR, vMF m = 8,
+                         naive); below: the footprint and their errors */
 static int write_picture(const pic_scene *sc, const pic_result *r, const char *outdir,
                          const char *png, const char *gp)
 {
     int w = sc->w, h = sc->h, n = w * h, x, y, k, rc;
-    static const int methods[NPANEL_COLS] = {M_REF, M_LEADR, M_VMF8, M_NAIVE};
+    int methods[NPANEL_COLS]; /* the method of each panel column (pic_methods[].panel) */
     double e_lo = pow(10.0, ERR_LOG_MIN), e_hi = pow(10.0, ERR_LOG_MAX);
     double us_ref = 1e6 * r->seconds[M_REF] / r->n_surface;
     char bin[1024], gpv[1024], cmd[4096];
     float *plane = (float *)malloc(sizeof(float) * (size_t)n);
     FILE *f;
+    methods[0] = M_REF;
+    for (k = 1; k < NPANEL_COLS; ++k) methods[k] = -1;
+    for (k = 1; k < M_COUNT; ++k)
+        if (pic_methods[k].panel > 0 && pic_methods[k].panel < NPANEL_COLS) methods[pic_methods[k].panel] = k;
+    for (k = 1; k < NPANEL_COLS; ++k)
+        if (methods[k] < 0) {
+            fprintf(stderr, "pictures: no method in pic_methods has panel %d\n", k);
+            free(plane);
+            return 1;
+        }
     snprintf(bin, sizeof bin, "%s/pic_%s.bin", outdir, sc->name);
     snprintf(gpv, sizeof gpv, "%s/pic_%s.gpv", outdir, sc->name);
     f = fopen(bin, "wb");
@@ -1096,13 +1322,13 @@ static int write_picture(const pic_scene *sc, const pic_result *r, const char *o
                 map_side(), map_side(), user_map ? map_title : "Gaussian height map", SPHERE_TILES, w, h);
     fprintf(f, "t0 = \"reference (brute force)\\n%.0f us per pixel\"\n", us_ref);
     for (k = 1; k < NPANEL_COLS; ++k)
-        fprintf(f, "t%d = \"%s\\n%.0f ns per pixel (%.0fx faster)\"\n", k, panel_title[k],
+        fprintf(f, "t%d = \"%s\\n%.0f ns per pixel (%.0fx faster)\"\n", k, pic_methods[methods[k]].panel_title,
                 1e9 * r->seconds[methods[k]] / r->n_surface,
                 r->seconds[M_REF] / r->seconds[methods[k]]);
     fprintf(f, "t%d = \"footprint side (texels)\\nmedian %.1f, max %.0f\"\n", NPANEL_COLS, r->fp_med, r->fp_max);
     for (k = 1; k < NPANEL_COLS; ++k)
         fprintf(f, "t%d = \"%s: relative error\\nmean %.0f%%, 95th percentile %.0f%%\"\n",
-                k + NPANEL_COLS, panel_short[k], 100.0 * r->err[methods[k]].mean,
+                k + NPANEL_COLS, pic_methods[methods[k]].panel_short, 100.0 * r->err[methods[k]].mean,
                 100.0 * r->err[methods[k]].p95);
     fprintf(f, "ncols = %d\n", NPANEL_COLS);
     fprintf(f, "note = \"Top: reflected radiance L per unit light radiance, one exposure for "
@@ -1170,6 +1396,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
     double us_ref = 1e6 * r->seconds[M_REF] / r->n_surface;
     double box_s, box_l, in_s, in_l, oof_s, oof_l, tri_s, tri_l, trin_s, trin_l, noise_l;
     double ndf_s, ndf_l;
+    const int leadr = method_index("leadr"), box = method_index("leadr_box"), naive = method_index("naive");
     int k, lit_s = 0, lit_l = 0, n_noisy = 0;
     if (user_map) {
         p.rms_slope = map_rms;
@@ -1220,11 +1447,11 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
         "reference (pixels lit in either): mean, 95th | lit pixels returned 0 | time per pixel | "
         "brute force / this |\n|---|---|---|---|---|---|---|\n",
         sc->name);
-    fprintf(md, "| %s | - | - | %.1f%%, %.1f%% | - | %.1f us | 1 |\n", method_label[M_REF],
+    fprintf(md, "| %s | - | - | %.1f%%, %.1f%% | - | %.1f us | 1 |\n", pic_methods[M_REF].label,
             100.0 * r->err_in[M_REF].mean, 100.0 * r->err_in[M_REF].p95, us_ref);
     for (k = 1; k < M_COUNT; ++k)
         fprintf(md, "| %s | %.1f%% | %.1f%% | %.1f%%, %.1f%% | %d | %.0f ns | %.0f |\n",
-                method_label[k], 100.0 * r->err[k].mean, 100.0 * r->err[k].p95,
+                pic_methods[k].label, 100.0 * r->err[k].mean, 100.0 * r->err[k].p95,
                 100.0 * r->err_in[k].mean, 100.0 * r->err_in[k].p95, r->n_zero[k],
                 1e9 * r->seconds[k] / r->n_surface, r->seconds[M_REF] / r->seconds[k]);
     fprintf(md, "\n\"Lit pixels returned 0\": lit pixels (reference at least the floor) where the "
@@ -1234,27 +1461,21 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
                 "sum(method) / sum(reference) over all surface pixels of the row (a bias above 1 "
                 "in rows with few lit pixels comes from the Gaussian lobe's tails lighting pixels "
                 "that the reference leaves dark).\n\n"
-                "| %s: footprint side (texels) | surface pixels | lit | LEADR (trilinear): "
-                "error, bias | LEADR, exact box | naive | vMF m = 4 | vMF m = 8 | vMF m = 4, scaled | "
-                "vMF m = 8, scaled |\n"
-                "|---|---|---|---|---|---|---|---|---|---|\n",
+                "| %s: footprint side (texels) | surface pixels | lit |",
             sc->name);
+    for (k = 1; k < M_COUNT; ++k) fprintf(md, " %s%s |", pic_methods[k].column, k == 1 ? ": error, bias" : "");
+    fprintf(md, "\n|---|---|---|");
+    for (k = 1; k < M_COUNT; ++k) fprintf(md, "---|");
+    fprintf(md, "\n");
     for (k = 0; k < PIC_BINS; ++k) {
+        int mth;
         if (!r->bin_surface[k]) continue;
         print_bin_label(md, k);
         fprintf(md, " %d | %d |", r->bin_surface[k], r->bin_lit[k]);
-        if (r->bin_lit[k] == 0) {
-            fprintf(md, " - | - | - | - | - | - | - |\n"); /* nothing lit: no error, and the bias is 0/0 */
-            continue;
-        }
-        fprintf(md, " %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f | %.0f%%, %.2f |\n",
-                100.0 * r->bin_err[k][M_LEADR], r->bin_ratio[k][M_LEADR],
-                100.0 * r->bin_err[k][M_BOX], r->bin_ratio[k][M_BOX],
-                100.0 * r->bin_err[k][M_NAIVE], r->bin_ratio[k][M_NAIVE],
-                100.0 * r->bin_err[k][M_VMF4], r->bin_ratio[k][M_VMF4],
-                100.0 * r->bin_err[k][M_VMF8], r->bin_ratio[k][M_VMF8],
-                100.0 * r->bin_err[k][M_VMF4S], r->bin_ratio[k][M_VMF4S],
-                100.0 * r->bin_err[k][M_VMF8S], r->bin_ratio[k][M_VMF8S]);
+        for (mth = 1; mth < M_COUNT; ++mth) /* nothing lit: no error, and the bias is 0/0 */
+            if (r->bin_lit[k] == 0) fprintf(md, " - |");
+            else fprintf(md, " %.0f%%, %.2f |", 100.0 * r->bin_err[k][mth], r->bin_ratio[k][mth]);
+        fprintf(md, "\n");
     }
     fprintf(md, "\n");
     /* what the error is made of */
@@ -1263,14 +1484,14 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
         else lit_l += r->bin_lit_u[k];
         n_noisy += r->bin_noisy[k];
     }
-    box_s = bins_mean(r, &r->bin_err_u[0][M_BOX], M_COUNT, 0, SMALL_BINS, 0);
-    box_l = bins_mean(r, &r->bin_err_u[0][M_BOX], M_COUNT, SMALL_BINS, PIC_BINS, 0);
-    in_s = bins_mean(r, &r->bin_err_in[0][M_BOX], M_COUNT, 0, SMALL_BINS, 0);
-    in_l = bins_mean(r, &r->bin_err_in[0][M_BOX], M_COUNT, SMALL_BINS, PIC_BINS, 0);
-    tri_s = bins_mean(r, &r->bin_err_u[0][M_LEADR], M_COUNT, 0, SMALL_BINS, 0);
-    tri_l = bins_mean(r, &r->bin_err_u[0][M_LEADR], M_COUNT, SMALL_BINS, PIC_BINS, 0);
-    trin_s = bins_mean(r, &r->bin_err_in[0][M_LEADR], M_COUNT, 0, SMALL_BINS, 0);
-    trin_l = bins_mean(r, &r->bin_err_in[0][M_LEADR], M_COUNT, SMALL_BINS, PIC_BINS, 0);
+    box_s = bins_mean(r, &r->bin_err_u[0][box], M_COUNT, 0, SMALL_BINS, 0);
+    box_l = bins_mean(r, &r->bin_err_u[0][box], M_COUNT, SMALL_BINS, PIC_BINS, 0);
+    in_s = bins_mean(r, &r->bin_err_in[0][box], M_COUNT, 0, SMALL_BINS, 0);
+    in_l = bins_mean(r, &r->bin_err_in[0][box], M_COUNT, SMALL_BINS, PIC_BINS, 0);
+    tri_s = bins_mean(r, &r->bin_err_u[0][leadr], M_COUNT, 0, SMALL_BINS, 0);
+    tri_l = bins_mean(r, &r->bin_err_u[0][leadr], M_COUNT, SMALL_BINS, PIC_BINS, 0);
+    trin_s = bins_mean(r, &r->bin_err_in[0][leadr], M_COUNT, 0, SMALL_BINS, 0);
+    trin_l = bins_mean(r, &r->bin_err_in[0][leadr], M_COUNT, SMALL_BINS, PIC_BINS, 0);
     oof_s = bins_mean(r, &r->bin_err_in[0][M_REF], M_COUNT, 0, SMALL_BINS, 0);
     oof_l = bins_mean(r, &r->bin_err_in[0][M_REF], M_COUNT, SMALL_BINS, PIC_BINS, 0);
     ndf_s = bins_mean(r, r->bin_ndf, 1, 0, SMALL_BINS, 0);
@@ -1337,8 +1558,8 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
         int first = -1, last = -1;
         for (k = 0; k < PIC_BINS; ++k) {
             if (!r->bin_lit[k]) continue;
-            if (r->bin_ratio[k][M_BOX] < lo) lo = r->bin_ratio[k][M_BOX];
-            if (r->bin_ratio[k][M_BOX] > hi) hi = r->bin_ratio[k][M_BOX];
+            if (r->bin_ratio[k][box] < lo) lo = r->bin_ratio[k][box];
+            if (r->bin_ratio[k][box] > hi) hi = r->bin_ratio[k][box];
             if (first < 0) first = k;
             last = k;
         }
@@ -1351,7 +1572,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
                 "the last row, at the limb where the view is grazing, the exact-box error is "
                 "still %.0f%%: there (3) dominates. ",
                 lo, hi, pct(r->bin_ndf[first]), pct(r->bin_ndf[last]),
-                pct(r->bin_err[last][M_BOX]));
+                pct(r->bin_err[last][box]));
     }
     fprintf(md,
             "The reference's own sampling deviation on subsampled footprints (half the "
@@ -1377,10 +1598,10 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
         print_bin_label(md, k);
         fprintf(
             md, " %d | %.0f%%, %.2f | %.0f%% | %.0f%% | %.0f%% | %.0f%% |", r->bin_lit_u[k],
-            pct(r->bin_err_in[k][M_REF]), r->bin_ratio[k][M_REF], pct(r->bin_err_in[k][M_BOX]),
-            pct(r->bin_err_in[k][M_LEADR]),
-            r->bin_err_u[k][M_BOX] > 0.0
-                ? pct((r->bin_err_u[k][M_BOX] - r->bin_err_in[k][M_BOX]) / r->bin_err_u[k][M_BOX])
+            pct(r->bin_err_in[k][M_REF]), r->bin_ratio[k][M_REF], pct(r->bin_err_in[k][box]),
+            pct(r->bin_err_in[k][leadr]),
+            r->bin_err_u[k][box] > 0.0
+                ? pct((r->bin_err_u[k][box] - r->bin_err_in[k][box]) / r->bin_err_u[k][box])
                 : 0.0,
             pct(r->bin_ndf[k]));
         if (r->bin_noisy[k])
@@ -1397,7 +1618,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
     for (k = 1; k < M_COUNT; ++k)
         printf("  %-26s mean %6.1f%%  p95 %7.1f%%  vs in-box %6.1f%%  zero %5d  %4.0f ns/pixel  "
                "speed-up %.0f\n",
-               method_label[k], 100.0 * r->err[k].mean, 100.0 * r->err[k].p95,
+               pic_methods[k].label, 100.0 * r->err[k].mean, 100.0 * r->err[k].p95,
                100.0 * r->err_in[k].mean, r->n_zero[k], 1e9 * r->seconds[k] / r->n_surface,
                r->seconds[M_REF] / r->seconds[k]);
     for (k = 0; k < PIC_BINS; ++k)
@@ -1406,15 +1627,15 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
                    "naive %6.1f%% (%.2f) | in-box: ref %5.1f%% (%.2f) box %5.1f%% leadr %5.1f%% "
                    "noise %4.1f%% (%d) ndf %5.1f%%\n",
                    k ? 1 << k : 0, r->bin_surface[k], r->bin_lit[k],
-                   100.0 * r->bin_err[k][M_LEADR], r->bin_ratio[k][M_LEADR],
-                   100.0 * r->bin_err[k][M_BOX], r->bin_ratio[k][M_BOX],
-                   100.0 * r->bin_err[k][M_NAIVE], r->bin_ratio[k][M_NAIVE],
+                   100.0 * r->bin_err[k][leadr], r->bin_ratio[k][leadr],
+                   100.0 * r->bin_err[k][box], r->bin_ratio[k][box],
+                   100.0 * r->bin_err[k][naive], r->bin_ratio[k][naive],
                    100.0 * r->bin_err_in[k][M_REF], r->bin_ratio[k][M_REF],
-                   100.0 * r->bin_err_in[k][M_BOX], 100.0 * r->bin_err_in[k][M_LEADR],
+                   100.0 * r->bin_err_in[k][box], 100.0 * r->bin_err_in[k][leadr],
                    100.0 * r->bin_noise[k], r->bin_noisy[k], 100.0 * r->bin_ndf[k]);
 }
 
-static void scene_make(int which, pic_scene *sc, pic_maps *m, int w, int h)
+static void scene_make(int which, pic_scene *sc, const pic_maps *m, int w, int h)
 {
     if (which == 0) scene_plane(sc, m, w, h);
     else scene_sphere(sc, m, w, h);
@@ -1426,32 +1647,44 @@ static const int scene_size[2][2] = {{400, 250}, {300, 300}};
 /* Pipeline self-check (a check that can fail): on the same scenes with the map flattened to an
    RMS slope of FLAT_RMS_SLOPE, every texel is the same narrow lobe and nothing is masked, so the
    reference, LEADR and naive must agree to the library's rounding. Small images; returns the
-   largest relative error over the lit pixels of both scenes and all three methods (and of the
-   in-box reference), and in *worst_vmf that of the vMF methods (bound VMF_CHECK_BOUND). */
-static double self_check(double *worst_vmf)
+   largest relative error over the lit pixels of both scenes and the methods checked to rounding
+   (pic_methods[].check_bound 0) and of the in-box reference, in *worst_loose that of the others
+   (the vMF methods), and in *over the number of those above their own check_bound. */
+static double self_check(double *worst_loose, int *over)
 {
     double worst = 0.0;
     int s, k, i;
+    pic_maps m;
+    pic_scene sc[2];
+    pic_result r[2];
+    const pic_scene *scp[2];
+    pic_result *rp[2];
+    if (maps_make(&m, 1) != 0) return 1e30;
     for (s = 0; s < 2; ++s) {
-        pic_maps m;
-        pic_scene sc;
-        pic_result r;
-        if (maps_make(&m, 1) != 0) return 1e30;
-        scene_make(s, &sc, &m, scene_size[s][0] / 8, scene_size[s][1] / 8);
-        render_scene(&m, &sc, &r);
+        scene_make(s, &sc[s], &m, scene_size[s][0] / 8, scene_size[s][1] / 8);
+        result_alloc(&r[s], sc[s].w * sc[s].h);
+        scp[s] = &sc[s];
+        rp[s] = &r[s];
+    }
+    brute_force(&m, NULL, 2, scp, rp, NULL);
+    *over = 0;
+    for (s = 0; s < 2; ++s) {
+        render_scene(&m, &sc[s], &r[s], 0, NULL);
         for (k = 0; k < M_COUNT; ++k) /* k = M_REF: the in-box reference */
-            for (i = 0; i < sc.w * sc.h; ++i) {
-                double ref = r.val[M_REF][i], e;
-                if (!sc.px[i].hit || !(ref >= r.floor)) continue;
-                e = fabs((k == M_REF ? r.inbox[i] : r.val[k][i]) - ref) / ref;
-                if (k == M_VMF4 || k == M_VMF8 || k == M_VMF4S || k == M_VMF8S) {
-                    if (!(e <= *worst_vmf)) *worst_vmf = e;
+            for (i = 0; i < sc[s].w * sc[s].h; ++i) {
+                double ref = r[s].val[M_REF][i], e;
+                if (!sc[s].px[i].hit || !(ref >= r[s].floor)) continue;
+                e = fabs((k == M_REF ? r[s].inbox[i] : r[s].val[k][i]) - ref) / ref;
+                if (pic_methods[k].check_bound > 0.0) {
+                    if (!(e <= *worst_loose)) *worst_loose = e;
+                    if (!(e <= pic_methods[k].check_bound)) ++*over;
                 } else if (!(e <= worst)) worst = e; /* NaN counts as the worst */
             }
-        result_free(&r);
-        free(sc.px);
-        maps_free(&m);
+        result_free(&r[s]);
+        free(sc[s].px);
+        free(sc[s].vis_light);
     }
+    maps_free(&m);
     return worst;
 }
 
@@ -1475,9 +1708,15 @@ int main(int argc, char **argv)
        differ (trilinear against box) the lobe's centre moves by that much, a relative change
        of up to |s_h - s| FLAT_RMS_SLOPE / BASE_SIGMA^2 ~ 3e-7 */
     double check_bound = sizeof(pf_real) == sizeof(float) ? 1e-4 : 1e-6, check, check_vmf = 0.0;
+    int check_over = 0;
+    pic_maps m;
+    pic_scene scn[2];
+    pic_result res[2];
+    const pic_scene *scp[2];
+    pic_result *resp[2];
     char path[1024];
     FILE *md;
-    double t_start = now_seconds(), t_png = 0.0;
+    double t_start = pfb_now_s(), t_png = 0.0;
     long png_bytes[2] = {0, 0};
     FILE *gpf;
     const char *map_path = NULL;
@@ -1537,10 +1776,13 @@ int main(int argc, char **argv)
         return 1;
     }
     fclose(gpf);
-    check = self_check(&check_vmf);
+    check = self_check(&check_vmf, &check_over);
+    for (s = 0; s < M_COUNT; ++s)
+        printf("pictures: method %-28s %-6s reads %s\n", pic_methods[s].label, pic_methods[s].oracle ? "oracle" : "",
+               pic_methods[s].fetches);
     printf("pictures: self-check on a flat map, max relative error %.2e (bound %.0e), vMF %.2e "
            "(bound %.0e)\n", check, check_bound, check_vmf, VMF_CHECK_BOUND);
-    if (!(check <= check_bound) || !(check_vmf <= VMF_CHECK_BOUND)) {
+    if (!(check <= check_bound) || check_over > 0) {
         fprintf(stderr, "pictures: FAILED self-check: flat map error %.3e > %.0e or vMF %.3e > %.0e\n",
                 check, check_bound, check_vmf, VMF_CHECK_BOUND);
         return 1;
@@ -1568,30 +1810,47 @@ int main(int argc, char **argv)
                 "footprint is isotropic (the larger of the two ray-differential axes, as a GPU "
                 "picks its mip level) and capped at the map size.\n\n",
             100.0 * LIT_FRACTION);
+    /* the maps, built once for both scenes; the scenes' geometry; then one parallel step for the
+       brute force of both and the scaling function (the sphere's rows first: the dearest) */
+    if (maps_make(&m, 0) != 0) {
+        fprintf(stderr, "pictures: out of memory\n");
+        return 1;
+    }
     for (s = 0; s < 2; ++s) {
-        pic_maps m;
-        pic_scene sc;
-        pic_result r;
-        char png[64];
-        if (maps_make(&m, 0) != 0) {
-            fprintf(stderr, "pictures: out of memory\n");
-            return 1;
-        }
-        scene_make(s, &sc, &m, scene_size[s][0] / div, scene_size[s][1] / div);
-        if (quick && sc.ref_max > REF_MAX_SAMPLES) sc.ref_max = REF_MAX_SAMPLES;
-        render_scene(&m, &sc, &r);
+        scene_make(s, &scn[s], &m, scene_size[s][0] / div, scene_size[s][1] / div);
+        if (quick && scn[s].ref_max > REF_MAX_SAMPLES) scn[s].ref_max = REF_MAX_SAMPLES;
+        result_alloc(&res[s], scn[s].w * scn[s].h);
+        scp[1 - s] = &scn[s];
+        resp[1 - s] = &res[s];
+    }
+    if (pfb_thread_count() > 1)
+        brute_force(&m, &m, 2, scp, resp, "pictures: brute force (sphere, plane) and the scaling function");
+    else { /* one thread: nothing to run beside; apart, each step's progress counts like items */
+        maps_scale(&m, "pictures: scaling function (level-6 texels)");
+        brute_force(&m, NULL, 2, scp, resp, "pictures: brute force (sphere, plane)");
+    }
+    if (m.sc_failed) {
+        fprintf(stderr, "pictures: the scaling function failed (bench/vmf_scaling.h)\n");
+        return 1;
+    }
+    for (s = 0; s < 2; ++s) {
+        pic_scene sc = scn[s];
+        pic_result *rr = &res[s];
+        char png[64], label[64];
+        snprintf(label, sizeof label, "pictures: filtered methods (%s)", sc.name);
+        render_scene(&m, &sc, rr, 1, label);
         snprintf(png, sizeof png, "pic_%s.png", sc.name);
         snprintf(path, sizeof path, "%s/%s", outdir, png);
         {
-            double t0 = now_seconds();
-            if (write_picture(&sc, &r, outdir, png, gp) != 0) {
+            double t0 = pfb_now_s();
+            if (write_picture(&sc, rr, outdir, png, gp) != 0) {
                 fprintf(stderr, "pictures: cannot write %s\n", path);
                 return 1;
             }
-            t_png += now_seconds() - t0;
+            t_png += pfb_now_s() - t0;
             png_bytes[s] = file_size(path);
             printf("  %s: %ld bytes, drawn by gnuplot in %.0f ms\n", path, png_bytes[s],
-                   1e3 * (now_seconds() - t0));
+                   1e3 * (pfb_now_s() - t0));
         }
         if (s == 0)
             fprintf(md, "Moment pyramids (five slope moments, average normals) of the %dx%d "
@@ -1611,11 +1870,12 @@ int main(int argc, char **argv)
                     m.surf.w, m.surf.h, 1e3 * m.t_pyramid, VMF_ITER, m.t_vmf[0], m.t_vmf[1], m.t_scale,
                     m.sc_ok ? "" : "; NOT BUILT for this map (smaller than 64 texels, or more than 256 level-6 "
                                    "texels): the scaled rows equal the unscaled ones");
-        describe_scene(md, &sc, &r, png, &m);
-        result_free(&r);
+        describe_scene(md, &sc, rr, png, &m);
+        result_free(rr);
         free(sc.px);
-        maps_free(&m);
+        free(sc.vis_light);
     }
+    maps_free(&m);
     fprintf(md, "Self-checks in the same run: with the map flattened (RMS slope %.0e) the three "
                 "methods and the in-box reference match the reference to %.1e (largest relative "
                 "error over lit pixels; bound %.0e), the vMF methods to %.1e (bound %.0e: the fit's "
@@ -1626,9 +1886,9 @@ int main(int argc, char **argv)
             FLAT_RMS_SLOPE, check, check_bound, check_vmf, VMF_CHECK_BOUND,
             sizeof(pf_real) == sizeof(float) ? "float" : "double",
             quick ? " (BENCH_QUICK: half-size images)" : "", png_bytes[0], png_bytes[1],
-            1e3 * t_png, now_seconds() - t_start);
+            1e3 * t_png, pfb_now_s() - t_start);
     fclose(md);
     pfm_surface_free(&map_surf);
-    printf("pictures: done in %.1f s\n", now_seconds() - t_start);
+    printf("pictures: done in %.1f s\n", pfb_now_s() - t_start);
     return 0;
 }
