@@ -1,0 +1,148 @@
+/* frame.frag - one pixel of bench/pictures.c's scenes, ray-cast analytically and shaded by the
+   library's GLSL path from the moment pyramid stored as GPU textures (bench/frame/frame.c is
+   the host and says what is measured).
+
+   Compiled once per scene and method by bench/frame/run.sh:
+     PFF_SCENE   0 plane toward the horizon, 1 sphere (the cameras, light and maps of
+                 bench/pictures.c; the numbers come in the push constants from frame.c)
+     PFF_METHOD  0 none (ray cast and fetch only: the baseline of the op counts), 1 LEADR,
+                 2 naive mip-mapped normal, 3 Toksvig
+   Textures (one VkImage each, the whole mip chain of the library's CPU pyramid):
+     texA = (E[x], E[y], E[x^2], E[y^2]) of the micro-slopes, texB = (E[xy], E[n]) with E[n]
+     the unnormalized average unit normal (pf_normal_pyramid_from_normals).
+   The texel coordinates' screen derivatives come from the 2x2 quad (dFdxFine, dFdyFine), as in
+   an engine, and go to the sampler through textureGrad, so the driver picks the level of detail
+   (and, with anisotropy, the probe line). Two fixes an engine also needs: the sphere's
+   longitude seam (a jump of the whole tiled width, removed modulo that width) and quads that
+   straddle the surface's edge (a neighbour that misses has no texel coordinate: there the
+   pixel's own ray differentials are used, its neighbour rays meeting the tangent plane at the
+   hit, bench/pictures.c's footprint rule).
+   Outputs: o0 = (radiance, u, v in texels, hit), o1 = (du/dx, dv/dx, du/dy, dv/dy) in texels. */
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define PF_GLSL 1
+#include "pf_core.h"
+#include "pf_smith.h"
+#include "pf_beckmann.h"
+#include "pf_toksvig.h"
+
+layout(push_constant) uniform PC {
+    vec4 pos;   /* camera position; w: tan of half the vertical field of view */
+    vec4 right; /* w: image width in pixels */
+    vec4 up;    /* w: image height */
+    vec4 fwd;   /* w: base slope variance (BASE_SIGMA^2) */
+    vec4 light; /* unit vector toward the light (world); w: Schlick f0 */
+    vec4 map;   /* map width, height (texels), sphere tiles, sphere radius */
+} pc;
+layout(set = 0, binding = 0) uniform sampler2D texA;
+layout(set = 0, binding = 1) uniform sampler2D texB;
+layout(location = 0) out vec4 o0;
+layout(location = 1) out vec4 o1;
+
+const float PI = 3.14159265358979323846;
+
+vec3 camera_ray(vec2 frag)
+{
+    float w = pc.right.w, h = pc.up.w;
+    float sx = (2.0 * frag.x / w - 1.0) * pc.pos.w * w / h;
+    float sy = (1.0 - 2.0 * frag.y / h) * pc.pos.w;
+    return normalize(pc.fwd.xyz + sx * pc.right.xyz + sy * pc.up.xyz);
+}
+
+/* The hit of ray d: texel coordinates (unwrapped), the tangent frame (tu, tv, n) and the
+   texels per world unit along tu and tv. false: no surface. */
+bool ray_cast(vec3 d, out vec2 t, out vec3 tu, out vec3 tv, out vec3 n, out vec2 tex_per, out vec3 hit)
+{
+    t = vec2(0.0); tu = vec3(1, 0, 0); tv = vec3(0, 1, 0); n = vec3(0, 0, 1); tex_per = vec2(1.0); hit = vec3(0.0);
+#if PFF_SCENE == 0
+    if (d.z > -1e-3) return false;
+    hit = pc.pos.xyz + (-pc.pos.z / d.z) * d;
+    t = hit.xy;
+    return true;
+#else
+    float R = pc.map.w, b = dot(pc.pos.xyz, d), c = dot(pc.pos.xyz, pc.pos.xyz) - R * R, disc = b * b - c;
+    if (disc <= 0.0) return false;
+    float s = -b - sqrt(disc);
+    if (s <= 0.0) return false;
+    hit = pc.pos.xyz + s * d;
+    n = hit / R;
+    float phi = atan(n.y, n.x);
+    if (phi < 0.0) phi += 2.0 * PI;
+    float theta = acos(clamp(n.z, -1.0, 1.0)), st = sin(theta);
+    if (st < 1e-6) return false;
+    tu = vec3(-sin(phi), cos(phi), 0.0);
+    tv = cross(n, tu);
+    t = vec2(phi / (2.0 * PI) * pc.map.z * pc.map.x, (1.0 - theta / PI) * 0.5 * pc.map.z * pc.map.y);
+    tex_per = vec2(pc.map.z * pc.map.x / (2.0 * PI * R * st), pc.map.z * pc.map.y / (2.0 * PI * R));
+    return true;
+#endif
+}
+
+/* Texel offset of the neighbour pixel's ray on the tangent plane at hit (pictures.c's
+   footprint_texels, one axis). */
+vec2 ray_diff(vec2 frag, vec3 hit, vec3 n, vec3 tu, vec3 tv, vec2 tex_per)
+{
+    vec3 d = camera_ray(frag);
+    float dn = dot(d, n);
+    if (abs(dn) < 1e-12) return vec2(pc.map.x, 0.0);
+    vec3 off = pc.pos.xyz + (dot(hit - pc.pos.xyz, n) / dn) * d - hit;
+    return vec2(dot(off, tu) * tex_per.x, dot(off, tv) * tex_per.y);
+}
+
+void main()
+{
+    vec3 d = camera_ray(gl_FragCoord.xy), tu, tv, n, hit;
+    vec2 t, tex_per;
+    bool ok = ray_cast(d, t, tu, tv, n, tex_per, hit);
+    float fh = ok ? 1.0 : 0.0;
+    /* quad derivatives (every lane of the quad runs this, helpers included) */
+    vec2 gx = dFdxFine(t), gy = dFdyFine(t);
+    bool edge = abs(dFdxFine(fh)) + abs(dFdyFine(fh)) > 0.0;
+#if PFF_SCENE == 1
+    float period = pc.map.z * pc.map.x; /* the seam: u jumps by the tiled width */
+    gx.x -= period * round(gx.x / period);
+    gy.x -= period * round(gy.x / period);
+#endif
+    if (!ok) {
+        o0 = vec4(0.0);
+        o1 = vec4(0.0);
+        return;
+    }
+    if (edge) {
+        gx = ray_diff(gl_FragCoord.xy + vec2(1.0, 0.0), hit, n, tu, tv, tex_per);
+        gy = ray_diff(gl_FragCoord.xy + vec2(0.0, 1.0), hit, n, tu, tv, tex_per);
+    }
+    vec3 wo = vec3(-dot(d, tu), -dot(d, tv), -dot(d, n));
+    vec3 wi = vec3(dot(pc.light.xyz, tu), dot(pc.light.xyz, tv), dot(pc.light.xyz, n));
+#if PFF_SCENE == 1
+    wo.z = max(wo.z, 1e-6); /* silhouette rounding, as pictures.c */
+    wo = normalize(wo);
+#endif
+    vec2 sz = pc.map.xy, uv = t / sz;
+    uv -= floor(uv);
+    vec4 a = textureGrad(texA, uv, gx / sz, gy / sz);
+    vec4 b = textureGrad(texB, uv, gx / sz, gy / sz);
+    float L;
+    float base_var = pc.fwd.w, f0 = pc.light.w;
+    pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
+#if PFF_METHOD == 1
+    /* LEADR (Dupuy et al. 2013 eq. 17) from the filtered moments */
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 2
+    /* the mip-mapped normal: the base lobe alone around the filtered normal */
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_from_normal(pf_vec3_make(b.y, b.z, b.w)), base_var);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 3
+    /* Toksvig: the base Beckmann roughness widened by the variance the filtered normal's
+       shortening implies (pf_toksvig.h), around that normal */
+    pf_vec3 mu = pf_vec3_make(b.y, b.z, b.w);
+    float m2 = pf_toksvig_beckmann_m(sqrt(2.0 * base_var), pf_toksvig_variance_from_normal(mu));
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_from_normal(mu), 0.5 * m2 * m2);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#else
+    L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
+#endif
+    o0 = vec4(L, t, 1.0);
+    o1 = vec4(gx, gy);
+}
