@@ -95,20 +95,24 @@ void main()
     vec2 t, tex_per;
     bool ok = ray_cast(d, t, tu, tv, n, tex_per, hit);
     float fh = ok ? 1.0 : 0.0;
-    /* quad derivatives (every lane of the quad runs this, helpers included) */
+    /* Everything below runs in every lane of the quad (no early return: derivatives, and the
+       texture fetches that take them, need uniform control flow). Quad derivatives: */
     vec2 gx = dFdxFine(t), gy = dFdyFine(t);
-    bool edge = abs(dFdxFine(fh)) + abs(dFdyFine(fh)) > 0.0;
+    float hx = dFdxFine(fh), hy = dFdyFine(fh);
+    bool edge = abs(hx) + abs(hy) > 0.0;
 #if PFF_SCENE == 1
     float period = pc.map.z * pc.map.x; /* the seam: u jumps by the tiled width */
     gx.x -= period * round(gx.x / period);
     gy.x -= period * round(gy.x / period);
 #endif
-    if (!ok) {
-        o0 = vec4(0.0);
-        o1 = vec4(0.0);
-        return;
-    }
-    if (edge) {
+    /* a lane that misses takes a neighbour's texel coordinate (the quad's values reached
+       through the fine derivatives), so that a driver differentiating the coordinate itself
+       sees the surface's own spacing, not a jump to 0 */
+    float sx = (int(gl_FragCoord.x) & 1) == 1 ? -1.0 : 1.0, sy = (int(gl_FragCoord.y) & 1) == 1 ? -1.0 : 1.0;
+    vec2 t_x = t + sx * gx, t_y = t + sy * gy, t_xy = t_y + sx * dFdxFine(t_y);
+    float h_x = fh + sx * hx, h_y = fh + sy * hy;
+    vec2 tf = ok ? t : (h_x > 0.5 ? t_x : (h_y > 0.5 ? t_y : t_xy));
+    if (ok && edge) {
         gx = ray_diff(gl_FragCoord.xy + vec2(1.0, 0.0), hit, n, tu, tv, tex_per);
         gy = ray_diff(gl_FragCoord.xy + vec2(0.0, 1.0), hit, n, tu, tv, tex_per);
     }
@@ -118,8 +122,9 @@ void main()
     wo.z = max(wo.z, 1e-6); /* silhouette rounding, as pictures.c */
     wo = normalize(wo);
 #endif
-    vec2 sz = pc.map.xy, uv = t / sz;
-    uv -= floor(uv);
+    /* unwrapped: REPEAT wraps it, and a driver that differentiates the coordinate itself
+       (lavapipe's anisotropic filter does) sees no jump at the tiles' edges */
+    vec2 sz = pc.map.xy, uv = tf / sz;
     vec4 a = textureGrad(texA, uv, gx / sz, gy / sz);
     vec4 b = textureGrad(texB, uv, gx / sz, gy / sz);
     float L;
@@ -143,6 +148,6 @@ void main()
 #else
     L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
 #endif
-    o0 = vec4(L, t, 1.0);
-    o1 = vec4(gx, gy);
+    o0 = ok ? vec4(L, t, 1.0) : vec4(0.0);
+    o1 = ok ? vec4(gx, gy) : vec4(0.0);
 }
