@@ -9,7 +9,8 @@
                  2 naive mip-mapped normal, 3 Toksvig
    Textures (one VkImage each, the whole mip chain of the library's CPU pyramid):
      texA = (E[x], E[y], E[x^2], E[y^2]) of the micro-slopes, texB = (E[xy], E[n]) with E[n]
-     the unnormalized average unit normal (pf_normal_pyramid_from_normals).
+     the unnormalized average unit normal (pf_normal_pyramid_from_normals); texL, the lod
+     probe (level l holds l everywhere), read with the same sampler and gradients.
    The texel coordinates' screen derivatives come from the 2x2 quad (dFdxFine, dFdyFine), as in
    an engine, and go to the sampler through textureGrad, so the driver picks the level of detail
    (and, with anisotropy, the probe line). Two fixes an engine also needs: the sphere's
@@ -17,7 +18,7 @@
    straddle the surface's edge (a neighbour that misses has no texel coordinate: there the
    pixel's own ray differentials are used, its neighbour rays meeting the tangent plane at the
    hit, bench/pictures.c's footprint rule).
-   Outputs: o0 = (radiance, u, v in texels, hit), o1 = (du/dx, dv/dx, du/dy, dv/dy) in texels. */
+   Outputs: o0 = (radiance, u, v in texels, 0 for no surface or 1 + the sampler's lod), o1 = (du/dx, dv/dx, du/dy, dv/dy) in texels. */
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #define PF_GLSL 1
@@ -36,6 +37,7 @@ layout(push_constant) uniform PC {
 } pc;
 layout(set = 0, binding = 0) uniform sampler2D texA;
 layout(set = 0, binding = 1) uniform sampler2D texB;
+layout(set = 0, binding = 2) uniform sampler2D texL; /* the lod probe: every texel of level l is l */
 layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
 
@@ -127,6 +129,9 @@ void main()
     vec2 sz = pc.map.xy, uv = tf / sz;
     vec4 a = textureGrad(texA, uv, gx / sz, gy / sz);
     vec4 b = textureGrad(texB, uv, gx / sz, gy / sz);
+    /* the level of detail the sampler used, read back: the probe's levels hold their index, so
+       its trilinear sample is the driver's lod (clamped to the chain) */
+    float lod = textureGrad(texL, uv, gx / sz, gy / sz).r;
     float L;
     float base_var = pc.fwd.w, f0 = pc.light.w;
     pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
@@ -148,6 +153,6 @@ void main()
 #else
     L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
 #endif
-    o0 = ok ? vec4(L, t, 1.0) : vec4(0.0);
+    o0 = ok ? vec4(L, t, 1.0 + lod) : vec4(0.0);
     o1 = ok ? vec4(gx, gy) : vec4(0.0);
 }
