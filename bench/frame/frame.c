@@ -5,7 +5,7 @@
    quad's screen-space derivatives. CPU-side bench program, not part of the library.
 
    WHAT IS MEASURED, per scene (plane toward the horizon, sphere), method (LEADR, naive
-   mip-mapped normal, Toksvig), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT) and sampler
+   mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT) and sampler
    (trilinear, maxAnisotropy 1 and 16), over the lit pixels of bench/pictures.c's rule:
      error     |GPU - reference| / max(reference, floor), the reference being pictures.c's brute
                force for the same rays (tests/pf_microsurface.h: every texel of the pixel's
@@ -48,6 +48,7 @@
 #include "pf_moments.h"
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
+#include "pf_vmf.h"
 #include "pf_microsurface.h"
 #include "vk_common.h"
 
@@ -70,9 +71,12 @@
 #define MAX_ANISO        16.0
 static const double fr_pi = 3.14159265358979323846;
 
-enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_COUNT };
-static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig"};
-static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig"};
+#define VMF_ITER         24 /* EM iterations per lobe-pyramid texel, as bench/pictures.c */
+enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_COUNT };
+static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4",
+                                                  "vMF m = 8"};
+static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "vmf4", "vmf8"};
+static const int vmf_lobes[2] = {4, 8};
 static const char *const scene_key[2] = {"plane", "sphere"};
 
 static double now_seconds(void)
@@ -321,6 +325,7 @@ static double shade_reference_pixel(const pfm_surface *s, const unsigned char *v
 typedef struct {
     int W, H;
     pf_real *slope_pyr, *normal_pyr;
+    pf_real *vmf_pyr[2]; /* lobe pyramids, m = 4 and 8: (mu.x, mu.y, kappa, amp) per lobe */
 } fr_maps;
 
 /* the method from filtered texels a = (ex, ey, exx, eyy), b = (exy, n) */
@@ -381,6 +386,50 @@ static void fetch_sampler(const fr_maps *m, double tx, double ty, const float g[
     }
 }
 
+/* vMF m = vmf_lobes[which] at (u, v) (fractions of the map) and lod: the lobes of the 8 texels
+   of a trilinear fetch, amplitudes times the trilinear weights (bench/pictures.c's shade_vmf) */
+static float shade_vmf_cpu(const fr_maps *m, int which, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
+{
+    const int W = m->W, H = m->H, nm = vmf_lobes[which], nl = pf_vmf_pyramid_level_count(W, H);
+    pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
+    pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    double fl;
+    int l0, lv, t, j;
+    u -= floor(u);
+    v -= floor(v);
+    if (!(lod > 0.0)) lod = 0.0;
+    if (lod > nl - 1) lod = nl - 1;
+    l0 = (int)floor(lod);
+    fl = lod - l0;
+    for (lv = 0; lv < 2; ++lv) {
+        int l = l0 + lv, lw, lh;
+        double wl = lv ? fl : 1.0 - fl, x, y, fx, fy;
+        long ix, iy;
+        const pf_real *lev;
+        if (!(wl > 0.0) || l >= nl) continue;
+        lw = W >> l > 1 ? W >> l : 1;
+        lh = H >> l > 1 ? H >> l : 1;
+        lev = m->vmf_pyr[which] + pf_vmf_pyramid_level_offset(W, H, l) * 4 * nm;
+        x = u * lw - 0.5;
+        y = v * lh - 0.5;
+        ix = (long)floor(x);
+        iy = (long)floor(y);
+        fx = x - (double)ix;
+        fy = y - (double)iy;
+        for (t = 0; t < 4; ++t) {
+            double wt = wl * ((t & 1) ? fx : 1.0 - fx) * ((t & 2) ? fy : 1.0 - fy);
+            int tx = pfmi_wrap((int)(ix + (t & 1)), lw), ty = pfmi_wrap((int)(iy + (t >> 1)), lh);
+            const pf_real *tex = lev + ((size_t)ty * (size_t)lw + (size_t)tx) * 4 * (size_t)nm;
+            if (!(wt > 0.0)) continue;
+            for (j = 0; j < nm; ++j)
+                sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make((float)wt * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1], tex[4 * j + 2]), wo,
+                                     wi, (float)(BASE_SIGMA * BASE_SIGMA));
+        }
+    }
+    return pf_vmf_sum_specular(sum, wo, wi, (float)F0);
+}
+
 /* ---------------------------------------------------------------- float -> half (RNE) */
 static unsigned short f2h(float f)
 {
@@ -438,7 +487,7 @@ static void begin_cmd(void)
     VKC(vkBeginCommandBuffer(cmd, &bi));
 }
 
-static void barrier_image(VkImage im, uint32_t levels, VkImageLayout from, VkImageLayout to, VkAccessFlags src_a,
+static void barrier_image(VkImage im, uint32_t levels, uint32_t layers, VkImageLayout from, VkImageLayout to, VkAccessFlags src_a,
                           VkAccessFlags dst_a, VkPipelineStageFlags src_s, VkPipelineStageFlags dst_s)
 {
     VkImageMemoryBarrier b;
@@ -452,11 +501,11 @@ static void barrier_image(VkImage im, uint32_t levels, VkImageLayout from, VkIma
     b.image = im;
     b.subresourceRange.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
     b.subresourceRange.levelCount = levels;
-    b.subresourceRange.layerCount = 1;
+    b.subresourceRange.layerCount = layers;
     vkCmdPipelineBarrier(cmd, src_s, dst_s, 0, 0, NULL, 0, NULL, 1, &b);
 }
 
-static VkImage make_image(VkFormat fmt, uint32_t w, uint32_t h, uint32_t levels, VkImageUsageFlags usage, VkDeviceMemory *mem)
+static VkImage make_image(VkFormat fmt, uint32_t w, uint32_t h, uint32_t levels, uint32_t layers, VkImageUsageFlags usage, VkDeviceMemory *mem)
 {
     VkImageCreateInfo ii;
     VkImage im;
@@ -468,7 +517,7 @@ static VkImage make_image(VkFormat fmt, uint32_t w, uint32_t h, uint32_t levels,
     ii.extent.height = h;
     ii.extent.depth = 1;
     ii.mipLevels = levels;
-    ii.arrayLayers = 1;
+    ii.arrayLayers = layers;
     ii.samples = VK_SAMPLE_COUNT_1_BIT;
     ii.tiling = VK_IMAGE_TILING_OPTIMAL;
     ii.usage = usage;
@@ -478,18 +527,18 @@ static VkImage make_image(VkFormat fmt, uint32_t w, uint32_t h, uint32_t levels,
     return im;
 }
 
-static VkImageView make_view(VkImage im, VkFormat fmt, uint32_t levels)
+static VkImageView make_view(VkImage im, VkFormat fmt, uint32_t levels, uint32_t layers)
 {
     VkImageViewCreateInfo vi;
     VkImageView v;
     memset(&vi, 0, sizeof vi);
     vi.sType = VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO;
     vi.image = im;
-    vi.viewType = VK_IMAGE_VIEW_TYPE_2D;
+    vi.viewType = layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
     vi.format = fmt;
     vi.subresourceRange.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
     vi.subresourceRange.levelCount = levels;
-    vi.subresourceRange.layerCount = 1;
+    vi.subresourceRange.layerCount = layers;
     VKC(vkCreateImageView(vk.dev, &vi, NULL, &v));
     return v;
 }
@@ -497,12 +546,13 @@ static VkImageView make_view(VkImage im, VkFormat fmt, uint32_t levels)
 /* one pyramid texture: 4 channels per texel of every level, from the CPU pyramid(s) */
 typedef struct { VkImage im; VkDeviceMemory mem; VkImageView view; } fr_tex;
 
-/* uploads level data (levels x 4 channels, float) as fmt (f32 or f16) */
-static fr_tex upload_texture(const float *texels, int W, int H, int levels, VkFormat fmt)
+/* uploads level data (levels x 4 channels, float) as fmt (f32 or f16); layers > 1: each level
+   holds its layers one after the other */
+static fr_tex upload_texture_layers(const float *texels, int W, int H, int levels, int layers, VkFormat fmt)
 {
     fr_tex t;
     int half = fmt == VK_FORMAT_R16G16B16A16_SFLOAT, l;
-    size_t bpp = half ? 8 : 16, total = (size_t)pf_mip_texel_count(W, H), k;
+    size_t bpp = half ? 8 : 16, total = (size_t)pf_mip_texel_count(W, H) * (size_t)layers, k;
     VkBuffer sb;
     VkDeviceMemory sm;
     void *map;
@@ -511,30 +561,34 @@ static fr_tex upload_texture(const float *texels, int W, int H, int levels, VkFo
     if (half)
         for (k = 0; k < total * 4; ++k) ((unsigned short *)map)[k] = f2h(texels[k]);
     else memcpy(map, texels, total * 16);
-    t.im = make_image(fmt, (uint32_t)W, (uint32_t)H, (uint32_t)levels, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &t.mem);
+    t.im = make_image(fmt, (uint32_t)W, (uint32_t)H, (uint32_t)levels, (uint32_t)layers, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &t.mem);
     memset(reg, 0, sizeof reg);
     for (l = 0; l < levels; ++l) {
-        reg[l].bufferOffset = (VkDeviceSize)pf_mip_level_offset(W, H, l) * bpp;
+        reg[l].bufferOffset = (VkDeviceSize)pf_mip_level_offset(W, H, l) * (VkDeviceSize)layers * bpp;
         reg[l].imageSubresource.aspectMask = VK_IMAGE_ASPECT_COLOR_BIT;
         reg[l].imageSubresource.mipLevel = (uint32_t)l;
-        reg[l].imageSubresource.layerCount = 1;
+        reg[l].imageSubresource.layerCount = (uint32_t)layers;
         reg[l].imageExtent.width = (uint32_t)pf_mip_level_size(W, l);
         reg[l].imageExtent.height = (uint32_t)pf_mip_level_size(H, l);
         reg[l].imageExtent.depth = 1;
     }
     begin_cmd();
-    barrier_image(t.im, (uint32_t)levels, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
+    barrier_image(t.im, (uint32_t)levels, (uint32_t)layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
     vkCmdCopyBufferToImage(cmd, sb, t.im, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, (uint32_t)levels, reg);
-    barrier_image(t.im, (uint32_t)levels, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+    barrier_image(t.im, (uint32_t)levels, (uint32_t)layers, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
     VKC(vkEndCommandBuffer(cmd));
     submit_wait();
     vkDestroyBuffer(vk.dev, sb, NULL);
     vkFreeMemory(vk.dev, sm, NULL);
-    t.view = make_view(t.im, fmt, (uint32_t)levels);
+    t.view = make_view(t.im, fmt, (uint32_t)levels, (uint32_t)layers);
     return t;
+}
+static fr_tex upload_texture(const float *texels, int W, int H, int levels, VkFormat fmt)
+{
+    return upload_texture_layers(texels, W, H, levels, 1, fmt);
 }
 
 static VkSampler make_sampler(float aniso, int levels)
@@ -593,9 +647,9 @@ static fr_target make_target(int w, int h)
         ad[k].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
         ar[k].attachment = (uint32_t)k;
         ar[k].layout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        t.att[k] = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, (uint32_t)w, (uint32_t)h, 1,
+        t.att[k] = make_image(VK_FORMAT_R32G32B32A32_SFLOAT, (uint32_t)w, (uint32_t)h, 1, 1,
                               VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT, &t.att_mem[k]);
-        t.att_view[k] = make_view(t.att[k], VK_FORMAT_R32G32B32A32_SFLOAT, 1);
+        t.att_view[k] = make_view(t.att[k], VK_FORMAT_R32G32B32A32_SFLOAT, 1, 1);
     }
     memset(&sp, 0, sizeof sp);
     sp.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
@@ -748,7 +802,7 @@ static double render(const fr_target *t, VkPipeline p, VkDescriptorSet set, cons
 static void vk_setup(int levels_unused)
 {
     VkPhysicalDeviceFeatures en;
-    VkDescriptorSetLayoutBinding bind[3];
+    VkDescriptorSetLayoutBinding bind[5];
     VkDescriptorSetLayoutCreateInfo dlci;
     VkPushConstantRange pcr;
     VkPipelineLayoutCreateInfo plci;
@@ -762,7 +816,7 @@ static void vk_setup(int levels_unused)
     en.samplerAnisotropy = vk.features.samplerAnisotropy;
     pfvk_open_device(&vk, &en, VK_QUEUE_GRAPHICS_BIT);
     memset(bind, 0, sizeof bind);
-    for (k = 0; k < 3; ++k) {
+    for (k = 0; k < 5; ++k) {
         bind[k].binding = (uint32_t)k;
         bind[k].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         bind[k].descriptorCount = 1;
@@ -770,7 +824,7 @@ static void vk_setup(int levels_unused)
     }
     memset(&dlci, 0, sizeof dlci);
     dlci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    dlci.bindingCount = 3;
+    dlci.bindingCount = 5;
     dlci.pBindings = bind;
     VKC(vkCreateDescriptorSetLayout(vk.dev, &dlci, NULL, &dsl));
     pcr.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -808,13 +862,15 @@ static void vk_setup(int levels_unused)
     }
 }
 
-/* the set of one storage and sampler: texA, texB, and the lod probe, all through sampler s */
-static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr_tex *b, const fr_tex *probe, VkSampler s)
+/* the set of one storage and sampler: texA, texB, the lod probe, the two lobe pyramids (read by
+   texelFetch: the sampler does not matter), all through sampler s */
+static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr_tex *b, const fr_tex *probe, const fr_tex *v4,
+                                const fr_tex *v8, VkSampler s)
 {
     VkDescriptorSetAllocateInfo ai;
     VkDescriptorSet set;
-    VkDescriptorImageInfo ii[3];
-    VkWriteDescriptorSet wr[3];
+    VkDescriptorImageInfo ii[5];
+    VkWriteDescriptorSet wr[5];
     int k;
     memset(&ai, 0, sizeof ai);
     ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -823,9 +879,10 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
     ai.pSetLayouts = &dsl;
     VKC(vkAllocateDescriptorSets(vk.dev, &ai, &set));
     memset(wr, 0, sizeof wr);
-    for (k = 0; k < 3; ++k) {
+    for (k = 0; k < 5; ++k) {
+        const fr_tex *t = k == 0 ? a : (k == 1 ? b : (k == 2 ? probe : (k == 3 ? v4 : v8)));
         ii[k].sampler = s;
-        ii[k].imageView = k == 0 ? a->view : (k == 1 ? b->view : probe->view);
+        ii[k].imageView = t->view;
         ii[k].imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
         wr[k].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
         wr[k].dstSet = set;
@@ -834,7 +891,7 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
         wr[k].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         wr[k].pImageInfo = &ii[k];
     }
-    vkUpdateDescriptorSets(vk.dev, 3, wr, 0, NULL);
+    vkUpdateDescriptorSets(vk.dev, 5, wr, 0, NULL);
     return set;
 }
 
@@ -868,7 +925,7 @@ typedef struct {
     double vs_drv, vs_drv_p95; /* GPU against the CPU float path at the driver's own lod (isotropic) */
     double lod_diff;           /* mean |driver's lod - specification's lod| (lit pixels) */
     double ms;                 /* GPU time of the render pass (real GPUs only), else -1 */
-    int nonfinite, n_lit;
+    int nonfinite, n_lit, done;
 } fr_row;
 
 /* mean and 95th percentile of rel(v, ref, fl) over the pixels where use[i]; scratch: npx doubles */
@@ -910,7 +967,8 @@ int main(int argc, char **argv)
     pfm_surface surf;
     fr_maps maps;
     float *texA, *texB, *texL;
-    fr_tex tex[NSTORE][2], probe;
+    fr_tex tex[NSTORE][2], probe, vtex[2];
+    double t_vmf[2];
     VkSampler samp[NANISO];
     VkDescriptorPool dpool;
     VkDescriptorSet set[NSTORE][NANISO];
@@ -956,6 +1014,13 @@ int main(int argc, char **argv)
         if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr) != PF_OK ||
             pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr) != PF_OK)
             return 1;
+        for (k = 0; k < 2; ++k) { /* the lobe pyramids (EM per texel), as bench/pictures.c */
+            double t1 = now_seconds();
+            maps.vmf_pyr[k] = (pf_real *)malloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
+            if (!maps.vmf_pyr[k] || pf_vmf_pyramid_from_normals(nrm, NULL, W, H, vmf_lobes[k], VMF_ITER, maps.vmf_pyr[k]) != PF_OK)
+                return 1;
+            t_vmf[k] = now_seconds() - t1;
+        }
         free(hts);
         free(nrm);
     }
@@ -986,6 +1051,22 @@ int main(int argc, char **argv)
     }
     /* the probe in f16: small integers are exact, and f16 filters linearly on every device */
     probe = upload_texture(texL, W, H, levels, VK_FORMAT_R16G16B16A16_SFLOAT);
+    /* the lobe pyramids as 2D array images (layer j = lobe j), f32 only: kappa reaches 1e5, past
+       f16's 65504 (an f16 lobe texture needs an encoding of kappa) */
+    for (k = 0; k < 2; ++k) {
+        int nm = vmf_lobes[k], nlv = pf_vmf_pyramid_level_count(W, H), j;
+        float *lay = (float *)malloc(sizeof(float) * 4 * (size_t)nm * (size_t)nt);
+        if (!lay || nlv != levels) return 1;
+        for (l = 0; l < levels; ++l) {
+            long long o = pf_mip_level_offset(W, H, l), n = pf_mip_level_offset(W, H, l + 1) - o, t;
+            const pf_real *src = maps.vmf_pyr[k] + pf_vmf_pyramid_level_offset(W, H, l) * 4 * nm;
+            for (j = 0; j < nm; ++j)
+                for (t = 0; t < n; ++t)
+                    memcpy(lay + 4 * (o * nm + j * n + t), src + 4 * (t * nm + j), sizeof(float) * 4);
+        }
+        vtex[k] = upload_texture_layers(lay, W, H, levels, nm, VK_FORMAT_R32G32B32A32_SFLOAT);
+        free(lay);
+    }
     for (an = 0; an < NANISO; ++an) {
         double dev_max = vk.features.samplerAnisotropy ? (double)vk.props.limits.maxSamplerAnisotropy : 1.0;
         aniso_used[an] = aniso_of[an] < dev_max ? aniso_of[an] : dev_max;
@@ -995,7 +1076,7 @@ int main(int argc, char **argv)
         VkDescriptorPoolSize ps;
         VkDescriptorPoolCreateInfo dpci;
         ps.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        ps.descriptorCount = 3 * NSTORE * NANISO;
+        ps.descriptorCount = 5 * NSTORE * NANISO;
         memset(&dpci, 0, sizeof dpci);
         dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
         dpci.maxSets = NSTORE * NANISO;
@@ -1004,7 +1085,7 @@ int main(int argc, char **argv)
         VKC(vkCreateDescriptorPool(vk.dev, &dpci, NULL, &dpool));
         for (st = 0; st < NSTORE; ++st)
             for (an = 0; an < NANISO; ++an)
-                if (fmt_ok[st]) set[st][an] = make_set(dpool, &tex[st][0], &tex[st][1], &probe, samp[an]);
+                if (fmt_ok[st]) set[st][an] = make_set(dpool, &tex[st][0], &tex[st][1], &probe, &vtex[0], &vtex[1], samp[an]);
     }
     snprintf(vert, sizeof vert, "%s/frame.vert.spv", spv);
 
@@ -1064,6 +1145,10 @@ int main(int argc, char **argv)
                 float a[4], b[4];
                 vc[i] = 0.0;
                 if (!lit[0][i]) continue;
+                if (m >= MT_VMF4) {
+                    vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, p->wo, p->wi);
+                    continue;
+                }
                 fetch(&maps, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, a, b);
                 vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
             }
@@ -1092,6 +1177,8 @@ int main(int argc, char **argv)
                     double times[5], lod_sum = 0.0, dummy;
                     int nl = 0;
                     if (!fmt_ok[st]) continue;
+                    if (m >= MT_VMF4 && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
+                    rw->done = 1;
                     times[0] = render(&tg, pipe, set[st][an], &pc, w, h);
                     memcpy(gpu, tg.rb_map, sizeof(float) * 8 * (size_t)npx);
                     if (have_ts) {
@@ -1114,12 +1201,21 @@ int main(int argc, char **argv)
                         if (!p->hit || !(o0[3] > 0.5f) || !(lit[0][i] || lit[1][i])) continue;
                         /* the CPU float path: the specification's sampler at the GPU's coordinates and
                            derivatives; isotropic also at the lod the driver reports */
-                        fetch_sampler(&maps, (double)o0[1], (double)o0[2], o1, aniso_used[an], a, b);
-                        vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+                        if (m >= MT_VMF4) {
+                            double ls = rho > 0.0 ? log2(rho) : 0.0;
+                            vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
+                        } else {
+                            fetch_sampler(&maps, (double)o0[1], (double)o0[2], o1, aniso_used[an], a, b);
+                            vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+                        }
                         if (an == 0) {
                             double lod_drv = (double)o0[3] - 1.0;
-                            fetch(&maps, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
-                            vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+                            if (m >= MT_VMF4)
+                                vd[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
+                            else {
+                                fetch(&maps, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
+                                vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+                            }
                             if (lit[0][i]) {
                                 double ls = rho > 0.0 ? log2(rho) : 0.0;
                                 if (ls < 0.0) ls = 0.0;
@@ -1232,17 +1328,25 @@ int main(int argc, char **argv)
                 "|driver's lod - log2(rho_max)|;\n"
                 "- **non-finite**: NaN or infinite pixels of the whole GPU frame; **SPIR-V ops (branches)**: the fragment shader "
                 "after `spirv-opt -O`, counted as bench/gpu/count.sh counts (the \"none\" shader, ray cast, derivatives and three "
-                "fetches, is the baseline of the others).\n\n",
-            100.0 * LIT_FRACTION, ref_max, ref_max, quick ? " (BENCH_QUICK)" : "");
+                "fetches, is the baseline of the others).\n\n"
+                "The vMF rows (`pf_vmf_sum_add`, `pf_vmf_sum_specular`: Wu et al. 2019 eqs. 4-5, slope form) read lobe "
+                "pyramids fitted by EM (`pf_vmf_pyramid_from_normals`, %d iterations at most; %.1f s for m = 4, %.1f s for m = 8 "
+                "on the CPU, one-offs) and uploaded as R32G32B32A32_SFLOAT 2D array images (layer j = lobe j, whole mip chains); a "
+                "mixture is not filtered by averaging its parameters, so the shader reads the 8 texels of a trilinear fetch at "
+                "the driver's lod with `texelFetch` and sums their lobes with the trilinear weights (bench/pictures.c's "
+                "shade_vmf). Hence f32 and isotropic only (kappa reaches 1e5, past f16's range; no anisotropic variant); their "
+                "CPU path is the same sum at log2(rho_max), or at the driver's lod.\n\n",
+            100.0 * LIT_FRACTION, ref_max, ref_max, quick ? " (BENCH_QUICK)" : "", VMF_ITER, t_vmf[0], t_vmf[1]);
     for (s = 0; s < 2; ++s) {
         int br, ops0 = ops_of(ops_file, s, MT_NONE, &br);
         fprintf(md, "**%s**: %d surface pixels, lit %d (box reference) and %d (pixel reference), median footprint side %.1f "
                     "texels; references %.1f s and %.1f s on one CPU core; %d pixels sit in quads at the surface's edge (the "
                     "shader's ray-differential fallback); pixels where the GPU's and the CPU's rays disagree on hitting: %d. "
                     "The CPU float path at pictures.c's own footprint (lod from the analytic ray differentials) against the box "
-                    "reference: LEADR %.1f%%, naive %.1f%%, Toksvig %.1f%%.\n\n",
+                    "reference: LEADR %.1f%%, naive %.1f%%, Toksvig %.1f%%, vMF m = 4 %.1f%%, m = 8 %.1f%%.\n\n",
                 scene_key[s], n_surf[s], n_lit[s][0], n_lit[s][1], fp_med[s], t_ref[s][0], t_ref[s][1], n_edge[s], n_mism[s],
-                100.0 * cpu_pic_err[s][MT_LEADR], 100.0 * cpu_pic_err[s][MT_NAIVE], 100.0 * cpu_pic_err[s][MT_TOKSVIG]);
+                100.0 * cpu_pic_err[s][MT_LEADR], 100.0 * cpu_pic_err[s][MT_NAIVE], 100.0 * cpu_pic_err[s][MT_TOKSVIG],
+                100.0 * cpu_pic_err[s][MT_VMF4], 100.0 * cpu_pic_err[s][MT_VMF8]);
         fprintf(md, "| %s: method | storage | aniso | error, box ref. (mean, p95) | error, pixel ref. (mean, p95) | CPU path: box, "
                     "pixel ref. | vs CPU (mean, p95) | vs CPU at driver lod (mean, p95) | lod diff | non-finite | SPIR-V ops "
                     "(branches) |%s\n|---|---|--:|---|---|---|---|---|--:|--:|---|%s\n",
@@ -1254,7 +1358,7 @@ int main(int argc, char **argv)
                 for (an = 0; an < NANISO; ++an) {
                     const fr_row *rw = &rows[s][m][st][an];
                     char drv[64] = "-", lod[32] = "-";
-                    if (!fmt_ok[st]) continue;
+                    if (!rw->done) continue;
                     if (rw->vs_drv >= 0.0) snprintf(drv, sizeof drv, "%.4f%%, %.4f%%", 100.0 * rw->vs_drv, 100.0 * rw->vs_drv_p95);
                     if (rw->lod_diff >= 0.0) snprintf(lod, sizeof lod, "%.4f", rw->lod_diff);
                     fprintf(md, "| %s | %s | %.0f | %.1f%%, %.1f%% | %.1f%%, %.1f%% | %.1f%%, %.1f%% | %.3f%%, %.3f%% | %s | %s | %d | %d (%d) |",

@@ -6,7 +6,8 @@
      PFF_SCENE   0 plane toward the horizon, 1 sphere (the cameras, light and maps of
                  bench/pictures.c; the numbers come in the push constants from frame.c)
      PFF_METHOD  0 none (ray cast and fetch only: the baseline of the op counts), 1 LEADR,
-                 2 naive mip-mapped normal, 3 Toksvig
+                 2 naive mip-mapped normal, 3 Toksvig, 4 and 5 vMF m = 4 and 8 (lobe pyramids,
+                 texelFetch of the 8 texels of a trilinear fetch at the driver's lod)
    Textures (one VkImage each, the whole mip chain of the library's CPU pyramid):
      texA = (E[x], E[y], E[x^2], E[y^2]) of the micro-slopes, texB = (E[xy], E[n]) with E[n]
      the unnormalized average unit normal (pf_normal_pyramid_from_normals); texL, the lod
@@ -26,6 +27,10 @@
 #include "pf_smith.h"
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
+#if PFF_METHOD >= 4
+#  include "pf_moments.h"
+#  include "pf_vmf.h"
+#endif
 
 layout(push_constant) uniform PC {
     vec4 pos;   /* camera position; w: tan of half the vertical field of view */
@@ -38,6 +43,13 @@ layout(push_constant) uniform PC {
 layout(set = 0, binding = 0) uniform sampler2D texA;
 layout(set = 0, binding = 1) uniform sampler2D texB;
 layout(set = 0, binding = 2) uniform sampler2D texL; /* the lod probe: every texel of level l is l */
+#if PFF_METHOD == 4
+layout(set = 0, binding = 3) uniform sampler2DArray texV; /* vMF lobe pyramid, m = 4: layer j = lobe j */
+const int PFF_LOBES = 4;
+#elif PFF_METHOD == 5
+layout(set = 0, binding = 4) uniform sampler2DArray texV; /* m = 8 */
+const int PFF_LOBES = 8;
+#endif
 layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
 
@@ -150,6 +162,32 @@ void main()
     float m2 = pf_toksvig_beckmann_m(sqrt(2.0 * base_var), pf_toksvig_variance_from_normal(mu));
     pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_from_normal(mu), 0.5 * m2 * m2);
     L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD >= 4
+    /* vMF lobes (Wu et al. 2019 eqs. 4-5, pf_vmf.h): a mixture is not filtered by averaging its
+       parameters, so the 8 texels a trilinear fetch at the driver's lod touches are read with
+       texelFetch and their lobes summed with the trilinear weights (bench/pictures.c's
+       shade_vmf; texel centres, wrap) */
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int nl = textureQueryLevels(texV), l0 = int(floor(lod));
+    float fl = lod - float(l0);
+    for (int lv = 0; lv < 2; ++lv) {
+        int l = l0 + lv;
+        float wl = lv == 1 ? fl : 1.0 - fl;
+        if (!(wl > 0.0) || l >= nl) continue;
+        ivec2 ls = textureSize(texV, l).xy;
+        vec2 x = fract(uv) * vec2(ls) - 0.5, f = x - floor(x);
+        ivec2 i0 = ivec2(floor(x));
+        for (int k = 0; k < 4; ++k) {
+            float wt = wl * ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
+            if (!(wt > 0.0)) continue;
+            ivec2 ti = (i0 + ivec2(k & 1, k >> 1) + ls) % ls;
+            for (int j = 0; j < PFF_LOBES; ++j) {
+                vec4 q = texelFetch(texV, ivec3(ti, j), l); /* (mu.x, mu.y, kappa, amp) */
+                sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(wt * q.w, q.x, q.y, q.z), vo, vi, base_var);
+            }
+        }
+    }
+    L = pf_vmf_sum_specular(sum, vo, vi, f0);
 #else
     L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
 #endif
