@@ -29,11 +29,16 @@
    counts them as bench/gpu/count.sh does; the "none" shader, ray cast and two fetches, is the
    baseline).
 
+   MOTION. MOTION_FRAMES frames per scene along a slow camera path (a dolly over the plane, a turn
+   of the sphere), smaller frames: each method's error, its change per frame and its flicker
+   ratio (its change / the reference's own change); frame.md says why the ratio is not yet a
+   fair test (the reference's own change is mostly its sampling noise).
+
    TIMES. On a CPU device (lavapipe) no time is reported: it is not GPU time. On a real GPU
    (PF_VK_DEVICE, vk_common.h) the render pass is timed with timestamp queries (median of 5).
 
    usage: frame SPV_DIR OUT_DIR [OPS_FILE]   (bench/frame/run.sh; BENCH_QUICK=1: small frames)
-   Writes OUT_DIR/frame.md (table and notes), OUT_DIR/frame.csv, and OUT_DIR/frame_<scene>.bin
+   Writes OUT_DIR/frame.md (tables and notes), OUT_DIR/frame.csv, frame_motion.csv, and OUT_DIR/frame_<scene>.bin
    + .gpv for bench/frame/frame.gp (GPU LEADR frame next to the reference). Exit 0, or 1 when a
    check that cannot depend on the data fails (no surface pixel, unreadable files). */
 #ifndef _POSIX_C_SOURCE
@@ -69,6 +74,12 @@
 #define SPHERE_FOV_DEG   40.0
 #define SPHERE_TILES     128
 #define MAX_ANISO        16.0
+#define MOTION_FRAMES    16
+#define MOTION_SPT       2      /* motion reference: samples per texel along each footprint axis */
+#define MOTION_ROWS      6      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x */
+#define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
+#define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator,
+                                                  a quarter of the median footprint */
 static const double fr_pi = 3.14159265358979323846;
 
 #define VMF_ITER         24 /* EM iterations per lobe-pyramid texel, as bench/pictures.c */
@@ -172,7 +183,9 @@ typedef struct {
     fr_pixel *px;
 } fr_scene;
 
-static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface *s)
+/* motion: the plane's camera moved forward (+y) by that many texels (a dolly); the sphere turned
+   about its pole by that many radians (the texture moves under a fixed camera and light) */
+static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface *s, double motion)
 {
     double W = s->w, H = s->h;
     int i, j, k;
@@ -182,7 +195,7 @@ static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface 
     sc->h = h;
     sc->px = (fr_pixel *)calloc((size_t)w * (size_t)h, sizeof(fr_pixel));
     if (which == 0) {
-        double pos[3] = {0.0, 0.0, PLANE_CAM_HEIGHT}, pitch = PLANE_PITCH_DEG * fr_pi / 180.0, fwd[3];
+        double pos[3] = {0.0, motion, PLANE_CAM_HEIGHT}, pitch = PLANE_PITCH_DEG * fr_pi / 180.0, fwd[3];
         double el = PLANE_LIGHT_ELEV * fr_pi / 180.0, az = PLANE_LIGHT_AZIM * fr_pi / 180.0;
         double nz[3] = {0, 0, 1}, ax[3] = {1, 0, 0}, ay[3] = {0, 1, 0};
         fwd[0] = 0.0, fwd[1] = cos(pitch), fwd[2] = -sin(pitch);
@@ -228,7 +241,7 @@ static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface 
                 tu[0] = -sin(phi), tu[1] = cos(phi), tu[2] = 0.0;
                 cross3(n, tu, tv);
                 p->hit = 1;
-                p->tx = phi / (2.0 * fr_pi) * SPHERE_TILES * W;
+                p->tx = (phi - motion) / (2.0 * fr_pi) * SPHERE_TILES * W;
                 p->ty = (1.0 - theta / fr_pi) * 0.5 * SPHERE_TILES * H;
                 p->fp = footprint_texels(&sc->cam, i, j, hit, n, tu, tv, SPHERE_TILES * W / (2.0 * fr_pi * SPHERE_RADIUS * st),
                                          SPHERE_TILES * H / (2.0 * fr_pi * SPHERE_RADIUS), W, p->off);
@@ -300,14 +313,15 @@ static double shade_reference(const pfm_surface *s, const unsigned char *vis_lig
 
 /* The same brute force over the pixel's own footprint: the parallelogram spanned by the texel
    offsets of its two neighbour rays, centred on the hit (the image of the pixel's box filter
-   on the tangent plane), sampled on an na x nb grid, na = round(|off_x|) texels (at least 1, at
-   most ref_max), nb likewise; each grid point shades the texel it falls in. This is the
+   on the tangent plane), sampled on an na x nb grid, na = round(spt |off_x|) (spt samples per
+   texel; at least 1, at most ref_max), nb likewise; each grid point shades the texel it falls
+   in: a supersampled pixel, whose samples move continuously with the camera. This is the
    footprint anisotropic filtering approximates; the square box above is the isotropic one. */
-static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max)
+static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max, int spt)
 {
     fr_ref_acc r;
     double lx = sqrt(p->off[0] * p->off[0] + p->off[1] * p->off[1]), ly = sqrt(p->off[2] * p->off[2] + p->off[3] * p->off[3]);
-    int na = (int)floor(lx + 0.5), nb = (int)floor(ly + 0.5), a, b;
+    int na = (int)floor(spt * lx + 0.5), nb = (int)floor(spt * ly + 0.5), a, b;
     if (na < 1) na = 1;
     if (nb < 1) nb = 1;
     if (na > ref_max) na = ref_max;
@@ -609,7 +623,7 @@ static VkSampler make_sampler(float aniso, int levels)
 }
 
 /* push constants: frame.frag's PC block */
-typedef struct { float pos[4], right[4], up[4], fwd[4], light[4], map[4]; } fr_push;
+typedef struct { float pos[4], right[4], up[4], fwd[4], light[4], map[4], motion[4]; } fr_push;
 
 typedef struct {
     VkRenderPass rp;
@@ -981,6 +995,12 @@ int main(int argc, char **argv)
     double cpu_pic_err[2][MT_COUNT], fp_med[2], t_ref[2][2], floor_[2][2];
     int n_lit[2][2], n_surf[2], n_edge[2], n_mism[2], fmt_ok[NSTORE];
     double aniso_used[NANISO];
+    static const int motion_full[2][2] = {{200, 125}, {150, 150}}, motion_quick[2][2] = {{64, 40}, {48, 48}};
+    static const double motion_step[2] = {PLANE_DOLLY_STEP, SPHERE_TURN_STEP};
+    static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR};
+    double motion_flicker[2][MOTION_ROWS], motion_err[2][MOTION_ROWS], motion_ref_change[2], motion_seconds[2];
+    int motion_nonfinite[2][MOTION_ROWS], motion_best[2];
+    double motion_own[2][MOTION_ROWS];
     if (argc < 3) {
         fprintf(stderr, "usage: frame SPV_DIR OUT_DIR [OPS_FILE]\n");
         return 2;
@@ -1106,7 +1126,7 @@ int main(int argc, char **argv)
             if (!ref[r] || !lit[r]) return 1;
         }
         if (!scratch || !vg || !vc || !vd || !gpu || !leadr_f32) return 1;
-        scene_make(&sc, s, w, h, &surf);
+        scene_make(&sc, s, w, h, &surf, 0.0);
         if (s == 0) { /* one light direction for every pixel: one visibility map */
             vis_light = (unsigned char *)malloc((size_t)W * H);
             pfm_visibility_map(&surf, sc.light, vis_light);
@@ -1117,7 +1137,7 @@ int main(int argc, char **argv)
             t0 = now_seconds();
             for (i = 0, nsurf = 0; i < npx; ++i)
                 if (sc.px[i].hit) {
-                    ref[r][i] = r ? shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max)
+                    ref[r][i] = r ? shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, 1)
                                   : shade_reference(&surf, vis_light, &sc.px[i], ref_max);
                     scratch[nsurf++] = ref[r][i];
                 }
@@ -1166,6 +1186,7 @@ int main(int argc, char **argv)
         pc.fwd[3] = (float)(BASE_SIGMA * BASE_SIGMA);
         pc.light[3] = (float)F0;
         pc.map[0] = (float)W, pc.map[1] = (float)H, pc.map[2] = (float)SPHERE_TILES, pc.map[3] = (float)SPHERE_RADIUS;
+        memset(pc.motion, 0, sizeof pc.motion);
         n_mism[s] = 0;
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
             VkPipeline pipe;
@@ -1290,6 +1311,107 @@ int main(int argc, char **argv)
         free(scratch), free(vg), free(vc), free(vd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
     }
 
+    /* ---------------------------------------------------------------- motion: MOTION_FRAMES frames per
+       scene along a slow camera path (the plane: a dolly forward; the sphere: a turn about its
+       pole), f32 storage, each method isotropic and LEADR also at 16x; per method the flicker
+       ratio = sum over consecutive frame pairs and pixels lit in either frame of |change of the
+       method| / the same sum of |change of the reference| (1: the method changes as much as the
+       truth; the naive mip-mapped normal is the anchor of shimmer), and the mean error over the
+       frames (box reference) */
+    for (s = 0; s < 2; ++s) {
+        int w = quick ? motion_quick[s][0] : motion_full[s][0], h = quick ? motion_quick[s][1] : motion_full[s][1];
+        int npx = w * h, f, i, mr;
+        fr_target tg;
+        fr_push pc;
+        VkPipeline pipes[MT_COUNT];
+        unsigned char *vis_light = NULL;
+        double *mref = (double *)calloc((size_t)MOTION_FRAMES * npx, sizeof(double)), *scratch = (double *)malloc(sizeof(double) * (size_t)npx);
+        double *mval = (double *)calloc((size_t)MOTION_ROWS * MOTION_FRAMES * npx, sizeof(double)), mfloor[MOTION_FRAMES];
+        unsigned char *mhit = (unsigned char *)calloc((size_t)MOTION_FRAMES * npx, 1);
+        double t0 = now_seconds(), dref = 0.0, sref = 0.0;
+        if (!mref || !scratch || !mval || !mhit) return 1;
+        tg = make_target(w, h);
+        for (m = MT_LEADR; m < MT_COUNT; ++m) {
+            snprintf(path, sizeof path, "%s/frame_%s_%s.spv", spv, scene_key[s], method_key[m]);
+            pipes[m] = make_pipeline(&tg, w, h, vert, path);
+        }
+        memset(motion_nonfinite[s], 0, sizeof motion_nonfinite[s]);
+        for (f = 0; f < MOTION_FRAMES; ++f) {
+            fr_scene sc;
+            int ns = 0;
+            scene_make(&sc, s, w, h, &surf, f * motion_step[s]);
+            if (s == 0 && !vis_light) {
+                vis_light = (unsigned char *)malloc((size_t)W * H);
+                pfm_visibility_map(&surf, sc.light, vis_light);
+            }
+            for (i = 0; i < npx; ++i)
+                if ((mhit[(size_t)f * npx + i] = (unsigned char)sc.px[i].hit) != 0) {
+                    mref[(size_t)f * npx + i] = shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, MOTION_SPT);
+                    scratch[ns++] = mref[(size_t)f * npx + i];
+                }
+            mfloor[f] = LIT_FRACTION * quantile(scratch, ns, 0.99);
+            for (k = 0; k < 3; ++k) {
+                pc.pos[k] = (float)sc.cam.pos[k], pc.right[k] = (float)sc.cam.right[k];
+                pc.up[k] = (float)sc.cam.up[k], pc.fwd[k] = (float)sc.cam.fwd[k], pc.light[k] = (float)sc.light[k];
+            }
+            pc.pos[3] = (float)sc.cam.tan_half, pc.right[3] = (float)w, pc.up[3] = (float)h;
+            pc.fwd[3] = (float)(BASE_SIGMA * BASE_SIGMA), pc.light[3] = (float)F0;
+            pc.map[0] = (float)W, pc.map[1] = (float)H, pc.map[2] = (float)SPHERE_TILES, pc.map[3] = (float)SPHERE_RADIUS;
+            memset(pc.motion, 0, sizeof pc.motion);
+            if (s == 1) pc.motion[0] = (float)(f * motion_step[s]);
+            for (mr = 0; mr < MOTION_ROWS; ++mr) {
+                int mm = motion_method[mr], aa = mr == MOTION_ROWS - 1 ? 1 : 0;
+                render(&tg, pipes[mm], set[0][aa], &pc, w, h);
+                for (i = 0; i < npx; ++i) {
+                    double v = (double)tg.rb_map[4 * (size_t)i];
+                    if (!(fabs(v) <= 3.4e38)) motion_nonfinite[s][mr]++;
+                    mval[((size_t)mr * MOTION_FRAMES + f) * npx + i] = v;
+                }
+            }
+            free(sc.px);
+        }
+        /* flicker and error */
+        for (f = 0; f + 1 < MOTION_FRAMES; ++f)
+            for (i = 0; i < npx; ++i) {
+                size_t a0 = (size_t)f * npx + i, a1 = a0 + (size_t)npx;
+                if (!mhit[a0] || !mhit[a1] || !(mref[a0] >= mfloor[f] || mref[a1] >= mfloor[f + 1])) continue;
+                dref += fabs(mref[a1] - mref[a0]);
+                sref += 0.5 * (mref[a1] + mref[a0]);
+            }
+        motion_ref_change[s] = sref > 0.0 ? dref / sref : 0.0;
+        for (mr = 0; mr < MOTION_ROWS; ++mr) {
+            double d = 0.0, e = 0.0;
+            int ne = 0;
+            for (f = 0; f < MOTION_FRAMES; ++f)
+                for (i = 0; i < npx; ++i) {
+                    size_t a0 = (size_t)f * npx + i, v0 = ((size_t)mr * MOTION_FRAMES + f) * npx + i;
+                    if (mhit[a0] && mref[a0] >= mfloor[f]) e += rel(mval[v0], mref[a0], mfloor[f]), ne++;
+                    if (f + 1 < MOTION_FRAMES && mhit[a0] && mhit[a0 + npx] && (mref[a0] >= mfloor[f] || mref[a0 + npx] >= mfloor[f + 1]))
+                        d += fabs(mval[v0 + npx] - mval[v0]);
+                }
+            motion_flicker[s][mr] = dref > 0.0 ? d / dref : 0.0;
+            motion_own[s][mr] = sref > 0.0 ? d / sref : 0.0; /* per frame, relative to the reference's level */
+            motion_err[s][mr] = ne ? e / ne : 0.0;
+            printf("  motion %s: %-24s%s error %5.1f%%, flicker ratio %.2f (change %.1f%% per frame), non-finite %d\n", scene_key[s],
+                   method_name[motion_method[mr]], mr == MOTION_ROWS - 1 ? " (16x)" : "     ", 100.0 * motion_err[s][mr],
+                   motion_flicker[s][mr], 100.0 * motion_own[s][mr], motion_nonfinite[s][mr]);
+        }
+        motion_seconds[s] = now_seconds() - t0;
+        printf("frame: motion %s: %d frames of %dx%d, reference's own change %.1f%% per frame (%.1f s)\n", scene_key[s],
+               MOTION_FRAMES, w, h, 100.0 * motion_ref_change[s], motion_seconds[s]);
+        for (m = MT_LEADR; m < MT_COUNT; ++m) vkDestroyPipeline(vk.dev, pipes[m], NULL);
+        vkDestroyFramebuffer(vk.dev, tg.fb, NULL);
+        vkDestroyRenderPass(vk.dev, tg.rp, NULL);
+        for (k = 0; k < 2; ++k) {
+            vkDestroyImageView(vk.dev, tg.att_view[k], NULL);
+            vkDestroyImage(vk.dev, tg.att[k], NULL);
+            vkFreeMemory(vk.dev, tg.att_mem[k], NULL);
+        }
+        vkDestroyBuffer(vk.dev, tg.rb, NULL);
+        vkFreeMemory(vk.dev, tg.rb_mem, NULL);
+        free(mref), free(scratch), free(mval), free(mhit), free(vis_light);
+    }
+
     /* ---------------------------------------------------------------- the table */
     snprintf(path, sizeof path, "%s/frame.csv", outdir);
     csv = fopen(path, "w");
@@ -1298,6 +1420,18 @@ int main(int argc, char **argv)
     if (!csv || !md) {
         fprintf(stderr, "frame: cannot write into %s\n", outdir);
         return 1;
+    }
+    { /* the motion rows, in a CSV of their own */
+        FILE *mc;
+        snprintf(path, sizeof path, "%s/frame_motion.csv", outdir);
+        mc = fopen(path, "w");
+        if (!mc) return 1;
+        fprintf(mc, "scene,method,max_anisotropy,frames,err_mean,change_per_frame,flicker_ratio,ref_change_per_frame,nonfinite\n");
+        for (s = 0; s < 2; ++s)
+            for (k = 0; k < MOTION_ROWS; ++k)
+                fprintf(mc, "%s,%s,%d,%d,%.6g,%.6g,%.6g,%.6g,%d\n", scene_key[s], method_key[motion_method[k]], k == MOTION_ROWS - 1 ? 16 : 1,
+                        MOTION_FRAMES, motion_err[s][k], motion_own[s][k], motion_flicker[s][k], motion_ref_change[s], motion_nonfinite[s][k]);
+        fclose(mc);
     }
     fprintf(csv, "scene,method,storage,max_anisotropy,lit_pixels,err_box,err_box_p95,err_pixel,err_pixel_p95,cpu_err_box,cpu_err_pixel,"
                  "vs_cpu,vs_cpu_p95,vs_cpu_driver_lod,vs_cpu_driver_lod_p95,lod_diff,nonfinite,spirv_ops,cond_branches,gpu_ms\n");
@@ -1375,22 +1509,58 @@ int main(int argc, char **argv)
         }
         fprintf(md, "\n![%s: reference and GPU frame](frame_%s.png)\n\n", scene_key[s], scene_key[s]);
     }
+    fprintf(md, "**Motion.** %d frames per scene at %dx%d (plane) and %dx%d (sphere): the plane's camera dollies forward %.2f "
+                "texel per frame, the sphere turns %.1f degree per frame about its pole (about %.0f texels at the equator, a quarter "
+                "of its median footprint); f32 storage. Reference: the pixel-footprint brute force with %d samples per texel along "
+                "each axis (at most %d x %d per pixel). **Change per frame** = sum over consecutive frames and pixels lit in either "
+                "frame of |change| / sum of the reference's level; **flicker ratio** = the method's change / the reference's own "
+                "(%.1f%% per frame on the plane, %.1f%% on the sphere).\n\n"
+                "Caveat (reasoned, not measured apart): the reference's own change is most likely its sampling noise, not "
+                "shimmer. Wherever a footprint is "
+                "subsampled (more texels than samples), its samples land on other texels when the camera moves by a fraction of a "
+                "texel, and with few texels per pixel its box snaps from texel to texel; the filtered methods move smoothly. So "
+                "ratios far below 1 do not mean that the methods are steadier than the truth, and the issue's target (the best "
+                "filtered method within 1.5x of the reference's flicker) cannot be judged with this reference: that needs a "
+                "reference integrated over every texel of the footprint with fractional coverage. What the table does show is the "
+                "methods against each other (the naive mip-mapped normal is the anchor of shimmer).\n\n",
+            MOTION_FRAMES, quick ? motion_quick[0][0] : motion_full[0][0], quick ? motion_quick[0][1] : motion_full[0][1],
+            quick ? motion_quick[1][0] : motion_full[1][0], quick ? motion_quick[1][1] : motion_full[1][1], PLANE_DOLLY_STEP,
+            SPHERE_TURN_STEP * 180.0 / fr_pi, SPHERE_TURN_STEP / (2.0 * fr_pi) * SPHERE_TILES * W, MOTION_SPT, ref_max, ref_max,
+            100.0 * motion_ref_change[0], 100.0 * motion_ref_change[1]);
+    fprintf(md, "| method | plane: error (mean over frames) | plane: change per frame | plane: flicker ratio | sphere: error | "
+                "sphere: change per frame | sphere: flicker ratio | non-finite |\n|---|---|--:|--:|---|--:|--:|--:|\n");
+    for (k = 0; k < MOTION_ROWS; ++k)
+        fprintf(md, "| %s%s | %.1f%% | %.2f%% | %.3f | %.1f%% | %.2f%% | %.3f | %d |\n", method_name[motion_method[k]],
+                k == MOTION_ROWS - 1 ? ", 16x" : "", 100.0 * motion_err[0][k], 100.0 * motion_own[0][k], motion_flicker[0][k],
+                100.0 * motion_err[1][k], 100.0 * motion_own[1][k], motion_flicker[1][k], motion_nonfinite[0][k] + motion_nonfinite[1][k]);
+    fprintf(md, "| reference (pixel footprint) | - | %.2f%% | 1 | - | %.2f%% | 1 | - |\n", 100.0 * motion_ref_change[0],
+            100.0 * motion_ref_change[1]);
+    fprintf(md, "\n");
+    for (s = 0; s < 2; ++s) {
+        double best = 1e30;
+        int bk = 0;
+        for (k = 0; k < MOTION_ROWS; ++k)
+            if (motion_method[k] != MT_NAIVE && motion_err[s][k] < best) best = motion_err[s][k], bk = k;
+        motion_best[s] = bk;
+    }
     /* the targets, as measured */
     {
-        double worst32 = 0.0, worst16 = 0.0;
+        double worst32 = 0.0, worst16 = 0.0, worst_drv = 0.0;
         int nonfin = 0;
         const fr_row *iso = &rows[0][MT_LEADR][0][0], *ani = &rows[0][MT_LEADR][0][1];
         for (s = 0; s < 2; ++s)
             for (m = MT_LEADR; m < MT_COUNT; ++m)
                 for (an = 0; an < NANISO; ++an) {
                     if (an == 0 && rows[s][m][0][an].vs_cpu > worst32) worst32 = rows[s][m][0][an].vs_cpu;
+                    if (an == 0 && rows[s][m][0][an].vs_drv > worst_drv) worst_drv = rows[s][m][0][an].vs_drv;
                     if (an == 0 && rows[s][m][1][an].vs_cpu > worst16) worst16 = rows[s][m][1][an].vs_cpu;
                     for (st = 0; st < NSTORE; ++st) nonfin += rows[s][m][st][an].nonfinite;
                 }
         fprintf(md, "Targets, as measured in this run (isotropic rows for the first two: the 16x rows compare two different "
                     "anisotropic filters, the driver's and the specification's):\n\n");
-        fprintf(md, "- GPU within 1%% of the CPU float path, f32 storage: worst mean over scenes and methods %.3f%%: %s.\n",
-                100.0 * worst32, worst32 <= 0.01 ? "met" : "NOT met");
+        fprintf(md, "- GPU within 1%% of the CPU float path, f32 storage: worst mean over scenes and methods %.3f%%: %s. With the "
+                    "CPU path at the driver's own level of detail: worst %.4f%% (the rest is the driver's lod approximation).\n",
+                100.0 * worst32, worst32 <= 0.01 ? "met" : "NOT met", 100.0 * worst_drv);
         fprintf(md, "- within 3%% with f16 storage: worst mean %.3f%%: %s.\n", 100.0 * worst16, worst16 <= 0.03 ? "met" : "NOT met");
         fprintf(md, "- 16x anisotropy lowers the plane's LEADR error by at least a fifth (f32): against the box reference %.1f%% -> "
                     "%.1f%% (%s); against the pixel reference %.1f%% -> %.1f%% (%s); the CPU path with the specification's "
@@ -1398,7 +1568,14 @@ int main(int argc, char **argv)
                 100.0 * iso->err[0], 100.0 * ani->err[0], ani->err[0] <= 0.8 * iso->err[0] ? "met" : "NOT met", 100.0 * iso->err[1],
                 100.0 * ani->err[1], ani->err[1] <= 0.8 * iso->err[1] ? "met" : "NOT met", 100.0 * iso->cpu_err[1],
                 100.0 * ani->cpu_err[1], ani->cpu_err[1] <= 0.8 * iso->cpu_err[1] ? "met" : "NOT met");
-        fprintf(md, "- no NaN or infinite pixel: %d over every frame: %s.\n\n", nonfin, nonfin == 0 ? "met" : "NOT met");
+        for (s = 0; s < 2; ++s)
+            for (k = 0; k < MOTION_ROWS; ++k) nonfin += motion_nonfinite[s][k];
+        for (s = 0; s < 2; ++s)
+            fprintf(md, "- %s: the best filtered method's flicker at most 1.5x the reference's own: %s (lowest error under "
+                        "motion) changes %.3fx as much as the reference, whose change is mostly its own sampling noise (see "
+                        "Motion): not judged.\n",
+                    scene_key[s], method_name[motion_method[motion_best[s]]], motion_flicker[s][motion_best[s]]);
+        fprintf(md, "- no NaN or infinite pixel: %d over every frame, still and moving: %s.\n\n", nonfin, nonfin == 0 ? "met" : "NOT met");
     }
     fprintf(md, "Generated by `bench/frame/run.sh` (`make frame`; `make bench` runs it) in %.0f s%s; reproduce the GPU column "
                 "on another device with `PF_VK_DEVICE=<index or name> make frame`.\n\n",

@@ -39,6 +39,7 @@ layout(push_constant) uniform PC {
     vec4 fwd;   /* w: base slope variance (BASE_SIGMA^2) */
     vec4 light; /* unit vector toward the light (world); w: Schlick f0 */
     vec4 map;   /* map width, height (texels), sphere tiles, sphere radius */
+    vec4 motion; /* x: the sphere's turn about its pole (radians; the texture moves, frame and light stay) */
 } pc;
 layout(set = 0, binding = 0) uniform sampler2D texA;
 layout(set = 0, binding = 1) uniform sampler2D texB;
@@ -86,7 +87,7 @@ bool ray_cast(vec3 d, out vec2 t, out vec3 tu, out vec3 tv, out vec3 n, out vec2
     if (st < 1e-6) return false;
     tu = vec3(-sin(phi), cos(phi), 0.0);
     tv = cross(n, tu);
-    t = vec2(phi / (2.0 * PI) * pc.map.z * pc.map.x, (1.0 - theta / PI) * 0.5 * pc.map.z * pc.map.y);
+    t = vec2((phi - pc.motion.x) / (2.0 * PI) * pc.map.z * pc.map.x, (1.0 - theta / PI) * 0.5 * pc.map.z * pc.map.y);
     tex_per = vec2(pc.map.z * pc.map.x / (2.0 * PI * R * st), pc.map.z * pc.map.y / (2.0 * PI * R));
     return true;
 #endif
