@@ -40,7 +40,9 @@
    usage: frame SPV_DIR OUT_DIR [OPS_FILE]   (bench/frame/run.sh; BENCH_QUICK=1: small frames)
    Writes OUT_DIR/frame.md (tables and notes), OUT_DIR/frame.csv, frame_motion.csv, and OUT_DIR/frame_<scene>.bin
    + .gpv for bench/frame/frame.gp (GPU LEADR frame next to the reference). Exit 0, or 1 when a
-   check that cannot depend on the data fails (no surface pixel, unreadable files). */
+   check fails: no surface pixel, unreadable files, or the plumbing check (end of main: the CPU
+   path at the driver's own lod must reproduce the GPU's LEADR frame to PLUMBING_BOUND). The
+   issue's targets are reported, met or not, never turned into a failure (they are measurements). */
 #ifndef _POSIX_C_SOURCE
 #  define _POSIX_C_SOURCE 199309L
 #endif
@@ -74,6 +76,7 @@
 #define SPHERE_FOV_DEG   40.0
 #define SPHERE_TILES     128
 #define MAX_ANISO        16.0
+#define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
 #define MOTION_FRAMES    16
 #define MOTION_SPT       2      /* motion reference: samples per texel along each footprint axis */
 #define MOTION_ROWS      6      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x */
@@ -1559,7 +1562,8 @@ int main(int argc, char **argv)
         fprintf(md, "Targets, as measured in this run (isotropic rows for the first two: the 16x rows compare two different "
                     "anisotropic filters, the driver's and the specification's):\n\n");
         fprintf(md, "- GPU within 1%% of the CPU float path, f32 storage: worst mean over scenes and methods %.3f%%: %s. With the "
-                    "CPU path at the driver's own level of detail: worst %.4f%% (the rest is the driver's lod approximation).\n",
+                    "CPU path at the driver's own level of detail: worst %.4f%% (LEADR, naive, Toksvig: below 0.001%%, so their difference "
+                    "is the driver's lod approximation; the vMF rows keep a few tenths of a per cent, not traced).\n",
                 100.0 * worst32, worst32 <= 0.01 ? "met" : "NOT met", 100.0 * worst_drv);
         fprintf(md, "- within 3%% with f16 storage: worst mean %.3f%%: %s.\n", 100.0 * worst16, worst16 <= 0.03 ? "met" : "NOT met");
         fprintf(md, "- 16x anisotropy lowers the plane's LEADR error by at least a fifth (f32): against the box reference %.1f%% -> "
@@ -1583,5 +1587,14 @@ int main(int argc, char **argv)
     fclose(md);
     fclose(csv);
     printf("frame: wrote %s/frame.md, frame.csv (%.1f s)\n", outdir, now_seconds() - t_start);
+    /* The plumbing check (it can fail): at the driver's own level of detail the CPU float path
+       must reproduce the GPU's isotropic f32 LEADR frame (measured 2e-6 mean on lavapipe): a wrong
+       texel layout, level upload, coordinate or frame convention shows here at once. */
+    for (s = 0; s < 2; ++s)
+        if (!(rows[s][MT_LEADR][0][0].vs_drv <= PLUMBING_BOUND)) {
+            fprintf(stderr, "frame: FAILED plumbing check on the %s: GPU LEADR vs the CPU path at the driver's lod %.3g > %.0e\n",
+                    scene_key[s], rows[s][MT_LEADR][0][0].vs_drv, PLUMBING_BOUND);
+            return 1;
+        }
     return 0;
 }
