@@ -126,6 +126,21 @@ $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_FLAGS) -pthread -Itests $< -o $@ -lpng -lm
 
+# The frame on a Vulkan driver (bench/frame/: frame.c the host, frame.frag/.vert the shaders, run.sh
+# the step): pictures.c's scenes rendered by the GLSL path from GPU textures, against the brute
+# force and the CPU float path; lavapipe unless PF_VK_DEVICE names a device. make frame: that step
+# alone (BENCH_QUICK=1: small frames); make bench runs it too.
+FRAME_BIN := $(BUILD)/bench/frame
+$(FRAME_BIN): bench/frame/frame.c tests/gpu/vk_common.h $(HEADERS) $(BENCH_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(BENCH_FLAGS) -Itests -Itests/reference -Itests/gpu $< -o $@ -lvulkan -lm
+bench-run: $(FRAME_BIN)
+.PHONY: frame
+frame:
+	@sh tests/deps.sh bench
+	@$(MAKE) --no-print-directory $(FRAME_BIN)
+	@BENCH_QUICK='$(BENCH_QUICK)' sh bench/frame/run.sh $(BUILD)/bench bench/out
+
 # The ground truth on the user's own map (bench/map.sh, docs/maps.md): with MAP set, make bench
 # runs bench/microsurface.c and bench/pictures.c on that map instead of the full run, and writes
 # $(MAP_OUT)/report.md (default bench/out/map): slope statistics, errors by footprint and view,

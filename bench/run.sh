@@ -114,6 +114,9 @@ echo "bench: stability done ($(($(date +%s) - t0)) s)"
 # of the textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
 echo "bench: GPU cost ..."
 sh bench/gpu/cost.sh "$out"
+# The frame on a Vulkan driver (bench/frame/run.sh: frame.md, frame.csv, frame_*.png).
+echo "bench: GPU frame ..."
+sh bench/frame/run.sh "$dir" "$out"
 
 # ---------------------------------------------------------------- charts
 charts=""

@@ -30,8 +30,8 @@ valgrind|bench|cmd valgrind|instruction counts (callgrind) in the full bench run
 tcc|portability|cmd tcc|a third C compiler (tcc) for the headers
 glslang-tools|portability bench|cmd glslangValidator|GLSL 4.50 -> SPIR-V compile of every evaluator (portability; the bench's GPU cost)
 spirv-tools|portability bench|cmd spirv-opt|SPIR-V validation, spirv-opt and spirv-dis (the bench's GPU cost counts optimized SPIR-V)
-libvulkan-dev|portability|file /usr/include/vulkan/vulkan.h|the Vulkan host that runs the GLSL evaluators (tests/gpu/vk_run.c)
-mesa-vulkan-drivers|portability|file /usr/share/vulkan/icd.d/lvp_icd.*.json|lavapipe, the CPU Vulkan driver the GLSL evaluators run on (gpu-lavapipe)
+libvulkan-dev|portability bench|file /usr/include/vulkan/vulkan.h|the Vulkan hosts: the GLSL evaluators (tests/gpu/vk_run.c) and the bench's GPU frame (bench/frame/)
+mesa-vulkan-drivers|portability bench|file /usr/share/vulkan/icd.d/lvp_icd.*.json|lavapipe, the CPU Vulkan driver the GLSL evaluators (gpu-lavapipe) and the bench's GPU frame run on
 spirv-cross|portability|cmd spirv-cross|SPIR-V -> HLSL and MSL
 gcc-arm-none-eabi|portability|cmd arm-none-eabi-gcc|Cortex-M4F (float-only FPU) build
 libnewlib-arm-none-eabi|portability|file /usr/lib/arm-none-eabi/newlib/nano.specs|its C library (newlib, nano.specs: the link check)

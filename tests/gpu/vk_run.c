@@ -43,7 +43,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <vulkan/vulkan.h>
+#include "vk_common.h"
 #if defined(__SSE__) || defined(__x86_64__)
 #  include <xmmintrin.h>
 #  define PFG_HAVE_FTZ 1
@@ -251,10 +251,8 @@ static float draw_edge(void)
 }
 
 /* ------------------------------------------------------------------ Vulkan */
-#define VKC(x) do { VkResult r_ = (x); if (r_ != VK_SUCCESS) { fprintf(stderr, "vk_run: %s failed (%d)\n", #x, (int)r_); exit(2); } } while (0)
 
-static VkInstance inst;
-static VkPhysicalDevice phys;
+static pfvk_ctx vk;            /* instance, device, queue (vk_common.h) */
 static VkDevice dev;
 static VkQueue queue;
 static uint32_t qfam;
@@ -268,53 +266,18 @@ static VkFence fence;
 static VkBuffer buf_in, buf_out;
 static VkDeviceMemory mem_in, mem_out;
 static float *map_in, *map_out;
-static char device_name[512];
-
-static uint32_t find_memory(uint32_t bits, VkMemoryPropertyFlags want)
-{
-    VkPhysicalDeviceMemoryProperties mp;
-    uint32_t i;
-    vkGetPhysicalDeviceMemoryProperties(phys, &mp);
-    for (i = 0; i < mp.memoryTypeCount; i++)
-        if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & want) == want) return i;
-    fprintf(stderr, "vk_run: no host-visible coherent memory\n");
-    exit(2);
-}
+static const char *device_name = vk.name;
 
 static void make_buffer(VkDeviceSize size, VkBuffer *b, VkDeviceMemory *m, float **map)
 {
-    VkBufferCreateInfo bi;
-    VkMemoryRequirements mr;
-    VkMemoryAllocateInfo ai;
     void *p;
-    memset(&bi, 0, sizeof bi);
-    bi.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-    bi.size = size;
-    bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-    VKC(vkCreateBuffer(dev, &bi, NULL, b));
-    vkGetBufferMemoryRequirements(dev, *b, &mr);
-    memset(&ai, 0, sizeof ai);
-    ai.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-    ai.allocationSize = mr.size;
-    ai.memoryTypeIndex = find_memory(mr.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    VKC(vkAllocateMemory(dev, &ai, NULL, m));
-    VKC(vkBindBufferMemory(dev, *b, *m, 0));
-    VKC(vkMapMemory(dev, *m, 0, VK_WHOLE_SIZE, 0, &p));
+    pfvk_host_buffer(&vk, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, b, m, &p);
     *map = (float *)p;
 }
 
 static void vk_init(size_t in_floats, size_t out_floats)
 {
-    VkApplicationInfo app;
-    VkInstanceCreateInfo ici;
-    uint32_t n = 0, i;
-    VkPhysicalDevice devs[16];
-    VkPhysicalDeviceProperties pp;
-    VkQueueFamilyProperties qf[16];
-    float prio = 1.0f;
-    VkDeviceQueueCreateInfo qci;
-    VkDeviceCreateInfo dci;
+    uint32_t i;
     VkDescriptorSetLayoutBinding bind[2];
     VkDescriptorSetLayoutCreateInfo dlci;
     VkPushConstantRange pcr;
@@ -328,41 +291,11 @@ static void vk_init(size_t in_floats, size_t out_floats)
     VkCommandBufferAllocateInfo cbai;
     VkFenceCreateInfo fci;
 
-    memset(&app, 0, sizeof app);
-    app.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO;
-    app.pApplicationName = "prefilter vk_run";
-    app.apiVersion = VK_API_VERSION_1_0;
-    memset(&ici, 0, sizeof ici);
-    ici.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
-    ici.pApplicationInfo = &app;
-    VKC(vkCreateInstance(&ici, NULL, &inst));
-    VKC(vkEnumeratePhysicalDevices(inst, &n, NULL));
-    if (n == 0) { fprintf(stderr, "vk_run: no Vulkan device (is VK_ICD_FILENAMES set to lvp_icd?)\n"); exit(2); }
-    if (n > 16) n = 16;
-    VKC(vkEnumeratePhysicalDevices(inst, &n, devs));
-    phys = devs[0];
-    vkGetPhysicalDeviceProperties(phys, &pp);
-    snprintf(device_name, sizeof device_name, "%.200s (Vulkan %u.%u.%u, driver 0x%x)", pp.deviceName,
-             VK_VERSION_MAJOR(pp.apiVersion), VK_VERSION_MINOR(pp.apiVersion), VK_VERSION_PATCH(pp.apiVersion),
-             pp.driverVersion);
-    n = 16;
-    vkGetPhysicalDeviceQueueFamilyProperties(phys, &n, NULL);
-    if (n > 16) n = 16;
-    vkGetPhysicalDeviceQueueFamilyProperties(phys, &n, qf);
-    for (i = 0; i < n; i++) if (qf[i].queueFlags & VK_QUEUE_COMPUTE_BIT) break;
-    if (i == n) { fprintf(stderr, "vk_run: no compute queue\n"); exit(2); }
-    qfam = i;
-    memset(&qci, 0, sizeof qci);
-    qci.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
-    qci.queueFamilyIndex = qfam;
-    qci.queueCount = 1;
-    qci.pQueuePriorities = &prio;
-    memset(&dci, 0, sizeof dci);
-    dci.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
-    dci.queueCreateInfoCount = 1;
-    dci.pQueueCreateInfos = &qci;
-    VKC(vkCreateDevice(phys, &dci, NULL, &dev));
-    vkGetDeviceQueue(dev, qfam, 0, &queue);
+    pfvk_probe(&vk, "prefilter vk_run");
+    pfvk_open_device(&vk, NULL, VK_QUEUE_COMPUTE_BIT);
+    dev = vk.dev;
+    queue = vk.queue;
+    qfam = vk.qfam;
 
     memset(bind, 0, sizeof bind);
     for (i = 0; i < 2; i++) {
@@ -441,29 +374,13 @@ static int npipes;
 static VkPipeline pipeline_for(const char *spv_dir, const char *header)
 {
     char path[1024];
-    FILE *f;
-    long size;
-    uint32_t *code;
-    VkShaderModuleCreateInfo smci;
     VkShaderModule sm;
     VkComputePipelineCreateInfo cpi;
     VkPipeline p;
     int i;
     for (i = 0; i < npipes; i++) if (!strcmp(pipes[i].header, header)) return pipes[i].pipe;
     snprintf(path, sizeof path, "%s/%.*s.spv", spv_dir, (int)(strlen(header) - 2), header);
-    f = fopen(path, "rb");
-    if (!f) { fprintf(stderr, "vk_run: no SPIR-V %s\n", path); exit(2); }
-    fseek(f, 0, SEEK_END);
-    size = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    code = (uint32_t *)malloc((size_t)size + 4u);
-    if (!code || fread(code, 1, (size_t)size, f) != (size_t)size) { fprintf(stderr, "vk_run: cannot read %s\n", path); exit(2); }
-    fclose(f);
-    memset(&smci, 0, sizeof smci);
-    smci.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-    smci.codeSize = (size_t)size;
-    smci.pCode = code;
-    VKC(vkCreateShaderModule(dev, &smci, NULL, &sm));
+    sm = pfvk_shader_module(&vk, path);
     memset(&cpi, 0, sizeof cpi);
     cpi.sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO;
     cpi.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
@@ -473,7 +390,6 @@ static VkPipeline pipeline_for(const char *spv_dir, const char *header)
     cpi.layout = playout;
     VKC(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &cpi, NULL, &p));
     vkDestroyShaderModule(dev, sm, NULL);
-    free(code);
     if (npipes < 64) {
         snprintf(pipes[npipes].header, sizeof pipes[0].header, "%s", header);
         pipes[npipes++].pipe = p;

@@ -1,0 +1,197 @@
+/* frame.frag - one pixel of bench/pictures.c's scenes, ray-cast analytically and shaded by the
+   library's GLSL path from the moment pyramid stored as GPU textures (bench/frame/frame.c is
+   the host and says what is measured).
+
+   Compiled once per scene and method by bench/frame/run.sh:
+     PFF_SCENE   0 plane toward the horizon, 1 sphere (the cameras, light and maps of
+                 bench/pictures.c; the numbers come in the push constants from frame.c)
+     PFF_METHOD  0 none (ray cast and fetch only: the baseline of the op counts), 1 LEADR,
+                 2 naive mip-mapped normal, 3 Toksvig, 4 and 5 vMF m = 4 and 8 (lobe pyramids,
+                 texelFetch of the 8 texels of a trilinear fetch at the driver's lod)
+   Textures (one VkImage each, the whole mip chain of the library's CPU pyramid):
+     texA = (E[x], E[y], E[x^2], E[y^2]) of the micro-slopes, texB = (E[xy], E[n]) with E[n]
+     the unnormalized average unit normal (pf_normal_pyramid_from_normals); texL, the lod
+     probe (level l holds l everywhere), read with the same sampler and gradients.
+   The texel coordinates' screen derivatives come from the 2x2 quad (dFdxFine, dFdyFine), as in
+   an engine, and go to the sampler through textureGrad, so the driver picks the level of detail
+   (and, with anisotropy, the probe line). Two fixes an engine also needs: the sphere's
+   longitude seam (a jump of the whole tiled width, removed modulo that width) and quads that
+   straddle the surface's edge (a neighbour that misses has no texel coordinate: there the
+   pixel's own ray differentials are used, its neighbour rays meeting the tangent plane at the
+   hit, bench/pictures.c's footprint rule).
+   Outputs: o0 = (radiance, u, v in texels, 0 for no surface or 1 + the sampler's lod), o1 = (du/dx, dv/dx, du/dy, dv/dy) in texels. */
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#define PF_GLSL 1
+#include "pf_core.h"
+#include "pf_smith.h"
+#include "pf_beckmann.h"
+#include "pf_toksvig.h"
+#if PFF_METHOD >= 4
+#  include "pf_moments.h"
+#  include "pf_vmf.h"
+#endif
+
+layout(push_constant) uniform PC {
+    vec4 pos;   /* camera position; w: tan of half the vertical field of view */
+    vec4 right; /* w: image width in pixels */
+    vec4 up;    /* w: image height */
+    vec4 fwd;   /* w: base slope variance (BASE_SIGMA^2) */
+    vec4 light; /* unit vector toward the light (world); w: Schlick f0 */
+    vec4 map;   /* map width, height (texels), sphere tiles, sphere radius */
+    vec4 motion; /* x: the sphere's turn about its pole (radians; the texture moves, frame and light stay) */
+} pc;
+layout(set = 0, binding = 0) uniform sampler2D texA;
+layout(set = 0, binding = 1) uniform sampler2D texB;
+layout(set = 0, binding = 2) uniform sampler2D texL; /* the lod probe: every texel of level l is l */
+#if PFF_METHOD == 4
+layout(set = 0, binding = 3) uniform sampler2DArray texV; /* vMF lobe pyramid, m = 4: layer j = lobe j */
+const int PFF_LOBES = 4;
+#elif PFF_METHOD == 5
+layout(set = 0, binding = 4) uniform sampler2DArray texV; /* m = 8 */
+const int PFF_LOBES = 8;
+#endif
+layout(location = 0) out vec4 o0;
+layout(location = 1) out vec4 o1;
+
+const float PI = 3.14159265358979323846;
+
+vec3 camera_ray(vec2 frag)
+{
+    float w = pc.right.w, h = pc.up.w;
+    float sx = (2.0 * frag.x / w - 1.0) * pc.pos.w * w / h;
+    float sy = (1.0 - 2.0 * frag.y / h) * pc.pos.w;
+    return normalize(pc.fwd.xyz + sx * pc.right.xyz + sy * pc.up.xyz);
+}
+
+/* The hit of ray d: texel coordinates (unwrapped), the tangent frame (tu, tv, n) and the
+   texels per world unit along tu and tv. false: no surface. */
+bool ray_cast(vec3 d, out vec2 t, out vec3 tu, out vec3 tv, out vec3 n, out vec2 tex_per, out vec3 hit)
+{
+    t = vec2(0.0); tu = vec3(1, 0, 0); tv = vec3(0, 1, 0); n = vec3(0, 0, 1); tex_per = vec2(1.0); hit = vec3(0.0);
+#if PFF_SCENE == 0
+    if (d.z > -1e-3) return false;
+    hit = pc.pos.xyz + (-pc.pos.z / d.z) * d;
+    t = hit.xy;
+    return true;
+#else
+    float R = pc.map.w, b = dot(pc.pos.xyz, d), c = dot(pc.pos.xyz, pc.pos.xyz) - R * R, disc = b * b - c;
+    if (disc <= 0.0) return false;
+    float s = -b - sqrt(disc);
+    if (s <= 0.0) return false;
+    hit = pc.pos.xyz + s * d;
+    n = hit / R;
+    float phi = atan(n.y, n.x);
+    if (phi < 0.0) phi += 2.0 * PI;
+    float theta = acos(clamp(n.z, -1.0, 1.0)), st = sin(theta);
+    if (st < 1e-6) return false;
+    tu = vec3(-sin(phi), cos(phi), 0.0);
+    tv = cross(n, tu);
+    t = vec2((phi - pc.motion.x) / (2.0 * PI) * pc.map.z * pc.map.x, (1.0 - theta / PI) * 0.5 * pc.map.z * pc.map.y);
+    tex_per = vec2(pc.map.z * pc.map.x / (2.0 * PI * R * st), pc.map.z * pc.map.y / (2.0 * PI * R));
+    return true;
+#endif
+}
+
+/* Texel offset of the neighbour pixel's ray on the tangent plane at hit (pictures.c's
+   footprint_texels, one axis). */
+vec2 ray_diff(vec2 frag, vec3 hit, vec3 n, vec3 tu, vec3 tv, vec2 tex_per)
+{
+    vec3 d = camera_ray(frag);
+    float dn = dot(d, n);
+    if (abs(dn) < 1e-12) return vec2(pc.map.x, 0.0);
+    vec3 off = pc.pos.xyz + (dot(hit - pc.pos.xyz, n) / dn) * d - hit;
+    return vec2(dot(off, tu) * tex_per.x, dot(off, tv) * tex_per.y);
+}
+
+void main()
+{
+    vec3 d = camera_ray(gl_FragCoord.xy), tu, tv, n, hit;
+    vec2 t, tex_per;
+    bool ok = ray_cast(d, t, tu, tv, n, tex_per, hit);
+    float fh = ok ? 1.0 : 0.0;
+    /* Everything below runs in every lane of the quad (no early return: derivatives, and the
+       texture fetches that take them, need uniform control flow). Quad derivatives: */
+    vec2 gx = dFdxFine(t), gy = dFdyFine(t);
+    float hx = dFdxFine(fh), hy = dFdyFine(fh);
+    bool edge = abs(hx) + abs(hy) > 0.0;
+#if PFF_SCENE == 1
+    float period = pc.map.z * pc.map.x; /* the seam: u jumps by the tiled width */
+    gx.x -= period * round(gx.x / period);
+    gy.x -= period * round(gy.x / period);
+#endif
+    /* a lane that misses takes a neighbour's texel coordinate (the quad's values reached
+       through the fine derivatives), so that a driver differentiating the coordinate itself
+       sees the surface's own spacing, not a jump to 0 */
+    float sx = (int(gl_FragCoord.x) & 1) == 1 ? -1.0 : 1.0, sy = (int(gl_FragCoord.y) & 1) == 1 ? -1.0 : 1.0;
+    vec2 t_x = t + sx * gx, t_y = t + sy * gy, t_xy = t_y + sx * dFdxFine(t_y);
+    float h_x = fh + sx * hx, h_y = fh + sy * hy;
+    vec2 tf = ok ? t : (h_x > 0.5 ? t_x : (h_y > 0.5 ? t_y : t_xy));
+    if (ok && edge) {
+        gx = ray_diff(gl_FragCoord.xy + vec2(1.0, 0.0), hit, n, tu, tv, tex_per);
+        gy = ray_diff(gl_FragCoord.xy + vec2(0.0, 1.0), hit, n, tu, tv, tex_per);
+    }
+    vec3 wo = vec3(-dot(d, tu), -dot(d, tv), -dot(d, n));
+    vec3 wi = vec3(dot(pc.light.xyz, tu), dot(pc.light.xyz, tv), dot(pc.light.xyz, n));
+#if PFF_SCENE == 1
+    wo.z = max(wo.z, 1e-6); /* silhouette rounding, as pictures.c */
+    wo = normalize(wo);
+#endif
+    /* unwrapped: REPEAT wraps it, and a driver that differentiates the coordinate itself
+       (lavapipe's anisotropic filter does) sees no jump at the tiles' edges */
+    vec2 sz = pc.map.xy, uv = tf / sz;
+    vec4 a = textureGrad(texA, uv, gx / sz, gy / sz);
+    vec4 b = textureGrad(texB, uv, gx / sz, gy / sz);
+    /* the level of detail the sampler used, read back: the probe's levels hold their index, so
+       its trilinear sample is the driver's lod (clamped to the chain) */
+    float lod = textureGrad(texL, uv, gx / sz, gy / sz).r;
+    float L;
+    float base_var = pc.fwd.w, f0 = pc.light.w;
+    pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
+#if PFF_METHOD == 1
+    /* LEADR (Dupuy et al. 2013 eq. 17) from the filtered moments */
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 2
+    /* the mip-mapped normal: the base lobe alone around the filtered normal */
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_from_normal(pf_vec3_make(b.y, b.z, b.w)), base_var);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 3
+    /* Toksvig: the base Beckmann roughness widened by the variance the filtered normal's
+       shortening implies (pf_toksvig.h), around that normal */
+    pf_vec3 mu = pf_vec3_make(b.y, b.z, b.w);
+    float m2 = pf_toksvig_beckmann_m(sqrt(2.0 * base_var), pf_toksvig_variance_from_normal(mu));
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_from_normal(mu), 0.5 * m2 * m2);
+    L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD >= 4
+    /* vMF lobes (Wu et al. 2019 eqs. 4-5, pf_vmf.h): a mixture is not filtered by averaging its
+       parameters, so the 8 texels a trilinear fetch at the driver's lod touches are read with
+       texelFetch and their lobes summed with the trilinear weights (bench/pictures.c's
+       shade_vmf; texel centres, wrap) */
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int nl = textureQueryLevels(texV), l0 = int(floor(lod));
+    float fl = lod - float(l0);
+    for (int lv = 0; lv < 2; ++lv) {
+        int l = l0 + lv;
+        float wl = lv == 1 ? fl : 1.0 - fl;
+        if (!(wl > 0.0) || l >= nl) continue;
+        ivec2 ls = textureSize(texV, l).xy;
+        vec2 x = fract(uv) * vec2(ls) - 0.5, f = x - floor(x);
+        ivec2 i0 = ivec2(floor(x));
+        for (int k = 0; k < 4; ++k) {
+            float wt = wl * ((k & 1) != 0 ? f.x : 1.0 - f.x) * ((k & 2) != 0 ? f.y : 1.0 - f.y);
+            if (!(wt > 0.0)) continue;
+            ivec2 ti = (i0 + ivec2(k & 1, k >> 1) + ls) % ls;
+            for (int j = 0; j < PFF_LOBES; ++j) {
+                vec4 q = texelFetch(texV, ivec3(ti, j), l); /* (mu.x, mu.y, kappa, amp) */
+                sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(wt * q.w, q.x, q.y, q.z), vo, vi, base_var);
+            }
+        }
+    }
+    L = pf_vmf_sum_specular(sum, vo, vi, f0);
+#else
+    L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
+#endif
+    o0 = ok ? vec4(L, t, 1.0 + lod) : vec4(0.0);
+    o1 = ok ? vec4(gx, gy) : vec4(0.0);
+}

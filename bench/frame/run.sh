@@ -1,0 +1,62 @@
+#!/bin/sh
+# bench/frame/run.sh - the GPU-frame step of `make bench` (bench/frame/frame.c says what it
+# measures): compiles bench/frame/frame.vert and frame.frag (one fragment shader per scene and
+# method) to SPIR-V, counts each fragment shader's ops after spirv-opt -O (as bench/gpu/count.sh
+# counts), runs the host and draws the GPU frame next to the reference (bench/frame/frame.gp).
+#
+# usage: sh bench/frame/run.sh BENCH_BIN_DIR OUT_DIR     (the binary is BENCH_BIN_DIR/frame)
+# Device: lavapipe (Mesa's CPU Vulkan driver, through VK_ICD_FILENAMES) unless PF_VK_DEVICE is
+# set (an index or a name substring, tests/gpu/vk_common.h), which leaves the loader alone so a
+# real GPU can be picked. BENCH_QUICK=1: small frames. Writes OUT_DIR/frame.md, frame.csv,
+# frame_plane.png, frame_sphere.png. Needs glslang-tools, spirv-tools, libvulkan-dev,
+# mesa-vulkan-drivers, gnuplot (tests/deps.sh bench); a missing one stops the step (exit 1).
+set -u
+bin=${1:-build/bench}/frame
+out=${2:-bench/out}
+spv=$(dirname "$bin")/frame_spv
+mkdir -p "$spv" "$out" || exit 1
+for t in glslangValidator spirv-opt spirv-dis gnuplot; do
+    command -v $t >/dev/null 2>&1 || { echo "frame: $t not found (sh tests/deps.sh bench)" >&2; exit 1; }
+done
+[ -x "$bin" ] || { echo "frame: no $bin (make frame builds it)" >&2; exit 1; }
+if [ -z "${PF_VK_DEVICE:-}" ]; then
+    icd=""
+    for f in /usr/share/vulkan/icd.d/lvp_icd.*.json /usr/share/vulkan/icd.d/lvp_icd.json; do
+        [ -e "$f" ] && { icd=$f; break; }
+    done
+    [ -n "$icd" ] || { echo "frame: lavapipe's ICD not found (mesa-vulkan-drivers; or set PF_VK_DEVICE)" >&2; exit 1; }
+    VK_ICD_FILENAMES=$icd VK_DRIVER_FILES=$icd
+    export VK_ICD_FILENAMES VK_DRIVER_FILES
+fi
+
+glslangValidator -V --target-env vulkan1.0 -S vert -o "$spv/frame.vert.spv" bench/frame/frame.vert > "$spv/vert.log" 2>&1 ||
+    { cat "$spv/vert.log"; exit 1; }
+: > "$spv/ops.txt"
+for s in 0 1; do
+    for m in 0 1 2 3 4 5; do
+        sn=$(echo "plane sphere" | cut -d' ' -f$((s + 1)))
+        mn=$(echo "none leadr naive toksvig vmf4 vmf8" | cut -d' ' -f$((m + 1)))
+        f="$spv/frame_${sn}_$mn.spv"
+        glslangValidator -V --target-env vulkan1.0 -S frag -DPFF_SCENE=$s -DPFF_METHOD=$m -Iinclude -o "$f" \
+            bench/frame/frame.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
+        # ops of main after spirv-opt -O: bench/gpu/count.sh's rule (loads, stores, access
+        # chains, labels, branches, merges, returns not counted)
+        spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
+        spirv-dis "$f.opt" | awk -v s="$sn" -v m="$mn" '
+            /OpEntryPoint/ { for (i = 1; i <= NF; i++) if ($i ~ /^%/) { ep = $i; break } }
+            $1 == ep && $3 == "OpFunction" { inmain = 1; next }
+            inmain && $1 == "OpFunctionEnd" { inmain = 0; next }
+            inmain {
+                op = ($2 == "=") ? $3 : $1
+                if (op == "OpBranchConditional" || op == "OpSwitch") br++
+                if (op ~ /^Op(Load|Store|AccessChain|InBoundsAccessChain|Variable|Label|Branch|BranchConditional|Switch|SelectionMerge|LoopMerge|Return|ReturnValue|FunctionParameter|Kill)$/) next
+                n++
+            }
+            END { print s, m, n + 0, br + 0 }' >> "$spv/ops.txt"
+    done
+done
+LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$bin" "$spv" "$out" "$spv/ops.txt" || { echo "frame: $bin failed" >&2; exit 1; }
+for s in plane sphere; do
+    gnuplot "$out/frame_$s.gpv" bench/frame/frame.gp || { echo "frame: gnuplot failed on $out/frame_$s.png" >&2; exit 1; }
+    rm -f "$out/frame_$s.bin" "$out/frame_$s.gpv"
+done
