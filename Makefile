@@ -17,9 +17,9 @@ BUILD ?= build
 
 WARN_C   := -std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion
 WARN_CXX := -std=c++11 -Wall -Wextra -Werror
-INC      := -Iinclude -Itests
+INC      := -Iinclude -Itests -Itests/reference
 
-HEADERS  := $(wildcard include/*.h) $(wildcard tests/*.h)
+HEADERS  := $(wildcard include/*.h) $(wildcard tests/*.h) $(wildcard tests/reference/*.h)
 TEST_SRC := $(wildcard tests/test_*.c)
 TESTS    := $(TEST_SRC:tests/%.c=%)
 
@@ -50,7 +50,7 @@ $(foreach c,$(CONFIGS),$(eval $(call test_rule,$(c))))
 TEST_BINS := $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(TESTS)))
 
 # Tests that link a system library: tests/maps/test_*.c (the map loaders of make bench MAP=...,
-# tests/pf_maps.h; libpng, Debian libpng-dev), built and run in every config above with -lpng.
+# tests/reference/pf_maps.h; libpng, Debian libpng-dev), built and run in every config above with -lpng.
 # They live apart from tests/test_*.c because the portability cells compile those with -lm
 # only, and with cross compilers that have no libpng.
 LIB_TEST_SRC := $(wildcard tests/maps/test_*.c)
@@ -96,7 +96,7 @@ test:
 # identical code time alike (without it, placement alone moved a 1 ns loop by 10-15%).
 BENCH_SRC   := $(wildcard bench/bench_*.c)
 BENCH_OPT   ?= -O2 -falign-functions=64
-BENCH_FLAGS := $(WARN_C) $(BENCH_OPT) -Ibench -Iinclude
+BENCH_FLAGS := $(WARN_C) $(BENCH_OPT) -Ibench -Iinclude -Itests/reference
 BENCH_BINS  := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-float) $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-double)
 BENCH_STAMP := $(BUILD)/bench/flags.txt
 
@@ -119,12 +119,12 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 #                         microsurfaces, error tables and charts, cost against footprint size
 #   bench/pictures.c      brute force against the filtered formulas, side by side (PNG drawn by
 #                         gnuplot, bench/pictures.gp: titled panels, numbered colour bars)
-# They include tests/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
+# They include tests/reference/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
 REPORT_PROGS := microsurface pictures
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
 $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -pthread -Itests $< -o $@ -lpng -lm
+	$(CC) $(BENCH_FLAGS) -pthread $< -o $@ -lpng -lm
 
 # The ground truth on the user's own map (bench/map.sh, docs/maps.md): with MAP set, make bench
 # runs bench/microsurface.c and bench/pictures.c on that map instead of the full run, and writes

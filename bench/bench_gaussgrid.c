@@ -17,7 +17,7 @@
      diffuse_sh    LEADR algorithms 2 + 3 (SH irradiance, one light) against the direct
                    evaluation, for the uniform 5x5 and the matched 3x3 grids.
    REFERENCE (long double, independent of the header): adaptive 2D Gauss-Kronrod quadrature
-   (tests/pf_oracle.h) over the slope plane of the same integrand, Lambda from the closed form
+   (tests/reference/pf_oracle.h) over the slope plane of the same integrand, Lambda from the closed form
    with erfcl. Relative error; max over the corpus in the table, and the error-budget notes
    (cheapest N^2 per budget) from max and mean errors computed before timing.
 
@@ -27,7 +27,7 @@
 #define PFB_REPS 21
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_gaussgrid.h"
-#include "../tests/pf_oracle.h"
+#include "pf_oracle.h"
 
 #define NCFG 48
 

@@ -2,7 +2,7 @@
 
    The truth is never the module's own formula:
    - lobe normalization, mean cosine and tangent variance: long double quadrature over the
-     polar angle (tests/pf_oracle.h);
+     polar angle (tests/reference/pf_oracle.h);
    - the one-lobe convolution rule kappa' = kappa kappa_b / (kappa + kappa_b): against the exact
      spherical convolution of two vMF lobes, C1 C2 e^(-k1-k2) 4 pi sinh|k1 mu + k2 w| /
      |k1 mu + k2 w| (the integral of a product of two exponentials of w.mu over the sphere, in
@@ -14,7 +14,7 @@
      mixture of the lobes' slope statistics along w;
    - the multi-lobe BRDF of eq. 5 (slope form): a single sharp lobe is LEADR's one-slope
      footprint (pf_leadr_specular, itself tested against quadrature); its masking on real
-     microsurfaces against the brute-force march of tests/pf_microsurface.h;
+     microsurfaces against the brute-force march of tests/reference/pf_microsurface.h;
    - EM: normals sampled (seeded) from known vMF mixtures must give back the lobes;
    - degenerate input: equal normals, zero and NaN weights, NaN normals, bad sizes, and
      canaries after every buffer.
@@ -1075,7 +1075,7 @@ static void edge_downsample_finite(void)
 }
 
 /* ================================================================== scaling function (helper J)
-   Oracles: the base lobe of tests/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
+   Oracles: the base lobe of tests/reference/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
    the exchange of wo and wi (reciprocity, exact for a whole periodic map); a wall's shadow in
    closed form; the test header's own march and reference (pfm_visibility_map_box,
    pfm_reference_shade: an independent implementation in double); a separable R built by hand. */
@@ -1175,7 +1175,7 @@ static void test_scale_visibility_wall(void)
     PF_CHECK(bad == 0 && vis > tested / 5 && vis < tested * 4 / 5, "%d of %d wrong (visible %d)", bad, tested, vis);
 }
 
-/* the effective BRDF against tests/pf_microsurface.h's own in-footprint march and reference */
+/* the effective BRDF against tests/reference/pf_microsurface.h's own in-footprint march and reference */
 static void test_scale_vs_microsurface_reference(void)
 {
     static const int kinds[3] = { PFM_RIDGES, PFM_TILES, PFM_GAUSSIAN_FINE };
