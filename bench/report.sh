@@ -217,7 +217,7 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     echo
     awk '/^## /{ exit } /^- /' "$sum"
     [ -f "$out/stages.txt" ] &&
-        echo "- wall time per stage (bench/run.sh, $(awk -F'\t' 'NR == 1 { print $3 }' "$out/stages.txt") threads): $(awk -F'\t' '{ printf "%s%s %s s", (NR > 1 ? "; " : ""), $1, $2 }' "$out/stages.txt")"
+        echo "- time per stage (bench/run.sh, $(awk -F'\t' 'NR == 1 { print $3 }' "$out/stages.txt") threads; wall, then CPU of its processes): $(awk -F'\t' '{ printf "%s%s %s s (CPU %s s)", (NR > 1 ? "; " : ""), $1, $2, $4 }' "$out/stages.txt")"
     echo
     echo "## Speed against accuracy, per family"
     echo

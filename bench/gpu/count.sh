@@ -27,7 +27,8 @@
 # The textbook baselines go through exactly the same wrapper generator and counting.
 #
 # Environment: NVCC (default: nvcc on PATH, else /usr/local/cuda/bin/nvcc; none: no CUDA),
-# PF_NVCC_ARCH, PF_GPU_JOBS (shaders compiled at once; default nproc), PF_GPU_WORK (work
+# PF_NVCC_ARCH, PF_GPU_JOBS (shaders compiled at once; default PFB_THREADS, else every core;
+# bench/pool.sh, with progress on stderr), PF_GPU_WORK (work
 # directory, kept; default a fresh one under ${TMPDIR:-/tmp}, removed at the end).
 # Needs glslangValidator (glslang-tools), spirv-opt and spirv-dis (spirv-tools); exits 2 when
 # they are missing (make bench installs them through tests/deps.sh).
@@ -128,10 +129,23 @@ gen_unit() {
 }
 
 UNITS="$HEADERS textbook.h"
+jobs=${PF_GPU_JOBS:-${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}}
+# the units' shader sources, PF_GPU_JOBS at a time (each in its own scratch file)
+if [ "${1:-}" = "--gen-unit" ]; then
+    m=${3%.h}
+    if gen_unit "$2" "$3" > "$W/$m.$2" 2> "$W/$m.gen.log"; then echo ok > "$W/$m.$2.status"
+    else echo fail > "$W/$m.$2.status"; fi
+    exit 0
+fi
+: > "$W/units.jobs"
+for u in $UNITS; do
+    echo "PF_GPU_WORK=$W sh $ROOT/bench/gpu/count.sh --gen-unit glsl $u" >> "$W/units.jobs"
+done
+PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: shader sources" "$W/units.jobs" || exit 2
 : > "$W/glsl.map"
 for u in $UNITS; do
     m=${u%.h}
-    if gen_unit glsl "$u" > "$W/$m.glsl" 2> "$W/$m.gen.log"; then
+    if [ "$(cat "$W/$m.glsl.status" 2>/dev/null)" = ok ]; then
         sed -n 's/^float pfp_\(pf_[A-Za-z0-9_]*\)()$/\1/p' "$W/$m.glsl" | sed "s/\$/ $m/" >> "$W/glsl.map"
     else
         echo "count.sh: gen.awk failed on $u ($(head -n 1 "$W/$m.gen.log")); its functions are not counted" >&2
@@ -155,8 +169,8 @@ for f in $fns; do
     write_comp "$f" "$u" "    pfp_out.v[0] = pfp_$f();"
     comps="$comps $W/$f.comp"
 done
-jobs=${PF_GPU_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
-echo $comps | tr ' ' '\n' | xargs -P "$jobs" -n 4 sh "$ROOT/bench/gpu/count.sh" --spirv
+for c in $comps; do echo "sh $ROOT/bench/gpu/count.sh --spirv $c"; done > "$W/spirv.jobs"
+PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: SPIR-V counts" "$W/spirv.jobs" || exit 2
 
 # The copy shader must count 0: otherwise the counting is wrong, and every number with it.
 copy=$(cat "$W/pfp_copy.count")
