@@ -117,12 +117,17 @@ $(BENCH_STAMP): pf-bench-always
 	@echo '$(CC) $(BENCH_FLAGS)' | cmp -s - $@ || echo '$(CC) $(BENCH_FLAGS)' > $@
 pf-bench-always:
 
+# With gcc, each build also writes which loops it vectorized (BIN.vec, -fopt-info-vec-optimized:
+# no effect on the code), which bench/run.sh's summary reads instead of compiling everything again
+# (a .vec exists only when the last build of its binary wrote it).
+BENCH_VEC = $(if $(BENCH_VEC_OK),-fopt-info-vec-optimized=$@.vec)
+BENCH_VEC_OK := $(shell $(CC) -fopt-info-vec-optimized=/dev/null -x c -c /dev/null -o /dev/null 2>/dev/null && echo 1)
 $(BUILD)/bench/%-float: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
-	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -pthread $< -o $@ -lm
+	@mkdir -p $(@D) && rm -f $@.vec
+	$(CC) $(BENCH_FLAGS) $(BENCH_VEC) -pthread $< -o $@ -lm
 $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
-	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -pthread -DPF_DOUBLE $< -o $@ -lm
+	@mkdir -p $(@D) && rm -f $@.vec
+	$(CC) $(BENCH_FLAGS) $(BENCH_VEC) -pthread -DPF_DOUBLE $< -o $@ -lm
 
 # The report's own programs (not bench_*.c: they are not per-module method tables), each built
 # once in float (the library's default) and run once by bench/run.sh:

@@ -198,13 +198,21 @@ sh bench/gpu/cost.sh "$out"
 # ---------------------------------------------------------------- 4. vectorized timing loops
 # Which timing loops did the compiler vectorize? (gcc only: -fopt-info-vec-optimized names the
 # source line of each vectorized loop; a timing loop sits on its PFB_METHOD line.)
+# The Makefile's gcc builds write it beside each binary (BIN.vec); otherwise (older binaries,
+# another build) each source is compiled again here with -fopt-info-vec-optimized.
 stage "vectorization report"
 rm -f "$out"/vec.*
 if ${CC:-cc} -fopt-info-vec-optimized -x c -c /dev/null -o /dev/null 2>/dev/null; then
     : > "$jobs"
-    for src in bench/bench_*.c; do
-        for d in "" -DPF_DOUBLE; do
-            echo "${CC:-cc} ${BENCH_FLAGS} $d -fopt-info-vec-optimized -c $src -o /dev/null > $out/vec.$(basename "$src" .c)$d.log 2>&1" >> "$jobs"
+    for m in $modules; do
+        for b in float double; do
+            d=""
+            [ $b = double ] && d=-DPF_DOUBLE
+            if [ -f "$dir/bench_$m-$b.vec" ]; then
+                cp "$dir/bench_$m-$b.vec" "$out/vec.bench_$m$d.log"
+            else
+                echo "${CC:-cc} ${BENCH_FLAGS} $d -fopt-info-vec-optimized -c bench/bench_$m.c -o /dev/null > $out/vec.bench_$m$d.log 2>&1" >> "$jobs"
+            fi
         done
     done
     sh bench/pool.sh "bench: vectorization report" "$jobs" || { echo "bench: a vectorization compile failed" >&2; exit 1; }

@@ -51,11 +51,19 @@ label() { # build -> the label in the table
     esac
 }
 
-# The four builds at once (bench/pool.sh: PFB_THREADS processes, default every core).
+# The four builds at once (bench/pool.sh: PFB_THREADS processes, default every core), each only
+# when its binary is missing, older than a source, or built with another command (BIN.cmd).
 jobs="$DIR/jobs.txt"
 : > "$jobs"
 for n in $builds; do
-    echo "$CC $WARN -O2 $(flags "$n") -Iinclude -Itests/fuzz bench/stability.c -lm -o $DIR/stability-$n > $DIR/build-$n.log 2>&1" >> "$jobs"
+    cmd="$CC $WARN -O2 $(flags "$n") -Iinclude -Itests/fuzz bench/stability.c -lm -o $DIR/stability-$n"
+    bin=$DIR/stability-$n
+    if [ -x "$bin" ] && [ "$(cat "$bin.cmd" 2>/dev/null)" = "$cmd" ] &&
+        [ -z "$(find bench/stability.c include tests/fuzz -newer "$bin" -name '*.[ch]' 2>/dev/null | head -n 1)" ]; then
+        continue
+    fi
+    rm -f "$bin.cmd"
+    echo "$cmd > $DIR/build-$n.log 2>&1 && echo '$cmd' > $bin.cmd" >> "$jobs"
 done
 sh bench/pool.sh "stability: builds" "$jobs" || {
     for n in $builds; do [ -x "$DIR/stability-$n" ] || cat "$DIR/build-$n.log" >&2; done
