@@ -124,9 +124,73 @@ gen_unit() {
     if [ "$2" = textbook.h ]; then chain=pf_core.h; else chain=$(deps_rec "$2" | awk '!seen[$0]++'); fi
     for h in $chain; do cat "$INC/$h"; echo; done
     [ "$2" = textbook.h ] && { cat "$TB"; echo; }
-    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" > "$W/gen.out" || return 1
-    awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.out"
+    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" > "$W/gen.$1.$2.out" || return 1
+    awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.$1.$2.out"
 }
+
+# ---------------------------------------------------------------- CUDA: per unit, one kernel per function
+# ptx = instructions of the kernel except ld/st/cvta/mov/ret/bra (parameter and buffer traffic;
+# the copy kernel counts 0); regs from ptxas -v; sass from cuobjdump -sass when it exists.
+ptx_count() {
+    awk '/^\.visible \.entry / { k = $3; sub(/\(.*/, "", k); sub(/^pfk_/, "", k); n[k] = 0; next_k = k; next }
+         next_k != "" && /^{/ { cur = next_k; next_k = ""; next }
+         cur != "" && /^}/ { cur = ""; next }
+         cur != "" {
+             s = $0; sub(/^[ \t]+/, "", s)
+             if (s == "" || s ~ /^[.{}]/ || s ~ /^\$[A-Za-z0-9_]*:/ || s ~ /^\/\//) next
+             if (s ~ /^@/) { sub(/^@!?%[a-z0-9]+[ \t]+/, "", s) }
+             op = s; sub(/[ \t;].*$/, "", op); sub(/\..*$/, "", op)
+             if (op ~ /^(ld|st|cvta|mov|ret|bra)$/) next
+             n[cur]++ }
+         END { for (k in n) print k, n[k] }' "$1"
+}
+sass_count() {
+    awk '/Function : / { k = $3; sub(/^pfk_/, "", k); cur = k; n[cur] = 0; next }
+         cur != "" && /\/\*[0-9a-f]+\*\// {
+             s = $0; sub(/^.*\*\/[ \t]*/, "", s); sub(/^@!?U?P[T0-9]+[ \t]+/, "", s)
+             op = s; sub(/[ \t;].*$/, "", op)
+             if (op ~ /^IMAD\.MOV/) next                 # the move idiom, not arithmetic
+             sub(/\..*$/, "", op)
+             if (op == "" || op ~ /^(LDG|STG|LDC|ULDC|LD|ST|MOV|EXIT|BRA|NOP|S2R|S2UR)$/) next
+             n[cur]++ }
+         END { for (k in n) print k, n[k] }'
+}
+PTXAS=""
+[ -n "$NVCC" ] && { p=$(dirname "$(command -v "$NVCC")")/ptxas; [ -x "$p" ] && PTXAS=$p; }
+
+# cuda_unit UNIT: the unit's kernels (the requested functions it wraps, $W/fns.txt) compiled by
+# nvcc, counted into $W/<unit>.ptx.txt, .regs.txt, .sass.txt (run in parallel: --cuda-unit)
+cuda_unit() {
+    u=$1
+    m=${u%.h}
+    fns_flat=" $(cat "$W/fns.txt") "
+    gen_unit cuda "$u" > "$W/$m.cu" 2> /dev/null || return 0
+    # kernels only for the requested functions this unit wraps (+ the copy kernel once)
+    [ "$u" = textbook.h ] && echo 'extern "C" __global__ void pfk_pfp_copy(const pf_real *in, pf_real *out) { out[0] = in[0]; }' >> "$W/$m.cu"
+    nk=0
+    for f in $(sed -n 's/^__device__ pf_real pfp_\(pf_[A-Za-z0-9_]*\)(.*/\1/p' "$W/$m.cu"); do
+        case "$fns_flat" in *" $f "*) ;; *) continue ;; esac
+        printf 'extern "C" __global__ void pfk_%s(const pf_real *in, pf_real *out) { out[0] = pfp_%s(in); }\n' "$f" "$f" >> "$W/$m.cu"
+        nk=$((nk + 1))
+    done
+    [ $nk -gt 0 ] || [ "$u" = textbook.h ] || return 0
+    if "$NVCC" -O3 --use_fast_math -arch="$ARCH" -ptx -I"$INC" -o "$W/$m.ptx" "$W/$m.cu" > "$W/$m.nvcc.log" 2>&1; then
+        ptx_count "$W/$m.ptx" > "$W/$m.ptx.txt"
+        if [ -n "$PTXAS" ] && "$PTXAS" -O3 -arch="$ARCH" -v -o "$W/$m.cubin" "$W/$m.ptx" > "$W/$m.ptxas.log" 2>&1; then
+            awk '/Compiling entry function/ { k = $0; sub(/.*function .pfk_/, "", k); sub(/[^A-Za-z0-9_].*$/, "", k); cur = k }
+                 /Used [0-9]+ registers/ && cur != "" { for (i = 1; i <= NF; i++) if ($(i + 1) ~ /^registers/) print cur, $i; cur = "" }' \
+                "$W/$m.ptxas.log" > "$W/$m.regs.txt"
+            [ -n "$CUOBJDUMP" ] && "$CUOBJDUMP" -sass "$W/$m.cubin" 2> /dev/null | sass_count > "$W/$m.sass.txt"
+        fi
+    else
+        : > "$W/$m.nvcc.failed"
+    fi
+    return 0
+}
+if [ "${1:-}" = "--cuda-unit" ]; then
+    cuda_unit "$2"
+    exit 0
+fi
 
 UNITS="$HEADERS textbook.h"
 jobs=${PF_GPU_JOBS:-${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}}
@@ -179,63 +243,20 @@ if [ "$copy" != "0 0" ]; then
     exit 1
 fi
 
-# ---------------------------------------------------------------- CUDA: per unit, one kernel per function
-# ptx = instructions of the kernel except ld/st/cvta/mov/ret/bra (parameter and buffer traffic;
-# the copy kernel counts 0); regs from ptxas -v; sass from cuobjdump -sass when it exists.
-ptx_count() {
-    awk '/^\.visible \.entry / { k = $3; sub(/\(.*/, "", k); sub(/^pfk_/, "", k); n[k] = 0; next_k = k; next }
-         next_k != "" && /^{/ { cur = next_k; next_k = ""; next }
-         cur != "" && /^}/ { cur = ""; next }
-         cur != "" {
-             s = $0; sub(/^[ \t]+/, "", s)
-             if (s == "" || s ~ /^[.{}]/ || s ~ /^\$[A-Za-z0-9_]*:/ || s ~ /^\/\//) next
-             if (s ~ /^@/) { sub(/^@!?%[a-z0-9]+[ \t]+/, "", s) }
-             op = s; sub(/[ \t;].*$/, "", op); sub(/\..*$/, "", op)
-             if (op ~ /^(ld|st|cvta|mov|ret|bra)$/) next
-             n[cur]++ }
-         END { for (k in n) print k, n[k] }' "$1"
-}
-sass_count() {
-    awk '/Function : / { k = $3; sub(/^pfk_/, "", k); cur = k; n[cur] = 0; next }
-         cur != "" && /\/\*[0-9a-f]+\*\// {
-             s = $0; sub(/^.*\*\/[ \t]*/, "", s); sub(/^@!?U?P[T0-9]+[ \t]+/, "", s)
-             op = s; sub(/[ \t;].*$/, "", op)
-             if (op ~ /^IMAD\.MOV/) next                 # the move idiom, not arithmetic
-             sub(/\..*$/, "", op)
-             if (op == "" || op ~ /^(LDG|STG|LDC|ULDC|LD|ST|MOV|EXIT|BRA|NOP|S2R|S2UR)$/) next
-             n[cur]++ }
-         END { for (k in n) print k, n[k] }'
-}
-PTXAS=""
-[ -n "$NVCC" ] && { p=$(dirname "$(command -v "$NVCC")")/ptxas; [ -x "$p" ] && PTXAS=$p; }
 : > "$W/ptx.txt"; : > "$W/regs.txt"; : > "$W/sass.txt"
 ptx_ok=0
-fns_flat=$(echo $fns)
 if [ -n "$NVCC" ]; then
     ptx_ok=1
+    # one nvcc (+ ptxas, cuobjdump) per unit, PF_GPU_JOBS at a time; merged in unit order
+    echo $fns > "$W/fns.txt"
+    for u in $UNITS; do
+        echo "PF_GPU_WORK=$W PF_NVCC_ARCH=$ARCH NVCC=$NVCC sh $ROOT/bench/gpu/count.sh --cuda-unit $u"
+    done > "$W/cuda.jobs"
+    PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: CUDA (PTX) counts" "$W/cuda.jobs" || exit 2
     for u in $UNITS; do
         m=${u%.h}
-        gen_unit cuda "$u" > "$W/$m.cu" 2> /dev/null || continue
-        # kernels only for the requested functions this unit wraps (+ the copy kernel once)
-        [ "$u" = textbook.h ] && echo 'extern "C" __global__ void pfk_pfp_copy(const pf_real *in, pf_real *out) { out[0] = in[0]; }' >> "$W/$m.cu"
-        nk=0
-        for f in $(sed -n 's/^__device__ pf_real pfp_\(pf_[A-Za-z0-9_]*\)(.*/\1/p' "$W/$m.cu"); do
-            case " $fns_flat " in *" $f "*) ;; *) continue ;; esac
-            printf 'extern "C" __global__ void pfk_%s(const pf_real *in, pf_real *out) { out[0] = pfp_%s(in); }\n' "$f" "$f" >> "$W/$m.cu"
-            nk=$((nk + 1))
-        done
-        [ $nk -gt 0 ] || [ "$u" = textbook.h ] || continue
-        if "$NVCC" -O3 --use_fast_math -arch="$ARCH" -ptx -I"$INC" -o "$W/$m.ptx" "$W/$m.cu" > "$W/$m.nvcc.log" 2>&1; then
-            ptx_count "$W/$m.ptx" >> "$W/ptx.txt"
-            if [ -n "$PTXAS" ] && "$PTXAS" -O3 -arch="$ARCH" -v -o "$W/$m.cubin" "$W/$m.ptx" > "$W/$m.ptxas.log" 2>&1; then
-                awk '/Compiling entry function/ { k = $0; sub(/.*function .pfk_/, "", k); sub(/[^A-Za-z0-9_].*$/, "", k); cur = k }
-                     /Used [0-9]+ registers/ && cur != "" { for (i = 1; i <= NF; i++) if ($(i + 1) ~ /^registers/) print cur, $i; cur = "" }' \
-                    "$W/$m.ptxas.log" >> "$W/regs.txt"
-                [ -n "$CUOBJDUMP" ] && "$CUOBJDUMP" -sass "$W/$m.cubin" 2> /dev/null | sass_count >> "$W/sass.txt"
-            fi
-        else
-            echo "count.sh: nvcc failed on $u (log $W/$m.nvcc.log); its PTX counts are n/a" >&2
-        fi
+        for k in ptx regs sass; do [ -f "$W/$m.$k.txt" ] && cat "$W/$m.$k.txt" >> "$W/$k.txt"; done
+        [ -f "$W/$m.nvcc.failed" ] && echo "count.sh: nvcc failed on $u (log $W/$m.nvcc.log); its PTX counts are n/a" >&2
     done
     c=$(awk '$1 == "pfp_copy" { print $2 }' "$W/ptx.txt")
     [ "$c" = 0 ] || echo "count.sh: warning: the PTX copy kernel counts '${c:-nothing}', not 0" >&2
