@@ -120,8 +120,11 @@ pf-bench-always:
 # With gcc, each build also writes which loops it vectorized (BIN.vec, -fopt-info-vec-optimized:
 # no effect on the code), which bench/run.sh's summary reads instead of compiling everything again
 # (a .vec exists only when the last build of its binary wrote it).
-BENCH_VEC = $(if $(BENCH_VEC_OK),-fopt-info-vec-optimized=$@.vec)
+# With valgrind's client-request header, a bench's setup runs uninstrumented under callgrind
+# (bench/pf_bench.h, PFB_HAVE_CALLGRIND_H: the counts are the same, the callgrind stage faster).
+BENCH_VEC = $(if $(BENCH_VEC_OK),-fopt-info-vec-optimized=$@.vec) $(BENCH_CG_H)
 BENCH_VEC_OK := $(shell $(CC) -fopt-info-vec-optimized=/dev/null -x c -c /dev/null -o /dev/null 2>/dev/null && echo 1)
+BENCH_CG_H := $(shell printf '\043include <valgrind/callgrind.h>\n' | $(CC) -E -x c - > /dev/null 2>&1 && echo -DPFB_HAVE_CALLGRIND_H)
 $(BUILD)/bench/%-float: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
 	@mkdir -p $(@D) && rm -f $@.vec
 	$(CC) $(BENCH_FLAGS) $(BENCH_VEC) -pthread $< -o $@ -lm
