@@ -526,7 +526,7 @@ PFB_FN void pfb_sort_inputs(pf_real *a, pf_real *b, pf_real *c, size_t n)
    (PFB_THREADS), for every family of the binary at once: the references in chunks of grid points,
    then one work item per method (its whole grid, in grid order, as a serial run sums it). Every
    item writes only its own slots, so the results do not depend on the thread count. */
-#define PFB_REF_CHUNK 512
+#define PFB_REF_CHUNK 512 /* grid points per reference work item at most (at least 64 items) */
 
 typedef struct pfb_fam_acc {
     size_t n_grid;
@@ -535,7 +535,7 @@ typedef struct pfb_fam_acc {
     pfb_ref ref_fn[PFB_MAX_METHODS];
     long double *ref[PFB_MAX_METHODS];   /* ref[r][j]: reference r at grid point j */
     int ref_of[PFB_MAX_METHODS];         /* method -> r; -1: no reference (cost only) */
-    size_t n_chunks;
+    size_t chunk, n_chunks;
     pfb_result res[PFB_MAX_METHODS];
 } pfb_fam_acc;
 
@@ -566,7 +566,7 @@ static void pfb_acc_ref_item(void *ctx, long long item)
     int i = pfb_acc_locate(x, item, 0, &k);
     pfb_fam_acc *A = &x->acc[i];
     int r = (int)(k / (long long)A->n_chunks);
-    size_t j0 = (size_t)(k % (long long)A->n_chunks) * PFB_REF_CHUNK, j1 = j0 + PFB_REF_CHUNK, j;
+    size_t j0 = (size_t)(k % (long long)A->n_chunks) * A->chunk, j1 = j0 + A->chunk, j;
     if (j1 > A->n_grid) j1 = A->n_grid;
     for (j = j0; j < j1; ++j)
         A->ref[r][j] = A->ref_fn[r]((long double)A->ga[j], (long double)A->gb[j], (long double)A->gc[j]);
@@ -610,7 +610,11 @@ PFB_FN void pfb_accuracy_all(const char *module, const pfb_family *fam, int n_fa
             }
             A->ref_of[m] = r;
         }
-        A->n_chunks = (A->n_grid + PFB_REF_CHUNK - 1) / PFB_REF_CHUNK;
+        /* small grids of costly references (quadratures) in small items, so every core gets some */
+        A->chunk = (A->n_grid + 63) / 64;
+        if (A->chunk > PFB_REF_CHUNK) A->chunk = PFB_REF_CHUNK;
+        if (A->chunk < 1) A->chunk = 1;
+        A->n_chunks = (A->n_grid + A->chunk - 1) / A->chunk;
         n_ref_items += (long long)A->n_refs * (long long)A->n_chunks;
         n_meth_items += fam[i].n_methods;
     }
