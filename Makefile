@@ -4,8 +4,11 @@
 # (PF_NO_INSTALL=1: never install). The package list and the reason for each are in that script.
 #   make test         every test in every build (C99 float/double, C++11, clang sanitizers,
 #                     -ffast-math edge tests); ends with "N passed, N failed"
-#   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot)
+#   make bench        the main job: tables, CSV under bench/out/, charts (gnuplot), on every core
+#                     (PFB_THREADS=N: N threads; timings always run alone on one core)
+#   make bench PROFILE=1   also branch counts and per-method callgrind profiles (bench/out/profile/)
 #   make bench MAP=f  the ground truth on your own height or normal map (docs/maps.md)
+#   make bench-determinism  the quick bench with 1 thread and with every core: CSVs must match
 #   make portability  tcc, nvcc, GLSL -> SPIR-V -> HLSL/MSL, Cortex-M4F, amalgamation, matrix, ARM
 #   make install      headers + pkg-config (PREFIX, DESTDIR); make amalgamate: prefilter.h
 #   make clean
@@ -17,9 +20,9 @@ BUILD ?= build
 
 WARN_C   := -std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion
 WARN_CXX := -std=c++11 -Wall -Wextra -Werror
-INC      := -Iinclude -Itests
+INC      := -Iinclude -Itests -Itests/reference
 
-HEADERS  := $(wildcard include/*.h) $(wildcard tests/*.h)
+HEADERS  := $(wildcard include/*.h) $(wildcard tests/*.h) $(wildcard tests/reference/*.h)
 TEST_SRC := $(wildcard tests/test_*.c)
 TESTS    := $(TEST_SRC:tests/%.c=%)
 
@@ -50,7 +53,7 @@ $(foreach c,$(CONFIGS),$(eval $(call test_rule,$(c))))
 TEST_BINS := $(foreach c,$(CONFIGS),$(addprefix $(BUILD)/$(c)/,$(TESTS)))
 
 # Tests that link a system library: tests/maps/test_*.c (the map loaders of make bench MAP=...,
-# tests/pf_maps.h; libpng, Debian libpng-dev), built and run in every config above with -lpng.
+# tests/reference/pf_maps.h; libpng, Debian libpng-dev), built and run in every config above with -lpng.
 # They live apart from tests/test_*.c because the portability cells compile those with -lm
 # only, and with cross compilers that have no libpng.
 LIB_TEST_SRC := $(wildcard tests/maps/test_*.c)
@@ -90,13 +93,21 @@ test:
 #   make bench                  float + double builds of bench/bench_*.c, run by bench/run.sh:
 #                               tables on stdout; bench/out/<module>.csv, <module>_<family>.svg
 #                               (gnuplot), summary.md
-#   make bench CALLGRIND=1      also instructions per evaluation (valgrind --tool=callgrind)
+#   make bench CALLGRIND=0/1    instructions per evaluation (valgrind --tool=callgrind) of every
+#                               method, float and double (default: on in a full run, off under
+#                               BENCH_QUICK=1); one callgrind run per binary, all at once
+#   make bench PROFILE=1        the opt-in profile mode: callgrind's branch simulation and the
+#                               per-method profiles (callgrind_annotate), bench/out/profile/, which
+#                               nothing in docs/ or the report reads
+#   make bench PFB_THREADS=N    threads (and processes) per stage; default every core; 1 = serial
+#   Every stage runs on every core except the timing loops, which run alone on one core after
+#   the untimed stages (bench/run.sh's header has the order); builds run in parallel too.
 #   make bench BENCH_OPT="-O3 -march=native"   other optimisation flags (recorded in summary.md)
 # -falign-functions=64: every timing loop starts on a cache line, so two methods compiled to
 # identical code time alike (without it, placement alone moved a 1 ns loop by 10-15%).
 BENCH_SRC   := $(wildcard bench/bench_*.c)
 BENCH_OPT   ?= -O2 -falign-functions=64
-BENCH_FLAGS := $(WARN_C) $(BENCH_OPT) -Ibench -Iinclude
+BENCH_FLAGS := $(WARN_C) $(BENCH_OPT) -Ibench -Iinclude -Itests/reference
 BENCH_BINS  := $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-float) $(BENCH_SRC:bench/%.c=$(BUILD)/bench/%-double)
 BENCH_STAMP := $(BUILD)/bench/flags.txt
 
@@ -106,12 +117,20 @@ $(BENCH_STAMP): pf-bench-always
 	@echo '$(CC) $(BENCH_FLAGS)' | cmp -s - $@ || echo '$(CC) $(BENCH_FLAGS)' > $@
 pf-bench-always:
 
+# With gcc, each build also writes which loops it vectorized (BIN.vec, -fopt-info-vec-optimized:
+# no effect on the code), which bench/run.sh's summary reads instead of compiling everything again
+# (a .vec exists only when the last build of its binary wrote it).
+# With valgrind's client-request header, a bench's setup runs uninstrumented under callgrind
+# (bench/pf_bench.h, PFB_HAVE_CALLGRIND_H: the counts are the same, the callgrind stage faster).
+BENCH_VEC = $(if $(BENCH_VEC_OK),-fopt-info-vec-optimized=$@.vec) $(BENCH_CG_H)
+BENCH_VEC_OK := $(shell $(CC) -fopt-info-vec-optimized=/dev/null -x c -c /dev/null -o /dev/null 2>/dev/null && echo 1)
+BENCH_CG_H := $(shell printf '\043include <valgrind/callgrind.h>\n' | $(CC) -E -x c - > /dev/null 2>&1 && echo -DPFB_HAVE_CALLGRIND_H)
 $(BUILD)/bench/%-float: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
-	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) $< -o $@ -lm
+	@mkdir -p $(@D) && rm -f $@.vec
+	$(CC) $(BENCH_FLAGS) $(BENCH_VEC) -pthread $< -o $@ -lm
 $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
-	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -DPF_DOUBLE $< -o $@ -lm
+	@mkdir -p $(@D) && rm -f $@.vec
+	$(CC) $(BENCH_FLAGS) $(BENCH_VEC) -pthread -DPF_DOUBLE $< -o $@ -lm
 
 # The report's own programs (not bench_*.c: they are not per-module method tables), each built
 # once in float (the library's default) and run once by bench/run.sh:
@@ -119,12 +138,12 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 #                         microsurfaces, error tables and charts, cost against footprint size
 #   bench/pictures.c      brute force against the filtered formulas, side by side (PNG drawn by
 #                         gnuplot, bench/pictures.gp: titled panels, numbered colour bars)
-# They include tests/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
+# They include tests/reference/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
 REPORT_PROGS := microsurface pictures
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
 $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
 	@mkdir -p $(@D)
-	$(CC) $(BENCH_FLAGS) -pthread -Itests $< -o $@ -lpng -lm
+	$(CC) $(BENCH_FLAGS) -pthread $< -o $@ -lpng -lm
 
 # The frame on a Vulkan driver (bench/frame/: frame.c the host, frame.frag/.vert the shaders, run.sh
 # the step): pictures.c's scenes rendered by the GLSL path from GPU textures, against the brute
@@ -151,15 +170,31 @@ frame:
 #   MAP_SCALE=s (height of full white in texels; raw: factor) or MAP_RMS_SLOPE=r (default 0.3 for
 #   height maps); MAP_BORDER=clamped for maps that do not tile (mirrored to 2n x 2n)
 MAP_OUT ?= bench/out/map
+# the bench's binaries are built on every core (unless make already runs with -j)
+BENCH_JOBS ?= $(or $(PFB_THREADS),$(shell getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1))
 bench:
 	@sh tests/deps.sh bench
+	@$(MAKE) --no-print-directory $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(BENCH_JOBS)) \
+	    $(if $(MAP),$(REPORT_BINS),bench-build)
 	@$(MAKE) --no-print-directory $(if $(MAP),bench-map,bench-run)
+# only the binaries (bench/times.sh builds first, so that it times the runs alone)
+.PHONY: bench-build
+bench-build: $(BENCH_BINS) $(REPORT_BINS)
 bench-map: $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' BENCH_QUICK='$(BENCH_QUICK)' MAP='$(MAP)' MAP_KIND='$(MAP_KIND)' \
 	    MAP_SCALE='$(MAP_SCALE)' MAP_RMS_SLOPE='$(MAP_RMS_SLOPE)' MAP_BORDER='$(MAP_BORDER)' \
 	    MAP_RAW_SIZE='$(MAP_RAW_SIZE)' MAP_OUT='$(MAP_OUT)' sh bench/map.sh $(BUILD)/bench
 bench-run: $(BENCH_BINS) $(REPORT_BINS)
-	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' BENCH_QUICK='$(BENCH_QUICK)' sh bench/run.sh $(BUILD)/bench
+	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' PROFILE='$(PROFILE)' BENCH_QUICK='$(BENCH_QUICK)' \
+	    sh bench/run.sh $(BUILD)/bench
+
+# The determinism check (bench/determinism.sh): the quick bench with PFB_THREADS=1 and with every
+# core (instruction counts included), then every CSV of the two runs compared except the timing
+# columns; fails on any difference. About twice a quick run.
+.PHONY: bench-determinism
+bench-determinism:
+	@sh tests/deps.sh bench
+	@sh bench/determinism.sh
 
 # The stability table (docs/stability.md): every public evaluator swept with seeded inputs from
 # its documented domain in float, double and both under -ffast-math (bench/stability.sh; make

@@ -32,13 +32,13 @@
 
    REFERENCE (long double, independent of pf_beckmann.h): P22 by the explicit inverse of the
    covariance and Lambda(nu) = exp(-nu^2)/(2 nu sqrt(pi)) - erfc(nu)/2 (continued fraction past
-   nu = 2), both from tests/pf_oracle.h; D = P22 / cos^4 and nu by trigonometry (eqs. 14-15),
+   nu = 2), both from tests/reference/pf_oracle.h; D = P22 / cos^4 and nu by trigonometry (eqs. 14-15),
    A_o = (n_bar . w_o)/(n_bar . w_g) from the normalized mesonormal, Schlick's Fresnel with the
    normalized half vector. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"             /* Blinn-Phong exponent of a Beckmann roughness */
-#include "../tests/pf_oracle.h"     /* long double P22 and Lambda references */
+#include "pf_oracle.h"     /* long double P22 and Lambda references */
 
 #define PFB_TABLE 16384
 #define F0_BENCH PF_R(0.04)

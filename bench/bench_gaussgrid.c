@@ -17,7 +17,7 @@
      diffuse_sh    LEADR algorithms 2 + 3 (SH irradiance, one light) against the direct
                    evaluation, for the uniform 5x5 and the matched 3x3 grids.
    REFERENCE (long double, independent of the header): adaptive 2D Gauss-Kronrod quadrature
-   (tests/pf_oracle.h) over the slope plane of the same integrand, Lambda from the closed form
+   (tests/reference/pf_oracle.h) over the slope plane of the same integrand, Lambda from the closed form
    with erfcl. Relative error; max over the corpus in the table, and the error-budget notes
    (cheapest N^2 per budget) from max and mean errors computed before timing.
 
@@ -27,7 +27,7 @@
 #define PFB_REPS 21
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_gaussgrid.h"
-#include "../tests/pf_oracle.h"
+#include "pf_oracle.h"
 
 #define NCFG 48
 
@@ -172,6 +172,22 @@ static long double slope_integral(pf_oracle_fn2 f, refcfg *c)
     return pf_oracle_integrate_2d(&pb).value;
 }
 
+/* reference `item`: the diffuse (even) or specular (odd) integral of configuration item / 2 */
+static void corpus_ref_item(void *ctx, long long item)
+{
+    int i = (int)(item / 2);
+    refcfg c = ld_cfg(i);
+    long double den = c.woz - c.wox * c.mx - c.woy * c.my;
+    (void)ctx;
+    if (item % 2 == 0) {
+        long double li = lambda_ld(&c, c.wix, c.wiy, c.wiz);
+        ref_diffuse[i] = li >= HUGE_VALL ? 0.0L
+                         : slope_integral(diffuse_f, &c) / (pil * den * (1.0L + lambda_ld(&c, c.wox, c.woy, c.woz) + li));
+    } else {
+        ref_specular[i] = slope_integral(specular_f, &c) / den;
+    }
+}
+
 static void make_corpus(void)
 {
     pfb_rng r;
@@ -191,15 +207,12 @@ static void make_corpus(void)
         c = ld_cfg(i);
         den = c.woz - c.wox * c.mx - c.woy * c.my;
         if (den < 0.15L || c.wiz - c.wix * c.mx - c.wiy * c.my < 0.15L) continue;
-        {
-            long double li = lambda_ld(&c, c.wix, c.wiy, c.wiz);
-            ref_diffuse[i] = li >= HUGE_VALL ? 0.0L
-                             : slope_integral(diffuse_f, &c) / (pil * den * (1.0L + lambda_ld(&c, c.wox, c.woy, c.woz) + li));
-        }
-        ref_specular[i] = slope_integral(specular_f, &c) / den;
         break;
       }
     }
+    /* the references (2D quadratures, most of this bench's setup) on every core: one work item
+       per configuration and integral, each writing its own slot */
+    pfb_parallel_for(2 * NCFG, corpus_ref_item, NULL, "bench_gaussgrid: corpus references");
 }
 
 static long double rf_diffuse(long double x, long double y, long double z) { (void)y; (void)z; return ref_diffuse[(int)x]; }

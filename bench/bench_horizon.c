@@ -12,7 +12,7 @@
                      quadrature in long double (E[S] = 0.1, sigma_S = 0.4, E[T] = 0.3);
                      BASELINE: pf_beckmann_g1 (what it multiplies: the cost it adds).
    --masking [--quick] [--kinds K,K..] [--steps S] [--n N]: the masking error on the synthetic surfaces
-     of tests/pf_microsurface.h (512^2, periodic; quick: 256^2), 16-, 256- and 4096-texel
+     of tests/reference/pf_microsurface.h (512^2, periodic; quick: 256^2), 16-, 256- and 4096-texel
      footprints (4 x 4, 16 x 16, 64 x 64), every position on the mip grid (one texel of level
      2, 4 resp. 6 of the pyramids), march bounded to S texels (default 128), the rows marked
      n=16 with N azimuths instead (default 16, at most 64), views
@@ -27,7 +27,7 @@
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_horizon.h"
 #include <time.h>
-#include "../tests/pf_microsurface.h"
+#include "pf_microsurface.h"
 
 /* ---------------------------------------------------------------- default families */
 /* x = mu, y = sigma, z = e */

@@ -41,7 +41,7 @@
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_masks.h"
-#include "../tests/square_coverage.h"
+#include "square_coverage.h"
 
 #define SHAPE PF_MASKS_SQUARE
 
@@ -109,7 +109,7 @@ PFB_METHOD(st_n64, pf_masks_visible_fraction(fetch_words(t64_64, (int)x, 2), fet
 PFB_METHOD(st_n128, pf_masks_visible_fraction(fetch_words(t128_64, (int)x, 4), fetch_words(t128_64, (int)y, 4), 128))
 
 /* ---------------------------------------------------------------- references (long double) */
-/* area of the unit square inside nh (1 or 2) half-planes (tests/square_coverage.h) */
+/* area of the unit square inside nh (1 or 2) half-planes (tests/reference/square_coverage.h) */
 static long double sq_area(int nh, long double ta, long double va, long double tb, long double vb)
 {
     long double t[2], v[2];

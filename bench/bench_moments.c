@@ -187,6 +187,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
     double *ratio = (double *)pfb_alloc((size_t)reps * sizeof(double));
     pfb_rng rng;
     pyr_job job;
+    pfb_progress progress;
     int m, r;
     rng.s = PFB_SEED;
     for (i = 0; i < texels; ++i) in[i] = (pf_real)pfb_unif(&rng); /* heights and depths in [0, 1) */
@@ -203,6 +204,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
     printf("\n== pyramid (%s)   baseline: memcpy of %.1f MB (the 5-moment pyramid's bytes)   %d x %d "
            "base, %d repetitions\n", PFB_BUILD, (double)memcpy_bytes * 1e-6, w, h, reps);
     printf("  %-32s %10s %9s %15s %10s %10s\n", "method", "ms", "x memcpy", "[q1,q3]", "GB/s", "memcpy GB/s");
+    progress = pfb_progress_start("bench_moments (" PFB_BUILD "): pyramid timings", (long long)N_PYR * reps);
     for (m = 0; m < N_PYR; ++m) {
         const pyr_method *pm = &pyr_methods[m];
         double bytes = (double)total * (double)pm->channels * (double)sizeof(pf_real);
@@ -219,6 +221,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
                 tb[r] = time_memcpy();
             }
             ratio[r] = tm[r] / tb[r];
+            pfb_progress_update(&progress, (long long)m * reps + r + 1); /* between timings */
         }
         med = pfb_quantile(ratio, reps, 0.5);
         q1 = pfb_quantile(ratio, reps, 0.25);
@@ -237,6 +240,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
                     bytes * 1e-6, ms, gbs, (double)memcpy_bytes * 1e-6, base, mgbs,
                     gbs / mgbs);
     }
+    pfb_progress_end(&progress);
     if (csv) fprintf(csv, "pyramid,memcpy,%s,%.4f,1.0000,memcpy,,,,,,,1.0000,1.0000,,\n", PFB_BUILD,
                      pfb_quantile(tb, reps, 0.5) / (double)texels);
     if (notes) {

@@ -1,5 +1,5 @@
 /* bench_shadow.c - cost and accuracy of pf_shadow.h: one shadow lookup per method on the
-   synthetic shadow maps of tests/shadow_scenes.h.
+   synthetic shadow maps of tests/reference/shadow_scenes.h.
 
    Family
      lookup   every method of pf_shadow.h at its default parameters, reading the filtered
@@ -15,7 +15,7 @@
               ship it (tb_* below), timed side by side with the library's test, same lookups.
 
    INPUTS   The 5 scenes x 4 footprint sizes x 200 footprints x 4 receivers of
-            tests/shadow_scenes.h (16000 lookups). Per lookup the tables hold the box-filtered
+            tests/reference/shadow_scenes.h (16000 lookups). Per lookup the tables hold the box-filtered
             values every method needs (pf_real), the centre texel and the brute-force truth.
             Timing: PFB_N lookups drawn at random from the 16000 (x = receiver depth, y = the
             lookup's index); the table loads are part of every method's cost (8 or 16 bytes).
@@ -30,7 +30,7 @@
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include <stdarg.h>
 #include "pf_shadow.h"
-#include "../tests/shadow_scenes.h"
+#include "shadow_scenes.h"
 
 #define NL (SHS_N_SCENES * SHS_LOOKUPS_PER_SCENE)
 
@@ -331,7 +331,7 @@ static void build_notes(void)
     add_note("inputs: %d lookups = %d scenes (", NL, SHS_N_SCENES);
     for (s = 0; s < SHS_N_SCENES; ++s) add_note("%s%s", s ? ", " : "", shs_scene_names[s]);
     add_note(") x footprints of 2, 4, 8, 16 texels square (%d each) x 4 receivers (ground, centre, between, "
-             "contact), %ld of them fully shadowed; see tests/shadow_scenes.h\n", SHS_PER_SIZE, all[0].n_dark);
+             "contact), %ld of them fully shadowed; see tests/reference/shadow_scenes.h\n", SHS_PER_SIZE, all[0].n_dark);
     add_note("reference: brute-force lit fraction (average of binary depth tests over the footprint); "
              "relative error is meaningless for a fraction: read the mean abs error\n");
 #ifdef PF_DOUBLE

@@ -14,7 +14,7 @@
                       reads "cost relative to the Beckmann baseline for the same shading input".
                       beckmann_fast_g1_cos is the same anchor for pf_g1_beckmann_fast.
 
-   REFERENCE (long double, pf_oracle_lambda_beckmann of tests/pf_oracle.h, independent of
+   REFERENCE (long double, pf_oracle_lambda_beckmann of tests/reference/pf_oracle.h, independent of
    pf_smith.h)
      Lambda(nu) = exp(-nu^2) / (2 nu sqrt(pi)) - erfc(nu) / 2,   G1 = 1 / (1 + Lambda).
      nu <= 2: the formula as written with expl and erfcl. The two terms cancel by at most a
@@ -34,7 +34,7 @@
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_smith.h"
-#include "../tests/pf_oracle.h" /* the long double Lambda reference, shared with the tests */
+#include "pf_oracle.h" /* the long double Lambda reference, shared with the tests */
 
 /* ---------------------------------------------------------------- methods */
 /* the G1 / Lambda most code bases carry: closed form with the libm erfc */

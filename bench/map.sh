@@ -36,15 +36,19 @@ t_start=$(date +%s)
 mkdir -p "$out"
 rm -f "$out"/*.md "$out"/*.csv "$out"/*.svg "$out"/*.png "$out"/*.dat "$out"/*.bin "$out"/*.gpv
 
-echo "map: ground truth (bench/microsurface.c --map) ..."
+# Each program spreads its brute force over PFB_THREADS threads (default every core) and
+# prints its progress with the time left on stderr; its cost timings run alone.
+echo "map: [$(date +%H:%M:%S)] ground truth (bench/microsurface.c --map) ..." >&2
 t0=$(date +%s)
 "$dir/microsurface" --out "$out" --gp bench/microsurface.gp "$@"
 t_ms=$(($(date +%s) - t0))
-echo "map: pictures (bench/pictures.c --map) ..."
+echo "map: [$(date +%H:%M:%S)] ground truth done in $t_ms s" >&2
+echo "map: [$(date +%H:%M:%S)] pictures (bench/pictures.c --map) ..." >&2
 t0=$(date +%s)
 "$dir/pictures" "$out" --gp bench/pictures.gp "$@"
 t_pic=$(($(date +%s) - t0))
+echo "map: [$(date +%H:%M:%S)] pictures done in $t_pic s" >&2
 sh bench/choosing.sh "$out" --map
-MAP_TIMES="ground truth ${t_ms} s, pictures ${t_pic} s, $(($(date +%s) - t_start)) s in all" \
+MAP_TIMES="ground truth ${t_ms} s, pictures ${t_pic} s, $(($(date +%s) - t_start)) s in all, ${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)} threads" \
     sh bench/report.sh "$out" --map "$how"
 echo "map: the report is $out/report.md ($(($(date +%s) - t_start)) s in all)"

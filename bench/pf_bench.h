@@ -32,11 +32,13 @@
      A/A check     A second copy of the baseline's loop, at another address, is timed as one
                    more method; its ratio (printed, and in the notes) shows how far two
                    identical loops differ here: the resolution of the ratio column.
-     instr_per_eval  Only with --instr FILE (filled by run.sh under CALLGRIND=1): the binary is
-                   run as `--only family/method` under valgrind --tool=callgrind with
-                   collection toggled on in pfb_measured() only, for PFB_PASSES passes over the
-                   same inputs. Includes the loop overhead (load, store, index, branch: about
-                   4-5 instructions per evaluation) and everything the method calls in libm.
+     instr_per_eval  Only with --instr FILE (filled by run.sh in a full run): the binary is run
+                   once as `--only all` under valgrind --tool=callgrind with collection toggled
+                   on in pfb_measured() only and a dump after each call (one per method, PFB_PASSES
+                   passes over the same inputs), symbols bound at start (LD_BIND_NOW=1), so each
+                   count is that method's loop alone, as with `--only family/method`. Includes
+                   the loop overhead (load, store, index, branch: about 4-5 instructions per
+                   evaluation) and everything the method calls in libm.
      accuracy      Separately, on a dense deterministic grid (family-specific, documented in
                    its notes), against a long double reference: max absolute error, max
                    relative error (only where |reference| >= PF_REAL_MIN, i.e. the result is a
@@ -53,7 +55,17 @@
      --instr FILE        read "family/method instructions evaluations" lines (from run.sh)
      --list              print family/method ids, one per line
      --only ID           run only that method's loop for PFB_PASSES passes (for callgrind)
+     --only all          every method's loop once, in --list order, one line "ID evals N" each
+                         (run.sh counts a whole binary in one callgrind run, one dump per loop)
      --reps R            repetitions (default PFB_REPS)
+
+   ORDER AND THREADS. pfb_main computes the accuracy columns of every family first, on
+   PFB_THREADS threads (default: every core; bench/pf_parallel.h): the references in chunks of
+   grid points, then one work item per method over its whole grid in grid order, so every
+   number is the same for any thread count. Then it times every family on the calling thread
+   alone (the accuracy threads have ended; bench/run.sh runs nothing else meanwhile), then
+   prints the tables and writes the CSV rows and notes in family order. Steps longer than 2 s
+   print progress with the time left on stderr.
 
    THE REFERENCE is long double (x87 80-bit on x86-64 Linux: 64-bit significand, so 2^-40
    relative below float's ulp and 2^-11 below double's). Where long double is double (MSVC,
@@ -71,6 +83,21 @@
 #include <time.h>
 
 #include "pf_core.h"
+#include "pf_parallel.h"
+
+/* Under callgrind (run.sh's instruction counts), a bench's own setup (scenes, tables,
+   quadratures: up to 40x slower under valgrind's instrumentation) runs uninstrumented: the
+   instrumentation stops before main and restarts for `--only`, whose counts are collected in
+   pfb_measured only, so they do not change. Needs valgrind's client-request header (Debian
+   valgrind ships it; the Makefile defines PFB_HAVE_CALLGRIND_H when it is there); outside
+   valgrind the requests are a few instructions, outside every timed region. */
+#if defined(PFB_HAVE_CALLGRIND_H) && defined(__GNUC__)
+#  include <valgrind/callgrind.h>
+__attribute__((constructor)) static void pfb_instr_stop_at_start(void) { CALLGRIND_STOP_INSTRUMENTATION; }
+#  define PFB_INSTR_START() CALLGRIND_START_INSTRUMENTATION
+#else
+#  define PFB_INSTR_START() ((void)0)
+#endif
 
 /* ---------------------------------------------------------------- sizes */
 #ifndef PFB_N
@@ -388,7 +415,7 @@ typedef struct pfb_timing {
    machine state. t, tbase: (n_methods + 1) * reps scratch; tmp: reps scratch. */
 PFB_FN void pfb_time_set(const pfb_family *f, int reps, const pf_real *a, const pf_real *b,
                          const pf_real *c, pf_real *out, double *t, double *tbase, double *tmp,
-                         pfb_timing *res)
+                         pfb_timing *res, pfb_progress *progress, long long *done)
 {
     int nm = f->n_methods, i, r, k;
     pfb_kernel base = f->m[f->baseline].kernel;
@@ -413,6 +440,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, const pf_real *a, const 
             tbase[i * reps + r] = tb;
             check += out[(size_t)r % PFB_N];
         }
+        pfb_progress_update(progress, ++*done);
     }
 #undef PFB_SLOT_
     pfb_sink = check;
@@ -458,33 +486,150 @@ PFB_FN void pfb_sort_inputs(pf_real *a, pf_real *b, pf_real *c, size_t n)
 }
 
 
-PFB_FN void pfb_run_family(const pfb_family *f, int reps, FILE *csv, FILE *notes,
-                           const char *instr_file)
+/* ---------------------------------------------------------------- accuracy, on every core
+   The accuracy columns need no clock, so they run first, on pfb_thread_count() threads
+   (PFB_THREADS), for every family of the binary at once: the references in chunks of grid points,
+   then one work item per method (its whole grid, in grid order, as a serial run sums it). Every
+   item writes only its own slots, so the results do not depend on the thread count. */
+#define PFB_REF_CHUNK 512 /* grid points per reference work item at most (at least 64 items) */
+
+typedef struct pfb_fam_acc {
+    size_t n_grid;
+    pf_real *ga, *gb, *gc;
+    int n_refs;                          /* distinct reference functions of the family */
+    pfb_ref ref_fn[PFB_MAX_METHODS];
+    long double *ref[PFB_MAX_METHODS];   /* ref[r][j]: reference r at grid point j */
+    int ref_of[PFB_MAX_METHODS];         /* method -> r; -1: no reference (cost only) */
+    size_t chunk, n_chunks;
+    pfb_result res[PFB_MAX_METHODS];
+} pfb_fam_acc;
+
+typedef struct pfb_acc_ctx {
+    const pfb_family *fam;
+    pfb_fam_acc *acc;
+    int n_fam;
+} pfb_acc_ctx;
+
+/* item -> (family, index within the family) for per-family item counts count(f) */
+PFB_FN int pfb_acc_locate(const pfb_acc_ctx *x, long long item, int by_method, long long *within)
+{
+    int i;
+    for (i = 0; i < x->n_fam; ++i) {
+        long long n = by_method ? (long long)x->fam[i].n_methods
+                                : (long long)x->acc[i].n_refs * (long long)x->acc[i].n_chunks;
+        if (item < n) break;
+        item -= n;
+    }
+    *within = item;
+    return i;
+}
+
+static void pfb_acc_ref_item(void *ctx, long long item)
+{
+    const pfb_acc_ctx *x = (const pfb_acc_ctx *)ctx;
+    long long k;
+    int i = pfb_acc_locate(x, item, 0, &k);
+    pfb_fam_acc *A = &x->acc[i];
+    int r = (int)(k / (long long)A->n_chunks);
+    size_t j0 = (size_t)(k % (long long)A->n_chunks) * A->chunk, j1 = j0 + A->chunk, j;
+    if (j1 > A->n_grid) j1 = A->n_grid;
+    for (j = j0; j < j1; ++j)
+        A->ref[r][j] = A->ref_fn[r]((long double)A->ga[j], (long double)A->gb[j], (long double)A->gc[j]);
+}
+
+static void pfb_acc_method_item(void *ctx, long long item)
+{
+    const pfb_acc_ctx *x = (const pfb_acc_ctx *)ctx;
+    long long k;
+    int i = pfb_acc_locate(x, item, 1, &k);
+    pfb_fam_acc *A = &x->acc[i];
+    int m = (int)k;
+    if (A->ref_of[m] < 0) return;
+    A->res[m].has_acc = 1;
+    pfb_accuracy(&x->fam[i].m[m], A->ga, A->gb, A->gc, A->ref[A->ref_of[m]], A->n_grid, &A->res[m]);
+}
+
+/* The accuracy columns of every family (acc[i].res), on every core. */
+PFB_FN void pfb_accuracy_all(const char *module, const pfb_family *fam, int n_fam, pfb_fam_acc *acc)
+{
+    pfb_acc_ctx x;
+    long long n_ref_items = 0, n_meth_items = 0;
+    char label[160];
+    int i, m, r;
+    for (i = 0; i < n_fam; ++i) {
+        pfb_fam_acc *A = &acc[i];
+        memset(A, 0, sizeof *A);
+        A->n_grid = fam[i].grid(NULL, NULL, NULL);
+        A->ga = (pf_real *)pfb_alloc(A->n_grid * sizeof(pf_real));
+        A->gb = (pf_real *)pfb_alloc(A->n_grid * sizeof(pf_real));
+        A->gc = (pf_real *)pfb_alloc(A->n_grid * sizeof(pf_real));
+        (void)fam[i].grid(A->ga, A->gb, A->gc);
+        for (m = 0; m < fam[i].n_methods; ++m) {
+            A->ref_of[m] = -1;
+            if (!fam[i].m[m].ref) continue;
+            for (r = 0; r < A->n_refs && A->ref_fn[r] != fam[i].m[m].ref; ++r) {}
+            if (r == A->n_refs) {
+                A->ref_fn[r] = fam[i].m[m].ref;
+                A->ref[r] = (long double *)pfb_alloc(A->n_grid * sizeof(long double));
+                ++A->n_refs;
+            }
+            A->ref_of[m] = r;
+        }
+        /* small grids of costly references (quadratures) in small items, so every core gets some */
+        A->chunk = (A->n_grid + 63) / 64;
+        if (A->chunk > PFB_REF_CHUNK) A->chunk = PFB_REF_CHUNK;
+        if (A->chunk < 1) A->chunk = 1;
+        A->n_chunks = (A->n_grid + A->chunk - 1) / A->chunk;
+        n_ref_items += (long long)A->n_refs * (long long)A->n_chunks;
+        n_meth_items += fam[i].n_methods;
+    }
+    x.fam = fam;
+    x.acc = acc;
+    x.n_fam = n_fam;
+    snprintf(label, sizeof label, "bench_%s (%s): accuracy references", module, PFB_BUILD);
+    pfb_parallel_for(n_ref_items, pfb_acc_ref_item, &x, label);
+    snprintf(label, sizeof label, "bench_%s (%s): accuracy", module, PFB_BUILD);
+    pfb_parallel_for(n_meth_items, pfb_acc_method_item, &x, label);
+}
+
+PFB_FN void pfb_accuracy_free(pfb_fam_acc *A)
+{
+    int r;
+    free(A->ga); free(A->gb); free(A->gc);
+    for (r = 0; r < A->n_refs; ++r) free(A->ref[r]);
+}
+
+/* ---------------------------------------------------------------- timing, alone on one core
+   After the accuracy threads have ended: one thread, nothing else of the bench running
+   (bench/run.sh runs the timing binaries one at a time, after every parallel step). */
+PFB_FN void pfb_timing_family(const pfb_family *f, int reps, pfb_timing *tr, pfb_timing *ts,
+                              pfb_progress *progress, long long *done)
 {
     pf_real *a = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
     pf_real *b = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
     pf_real *c = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
     pf_real *out = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
-    int nm = f->n_methods, i;
+    int nm = f->n_methods;
     double *t = (double *)pfb_alloc((size_t)(nm + 1) * (size_t)reps * sizeof(double));
     double *tbase = (double *)pfb_alloc((size_t)(nm + 1) * (size_t)reps * sizeof(double));
-    pfb_timing tr[PFB_MAX_METHODS + 1], ts[PFB_MAX_METHODS + 1];
     double *ratio = (double *)pfb_alloc((size_t)reps * sizeof(double));
-    pfb_result res[PFB_MAX_METHODS];
-    size_t n_grid, j;
-    pf_real *ga, *gb, *gc;
-    long double *ref;
-    pfb_ref ref_fn = NULL;
     pfb_rng rng;
 
     rng.s = PFB_SEED;
     f->gen(&rng, a, b, c, PFB_N);
-    memset(res, 0, sizeof res);
-
-    /* timing: random order (the headline), then the same inputs sorted */
-    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, tr);
+    /* random order (the headline), then the same inputs sorted */
+    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, tr, progress, done);
     pfb_sort_inputs(a, b, c, PFB_N);
-    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, ts);
+    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, ts, progress, done);
+    free(a); free(b); free(c); free(out); free(t); free(tbase); free(ratio);
+}
+
+/* The table, the CSV rows and the notes of one family. */
+PFB_FN void pfb_report_family(const pfb_family *f, pfb_fam_acc *A, const pfb_timing *tr,
+                              const pfb_timing *ts, FILE *csv, FILE *notes, const char *instr_file)
+{
+    int nm = f->n_methods, i;
+    pfb_result *res = A->res;
     for (i = 0; i < nm; ++i) {
         res[i].ns = tr[i].ns;
         res[i].ratio = tr[i].ratio;
@@ -494,30 +639,11 @@ PFB_FN void pfb_run_family(const pfb_family *f, int reps, FILE *csv, FILE *notes
         res[i].ratio_sorted = ts[i].ratio;
         res[i].instr = pfb_lookup_instr(instr_file, f->name, f->m[i].name);
     }
-
-    /* accuracy on the grid; the reference is computed once per distinct reference function */
-    n_grid = f->grid(NULL, NULL, NULL);
-    ga = (pf_real *)pfb_alloc(n_grid * sizeof(pf_real));
-    gb = (pf_real *)pfb_alloc(n_grid * sizeof(pf_real));
-    gc = (pf_real *)pfb_alloc(n_grid * sizeof(pf_real));
-    ref = (long double *)pfb_alloc(n_grid * sizeof(long double));
-    (void)f->grid(ga, gb, gc);
-    for (i = 0; i < nm; ++i) {
-        if (!f->m[i].ref) continue;
-        if (f->m[i].ref != ref_fn) {
-            ref_fn = f->m[i].ref;
-            for (j = 0; j < n_grid; ++j)
-                ref[j] = ref_fn((long double)ga[j], (long double)gb[j], (long double)gc[j]);
-        }
-        res[i].has_acc = 1;
-        pfb_accuracy(&f->m[i], ga, gb, gc, ref, n_grid, &res[i]);
-    }
-
-    pfb_print_table(f, res, n_grid);
+    pfb_print_table(f, res, A->n_grid);
     printf("  A/A check: a second copy of the baseline loop times %.3f [%.3f,%.3f] x the baseline "
            "(sorted inputs: %.3f [%.3f,%.3f])\n", tr[nm].ratio, tr[nm].q1, tr[nm].q3, ts[nm].ratio,
            ts[nm].q1, ts[nm].q3);
-    if (csv) pfb_write_csv(csv, f, res, n_grid);
+    if (csv) pfb_write_csv(csv, f, res, A->n_grid);
     if (notes)
         fprintf(notes, "%s\tA/A check (%s build): a second copy of the baseline loop timed %.3f x "
                 "the baseline (quartiles %.3f-%.3f); sorted inputs %.3f (%.3f-%.3f)\n", f->name,
@@ -532,8 +658,6 @@ PFB_FN void pfb_run_family(const pfb_family *f, int reps, FILE *csv, FILE *notes
             if (*s == '\n') ++s;
         }
     }
-    free(a); free(b); free(c); free(out); free(t); free(tbase); free(ratio);
-    free(ga); free(gb); free(gc); free(ref);
 }
 
 /* Busy arithmetic for about `seconds`. */
@@ -575,26 +699,36 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
     }
 
     if (only) {
+        /* --only all: every method once, in --list order (one pfb_measured call each: run.sh
+           counts them all in one callgrind run, one dump after each call) */
+        int all = strcmp(only, "all") == 0, found = 0;
+        pf_real *a;
+        PFB_INSTR_START();
+        a = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
+        pf_real *b = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
+        pf_real *c = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
+        pf_real *out = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
         for (i = 0; i < n_fam; ++i) {
+            int have_inputs = 0;
             for (k = 0; k < fam[i].n_methods; ++k) {
                 char id[256];
                 snprintf(id, sizeof id, "%s/%s", fam[i].name, fam[i].m[k].name);
-                if (strcmp(id, only) == 0) {
-                    pf_real *a = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
-                    pf_real *b = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
-                    pf_real *c = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
-                    pf_real *out = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
+                if (!all && strcmp(id, only) != 0) continue;
+                if (!have_inputs) {
                     pfb_rng rng;
                     rng.s = PFB_SEED;
                     fam[i].gen(&rng, a, b, c, PFB_N);
-                    pfb_measured(fam[i].m[k].kernel, a, b, c, out, PFB_N, PFB_PASSES);
-                    pfb_sink = out[0];
-                    printf("evals %lu\n", (unsigned long)PFB_N * PFB_PASSES);
-                    free(a); free(b); free(c); free(out);
-                    return 0;
+                    have_inputs = 1;
                 }
+                pfb_measured(fam[i].m[k].kernel, a, b, c, out, PFB_N, PFB_PASSES);
+                pfb_sink = out[0];
+                if (all) printf("%s ", id);
+                printf("evals %lu\n", (unsigned long)PFB_N * PFB_PASSES);
+                ++found;
             }
         }
+        free(a); free(b); free(c); free(out);
+        if (found) return 0;
         fprintf(stderr, "%s: no method %s (see --list)\n", argv[0], only);
         return 2;
     }
@@ -621,8 +755,30 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
     printf(", compiler %s", __VERSION__);
 #endif
     printf("\n");
-    pfb_spin(0.25); /* let the clock frequency settle before the first timing */
-    for (i = 0; i < n_fam; ++i) pfb_run_family(&fam[i], reps, csv, notes, instr_file);
+    {
+        /* accuracy first, on every core; then the timings, on this thread alone; then the
+           tables, CSV rows and notes in family order */
+        pfb_fam_acc *acc = (pfb_fam_acc *)pfb_alloc((size_t)n_fam * sizeof *acc);
+        pfb_timing *tr = (pfb_timing *)pfb_alloc((size_t)n_fam * (PFB_MAX_METHODS + 1) * sizeof *tr);
+        pfb_timing *ts = (pfb_timing *)pfb_alloc((size_t)n_fam * (PFB_MAX_METHODS + 1) * sizeof *ts);
+        long long done = 0;
+        char label[160];
+        pfb_progress progress;
+        pfb_accuracy_all(module, fam, n_fam, acc);
+        snprintf(label, sizeof label, "bench_%s (%s): timing, repetitions", module, PFB_BUILD);
+        progress = pfb_progress_start(label, 2LL * n_fam * reps);
+        pfb_spin(0.25); /* let the clock frequency settle before the first timing */
+        for (i = 0; i < n_fam; ++i)
+            pfb_timing_family(&fam[i], reps, tr + (size_t)i * (PFB_MAX_METHODS + 1),
+                              ts + (size_t)i * (PFB_MAX_METHODS + 1), &progress, &done);
+        pfb_progress_end(&progress);
+        for (i = 0; i < n_fam; ++i) {
+            pfb_report_family(&fam[i], &acc[i], tr + (size_t)i * (PFB_MAX_METHODS + 1),
+                              ts + (size_t)i * (PFB_MAX_METHODS + 1), csv, notes, instr_file);
+            pfb_accuracy_free(&acc[i]);
+        }
+        free(acc); free(tr); free(ts);
+    }
     printf("\nbench_%s (%s): %.2f s\n", module, PFB_BUILD, (pfb_now_ns() - t0) * 1e-9);
     if (csv) fclose(csv);
     if (notes) fclose(notes);

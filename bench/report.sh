@@ -30,15 +30,138 @@ fragment() { # file title
 }
 
 # contents: every second-level heading, linked by GitHub's anchor rule (lower case,
-# punctuation dropped, spaces to hyphens), after the body's preamble
+# punctuation dropped, spaces to hyphens), after the body's preamble and its summary section
+# (a first section titled "Summary ..." stays on top, above the contents)
 contents() { # body
-    sed -n '1,/^## /p' "$1" | sed '$d'
+    awk 'BEGIN { top = 1 }
+         /^## / { if (seen++ || $0 !~ /^## Summary/) top = 0 }
+         top' "$1"
     echo "## Contents"
     echo
-    awk '/^## / { t = substr($0, 4); a = tolower(t); gsub(/[^a-z0-9 _-]/, "", a); gsub(/ /, "-", a)
+    awk '/^## / { if (!seen++ && $0 ~ /^## Summary/) next
+                  t = substr($0, 4); a = tolower(t); gsub(/[^a-z0-9 _-]/, "", a); gsub(/ /, "-", a)
                   printf "%d. [%s](#%s)\n", ++n, t, a }' "$1"
     echo
-    sed -n '/^## /,$p' "$1"
+    awk 'BEGIN { top = 1 }
+         /^## / { if (seen++ || $0 !~ /^## Summary/) top = 0 }
+         !top' "$1"
+}
+
+# summary_page: the one-page summary on top of the report: per task, the most accurate shader
+# method against the brute-force reference, what the exact-histogram oracle reaches, the
+# cheapest method within 10%, at what cost; then per module family the most accurate and the
+# cheapest method. Every number from this run's CSVs; links to the sections with the detail.
+summary_page() {
+    err="$out/microsurface_errors.csv"
+    cost="$out/microsurface_cost.csv"
+    echo "## Summary: the best method per task"
+    echo
+    echo "Every number below comes from this run's CSVs; the sections linked hold the detail. \`make bench\`"
+    echo "measures each method against an independent reference: a brute force that shades every texel of"
+    echo "a synthetic microsurface for the shading tasks, a long double evaluation of the same formula for"
+    echo "the module families."
+    echo
+    if [ -f "$err" ] && [ -f "$cost" ]; then
+        echo "**Shading tasks** ([ground truth](#ground-truth-on-synthetic-microsurfaces), [method guide](#choosing-a-method)):"
+        echo "relative L2 error against the brute-force reference pooled over every surface kind, footprints of"
+        echo "256-4096 texels and views up to 60 degrees, occluders inside the footprint (what a filtered"
+        echo "model can represent). *Oracle*: the exact slope histogram of the footprint with Smith's"
+        echo "visibility (\`oracle_histogram_smith\`, reads every texel): what the best filtered model of that"
+        echo "kind could reach. Cost: ns per footprint on this CPU at the largest footprint (pyramid fetches"
+        echo "included) and the ratio to LEADR specular; GPU: SPIR-V ops of the evaluators."
+        echo
+        echo "| task | most accurate shader method | error | oracle | its cost | cheapest within 10% | error | its cost |"
+        echo "|---|---|--:|--:|--:|---|--:|--:|"
+        awk -F, -v costf="$cost" -v gpuf="$out/gpu_methods.csv" '
+            function fmt(e) { return (e >= 0.1) ? sprintf("%.2f", e) : (e >= 0.001 ? sprintf("%.3f", e) : sprintf("%.1e", e)) }
+            function cst(m) {
+                if (!(m in cns)) return "not timed"
+                return sprintf("%.0f ns, %.2fx%s", cns[m], cx[m], (m in gops && gops[m] != "n/a") ? sprintf(", GPU %s ops", gops[m]) : "")
+            }
+            BEGIN {
+                while ((getline line < gpuf) > 0) { split(line, c, ","); if (c[1] != "method") gops[c[1]] = c[2] }
+                while ((getline line < costf) > 0) {
+                    split(line, c, ",")
+                    if (c[1] == "method") continue
+                    if (!(c[1] in cfp) || c[2] + 0 >= cfp[c[1]]) { cfp[c[1]] = c[2] + 0; cns[c[1]] = c[3] + 0; cx[c[1]] = c[8] + 0 }
+                }
+            }
+            NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+            $col["reference"] != "full" && $col["footprint_texels"] + 0 >= 256 && $col["view_deg"] + 0 <= 60 {
+                t = $col["task"]; m = $col["method"]
+                k = t SUBSEP m
+                if (!(k in sr)) { ml[t] = ml[t] " " m; if (!(t in seen)) { seen[t] = 1; tl[++nt] = t } }
+                se[k] += $col["sum_sq_err"]; sr[k] += $col["sum_sq_ref"]
+            }
+            END {
+                for (i = 1; i <= nt; i++) {
+                    t = tl[i]; n = split(ml[t], ms, " ")
+                    best = ""; be = 1e30; orc = "-"; cheap = ""; cc = 1e30
+                    for (j = 1; j <= n; j++) {
+                        k = t SUBSEP ms[j]
+                        if (sr[k] <= 0) continue
+                        e = sqrt(se[k] / sr[k])
+                        if (ms[j] == "oracle_histogram_smith") { orc = fmt(e); continue }
+                        if (ms[j] ~ /^oracle/) continue
+                        if (e < be) { be = e; best = ms[j] }
+                    }
+                    for (j = 1; j <= n; j++) {
+                        k = t SUBSEP ms[j]
+                        if (sr[k] <= 0 || ms[j] ~ /^oracle/ || !(ms[j] in cns)) continue
+                        e = sqrt(se[k] / sr[k])
+                        if (e <= 0.10 && cns[ms[j]] < cc) { cc = cns[ms[j]]; cheap = ms[j]; ce = e }
+                    }
+                    printf "| %s | `%s` | %s | %s | %s |", t, best, fmt(be), orc, cst(best)
+                    if (cheap != "") printf " `%s` | %s | %s |\n", cheap, fmt(ce), cst(cheap)
+                    else printf " none | - | - |\n"
+                }
+            }' "$err"
+        echo
+    else
+        echo "**Missing:** \`microsurface_errors.csv\` or \`microsurface_cost.csv\` (bench/microsurface.c did not run): no task summary."
+        echo
+    fi
+    echo "**Module families** ([speed against accuracy](#speed-against-accuracy-per-family)): float build; error ="
+    echo "max relative error against a long double reference (mean absolute error of the lit fraction"
+    echo "for the shadow tests), cost = ns per evaluation and the ratio to the family's baseline, timed"
+    echo "side by side (the shadow lookups: to one PCF tap, not a candidate itself). *Cheapest*: the"
+    echo "fastest method whose error is at most 10 times the best one's."
+    echo
+    echo "| family | most accurate method | error | cost | cheapest within 10x that error | error | cost |"
+    echo "|---|---|--:|--:|---|--:|--:|"
+    echo "$families" | while IFS='|' read -r label ids; do
+        for id in $ids; do
+            m=${id%%/*}; f=${id#*/}
+            [ -f "$out/$m.csv" ] || { echo "| $m / $f | **missing** $m.csv | | | | | |"; continue; }
+            # one PCF tap (the shadow lookups' baseline) is a cost anchor, not a filtered test
+            skipbase=0
+            [ "$id" = shadow/lookup ] && skipbase=1
+            awk -F, -v f="$f" -v id="$id" -v skipbase=$skipbase '
+                function fmt(e) { return (e >= 0.1) ? sprintf("%.2f", e) : (e >= 0.001 ? sprintf("%.3f", e) : sprintf("%.1e", e)) }
+                NR > 1 && $1 == f && $3 == "float" && !(skipbase && $2 == $6) {
+                    e = ($9 != "") ? $9 : $17
+                    if (e == "") next
+                    n++; nm[n] = $2; er[n] = e + 0; ns[n] = $4 + 0; rx[n] = $5 + 0; base = $6
+                }
+                END {
+                    if (!n) { printf "| %s | no accuracy column | | | | | |\n", id; exit }
+                    b = 1; for (i = 2; i <= n; i++) if (er[i] < er[b]) b = i
+                    c = 0; for (i = 1; i <= n; i++) if (er[i] <= 10 * er[b] + 1e-300 && (!c || ns[i] < ns[c])) c = i
+                    printf "| %s | `%s` | %s | %.2f ns, %.2fx | `%s` | %s | %.2f ns, %.2fx |\n", id, nm[b], fmt(er[b]), ns[b], rx[b],
+                        nm[c], fmt(er[c]), ns[c], rx[c]
+                }' "$out/$m.csv"
+        done
+    done
+    echo
+    stab="$out/stability.md"
+    if [ -f "$stab" ]; then
+        echo "**Stability** ([detail](#stability-non-finite-and-out-of-range-outputs)): $(sed -n 's/^Totals per build (non-finite in the domain \/ out of range \/ non-finite from an arbitrary finite input): //p' "$stab" | head -n 1)"
+        echo
+    fi
+    if [ -f "$out/gpu_cost.md" ]; then
+        echo "**GPU cost** ([detail](#gpu-cost)): SPIR-V ops of every public evaluator and of the textbook formulas in \`gpu_cost.csv\`."
+        echo
+    fi
 }
 
 if [ "${2:-}" = --map ]; then
@@ -89,7 +212,12 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     echo "\`make docs\` copies it to docs/report.md with its charts. The same ground truth on your own"
     echo "height or normal map: \`make bench MAP=...\` (docs/maps.md)."
     echo
+    summary_page
+    echo "## This run"
+    echo
     awk '/^## /{ exit } /^- /' "$sum"
+    [ -f "$out/stages.txt" ] &&
+        echo "- time per stage (bench/run.sh, $(awk -F'\t' 'NR == 1 { print $3 }' "$out/stages.txt") threads; wall, then CPU of its processes): $(awk -F'\t' '{ printf "%s%s %s s (CPU %s s)", (NR > 1 ? "; " : ""), $1, $2, $4 }' "$out/stages.txt")"
     echo
     echo "## Speed against accuracy, per family"
     echo

@@ -1,26 +1,124 @@
 #!/bin/sh
-# bench/run.sh - run every bench binary (float and double), then write bench/out/:
+# bench/run.sh - the main job (make bench): every bench binary (float and double), the report
+# programs, the stability sweep, the GPU counts, then bench/out/:
 #   <module>.csv            one row per method and build (columns: see bench/pf_bench.h)
 #   <module>.notes          inputs, grids, references, A/A checks (family<TAB>note)
 #   <module>_<family>.svg   error versus cost, one chart per family (gnuplot; make bench installs
 #                           it through tests/deps.sh: no chart is ever skipped)
 #   summary.md              compiler, flags, CPU, date, then markdown tables per family
+#   stages.txt              each stage: name<TAB>wall seconds<TAB>threads<TAB>CPU seconds
+#   report.md               the report (bench/report.sh), choosing.md (bench/choosing.sh)
 # Called by `make bench` from the repository root:  sh bench/run.sh BUILD_DIR
-# Environment: CC and BENCH_FLAGS (recorded in the summary), CALLGRIND=0/1 (instruction counts;
-# default: on in a full run when valgrind is installed), BENCH_QUICK=1 (CI smoke run).
+#
+# EVERY CORE, AND TIMINGS ALONE. The stages run one after the other; within a stage the work is
+# spread over PFB_THREADS threads or processes (default: every online core; PFB_THREADS=1 runs
+# everything serially, the reference of the determinism check bench/determinism.sh):
+#   1 callgrind    instruction counts, one valgrind per bench binary, all binaries at once
+#   2 stability    the sweep's four builds, then their shards, at once (bench/stability.sh)
+#   3 gpu          the SPIR-V counts of every function, at once (bench/gpu/cost.sh)
+#   4 vectorize    which timing loops the compiler vectorized (one compile per binary, at once)
+#   5 microsurface, 6 pictures: their brute force on every core, their cost timings alone
+#   7 modules      bench_<module>-float/-double one at a time: the accuracy grids on every core,
+#                  then the timing loops on one thread while nothing else of the bench runs
+#   8 charts, summary.md, choosing.md, report.md
+# Nothing is timed while another process of the bench runs: every stage that times (5-7) runs
+# alone, after the untimed parallel ones. Results do not depend on the thread count: the CSVs of
+# PFB_THREADS=1 and of every core compare equal except their timing columns (bench/determinism.sh).
+# Every stage prints its start and end with the time of day and its wall time; steps longer than
+# a few seconds print progress with the time left on stderr (in place on a terminal).
+#
+# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 9
+# repetitions, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
+# valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
+# PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
+#
+# INSTRUCTION COUNTS. The instr/eval column of every method, float and double, is read: the
+# report's family tables (float) and its appendix (both builds), and the generated tables of the
+# module pages in docs/ (both builds). So a full run counts them all, in one callgrind run per
+# binary: `--only all` runs every method's loop once and callgrind dumps after each
+# (--dump-after=pfb_measured), with LD_BIND_NOW=1 so that no lazy symbol binding is counted.
+# PROFILE=1 (make bench PROFILE=1) adds what nothing in docs/ or the report reads: callgrind's
+# branch simulation (conditional branches and mispredictions per evaluation, with the random
+# inputs of the timing loops) and the per-method profiles kept for callgrind_annotate, in
+# bench/out/profile/ (profile.md: one table per binary).
 set -e
+
+# ---------------------------------------------------------------- callgrind job (one binary)
+# sh bench/run.sh --count-instr BIN INSTR_FILE [PROFILE_DIR]: INSTR_FILE gets one line
+# "family/method instructions evaluations" per method (what pf_bench.h's --instr reads).
+if [ "${1:-}" = --count-instr ]; then
+    bin=$2; instr=$3; pdir=${4:-}
+    tmp=$(mktemp -d "${TMPDIR:-/tmp}/pf-cg.XXXXXX")
+    set -- --tool=callgrind --callgrind-out-file="$tmp/cg" --collect-atstart=no \
+        --toggle-collect=pfb_measured --dump-after=pfb_measured
+    [ -n "$pdir" ] && set -- "$@" --branch-sim=yes --dump-instr=yes
+    if ! LD_BIND_NOW=1 valgrind "$@" "$bin" --only all > "$tmp/stdout" 2> "$tmp/log"; then
+        echo "bench: callgrind failed on $bin:" >&2; tail -n 5 "$tmp/log" >&2; rm -rf "$tmp"; exit 1
+    fi
+    n=$(grep -c . "$tmp/stdout")
+    k=0
+    : > "$instr.tmp"
+    while read -r id _ evals; do
+        k=$((k + 1))
+        [ -f "$tmp/cg.$k" ] || { echo "bench: callgrind: no dump $k for $id ($bin)" >&2; rm -rf "$tmp"; exit 1; }
+        echo "$id $(awk '$1 == "summary:" { print $2; exit }' "$tmp/cg.$k") $evals" >> "$instr.tmp"
+        if [ -n "$pdir" ]; then
+            mkdir -p "$pdir"
+            # Ir Bc Bcm Bi Bim of this method's loop
+            echo "$id $evals $(awk '$1 == "summary:" { $1 = ""; print; exit }' "$tmp/cg.$k")" >> "$pdir/branches.txt"
+            mv "$tmp/cg.$k" "$pdir/callgrind.$(echo "$id" | tr '/' '.')"
+        fi
+    done < "$tmp/stdout"
+    [ "$k" -eq "$n" ] && [ ! -f "$tmp/cg.$((n + 1))" ] ||
+        { echo "bench: callgrind: $n methods but other dumps ($bin)" >&2; rm -rf "$tmp"; exit 1; }
+    mv "$instr.tmp" "$instr"
+    rm -rf "$tmp"
+    exit 0
+fi
 
 # The charts are the main job's point: without gnuplot, stop now rather than after minutes.
 command -v gnuplot >/dev/null 2>&1 ||
     { echo "bench: gnuplot not found; run make bench (it installs it) or: sudo apt-get install -y gnuplot-nox" >&2; exit 1; }
 
 dir=${1:-build/bench}
-out=bench/out
+out=${BENCH_OUT:-bench/out}
 mkdir -p "$out"
-rm -f "$out"/*.csv "$out"/*.notes "$out"/*.instr "$out"/*.svg "$out"/*.dat \
-      "$out"/*.md "$out"/*.png "$out"/callgrind.*
+rm -rf "$out"/*.csv "$out"/*.notes "$out"/*.instr "$out"/*.svg "$out"/*.dat \
+      "$out"/*.md "$out"/*.png "$out"/callgrind.* "$out"/stages.txt "$out"/profile
+threads=${PFB_THREADS:-}
+case $threads in ''|*[!0-9]*|0) threads=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1) ;; esac
 
 t_start=$(date +%s)
+stage_t0=0
+stage_cpu0=0
+stage_name=""
+# CPU seconds (user + system) of every finished child so far: the shell's `times`, run in
+# this shell (not in a pipe or $(...), whose subshell has no children yet), then read back
+cpu_now() {
+    times > "$out/times.tmp"
+    cpu_read=$(awk 'NR == 2 { split($1, u, /[ms]/); split($2, s, /[ms]/); printf "%.1f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$out/times.tmp")
+    rm -f "$out/times.tmp"
+}
+# stage NAME: the start of a stage (ends the previous one); stage_end: the end of the last.
+# stages.txt: name, wall seconds, threads, CPU seconds of the stage's processes (on a busy
+# machine the CPU time, divided by the cores a stage keeps busy, estimates its idle wall time)
+stage_end() {
+    [ -n "$stage_name" ] || return 0
+    el=$(($(date +%s) - stage_t0))
+    cpu_now
+    cpu=$(awk -v a="$cpu_read" -v b="$stage_cpu0" 'BEGIN { printf "%.1f", a - b }')
+    echo "bench: [$(date +%H:%M:%S)] $stage_name done in $el s, $cpu s of CPU ($(($(date +%s) - t_start)) s since the start)" >&2
+    printf '%s\t%s\t%s\t%s\n' "$stage_name" "$el" "$threads" "$cpu" >> "$out/stages.txt"
+    stage_name=""
+}
+stage() {
+    stage_end
+    stage_name=$1
+    stage_t0=$(date +%s)
+    cpu_now
+    stage_cpu0=$cpu_read
+    echo "bench: [$(date +%H:%M:%S)] $1 ..." >&2
+}
 
 # BENCH_QUICK=1 (CI smoke run): few repetitions; numbers are noisier, never copy them to docs.
 quick=""
@@ -28,12 +126,14 @@ case "${BENCH_QUICK:-0}" in
     ""|0|no|NO) ;;
     *) quick="--reps 9"; echo "bench: BENCH_QUICK set, 9 repetitions (smoke run; do not publish these timings)" ;;
 esac
+echo "bench: $threads threads per stage (PFB_THREADS to change), output in $out/"
 
 # Instruction counts (callgrind) are deterministic where timings are noisy. Default: on in a
-# full run when valgrind is installed (about 3 minutes more), off in a BENCH_QUICK run;
-# CALLGRIND=0 or 1 forces it.
+# full run when valgrind is installed, off in a BENCH_QUICK run; CALLGRIND=0 or 1 forces it.
 use_cg=0
 cg=${CALLGRIND:-}
+profile=0
+case "${PROFILE:-0}" in ""|0|no|NO) ;; *) profile=1; cg=1 ;; esac
 if [ -z "$cg" ]; then
     if [ -z "$quick" ] && command -v valgrind >/dev/null 2>&1; then cg=1; else cg=0; fi
 fi
@@ -43,7 +143,8 @@ case "$cg" in
         if command -v valgrind >/dev/null 2>&1; then
             use_cg=1
         else
-            echo "bench: CALLGRIND requested but valgrind is not installed; instr_per_eval left empty"
+            echo "bench: CALLGRIND or PROFILE requested but valgrind is not installed; instr_per_eval left empty"
+            profile=0
         fi ;;
 esac
 
@@ -52,73 +153,110 @@ for src in bench/bench_*.c; do
     m=${src#bench/bench_}
     modules="$modules ${m%.c}"
 done
+for m in $modules; do
+    for b in float double; do
+        [ -x "$dir/bench_$m-$b" ] || { echo "bench: missing $dir/bench_$m-$b (run through make bench)" >&2; exit 1; }
+    done
+done
+for prog in microsurface pictures; do
+    [ -x "$dir/$prog" ] || { echo "bench: missing $dir/$prog (run through make bench)" >&2; exit 1; }
+done
+jobs="$out/jobs.tmp"
 
-# ---------------------------------------------------------------- run
+# ---------------------------------------------------------------- 1. instruction counts
+if [ $use_cg = 1 ]; then
+    stage "callgrind (instruction counts of every method, float and double)"
+    : > "$jobs"
+    # the slowest binaries first (their setup and quadrature tiers run under valgrind too)
+    for m in height masks shadow gaussgrid $modules; do
+        for b in double float; do
+            grep -q "bench_$m-$b " "$jobs" 2>/dev/null && continue
+            p=""
+            [ $profile = 1 ] && p=" $out/profile/bench_$m-$b"
+            echo "sh bench/run.sh --count-instr $dir/bench_$m-$b $out/$m-$b.instr$p # bench_$m-$b " >> "$jobs"
+        done
+    done
+    sh bench/pool.sh "bench: callgrind" "$jobs" || { echo "bench: callgrind failed" >&2; exit 1; }
+fi
+
+# ---------------------------------------------------------------- 2. stability sweep
+# Its own four builds; 10^6 inputs per evaluator and build in a full run, 10^5 under
+# BENCH_QUICK; STABILITY_N overrides.
+stage "stability sweep"
+if [ -z "$quick" ]; then
+    BENCH_OUT=$out STABILITY_N=${STABILITY_N:-1000000} sh bench/stability.sh "$(dirname "$dir")"
+else
+    BENCH_OUT=$out sh bench/stability.sh "$(dirname "$dir")"
+fi
+
+# ---------------------------------------------------------------- 3. GPU cost
+# SPIR-V (and PTX where nvcc exists) instruction counts of every public function and of the
+# textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
+stage "GPU cost (SPIR-V counts)"
+sh bench/gpu/cost.sh "$out"
+
+# ---------------------------------------------------------------- 4. vectorized timing loops
+# Which timing loops did the compiler vectorize? (gcc only: -fopt-info-vec-optimized names the
+# source line of each vectorized loop; a timing loop sits on its PFB_METHOD line.)
+# The Makefile's gcc builds write it beside each binary (BIN.vec); otherwise (older binaries,
+# another build) each source is compiled again here with -fopt-info-vec-optimized.
+stage "vectorization report"
+rm -f "$out"/vec.*
+if ${CC:-cc} -fopt-info-vec-optimized -x c -c /dev/null -o /dev/null 2>/dev/null; then
+    : > "$jobs"
+    for m in $modules; do
+        for b in float double; do
+            d=""
+            [ $b = double ] && d=-DPF_DOUBLE
+            if [ -f "$dir/bench_$m-$b.vec" ]; then
+                cp "$dir/bench_$m-$b.vec" "$out/vec.bench_$m$d.log"
+            else
+                echo "${CC:-cc} ${BENCH_FLAGS} $d -fopt-info-vec-optimized -c bench/bench_$m.c -o /dev/null > $out/vec.bench_$m$d.log 2>&1" >> "$jobs"
+            fi
+        done
+    done
+    sh bench/pool.sh "bench: vectorization report" "$jobs" || { echo "bench: a vectorization compile failed" >&2; exit 1; }
+    for src in bench/bench_*.c; do
+        for d in "" -DPF_DOUBLE; do
+            awk -F: -v s="$src" '$1 == s && /loop vectorized/ { print $2 }' "$out/vec.$(basename "$src" .c)$d.log" | sort -u |
+                while read -r line; do
+                    sed -n "${line}p" "$src" | sed -n 's/^PFB_METHOD(\([a-z0-9_]*\),.*/\1/p'
+                done
+        done
+    done | sort -u > "$out/vec.txt"
+    rm -f "$out"/vec.*.log
+fi
+
+# ---------------------------------------------------------------- 5, 6. report programs
+# Each writes its own fragment <name>.md (and CSV, charts, images) into $out; BENCH_QUICK is
+# inherited from the environment. Each spreads its brute force over PFB_THREADS threads and
+# times its cost section alone.
+stage "microsurface (ground truth)"
+"$dir/microsurface" --out "$out" --gp bench/microsurface.gp
+stage "pictures"
+"$dir/pictures" "$out"
+# The frame on a Vulkan driver (bench/frame/run.sh: lavapipe here; frame.md, frame.csv, frame_*.png)
+stage "GPU frame (Vulkan)"
+sh bench/frame/run.sh "$dir" "$out"
+
+# ---------------------------------------------------------------- 7. per-module benches
+# One binary at a time: its accuracy grids on every core, then its timing loops on one thread
+# with nothing else of the bench running.
+stage "per-module benches (accuracy on every core, timings alone)"
 for m in $modules; do
     for b in float double; do
         bin="$dir/bench_$m-$b"
-        if [ ! -x "$bin" ]; then
-            echo "bench: missing $bin (run through make bench)" >&2
-            exit 1
-        fi
-        instr=""
         if [ $use_cg = 1 ]; then
-            instr="$out/$m-$b.instr"
-            : > "$instr"
-            echo "bench: callgrind, bench_$m ($b) ..."
-            for id in $("$bin" --list); do
-                valgrind --tool=callgrind --callgrind-out-file="$out/callgrind.out" \
-                    --collect-atstart=no '--toggle-collect=pfb_measured*' \
-                    "$bin" --only "$id" > "$out/callgrind.stdout" 2> "$out/callgrind.log"
-                evals=$(awk '$1 == "evals" { print $2 }' "$out/callgrind.stdout")
-                total=$(awk '$1 == "totals:" { print $2 }' "$out/callgrind.out")
-                echo "$id ${total:-0} ${evals:-0}" >> "$instr"
-            done
-            rm -f "$out"/callgrind.*
-        fi
-        if [ -n "$instr" ]; then
-            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$instr"
+            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
         else
             "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes"
         fi
     done
 done
 
-# ---------------------------------------------------------------- report programs
-# Each writes its own fragment <name>.md (and CSV, charts, images) into $out; BENCH_QUICK is
-# inherited from the environment. Order: cheapest first.
-for prog in microsurface pictures; do
-    if [ ! -x "$dir/$prog" ]; then
-        echo "bench: missing $dir/$prog (run through make bench)" >&2
-        exit 1
-    fi
-    echo "bench: $prog ..."
-    t0=$(date +%s)
-    case $prog in
-        microsurface) "$dir/$prog" --out "$out" --gp bench/microsurface.gp ;;
-        *) "$dir/$prog" "$out" ;;
-    esac
-    echo "bench: $prog done ($(($(date +%s) - t0)) s)"
-done
-# The stability sweep (its own four builds; 10^6 inputs per evaluator and build in a full run,
-# 10^5 under BENCH_QUICK; STABILITY_N overrides).
-echo "bench: stability sweep ..."
-t0=$(date +%s)
-if [ -z "$quick" ]; then
-    STABILITY_N=${STABILITY_N:-1000000} sh bench/stability.sh "$(dirname "$dir")"
-else
-    sh bench/stability.sh "$(dirname "$dir")"
-fi
-echo "bench: stability done ($(($(date +%s) - t0)) s)"
-# GPU cost: SPIR-V (and PTX where nvcc exists) instruction counts of every public function and
-# of the textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
-echo "bench: GPU cost ..."
-sh bench/gpu/cost.sh "$out"
-# The frame on a Vulkan driver (bench/frame/run.sh: frame.md, frame.csv, frame_*.png).
-echo "bench: GPU frame ..."
-sh bench/frame/run.sh "$dir" "$out"
-
-# ---------------------------------------------------------------- charts
+# ---------------------------------------------------------------- 8. charts
+stage "charts, summary, method guide, report"
+: > "$jobs"
 charts=""
 for m in $modules; do
     for fam in $(awk -F, 'NR > 1 && !seen[$1]++ { print $1 }' "$out/$m.csv"); do
@@ -137,13 +275,15 @@ for m in $modules; do
             printf "%s\t%.6g\t%s\t%d\t%d\n", $4, e, $2, bd, k }' "$out/$m.csv" > "$dat"
         if [ -s "$dat" ]; then
             svg="$out/${m}_$fam.svg"
-            gnuplot -e "fam='$m / $fam'; datf='$dat'; outf='$svg'" bench/chart.gp ||
-                { echo "bench: gnuplot failed on $svg" >&2; exit 1; }
+            echo "gnuplot -e \"fam='$m / $fam'; datf='$dat'; outf='$svg'\" bench/chart.gp > $dat.log 2>&1 && rm -f $dat $dat.log" >> "$jobs"
             charts="$charts ${m}_$fam.svg"
+        else
+            rm -f "$dat"
         fi
-        rm -f "$dat"
     done
 done
+sh bench/pool.sh "bench: charts" "$jobs" || { cat "$out"/*.dat.log >&2; echo "bench: gnuplot failed" >&2; exit 1; }
+rm -f "$jobs"
 
 # ---------------------------------------------------------------- summary.md
 sum="$out/summary.md"
@@ -151,25 +291,9 @@ cpu=$(awk -F': *' '/^model name/ { print $2; exit }' /proc/cpuinfo 2>/dev/null |
 [ -n "$cpu" ] || cpu=$(uname -m)
 ncpu=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?")
 ccver=$(${CC:-cc} --version 2>/dev/null | head -n 1)
-# Which timing loops did the compiler vectorize? (gcc only: -fopt-info-vec-optimized names the
-# source line of each vectorized loop; a timing loop sits on its PFB_METHOD line.)
 vec="unknown (compiler without -fopt-info-vec-optimized)"
-if ${CC:-cc} -fopt-info-vec-optimized -x c -c /dev/null -o /dev/null 2>/dev/null; then
-    vec=""
-    for src in bench/bench_*.c; do
-        for d in "" -DPF_DOUBLE; do
-            # shellcheck disable=SC2086
-            ${CC:-cc} ${BENCH_FLAGS} $d -fopt-info-vec-optimized -c "$src" -o /dev/null 2>&1 |
-                awk -F: -v s="$src" '$1 == s && /loop vectorized/ { print $2 }' | sort -u |
-                while read -r line; do
-                    sed -n "${line}p" "$src" | sed -n 's/^PFB_METHOD(\([a-z0-9_]*\),.*/\1/p'
-                done
-        done
-    done > "$out/vec.tmp"
-    vec=$(sort -u "$out/vec.tmp" | tr '\n' ' ')
-    rm -f "$out/vec.tmp"
-    [ -n "$vec" ] || vec="none"
-fi
+[ -f "$out/vec.txt" ] && { vec=$(tr '\n' ' ' < "$out/vec.txt"); [ -n "$vec" ] || vec="none"; }
+rm -f "$out/vec.txt"
 timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
 {
     echo "# prefilter bench summary"
@@ -182,7 +306,7 @@ timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
     echo "- flags: \`${BENCH_FLAGS:-?}\` (double build adds \`-DPF_DOUBLE\`); -std=c99 implies -ffp-contract=off, so no FMA contraction; no -ffast-math"
     echo "- CPU: $cpu ($ncpu logical CPUs), $(uname -sr)"
     if [ $use_cg = 1 ]; then
-        echo "- instructions: $(valgrind --version) callgrind, collection on in pfb_measured only; instr/eval includes the loop (load, store, index, branch: ~4-5 instructions)"
+        echo "- instructions: $(valgrind --version) callgrind, collection on in pfb_measured only, one run per binary (a dump after each method's loop), symbols bound at start (LD_BIND_NOW=1: no lazy binding counted); instr/eval includes the loop (load, store, index, branch: ~4-5 instructions)"
     else
         echo "- instructions: not measured (BENCH_QUICK run or valgrind missing; \`make bench CALLGRIND=1\` forces it)"
     fi
@@ -218,6 +342,29 @@ timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
     done
 } > "$sum"
 
+# ---------------------------------------------------------------- profile mode
+if [ $profile = 1 ]; then
+    {
+        echo "# prefilter bench profile (make bench PROFILE=1)"
+        echo
+        echo "Per method and build: callgrind's counts of the timing loop over the same random inputs as the"
+        echo "ns columns (per evaluation; the loop's own load, store, index and branch included):"
+        echo "instructions, conditional branches executed and mispredicted, indirect branches and their"
+        echo "mispredictions (callgrind --branch-sim=yes: a simple predictor, not this CPU's). The"
+        echo "annotated profile of each method's loop: \`callgrind_annotate --auto=yes profile/bench_<module>-<build>/callgrind.<family>.<method>\`."
+        for p in "$out"/profile/bench_*; do
+            [ -f "$p/branches.txt" ] || continue
+            echo
+            echo "## $(basename "$p")"
+            echo
+            echo "| method | instr/eval | cond. branches/eval | mispredicted/eval | indirect/eval | mispredicted/eval |"
+            echo "|---|--:|--:|--:|--:|--:|"
+            awk '{ n = $2; printf "| `%s` | %.2f | %.3f | %.3f | %.3f | %.3f |\n", $1, $3 / n, $4 / n, $5 / n, $6 / n, $7 / n }' "$p/branches.txt"
+        done
+    } > "$out/profile/profile.md"
+    echo "bench: profile mode: $out/profile/profile.md and the per-method callgrind profiles in $out/profile/"
+fi
+
 echo
 files="summary.md"
 for m in $modules; do files="$files, $m.csv"; done
@@ -227,4 +374,5 @@ echo "bench: wrote $files in $out/ ($(($(date +%s) - t_start)) s)"
 # ---------------------------------------------------------------- method guide and report
 sh bench/choosing.sh "$out"
 sh bench/report.sh "$out"
-echo "bench: the report is $out/report.md ($(($(date +%s) - t_start)) s in all)"
+stage_end
+echo "bench: the report is $out/report.md ($(($(date +%s) - t_start)) s in all, $threads threads per stage; stage times in $out/stages.txt)"

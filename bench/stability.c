@@ -11,12 +11,16 @@
    fault on a guard page, caught and counted), non-finite outputs on finite in-domain inputs and
    wrong output values; STABILITY_BUFFERS_N calls per function (default 1000, 500 quick).
 
-   usage: stability [--quick] [-n N] [--only NAME] [--seed S] [--label L] [--csv FILE]
+   usage: stability [--quick] [-n N] [--only NAME] [--seed S] [--label L] [--csv FILE] [--shard K/M]
           stability --list                       names of the entries and of the skipped ones
           stability --merge OUT.md OUT.csv A.csv [B.csv ...]   the report fragment
    BENCH_QUICK=1 in the environment = --quick (10^5 per evaluator instead of 10^8).
    Entries flagged slow (loops over grid samples or quadrature nodes) get N/SLOW_DIV calls
    when STABILITY_SLOW_DIV is set (default 1: the full count).
+   --shard K/M runs only the entries (evaluators and pointer-taking drivers) whose index is K
+   modulo M: bench/stability.sh runs the shards of every build as separate processes on every
+   core and merges their CSVs. Every entry draws from its own seed (its name hashed with the
+   sweep's), so its counts are the same in any shard and the merged table is that of one run.
    Exit status: 0 when every count is zero, 1 when something was found, 2 on usage errors. */
 #define _POSIX_C_SOURCE 200112L
 #define _DEFAULT_SOURCE 1 /* mmap's MAP_ANONYMOUS (tests/fuzz/pf_buffers.h) */
@@ -26,8 +30,8 @@
 #include <time.h>
 #include <signal.h>
 #include <setjmp.h>
-#include "../tests/fuzz/pf_calls.h"
-#include "../tests/fuzz/pf_buffers.h"
+#include "pf_calls.h"   /* tests/fuzz/ (-Itests/fuzz): the evaluators' entries */
+#include "pf_buffers.h" /* tests/fuzz/: the pointer-taking functions' drivers */
 
 #ifdef PF_DOUBLE
 #  define STAB_PREC "double"
@@ -430,10 +434,11 @@ static void stab_fault(int sig)
 }
 
 /* n seeded calls of every driver (or only `only`); one CSV line each */
-static int stab_buffers(FILE *csv, const char *label, double n, pfc_u64 seed, const char *only)
+static int stab_buffers(FILE *csv, const char *label, double n, pfc_u64 seed, const char *only, int shard,
+                        int nshards)
 {
     struct sigaction sa;
-    int i;
+    volatile int i; /* live across sigsetjmp */
     volatile int found = 0;
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = stab_fault;
@@ -452,6 +457,7 @@ static int stab_buffers(FILE *csv, const char *label, double n, pfc_u64 seed, co
         volatile int any = 0;
         char ex[700];
         if (only && strcmp(only, e->name)) continue;
+        if (i % nshards != shard) continue;
         memset(&t, 0, sizeof t);
         memset(&stab_bctx, 0, sizeof stab_bctx);
         stab_bctx.rng = pfc_hash(e->name) ^ seed;
@@ -498,7 +504,7 @@ int main(int argc, char **argv)
     double n = 1e8;
     const char *only = 0, *label = STAB_PREC STAB_FAST, *csvpath = 0;
     pfc_u64 seed = 20240917ULL;
-    int i, found = 0, slow_div = 1;
+    int i, found = 0, slow_div = 1, shard = 0, nshards = 1;
     FILE *csv = stdout;
     const char *q = getenv("BENCH_QUICK"), *sd = getenv("STABILITY_SLOW_DIV");
     if (q && *q && strcmp(q, "0")) n = 1e5;
@@ -516,6 +522,12 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc) seed = strtoull(argv[++i], 0, 0);
         else if (!strcmp(argv[i], "--label") && i + 1 < argc) label = argv[++i];
         else if (!strcmp(argv[i], "--csv") && i + 1 < argc) csvpath = argv[++i];
+        else if (!strcmp(argv[i], "--shard") && i + 1 < argc) {
+            if (sscanf(argv[++i], "%d/%d", &shard, &nshards) != 2 || nshards < 1 || shard < 0 || shard >= nshards) {
+                fprintf(stderr, "stability: --shard K/M with 0 <= K < M\n");
+                return 2;
+            }
+        }
         else { fprintf(stderr, "usage: see bench/stability.c\n"); return 2; }
     }
     if (csvpath && !(csv = fopen(csvpath, "w"))) { fprintf(stderr, "stability: cannot write %s\n", csvpath); return 2; }
@@ -527,6 +539,7 @@ int main(int argc, char **argv)
         double t0, t1, k, count = n, nonfinite = 0, nf_wide = 0, viol = 0, skipped = 0;
         char example[512] = "", example_wide[512] = "";
         if (only && strcmp(only, e->name)) continue;
+        if (i % nshards != shard) continue;
         if ((e->flags & PFC_SLOW) && slow_div > 1) count = n / slow_div;
         memset(&c, 0, sizeof c);
         c.rng = pfc_hash(e->name) ^ seed;
@@ -562,7 +575,7 @@ int main(int argc, char **argv)
         const char *bn = getenv("STABILITY_BUFFERS_N");
         double nb = n <= 1e5 ? 500 : 1000;
         if (bn && atof(bn) > 0) nb = atof(bn);
-        if (stab_buffers(csv, label, nb, seed, only)) found = 1;
+        if (stab_buffers(csv, label, nb, seed, only, shard, nshards)) found = 1;
     }
     if (csv != stdout) fclose(csv);
     return found;

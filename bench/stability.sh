@@ -1,7 +1,8 @@
 #!/bin/sh
 # bench/stability.sh - the stability table (issue 9, item 4): builds bench/stability.c four
-# ways (float, double, float -ffast-math, double -ffast-math), runs them two at a time, merges
-# the counts into bench/out/stability.md (the report fragment) and bench/out/stability.csv,
+# ways (float, double, float -ffast-math, double -ffast-math) at once, runs each in shards on
+# every core (bench/pool.sh), merges the counts into bench/out/stability.md (the report
+# fragment) and bench/out/stability.csv (the same tables for any PFB_THREADS),
 # and copies the fragment into docs/stability.md between its GENERATED markers when
 # STABILITY_UPDATE_DOCS=1 (make docs).
 #
@@ -12,7 +13,9 @@
 #   STABILITY_SLOW_DIV=k entries flagged slow get N/k inputs (default 1)
 #   STABILITY_BUFFERS_N=N calls per pointer-taking function and build (tests/fuzz/pf_buffers.h;
 #                        default 1000, 500 with BENCH_QUICK=1: a few seconds per build)
-#   STABILITY_JOBS=j     builds run at once (default 2)
+#   PFB_THREADS=j        processes at once (default: every core)
+#   STABILITY_SHARDS=k   shards per build (default 8)
+#   BENCH_OUT=dir        where the fragment and CSV go (default bench/out)
 #   CC                   compiler (default gcc, as the Makefile's fast-math test builds)
 #   STABILITY_STRICT=1   exit 1 on any finding (default: findings are reported in the fragment
 #                        and on stderr, exit 0, so `make bench` completes)
@@ -24,54 +27,83 @@ ROOT=$(cd "$(dirname "$0")/.." && pwd) || exit 2
 cd "$ROOT" || exit 2
 BUILD=${1:-build}
 DIR=$BUILD/stability
-OUTDIR=bench/out
+OUTDIR=${BENCH_OUT:-bench/out}
 CC=${CC:-gcc}
-JOBS=${STABILITY_JOBS:-2}
 mkdir -p "$DIR" "$OUTDIR" || exit 2
 
 sh tests/fuzz/coverage.sh || { echo "stability: coverage gap (see above)" >&2; cov=1; }
 cov=${cov:-0}
 
 WARN="-std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion"
-build() { # name flags...
-    n=$1; shift
-    $CC $WARN -O2 "$@" -Iinclude bench/stability.c -lm -o "$DIR/stability-$n" || {
-        echo "stability: build $n failed" >&2; exit 2; }
+builds="float double fastmath-float fastmath-double"
+flags() { # build -> its flags
+    case $1 in
+        float) echo "" ;;
+        double) echo "-DPF_DOUBLE" ;;
+        fastmath-float) echo "-ffast-math" ;;
+        fastmath-double) echo "-ffast-math -DPF_DOUBLE" ;;
+    esac
 }
-build float
-build double -DPF_DOUBLE
-build fastmath-float -ffast-math
-build fastmath-double -ffast-math -DPF_DOUBLE
+label() { # build -> the label in the table
+    case $1 in
+        float|double) echo "$1" ;;
+        fastmath-*) echo "${1#fastmath-} -ffast-math" ;;
+    esac
+}
 
+# The four builds at once (bench/pool.sh: PFB_THREADS processes, default every core), each only
+# when its binary is missing, older than a source, or built with another command (BIN.cmd).
+jobs="$DIR/jobs.txt"
+: > "$jobs"
+for n in $builds; do
+    cmd="$CC $WARN -O2 $(flags "$n") -Iinclude -Itests/fuzz bench/stability.c -lm -o $DIR/stability-$n"
+    bin=$DIR/stability-$n
+    if [ -x "$bin" ] && [ "$(cat "$bin.cmd" 2>/dev/null)" = "$cmd" ] &&
+        [ -z "$(find bench/stability.c include tests/fuzz -newer "$bin" -name '*.[ch]' 2>/dev/null | head -n 1)" ]; then
+        continue
+    fi
+    rm -f "$bin.cmd"
+    echo "$cmd > $DIR/build-$n.log 2>&1 && echo '$cmd' > $bin.cmd" >> "$jobs"
+done
+sh bench/pool.sh "stability: builds" "$jobs" || {
+    for n in $builds; do [ -x "$DIR/stability-$n" ] || cat "$DIR/build-$n.log" >&2; done
+    echo "stability: a build failed" >&2; exit 2; }
+
+# The sweep: every build cut into SHARDS shards (entries K modulo SHARDS; each entry draws from
+# its own seed, so the counts are those of one process), all run PFB_THREADS at a time, the
+# slow double builds first. STABILITY_SHARDS overrides the count (default 8 per build).
+SHARDS=${STABILITY_SHARDS:-8}
 ARGS=""
 [ -n "${STABILITY_N:-}" ] && ARGS="-n $STABILITY_N"
-start=$(date +%s)
-run() { # name label
-    "$DIR/stability-$1" $ARGS --label "$2" --csv "$DIR/$1.csv" 2> "$DIR/$1.log"
-    echo $? > "$DIR/$1.status"
-}
-set -- "float:float" "double:double" "fastmath-float:float -ffast-math" "fastmath-double:double -ffast-math"
-while [ $# -gt 0 ]; do
-    pids=""
+rm -f "$DIR"/*.csv "$DIR"/*.status "$DIR"/*.log.shard*
+: > "$jobs"
+for n in fastmath-double double fastmath-float float; do
     k=0
-    while [ $# -gt 0 ] && [ $k -lt "$JOBS" ]; do
-        n=${1%%:*}; l=${1#*:}; shift
-        run "$n" "$l" &
-        pids="$pids $!"
+    while [ $k -lt "$SHARDS" ]; do
+        echo "$DIR/stability-$n $ARGS --label '$(label "$n")' --shard $k/$SHARDS --csv $DIR/$n.$k.csv 2> $DIR/$n.log.shard$k; echo \$? > $DIR/$n.$k.status" >> "$jobs"
         k=$((k + 1))
     done
-    for pid in $pids; do wait "$pid"; done
 done
+start=$(date +%s)
+sh bench/pool.sh "stability: sweep" "$jobs"
 end=$(date +%s)
-for n in float double fastmath-float fastmath-double; do
-    s=$(cat "$DIR/$n.status")
-    [ "$s" = 0 ] || [ "$s" = 1 ] || { echo "stability: run $n failed (status $s)" >&2; cat "$DIR/$n.log" >&2; exit 2; }
+csvs=""
+for n in $builds; do
+    k=0
+    while [ $k -lt "$SHARDS" ]; do
+        s=$(cat "$DIR/$n.$k.status" 2>/dev/null || echo missing)
+        [ "$s" = 0 ] || [ "$s" = 1 ] || { echo "stability: run $n shard $k failed (status $s)" >&2; cat "$DIR/$n.log.shard$k" >&2; exit 2; }
+        csvs="$csvs $DIR/$n.$k.csv"
+        k=$((k + 1))
+    done
 done
-"$DIR/stability-double" --merge "$OUTDIR/stability.md" "$OUTDIR/stability.csv" \
-    "$DIR/float.csv" "$DIR/double.csv" "$DIR/fastmath-float.csv" "$DIR/fastmath-double.csv"
+# merged in build order (the table's columns: float, double, then -ffast-math)
+# shellcheck disable=SC2086
+"$DIR/stability-double" --merge "$OUTDIR/stability.md" "$OUTDIR/stability.csv" $csvs
 merged=$?
 [ $merged -le 1 ] || exit 2
-printf '\nWall time of the sweep: %s s (%s builds at a time).\n' "$((end - start))" "$JOBS" >> "$OUTDIR/stability.md"
+nproc_=${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+printf '\nWall time of the sweep: %s s (%s shards per build, %s at a time).\n' "$((end - start))" "$SHARDS" "$nproc_" >> "$OUTDIR/stability.md"
 echo "stability: wrote $OUTDIR/stability.md and $OUTDIR/stability.csv ($((end - start)) s)"
 
 if [ "${STABILITY_UPDATE_DOCS:-0}" = 1 ]; then

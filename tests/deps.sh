@@ -25,7 +25,7 @@ clang|test fuzz portability|cmd clang|ASan+UBSan test builds (float, double) and
 SANITIZER_RT|test fuzz|probe sanitizer|clang's ASan/UBSan/libFuzzer runtime (compiler-rt)
 libglm-dev|test|file /usr/include/glm/glm.hpp|GLM: cross-checks the vector math from C++ (tests only)
 gnuplot-nox|bench|cmd gnuplot|the bench's charts and the labelled pictures
-libpng-dev|test bench|file /usr/include/png.h|libpng: reads the user's PNG height and normal maps (make bench MAP=..., tests/pf_maps.h) and the map loader tests (tests/maps/)
+libpng-dev|test bench|file /usr/include/png.h|libpng: reads the user's PNG height and normal maps (make bench MAP=..., tests/reference/pf_maps.h) and the map loader tests (tests/maps/)
 valgrind|bench|cmd valgrind|instruction counts (callgrind) in the full bench run
 tcc|portability|cmd tcc|a third C compiler (tcc) for the headers
 glslang-tools|portability bench|cmd glslangValidator|GLSL 4.50 -> SPIR-V compile of every evaluator (portability; the bench's GPU cost)

@@ -1,7 +1,7 @@
 /* test_beckmann.c - tests of include/pf_beckmann.h against quadrature and brute force.
 
    The oracles never call the formula they check with itself:
-   - D is integrated numerically (tests/pf_oracle.h, long double) over the hemisphere, once in
+   - D is integrated numerically (tests/reference/pf_oracle.h, long double) over the hemisphere, once in
      polar coordinates of the micro-normal and once over the slope plane in whitened
      coordinates (the Cholesky factor and the solid-angle Jacobian m_z^3 are the test's own);
    - the projected-area identity (Dupuy et al. 2013 eqs. 1, 6) and the BRDF identity after
@@ -109,7 +109,7 @@ static long double d_cond(bcfg k, long double q, long double sx, long double sy)
     return (1.0L + q) * (1.0L + 1.0L / (1.0L - r2) + (1.0L + sqrtl(sx * sx + sy * sy)) * sqrtl(2.0L * q) / smin);
 }
 
-/* Independent P22 (eq. 8) in long double (tests/pf_oracle.h: explicit inverse). */
+/* Independent P22 (eq. 8) in long double (tests/reference/pf_oracle.h: explicit inverse). */
 static long double p22_ref(bcfg k, long double x, long double y)
 {
     return pf_oracle_normal2_pdf(x - k.mx, y - k.my, k.vx, k.vy, k.cxy);

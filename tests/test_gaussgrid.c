@@ -1,7 +1,7 @@
 /* test_gaussgrid.c - tests of include/pf_gaussgrid.h against quadrature.
 
    Truth is never the grid itself: the node sets are checked against the exact moments of a
-   standard normal ((d-1)!!) and against 1D quadrature (tests/pf_oracle.h) of smooth and kinked
+   standard normal ((d-1)!!) and against 1D quadrature (tests/reference/pf_oracle.h) of smooth and kinked
    integrands; the shaded integrals of LEADR (Dupuy et al. 2013) eqs. 19 and 21 against 2D
    adaptive quadrature over the slope plane in long double, with Lambda from the long double
    closed form (erfcl), not from pf_smith.h; the SH irradiance against spherical quadrature
@@ -287,7 +287,7 @@ static void test_warp_moments(void)
 /* ------------------------------------------------------------------ references (2D slope plane) */
 
 /* Smith Lambda of Gaussian slopes in long double, closed form (Dupuy et al. 2013 sec. 4.3,
-   tests/pf_oracle.h); +inf (returned as HUGE_VALL) on or below the mesosurface. */
+   tests/reference/pf_oracle.h); +inf (returned as HUGE_VALL) on or below the mesosurface. */
 static long double lambda_ld(const cfg *c, long double wx, long double wy, long double wz)
 {
     long double num = wz - wx * c->mx - wy * c->my;

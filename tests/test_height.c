@@ -2,7 +2,7 @@
 
    Truth is never the formula under test: the closed forms of Heitz et al. 2014 (eqs. 3, 12) are
    checked against the integrals over heights they come from; mu_d and sigma_d (eqs. 15-17)
-   against adaptive quadrature of D_h (tests/pf_oracle.h), and for integer Lambda against the
+   against adaptive quadrature of D_h (tests/reference/pf_oracle.h), and for integer Lambda against the
    expected maximum of Lambda + 1 normals computed from its own (CDF) integral and the known
    values 1/sqrt(pi), 3/(2 sqrt(pi)); the Gaussian colour-map filters against quadrature of
    C(v) N(v) over v; the transfer-function moments against Monte Carlo with a fixed seed. The

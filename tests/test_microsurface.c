@@ -1,11 +1,11 @@
-/* test_microsurface.c - tests of tests/pf_microsurface.h, the synthetic microsurfaces and the
+/* test_microsurface.c - tests of tests/reference/pf_microsurface.h, the synthetic microsurfaces and the
    brute-force shading reference of the bench report (issue 9).
 
    The reference is what the library is measured against, so it is checked here against
    things that do not come from it: sample statistics of the generators, the library's own
    slope pyramid (level 0), analytic visibility (a plane, a wall's shadow length), a finely
    sampled continuous surface, Smith's closed-form masking for Gaussian surfaces (Smith 1967;
-   tests/pf_oracle.h), the projected-area identity (Dupuy et al. 2013 eq. 1), closed-form
+   tests/reference/pf_oracle.h), the projected-area identity (Dupuy et al. 2013 eq. 1), closed-form
    flat-plane BRDFs written with trigonometry, and the white furnace. Every bound is stated
    next to its check and the measured numbers are printed as notes. edge_* tests (finite,
    in-range outputs at degenerate inputs) also run under -ffast-math. */
@@ -502,7 +502,7 @@ static void test_visibility_acceleration_exact(void)
 }
 
 /* Smith's masking 1/(1 + Lambda) (Lambda of Gaussian slopes with the measured deviation along
-   the view azimuth; tests/pf_oracle.h) against the measured visible fraction of the
+   the view azimuth; tests/reference/pf_oracle.h) against the measured visible fraction of the
    front-facing projected area of the Gaussian maps (whole map as footprint). Smith is known
    to be accurate for Gaussian surfaces; bound 3% at 0-75 degrees (measured ~0.5% on 512^2,
    this test uses 256^2). Also visible_area (sum V a+ / A) ~ 1 within 1%: each viewing ray

@@ -9,7 +9,7 @@
    - sampling against the GPU's bilinear formula evaluated here;
    - ESM log-space reductions against the direct exp(c z) averages;
    - height-map slopes against the analytic gradient of a sum of sinusoids, and the pyramid's
-     top against the gradient moments integrated over the domain (tests/pf_oracle.h);
+     top against the gradient moments integrated over the domain (tests/reference/pf_oracle.h);
    - LEADR shading of trilinear samples whose mean plane hides the view (the pic_plane
      regression) against eq. 17 and a 2D quadrature of the facets facing the view.
    The same bodies run in float, double, C++ and under sanitizers (every buffer is allocated

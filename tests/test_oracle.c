@@ -1,4 +1,4 @@
-/* test_oracle.c - tests of tests/pf_oracle.h, the long double quadrature every formula test
+/* test_oracle.c - tests of tests/reference/pf_oracle.h, the long double quadrature every formula test
    is checked against. Each test integrates something whose value is known in closed form (or
    to 25 digits from mpmath, where the closed form would cancel in long double) and asserts a
    relative error bound; the measured error is recorded as a note. The oracle is long double

@@ -3,7 +3,7 @@
    Truth is never a method's own formula: it is the average of binary depth tests (the
    fraction of depths z >= d) over an explicit discrete depth distribution - seeded random
    distributions, two-depth planar occluders, constant footprints, and footprints of the
-   synthetic shadow maps of tests/shadow_scenes.h. The moments each method consumes are built
+   synthetic shadow maps of tests/reference/shadow_scenes.h. The moments each method consumes are built
    from the same depths in long double with the pf_moments.h per-texel constructors and
    rounded to pf_real, as fp32 storage would hold them. The same bodies run in float, double,
    C++ and under sanitizers; edge_* tests also run under -ffast-math. */
@@ -1039,7 +1039,7 @@ static void test_csm_nan_inputs(void)
     PF_CHECK(in_unit(lit), "NaN CSM moments give %g", (double)lit);
 }
 
-/* The shadow lookup family's scenes (tests/shadow_scenes.h) at M = 4, 8, 16 with the default
+/* The shadow lookup family's scenes (tests/reference/shadow_scenes.h) at M = 4, 8, 16 with the default
    scale and offset, the moments built from cosl/sinl of the stored depths: mean abs error and
    mean leak bounds (measured + 15% + 5e-4), and the documented finding that CSM up to 16
    terms stays above EVSM-4's mean error on every scene. */

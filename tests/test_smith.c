@@ -2,7 +2,7 @@
 
    Truth is never the closed form: Lambda is integrated from its definition (Dupuy et al. 2013
    eqs. 1, 6, 10 and sec. 4.3), in 1D over the slope density along the view azimuth and in 2D
-   over the whole slope plane or the hemisphere of micro-normals, with tests/pf_oracle.h in
+   over the whole slope plane or the hemisphere of micro-normals, with tests/reference/pf_oracle.h in
    long double. The same bodies run in float, double, C++ and under sanitizers; edge_* tests
    also run under -ffast-math. */
 #include <string.h>
@@ -33,7 +33,7 @@ static long double lambda_ref(long double nu)
 }
 
 /* 1D noncentered: Lambda = integral_c^inf (x - c) N(x; mu, sigma^2) dx / (c - mu), by
-   quadrature (tests/pf_oracle.h). */
+   quadrature (tests/reference/pf_oracle.h). */
 static long double lambda_ref_1d(long double c, long double mu, long double sigma)
 {
     return pf_oracle_lambda_1d(c, mu, sigma);

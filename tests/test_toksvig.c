@@ -4,7 +4,7 @@
    - the variance estimate (1 - |mu|)/|mu| is compared with the true per-axis angular variance
      E[t^2]/2 of known normal distributions (a Gaussian of the angle, von Mises-Fisher,
      Gaussian slopes), their E[cos t] = |E[n]| and E[t^2] integrated by quadrature in long
-     double (tests/pf_oracle.h), and |E[n]| checked against normals drawn with a fixed seed and
+     double (tests/reference/pf_oracle.h), and |E[n]| checked against normals drawn with a fixed seed and
      averaged by pf_moments.h;
    - the filtered lobes are compared with the convolution they approximate, integrated over
      the sphere (bench/fit/toksvig_convolution.h, 2D quadrature in long double).

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """gen_kronrod.py - compute Gauss-Legendre / Kronrod-extension nodes and weights for
-tests/pf_oracle.h from first principles (no published table is used).
+tests/reference/pf_oracle.h from first principles (no published table is used).
 
 usage: python3 bench/fit/gen_kronrod.py [n]      (n = Gauss points, default 15 -> G15-K31)
 

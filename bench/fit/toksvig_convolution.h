@@ -1,6 +1,6 @@
 /* toksvig_convolution.h - long double reference for pf_toksvig.h: a lobe (Blinn-Phong,
    Beckmann NDF or GGX NDF) convolved on the sphere with a Gaussian distribution of normals,
-   by 2D adaptive quadrature (tests/pf_oracle.h). Test and bench code only, never part of the
+   by 2D adaptive quadrature (tests/reference/pf_oracle.h). Test and bench code only, never part of the
    library; shared by tests/test_toksvig.c and bench/bench_toksvig.c.
 
    The distribution of the normals n around the mean normal z is a Gaussian of the angle
@@ -17,7 +17,7 @@
 #ifndef TOKSVIG_CONVOLUTION_H
 #define TOKSVIG_CONVOLUTION_H
 
-#include "../../tests/pf_oracle.h"
+#include "pf_oracle.h"
 
 #define TKC_BLINN_PHONG 0
 #define TKC_BECKMANN 1

@@ -48,10 +48,14 @@ if [ -n "$only" ]; then
     only=$( { echo "$pairs" | awk -F'|' '{ print $1; print $2 }'
               grep -v '^#' "$dir/methods.txt" | awk '{ print $2 }' | tr '+' '\n'; } | awk 'NF && !seen[$0]++' | tr '\n' ' ')
 fi
+# count.sh's table to the log; its messages and progress to the log and, live, to stderr
 # shellcheck disable=SC2086
-sh "$dir/count.sh" -o "$csv" $only > "$out/gpu_cost.log" 2>&1 ||
+{ sh "$dir/count.sh" -o "$csv" $only 2>&1 > "$out/gpu_cost.log"; echo $? > "$out/gpu_cost.status"; } |
+    tee "$out/gpu_cost.err" >&2
+[ "$(cat "$out/gpu_cost.status")" = 0 ] ||
     { echo "bench: bench/gpu/count.sh failed:" >&2; tail -n 5 "$out/gpu_cost.log" >&2; exit 1; }
-grep '^count.sh:' "$out/gpu_cost.log" | sed 's/^/bench: gpu: /' || true
+cat "$out/gpu_cost.err" >> "$out/gpu_cost.log"
+rm -f "$out/gpu_cost.err" "$out/gpu_cost.status"
 secs=$(($(date +%s) - t0))
 
 # The baselines compute what the library computes (bench/gpu/agree.c, double build, ordinary

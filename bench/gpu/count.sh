@@ -27,7 +27,8 @@
 # The textbook baselines go through exactly the same wrapper generator and counting.
 #
 # Environment: NVCC (default: nvcc on PATH, else /usr/local/cuda/bin/nvcc; none: no CUDA),
-# PF_NVCC_ARCH, PF_GPU_JOBS (shaders compiled at once; default nproc), PF_GPU_WORK (work
+# PF_NVCC_ARCH, PF_GPU_JOBS (shaders compiled at once; default PFB_THREADS, else every core;
+# bench/pool.sh, with progress on stderr), PF_GPU_WORK (work
 # directory, kept; default a fresh one under ${TMPDIR:-/tmp}, removed at the end).
 # Needs glslangValidator (glslang-tools), spirv-opt and spirv-dis (spirv-tools); exits 2 when
 # they are missing (make bench installs them through tests/deps.sh).
@@ -123,47 +124,9 @@ gen_unit() {
     if [ "$2" = textbook.h ]; then chain=pf_core.h; else chain=$(deps_rec "$2" | awk '!seen[$0]++'); fi
     for h in $chain; do cat "$INC/$h"; echo; done
     [ "$2" = textbook.h ] && { cat "$TB"; echo; }
-    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" > "$W/gen.out" || return 1
-    awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.out"
+    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" > "$W/gen.$1.$2.out" || return 1
+    awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.$1.$2.out"
 }
-
-UNITS="$HEADERS textbook.h"
-: > "$W/glsl.map"
-for u in $UNITS; do
-    m=${u%.h}
-    if gen_unit glsl "$u" > "$W/$m.glsl" 2> "$W/$m.gen.log"; then
-        sed -n 's/^float pfp_\(pf_[A-Za-z0-9_]*\)()$/\1/p' "$W/$m.glsl" | sed "s/\$/ $m/" >> "$W/glsl.map"
-    else
-        echo "count.sh: gen.awk failed on $u ($(head -n 1 "$W/$m.gen.log")); its functions are not counted" >&2
-    fi
-done
-glsl_fns=$(awk '{ print $1 }' "$W/glsl.map")
-
-if [ $# -gt 0 ]; then fns=$*
-else fns=$(echo "$glsl_fns" | grep -v '^pf_textbook_'; echo "$glsl_fns" | grep '^pf_textbook_'); fi
-
-# One shader per function: UNIT's source with a main that writes pfp_<f>() (and the copy
-# shader, main = out[0] = in[0]), compiled PF_GPU_JOBS at a time (default: nproc).
-write_comp() { # name unit body
-    { cat "$W/$2.glsl"; printf 'void main()\n{\n%s\n}\n' "$3"; } > "$W/$1.comp"
-}
-write_comp pfp_copy textbook '    pfp_out.v[0] = pfp_in.v[0];'
-comps="$W/pfp_copy.comp"
-for f in $fns; do
-    u=$(awk -v f="$f" '$1 == f { print $2; exit }' "$W/glsl.map")
-    [ -n "$u" ] || continue
-    write_comp "$f" "$u" "    pfp_out.v[0] = pfp_$f();"
-    comps="$comps $W/$f.comp"
-done
-jobs=${PF_GPU_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
-echo $comps | tr ' ' '\n' | xargs -P "$jobs" -n 4 sh "$ROOT/bench/gpu/count.sh" --spirv
-
-# The copy shader must count 0: otherwise the counting is wrong, and every number with it.
-copy=$(cat "$W/pfp_copy.count")
-if [ "$copy" != "0 0" ]; then
-    echo "count.sh: the copy shader counts '$copy', not '0 0': fix the counting" >&2
-    exit 1
-fi
 
 # ---------------------------------------------------------------- CUDA: per unit, one kernel per function
 # ptx = instructions of the kernel except ld/st/cvta/mov/ret/bra (parameter and buffer traffic;
@@ -194,34 +157,106 @@ sass_count() {
 }
 PTXAS=""
 [ -n "$NVCC" ] && { p=$(dirname "$(command -v "$NVCC")")/ptxas; [ -x "$p" ] && PTXAS=$p; }
+
+# cuda_unit UNIT: the unit's kernels (the requested functions it wraps, $W/fns.txt) compiled by
+# nvcc, counted into $W/<unit>.ptx.txt, .regs.txt, .sass.txt (run in parallel: --cuda-unit)
+cuda_unit() {
+    u=$1
+    m=${u%.h}
+    fns_flat=" $(cat "$W/fns.txt") "
+    gen_unit cuda "$u" > "$W/$m.cu" 2> /dev/null || return 0
+    # kernels only for the requested functions this unit wraps (+ the copy kernel once)
+    [ "$u" = textbook.h ] && echo 'extern "C" __global__ void pfk_pfp_copy(const pf_real *in, pf_real *out) { out[0] = in[0]; }' >> "$W/$m.cu"
+    nk=0
+    for f in $(sed -n 's/^__device__ pf_real pfp_\(pf_[A-Za-z0-9_]*\)(.*/\1/p' "$W/$m.cu"); do
+        case "$fns_flat" in *" $f "*) ;; *) continue ;; esac
+        printf 'extern "C" __global__ void pfk_%s(const pf_real *in, pf_real *out) { out[0] = pfp_%s(in); }\n' "$f" "$f" >> "$W/$m.cu"
+        nk=$((nk + 1))
+    done
+    [ $nk -gt 0 ] || [ "$u" = textbook.h ] || return 0
+    if "$NVCC" -O3 --use_fast_math -arch="$ARCH" -ptx -I"$INC" -o "$W/$m.ptx" "$W/$m.cu" > "$W/$m.nvcc.log" 2>&1; then
+        ptx_count "$W/$m.ptx" > "$W/$m.ptx.txt"
+        if [ -n "$PTXAS" ] && "$PTXAS" -O3 -arch="$ARCH" -v -o "$W/$m.cubin" "$W/$m.ptx" > "$W/$m.ptxas.log" 2>&1; then
+            awk '/Compiling entry function/ { k = $0; sub(/.*function .pfk_/, "", k); sub(/[^A-Za-z0-9_].*$/, "", k); cur = k }
+                 /Used [0-9]+ registers/ && cur != "" { for (i = 1; i <= NF; i++) if ($(i + 1) ~ /^registers/) print cur, $i; cur = "" }' \
+                "$W/$m.ptxas.log" > "$W/$m.regs.txt"
+            [ -n "$CUOBJDUMP" ] && "$CUOBJDUMP" -sass "$W/$m.cubin" 2> /dev/null | sass_count > "$W/$m.sass.txt"
+        fi
+    else
+        : > "$W/$m.nvcc.failed"
+    fi
+    return 0
+}
+if [ "${1:-}" = "--cuda-unit" ]; then
+    cuda_unit "$2"
+    exit 0
+fi
+
+UNITS="$HEADERS textbook.h"
+jobs=${PF_GPU_JOBS:-${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}}
+# the units' shader sources, PF_GPU_JOBS at a time (each in its own scratch file)
+if [ "${1:-}" = "--gen-unit" ]; then
+    m=${3%.h}
+    if gen_unit "$2" "$3" > "$W/$m.$2" 2> "$W/$m.gen.log"; then echo ok > "$W/$m.$2.status"
+    else echo fail > "$W/$m.$2.status"; fi
+    exit 0
+fi
+: > "$W/units.jobs"
+for u in $UNITS; do
+    echo "PF_GPU_WORK=$W sh $ROOT/bench/gpu/count.sh --gen-unit glsl $u" >> "$W/units.jobs"
+done
+PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: shader sources" "$W/units.jobs" || exit 2
+: > "$W/glsl.map"
+for u in $UNITS; do
+    m=${u%.h}
+    if [ "$(cat "$W/$m.glsl.status" 2>/dev/null)" = ok ]; then
+        sed -n 's/^float pfp_\(pf_[A-Za-z0-9_]*\)()$/\1/p' "$W/$m.glsl" | sed "s/\$/ $m/" >> "$W/glsl.map"
+    else
+        echo "count.sh: gen.awk failed on $u ($(head -n 1 "$W/$m.gen.log")); its functions are not counted" >&2
+    fi
+done
+glsl_fns=$(awk '{ print $1 }' "$W/glsl.map")
+
+if [ $# -gt 0 ]; then fns=$*
+else fns=$(echo "$glsl_fns" | grep -v '^pf_textbook_'; echo "$glsl_fns" | grep '^pf_textbook_'); fi
+
+# One shader per function: UNIT's source with a main that writes pfp_<f>() (and the copy
+# shader, main = out[0] = in[0]), compiled PF_GPU_JOBS at a time (default: nproc).
+write_comp() { # name unit body
+    { cat "$W/$2.glsl"; printf 'void main()\n{\n%s\n}\n' "$3"; } > "$W/$1.comp"
+}
+write_comp pfp_copy textbook '    pfp_out.v[0] = pfp_in.v[0];'
+comps="$W/pfp_copy.comp"
+for f in $fns; do
+    u=$(awk -v f="$f" '$1 == f { print $2; exit }' "$W/glsl.map")
+    [ -n "$u" ] || continue
+    write_comp "$f" "$u" "    pfp_out.v[0] = pfp_$f();"
+    comps="$comps $W/$f.comp"
+done
+for c in $comps; do echo "sh $ROOT/bench/gpu/count.sh --spirv $c"; done > "$W/spirv.jobs"
+PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: SPIR-V counts" "$W/spirv.jobs" || exit 2
+
+# The copy shader must count 0: otherwise the counting is wrong, and every number with it.
+copy=$(cat "$W/pfp_copy.count")
+if [ "$copy" != "0 0" ]; then
+    echo "count.sh: the copy shader counts '$copy', not '0 0': fix the counting" >&2
+    exit 1
+fi
+
 : > "$W/ptx.txt"; : > "$W/regs.txt"; : > "$W/sass.txt"
 ptx_ok=0
-fns_flat=$(echo $fns)
 if [ -n "$NVCC" ]; then
     ptx_ok=1
+    # one nvcc (+ ptxas, cuobjdump) per unit, PF_GPU_JOBS at a time; merged in unit order
+    echo $fns > "$W/fns.txt"
+    for u in $UNITS; do
+        echo "PF_GPU_WORK=$W PF_NVCC_ARCH=$ARCH NVCC=$NVCC sh $ROOT/bench/gpu/count.sh --cuda-unit $u"
+    done > "$W/cuda.jobs"
+    PFB_THREADS=$jobs sh "$ROOT/bench/pool.sh" "count.sh: CUDA (PTX) counts" "$W/cuda.jobs" || exit 2
     for u in $UNITS; do
         m=${u%.h}
-        gen_unit cuda "$u" > "$W/$m.cu" 2> /dev/null || continue
-        # kernels only for the requested functions this unit wraps (+ the copy kernel once)
-        [ "$u" = textbook.h ] && echo 'extern "C" __global__ void pfk_pfp_copy(const pf_real *in, pf_real *out) { out[0] = in[0]; }' >> "$W/$m.cu"
-        nk=0
-        for f in $(sed -n 's/^__device__ pf_real pfp_\(pf_[A-Za-z0-9_]*\)(.*/\1/p' "$W/$m.cu"); do
-            case " $fns_flat " in *" $f "*) ;; *) continue ;; esac
-            printf 'extern "C" __global__ void pfk_%s(const pf_real *in, pf_real *out) { out[0] = pfp_%s(in); }\n' "$f" "$f" >> "$W/$m.cu"
-            nk=$((nk + 1))
-        done
-        [ $nk -gt 0 ] || [ "$u" = textbook.h ] || continue
-        if "$NVCC" -O3 --use_fast_math -arch="$ARCH" -ptx -I"$INC" -o "$W/$m.ptx" "$W/$m.cu" > "$W/$m.nvcc.log" 2>&1; then
-            ptx_count "$W/$m.ptx" >> "$W/ptx.txt"
-            if [ -n "$PTXAS" ] && "$PTXAS" -O3 -arch="$ARCH" -v -o "$W/$m.cubin" "$W/$m.ptx" > "$W/$m.ptxas.log" 2>&1; then
-                awk '/Compiling entry function/ { k = $0; sub(/.*function .pfk_/, "", k); sub(/[^A-Za-z0-9_].*$/, "", k); cur = k }
-                     /Used [0-9]+ registers/ && cur != "" { for (i = 1; i <= NF; i++) if ($(i + 1) ~ /^registers/) print cur, $i; cur = "" }' \
-                    "$W/$m.ptxas.log" >> "$W/regs.txt"
-                [ -n "$CUOBJDUMP" ] && "$CUOBJDUMP" -sass "$W/$m.cubin" 2> /dev/null | sass_count >> "$W/sass.txt"
-            fi
-        else
-            echo "count.sh: nvcc failed on $u (log $W/$m.nvcc.log); its PTX counts are n/a" >&2
-        fi
+        for k in ptx regs sass; do [ -f "$W/$m.$k.txt" ] && cat "$W/$m.$k.txt" >> "$W/$k.txt"; done
+        [ -f "$W/$m.nvcc.failed" ] && echo "count.sh: nvcc failed on $u (log $W/$m.nvcc.log); its PTX counts are n/a" >&2
     done
     c=$(awk '$1 == "pfp_copy" { print $2 }' "$W/ptx.txt")
     [ "$c" = 0 ] || echo "count.sh: warning: the PTX copy kernel counts '${c:-nothing}', not 0" >&2

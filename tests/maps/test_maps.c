@@ -1,4 +1,4 @@
-/* test_maps.c - tests of tests/pf_maps.h, the loaders of the user's height and normal maps
+/* test_maps.c - tests of tests/reference/pf_maps.h, the loaders of the user's height and normal maps
    behind `make bench MAP=...` (issue 18).
 
    Built and run in every `make test` configuration like tests/test_*.c, but from tests/maps/

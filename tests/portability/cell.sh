@@ -23,7 +23,7 @@ mkdir -p "$out" || exit 2
 ncomp=0; nrun=0; passed=0; failed=0; ntol=0; bad=""; tol=""
 for src in tests/test_*.c; do
     t=$(basename "$src" .c)
-    if ! "$@" -DPF_TEST_CONFIG="\"$name\"" -Iinclude -Itests "$src" -o "$out/$t" -lm > "$out/$t.log" 2>&1; then
+    if ! "$@" -DPF_TEST_CONFIG="\"$name\"" -Iinclude -Itests -Itests/reference "$src" -o "$out/$t" -lm > "$out/$t.log" 2>&1; then
         bad="$bad $t(compile)"; continue
     fi
     ncomp=$((ncomp + 1))

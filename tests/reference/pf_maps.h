@@ -24,7 +24,7 @@
                     right, blue out of the image. The normals need not be unit (only the ratios
                     n.x/n.z, n.y/n.z are used); n.z below PFMAP_MIN_NZ is raised to it (slope
                     at most 1/PFMAP_MIN_NZ) and the count is reported.
-   THE SURFACE (pfm_surface, texel = 1 world unit, tests/pf_microsurface.h's conventions)
+   THE SURFACE (pfm_surface, texel = 1 world unit, tests/reference/pf_microsurface.h's conventions)
      Row y of the surface is image row h - 1 - y (y points up the image, x right, z out of
      it: a right-handed tangent frame, the OpenGL texture convention). The map is cropped to
      the largest power-of-two square that fits, centred (the march, the mip pyramids and the
