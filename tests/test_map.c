@@ -421,9 +421,10 @@ static void test_wrap_index(void)
    pf_slope_moments_map_from_heights (bit for bit: the same stencil, then
    pf_normal_avg_from_slope), wrap and clamp, and against the analytic normal of a sinusoid;
    bad arguments rejected with nothing written. */
+#define W 24
+#define H 16
 static void test_normals_from_heights(void)
 {
-    enum { W = 24, H = 16 };
     static pf_real hm[W * H], sl[W * H * 5], nr[W * H * 3 + 1];
     int i, j, b, bad = 0;
     long double worst = 0.0L;
@@ -463,6 +464,8 @@ static void test_normals_from_heights(void)
                      PF_ERR_SIZE && nr[0] == PF_R(-7.0),
              "bad arguments");
 }
+#undef W
+#undef H
 
 /* pf_map_downsample_slopes(desc): the positional solve bit for bit; zero fields read as the
    documented defaults (factor 2, reg_weight 0.01, max_iter 400, tol 1e-5), negative ones as 0 */
