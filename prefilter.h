@@ -18,15 +18,17 @@
    MODULES, in the order they appear (each after the modules it uses):
      pf_core.h - prefilter core: scalar type, linkage, math macros, erfc/erf, small vectors.
      pf_smith.h - Smith masking for Beckmann (Gaussian-slope) and GGX microsurfaces,
+     pf_moments.h - linear moments for pre-filtering: slope moments (LEAN/LEADR), scalar-map
      pf_beckmann.h - noncentered anisotropic Beckmann distribution from five linear slope
      pf_gaussgrid.h - deterministic slope sampling of a Gaussian (Beckmann) footprint: LEADR's
      pf_height.h - Gaussian height fields seen through Smith visibility: the visibility of a
-     pf_moments.h - linear moments for pre-filtering: slope moments (LEAN/LEADR), scalar-map
+     pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
      pf_horizon.h - horizon maps pre-filtered as horizon distribution functions (HDF): the
      pf_masks.h - sub-pixel occlusion masks: which part of a pixel (a cone element) a plane cover
      pf_shadow.h - pre-filterable shadow-map tests: Chebyshev (VSM), exponential (ESM),
      pf_toksvig.h - Toksvig's normal-variance estimate and the lobe widening it drives: filtered
      pf_vmf.h - footprint NDFs as mixtures of von Mises-Fisher lobes (Wu et al. 2019), their
+     pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
 
    LICENCE: MIT. */
 #ifndef PREFILTER_H
@@ -700,14 +702,6 @@ PF_CPU_DEF long long pf_size_mul3(long long a, long long b, long long c)
 /* 1 when n is a valid side: 1 <= n <= PF_MAX_SIDE. */
 PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE; }
 
-/* i modulo n in [0, n) for any i and n >= 1 (a wrapped texel index), without the overflow of
-   ((i % n) + n) % n near the ends of the range. */
-PF_CPU_DEF long long pfi_wrap_index(long long i, long long n)
-{
-    long long r = i % n;
-    return r < 0 ? r + n : r;
-}
-
 /* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
    pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
    float-to-integer conversion, which is undefined behaviour in C. */
@@ -1179,6 +1173,591 @@ PF_DEF pf_real pf_g2_beckmann(pf_real nu_o, pf_real nu_i)
 
 #endif /* PF_SMITH_H */
 
+/* ================================================================= include/pf_moments.h ====== */
+/* pf_moments.h - linear moments for pre-filtering: slope moments (LEAN/LEADR), scalar-map
+   moments, average normals (Toksvig), depth moments for shadow maps; their mip reductions,
+   mip pyramids and bilinear/trilinear sampling.
+
+   WHY MOMENTS. A shading function non-linear in a map's values is filtered exactly when it is
+   rewritten as a linear function of per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1,
+   eq. 40): averaging those over a footprint then averages the function. Raw moments are such
+   quantities: the moments of a union (a mixture) of footprints are the weighted averages of
+   their moments (sec. 7.2). So everything here is averaged with plain weighted sums (a box mip
+   reduction, a bilinear or trilinear sampler), and mean, variance and covariance are formed
+   only after filtering, in the shader:
+     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010;
+                     Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and sec. 4.1);
+     scalar moments  E[f], E[f^2] of a colour-driving or height map: the mean and variance of a
+                     Gaussian filtering distribution (Heitz et al. 2014 sec. 4.2);
+     average normal  E[n] of unit normals, unnormalized: its length shrinks as the normals
+                     spread, which is what Toksvig's variance reads (pf_toksvig.h);
+     depth moments   (z, z^2) for VSM, exp-warped moments for EVSM, (z .. z^4) for moment
+                     shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); ESM's
+                     E[exp(c z)] as its logarithm, reduced with log-sum-exp (never overflows).
+
+   USAGE (shader or CPU: the evaluators)
+     pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
+     pf_slope_moments m = pf_slope_moments_reduce2x2(t00, t10, t01, t11);   -- one mip texel
+     pf_slope_stats   s = pf_slope_moments_stats(m, base_var);               -- after filtering
+   The CPU side (pyramids of these texels from a map, their sampling, the border rule and
+   layout) is pf_map.h; this header is what a shader pastes, plus two CPU means of N texels.
+
+   FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
+     texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
+                     pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
+                     pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
+                     pf_csm_pair_make, _from_depth (convolution shadow maps);
+                     pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
+     slope moments   pf_slope_moments (struct), pf_slope_moments_make, _from_slope, _from_normal
+                     (their statistics and distribution: pf_beckmann.h)
+     linear algebra  pf_<T>_add, _scale for slope_moments, scalar, depth2, depth4, evsm,
+                     csm_pair (pf_vec3: pf_core.h)
+     reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
+                     T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
+                     evsm_moments, csm_pair, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
+                     pf_mip_next_size, pf_mip_weights3 (odd sizes)
+     ESM log space   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
+                     pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
+     height maps     pf_height_slope_central, _edge, pf_slope_moments_from_heights
+   FUNCTIONS (CPU only, linkage PF_CPU_DEF: they walk caller-owned buffers; compiled out under
+   PF_GLSL)
+     N texels        pf_moments_weighted_mean, pf_esm_log_weighted_mean
+
+   CONVENTIONS (docs/moments.md gives the reasons and the tests behind each)
+     Buffers. Texel (i, j) (column i, row j) of a map of C channels is pf_reals
+     [(j w + i) C ...+ C - 1], as an RGBA32F upload; struct members are channels in order
+     (slope ex, ey, exx, eyy, exy: 5; scalar, depth2: 2; depth4, evsm: 4; normal: 3; ESM: 1).
+     Pyramids, sampling, borders: pf_map.h (CONVENTIONS there).
+     Height maps. Texel (i, j) sits at ((i + 0.5) dx, (j + 0.5) dy), row j + 1 is +y; the slope
+     is height_scale * grad h (Dupuy et al. 2013 sec. 4.2) by pf_height_slope_central.
+     PF_BORDER_WRAP for tiling maps; PF_BORDER_CLAMP reads no texel outside the map and uses
+     pf_height_slope_edge on the first and last column and row (2 texels on an axis:
+     (h1 - h0)/d; 1 texel: slope 0).
+     Robustness. Weights are applied before summing (w a + w b, never w (a + b)), so values near
+     the largest float (EVSM's exp(2c) = 1.6e38 at c = 44) reduce to finite values. A NaN
+     texel makes NaN exactly the texels that average it with a nonzero weight; zero-weight
+     texels are never read. A level or sample of texels near +-PF_REAL_MAX that overflows
+     through the rounded weights is clamped to the range of its texels (not under -ffast-math).
+     Limits and errors (pf_core.h, "sizes and errors"). pf_moments_weighted_mean returns
+     PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; channels below 1; n below
+     0; a +inf weight) or PF_ERR_SIZE (a texel buffer above PF_MAX_REALS pf_reals);
+     pf_esm_log_weighted_mean returns -PF_REAL_MAX for those.
+
+   ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
+   timings). Reductions are sums of a few products: their moments equal the mixture moments
+   of their texels to a few ulps (tests/test_moments.c).
+
+   SOURCES
+     Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
+     (eq. 19, Toksvig), 5.2 (eqs. 34-38) and 7.2; Heitz et al. 2014 sec. 4.2; Donnelly &
+     Lauritzen 2006 (VSM); Salvi 2008 / Annen et al. 2008 (ESM); Lauritzen & McCool 2008
+     (EVSM); Peters & Klein 2015 (moment shadow maps). */
+#ifndef PF_MOMENTS_H
+#define PF_MOMENTS_H
+
+#ifndef PF_GLSL
+/* pf_core.h: above in this file */
+#endif
+
+/* ---------------------------------------------------------------- the five linear moments */
+/* Raw moments E[x], E[y], E[x^2], E[y^2], E[xy] of the micro-slopes (x, y) over a footprint
+   (Dupuy et al. 2013 eq. 9). They are linear in the footprint weights, so they are what a
+   mip pyramid and a texture sampler may average; everything else is derived from them after
+   filtering. A slope is (-n.x/n.z, -n.y/n.z) for a micro-normal n, which for a height field
+   z = h(x, y) is the gradient (dh/dx, dh/dy). */
+PF_STRUCT_BEGIN(pf_slope_moments)
+    pf_real ex;
+    pf_real ey;
+    pf_real exx;
+    pf_real eyy;
+    pf_real exy;
+PF_STRUCT_END(pf_slope_moments)
+
+PF_DEF pf_slope_moments pf_slope_moments_make(pf_real ex, pf_real ey, pf_real exx, pf_real eyy,
+                                              pf_real exy)
+{
+    pf_slope_moments m;
+    m.ex = ex;
+    m.ey = ey;
+    m.exx = exx;
+    m.eyy = eyy;
+    m.exy = exy;
+    return m;
+}
+
+/* The moments of a single slope (x, y): (x, y, x^2, y^2, xy). One texel of a LEAN/LEADR map. */
+PF_DEF pf_slope_moments pf_slope_moments_from_slope(pf_real x, pf_real y)
+{
+    return pf_slope_moments_make(x, y, x * x, y * y, x * y);
+}
+
+/* The moments of the slope of a normal n (n.z > 0; not normalized is fine): slope
+   (-n.x/n.z, -n.y/n.z). n.z <= 0 has no slope: it is clamped to the smallest positive
+   pf_real so the result stays finite (huge slopes) instead of inf or NaN. */
+PF_DEF pf_slope_moments pf_slope_moments_from_normal(pf_vec3 n)
+{
+    pf_real z = pf_max(n.z, PF_REAL_MIN);
+    return pf_slope_moments_from_slope(-n.x / z, -n.y / z);
+}
+
+/* a + b, componentwise (moments are linear). */
+PF_DEF pf_slope_moments pf_slope_moments_add(pf_slope_moments a, pf_slope_moments b)
+{
+    return pf_slope_moments_make(a.ex + b.ex, a.ey + b.ey, a.exx + b.exx, a.eyy + b.eyy,
+                                 a.exy + b.exy);
+}
+
+/* w * a, componentwise. */
+PF_DEF pf_slope_moments pf_slope_moments_scale(pf_slope_moments a, pf_real w)
+{
+    return pf_slope_moments_make(w * a.ex, w * a.ey, w * a.exx, w * a.eyy, w * a.exy);
+}
+
+
+/* ---------------------------------------------------------------- depth moments
+   Depths z are in [0, 1] (0 nearest the light); pf_shadow.h evaluates the filtered values. */
+
+/* Two moments (E[w], E[w^2]) of a depth or of a warped depth w: VSM stores w = z; EVSM-2
+   stores w = exp(c (2z - 1)). */
+PF_STRUCT_BEGIN(pf_depth_moments2)
+    pf_real m1, m2;
+PF_STRUCT_END(pf_depth_moments2)
+
+/* Four power moments of the reversed depth u = 1 - z: E[u], E[u^2], E[u^3], E[u^4] (moment
+   shadow maps, Peters & Klein 2015; reversed for fp32 precision near the far plane). */
+PF_STRUCT_BEGIN(pf_depth_moments4)
+    pf_real m1, m2, m3, m4;
+PF_STRUCT_END(pf_depth_moments4)
+
+/* EVSM-4 (Lauritzen & McCool 2008): with zs = 2z - 1 in [-1, 1], the moments of the positive
+   warp p = exp(c_pos zs) and of the negative warp n = -exp(-c_neg zs):
+   pos1 = E[p], pos2 = E[p^2], neg1 = E[n] (<= 0), neg2 = E[n^2]. */
+PF_STRUCT_BEGIN(pf_evsm_moments)
+    pf_real pos1, pos2, neg1, neg2;
+PF_STRUCT_END(pf_evsm_moments)
+
+/* Largest EVSM warp exponent c such that the second moment exp(2c) stays finite in the
+   storage format: fp32, exp(2c) <= FLT_MAX = 3.4e38 = exp(88.72) -> c <= 44.36 (44 kept);
+   fp16, exp(2c) <= 65504 = exp(11.09) -> c <= 5.545 (5.54 kept). */
+#define PF_EVSM_EXP_MAX_F32 PF_R(44.0)
+#define PF_EVSM_EXP_MAX_F16 PF_R(5.54)
+
+PF_DEF pf_depth_moments2 pf_depth_moments2_make(pf_real m1, pf_real m2)
+{ pf_depth_moments2 m; m.m1 = m1; m.m2 = m2; return m; }
+PF_DEF pf_depth_moments4 pf_depth_moments4_make(pf_real m1, pf_real m2, pf_real m3, pf_real m4)
+{ pf_depth_moments4 m; m.m1 = m1; m.m2 = m2; m.m3 = m3; m.m4 = m4; return m; }
+PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real neg1, pf_real neg2)
+{ pf_evsm_moments m; m.pos1 = pos1; m.pos2 = pos2; m.neg1 = neg1; m.neg2 = neg2; return m; }
+/* VSM texel: (z, z^2). */
+PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
+{ return pf_depth_moments2_make(z, z * z); }
+/* MSM texel: powers of the reversed depth u = 1 - z, (u, u^2, u^3, u^4): fp32 keeps them to
+   2^-24 relative near the far plane, where z-powers lose the differences MSM needs (issue 17;
+   pf_shadow.h's MSM section). */
+PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
+{ pf_real u = PF_R(1.0) - z, u2 = u * u; return pf_depth_moments4_make(u, u2, u2 * u, u2 * u2); }
+/* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
+   c <= PF_EVSM_EXP_MAX_F32 (or _F16 for 16-bit storage) so the squares stay finite. */
+PF_DEF pf_real pf_evsm_warp_pos(pf_real z, pf_real c)
+{ return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0))); }
+PF_DEF pf_real pf_evsm_warp_neg(pf_real z, pf_real c)
+{ return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0))); }
+/* EVSM-2 texel: moments of the positive warp only. */
+PF_DEF pf_depth_moments2 pf_evsm2_from_depth(pf_real z, pf_real c_pos)
+{ pf_real p = pf_evsm_warp_pos(z, c_pos); return pf_depth_moments2_make(p, p * p); }
+/* EVSM-4 texel: moments of both warps. */
+PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_real c_neg)
+{
+    pf_real p = pf_evsm_warp_pos(z, c_pos), n = pf_evsm_warp_neg(z, c_neg);
+    return pf_evsm_moments_make(p, p * p, n, n * n);
+}
+
+/* ESM texel in log space: log(exp(c z)) = c z (see "ESM in log space" below). */
+PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c) { return c * z; }
+/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow: m + log(w0 exp(l0 - m) +
+   w1 exp(l1 - m)) with m the larger log among those of positive weight, so the sum holds a
+   term w exp(0) and cannot underflow to log(0) (a zero weight on the larger log gives the
+   other log + log(its weight)). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log of an empty
+   sum kept finite; a NaN log propagates. */
+PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
+{
+    pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
+    pf_real s = (w0 > PF_R(0.0) ? w0 * PF_EXP(l0 - m) : PF_R(0.0))
+              + (w1 > PF_R(0.0) ? w1 * PF_EXP(l1 - m) : PF_R(0.0));
+    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
+}
+
+/* a + b and w a, componentwise (the moments are linear). */
+PF_DEF pf_depth_moments2 pf_depth_moments2_add(pf_depth_moments2 a, pf_depth_moments2 b)
+{ return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2); }
+PF_DEF pf_depth_moments2 pf_depth_moments2_scale(pf_depth_moments2 a, pf_real w)
+{ return pf_depth_moments2_make(w * a.m1, w * a.m2); }
+PF_DEF pf_depth_moments4 pf_depth_moments4_add(pf_depth_moments4 a, pf_depth_moments4 b)
+{ return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4); }
+PF_DEF pf_depth_moments4 pf_depth_moments4_scale(pf_depth_moments4 a, pf_real w)
+{ return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4); }
+PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
+{ return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2); }
+PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
+{ return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
+
+/* ---- convolution shadow maps (CSM; Annen et al. 2007, Bruneton & Neyret 2012 eqs. 36-37)
+   The Fourier basis of the depth test (pf_shadow.h, CSM section): harmonic k = 1..M of depth
+   z is the pair (cos(c_k z), sin(c_k z)), c_k = (2k - 1) pi. A texel of M harmonics holds 2M
+   values (the constant term of the series is implicit: its filtered value is the sum of the
+   filter's weights, 1); they are stored two harmonics per pf_csm_pair, one RGBA texel:
+   pair j holds harmonics 2j + 1 and 2j + 2. Every value is in [-1, 1] and linear in the
+   depth distribution, so any filter averages it. */
+PF_STRUCT_BEGIN(pf_csm_pair)
+    pf_real cos_a, sin_a, cos_b, sin_b;
+PF_STRUCT_END(pf_csm_pair)
+
+PF_DEF pf_csm_pair pf_csm_pair_make(pf_real cos_a, pf_real sin_a, pf_real cos_b, pf_real sin_b)
+{ pf_csm_pair m; m.cos_a = cos_a; m.sin_a = sin_a; m.cos_b = cos_b; m.sin_b = sin_b; return m; }
+/* Pair j (0-based) of depth z: frequencies (4j + 1) pi and (4j + 3) pi (j < 0 reads as 0). */
+PF_DEF pf_csm_pair pf_csm_pair_from_depth(pf_real z, int pair)
+{
+    pf_real fa = PF_R(4.0) * PF_R(pair < 0 ? 0 : pair) + PF_R(1.0);
+    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PFI_SINPI: pf_core.h) */
+    return pf_csm_pair_make(PFI_COSPI(pa), PFI_SINPI(pa), PFI_COSPI(pb), PFI_SINPI(pb));
+}
+PF_DEF pf_csm_pair pf_csm_pair_add(pf_csm_pair a, pf_csm_pair b)
+{ return pf_csm_pair_make(a.cos_a + b.cos_a, a.sin_a + b.sin_a, a.cos_b + b.cos_b, a.sin_b + b.sin_b); }
+PF_DEF pf_csm_pair pf_csm_pair_scale(pf_csm_pair a, pf_real w)
+{ return pf_csm_pair_make(w * a.cos_a, w * a.sin_a, w * a.cos_b, w * a.sin_b); }
+
+/* ---------------------------------------------------------------- scalar-map moments
+   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After filtering
+   f is a Gaussian of mean E[f] and variance E[f^2] - E[f]^2 over the footprint, convolved with
+   the colour map (Heitz et al. 2014 sec. 4.2, eq. 9, whose "f^2 bar - f bar" means that). */
+PF_STRUCT_BEGIN(pf_scalar_moments)
+    pf_real m1, m2;
+PF_STRUCT_END(pf_scalar_moments)
+
+PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
+{ pf_scalar_moments m; m.m1 = m1; m.m2 = m2; return m; }
+/* One texel: (f, f^2). */
+PF_DEF pf_scalar_moments pf_scalar_moments_from_value(pf_real f)
+{ return pf_scalar_moments_make(f, f * f); }
+PF_DEF pf_scalar_moments pf_scalar_moments_add(pf_scalar_moments a, pf_scalar_moments b)
+{ return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2); }
+PF_DEF pf_scalar_moments pf_scalar_moments_scale(pf_scalar_moments a, pf_real w)
+{ return pf_scalar_moments_make(w * a.m1, w * a.m2); }
+PF_DEF pf_real pf_scalar_moments_mean(pf_scalar_moments m) { return m.m1; }
+/* Variance E[f^2] - E[f]^2, clamped at 0: rounding in the filtered moments (and 16-bit
+   storage) can make it slightly negative where the map is flat. NaN gives 0. */
+PF_DEF pf_real pf_scalar_moments_variance(pf_scalar_moments m)
+{ return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0)); }
+PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
+{ return PF_SQRT(pf_scalar_moments_variance(m)); }
+
+/* ---------------------------------------------------------------- average normals
+   A texel of a normal map is a unit normal; the pyramid averages them without renormalizing,
+   so a coarse texel holds E[n], whose length |E[n]| <= 1 measures how much the normals below
+   it disagree (Toksvig 2005; pf_toksvig.h turns it into a variance). Type: pf_vec3. */
+
+/* The texel of a normal n: n normalized (the zero vector gives (0, 0, 1), see
+   pf_vec3_normalize). */
+PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n) { return pf_vec3_normalize(n); }
+/* The texel of a slope (x, y): the unit normal (-x, -y, 1)/sqrt(1 + x^2 + y^2)
+   (Dupuy et al. 2013 sec. 4.1 slope convention). */
+PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
+{ return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0))); }
+
+/* ---------------------------------------------------------------- mip geometry */
+/* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
+PF_DEF int pf_mip_next_size(int n) { return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0); }
+/* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
+   texels is reduced to pf_mip_next_size(n_src), the polyphase box (each destination texel
+   covers exactly n_src / n_dst source texels; docs/moments.md, Odd sizes):
+     n_src even (1/2, 1/2, 0); n_src = 2k + 1 (k - j, k, j + 1) / (2k + 1); n_src = 1 (1, 0, 0)
+   Separable in 2D: reduce3x3 in a corner where both sizes are odd, reduce3 on an odd edge.
+   The weights sum to 1; a zero weight means "do not read that texel" (it may be outside the
+   map). j is clamped to [0, n_dst - 1]; n_src < 1 gives (0, 0, 0). */
+PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
+{
+    int k = n_src / 2;
+    int jc = j < 0 ? 0 : (j > k - 1 ? k - 1 : j);
+    pf_real n = PF_R(n_src);
+    if (n_src < 1) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    if (n_src == 1) return pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0));
+    if (n_src - 2 * k == 0) return pf_vec3_make(PF_R(0.5), PF_R(0.5), PF_R(0.0));
+    return pf_vec3_make(PF_R(k - jc) / n, PF_R(k) / n, PF_R(jc + 1) / n);
+}
+
+/* ---------------------------------------------------------------- reductions
+   PFI_MOM_STAMP(T, F, BOX) defines the six reductions of a moment type T (which has T_add and
+   T_scale) with function prefix F (BOX: the reduce2x2 body):
+     T F_reduce2x2(T a, T b, T c, T d)      the even-size mip texel: a/4 + b/4 + c/4 + d/4
+     T F_reduce3(T a, T b, T c, pf_vec3 w)  3 texels, w.x a + w.y b + w.z c (an odd edge;
+                                            w from pf_mip_weights3)
+     T F_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,
+                   pf_vec3 wx, pf_vec3 wy)  9 texels (an odd corner), t<col><row>: reduce3 by
+                                            wy of the three rows' reduce3 by wx
+     T F_accumulate(T acc, T t, pf_real w)  acc + w t: N texels one at a time (then scale by
+                                            1/sum(w))
+     T F_lerp(T a, T b, pf_real t)          (1 - t) a + t b
+     T F_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)
+                                            lerp by fy of the rows' lerps by fx (a sampler)
+   One body per operation, so every type computes the same sums in the same order and a fix
+   lands once; weights are applied to each texel before summing (T_add(a, T_scale(b, w)), see
+   CONVENTIONS). GLSL's preprocessor pastes ## like C's, so this pastes into shaders.
+   tests/portability/gen.awk expands the stamps, so the portability checks call and the fuzz
+   coverage check (tests/fuzz/coverage.sh) lists every generated function. */
+#define PFI_MOM_BOX(V)                                                                         \
+    { return V##_add(V##_add(V##_add(V##_scale(a, PF_R(0.25)), V##_scale(b, PF_R(0.25))),       \
+                             V##_scale(c, PF_R(0.25))), V##_scale(d, PF_R(0.25))); }
+#define PFI_MOM_STAMP(T, F, BOX)                                                               \
+    PF_DEF T F##_lerp(T a, T b, pf_real t)                                                     \
+    { return T##_add(T##_scale(a, PF_R(1.0) - t), T##_scale(b, t)); }                          \
+    PF_DEF T F##_reduce2x2(T a, T b, T c, T d) BOX(T)                                          \
+    PF_DEF T F##_reduce3(T a, T b, T c, pf_vec3 w)                                             \
+    { return T##_add(T##_add(T##_scale(a, w.x), T##_scale(b, w.y)), T##_scale(c, w.z)); }      \
+    PF_DEF T F##_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,      \
+                           pf_vec3 wx, pf_vec3 wy)                                             \
+    { return F##_reduce3(F##_reduce3(t00, t10, t20, wx), F##_reduce3(t01, t11, t21, wx),       \
+                         F##_reduce3(t02, t12, t22, wx), wy); }                                \
+    PF_DEF T F##_accumulate(T acc, T t, pf_real w) { return T##_add(acc, T##_scale(t, w)); }   \
+    PF_DEF T F##_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)                  \
+    { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
+
+PFI_MOM_STAMP(pf_slope_moments, pf_slope_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_scalar_moments, pf_scalar_moments, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments2, pf_depth_moments2, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_depth_moments4, pf_depth_moments4, PFI_MOM_BOX)
+PFI_MOM_STAMP(pf_vec3, pf_normal_avg, PFI_MOM_BOX)
+
+/* EVSM-4's 2x2 box is midpoints of midpoints, a + (b - a)/2: with one constant weight q,
+   -ffast-math (and GPU compilers, which reassociate freely) factor q a + q b + q c + q d into
+   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the float
+   sum (the sweep found 14 inf per 10^6 under gcc -ffast-math); no compiler distributes the
+   half over b - a, so this stays finite in every build. |b - a| <= max(|a|, |b|) because
+   every member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0). Error <= 2
+   ulp (tests/test_moments.c); two operations more per member than the weighted sum. */
+PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b) { return a + PF_R(0.5) * (b - a); }
+PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_moments b)
+{
+    return pf_evsm_moments_make(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(a.pos2, b.pos2),
+                                pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(a.neg2, b.neg2));
+}
+#define PFI_MOM_MIDPOINTS(V)                                                                   \
+    { return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d)); }
+PFI_MOM_STAMP(pf_evsm_moments, pf_evsm_moments, PFI_MOM_MIDPOINTS)
+PFI_MOM_STAMP(pf_csm_pair, pf_csm_pair, PFI_MOM_BOX) /* CSM: values in [-1, 1], no overflow */
+
+/* ---------------------------------------------------------------- ESM in log space
+   An ESM texel stores l = c z, not exp(c z) (which overflows float for c z > 88.7). A reduction
+   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)), m the largest l of
+   positive weight: every exponential is <= 1, the sum is in (0, sum w], the result finite for
+   any finite l and c. Zero-weight texels are skipped. l - m is floored at -80 (exp(-80) is
+   below the rounding of a sum that holds a 1), which keeps every exponential normal (libm's
+   underflow path and subnormals are slow). */
+#define PF_LSE_ARG_MIN PF_R(-80.0)
+
+/* d floored at PF_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
+PF_DEF pf_real pf_lse_arg(pf_real d) { return d < PF_LSE_ARG_MIN ? PF_LSE_ARG_MIN : d; }
+/* log of the mean of exp(l) over 4 texels (the 2x2 box). */
+PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
+{
+    pf_real m = pf_max(pf_max(l0, l1), pf_max(l2, l3));
+    pf_real s = PF_R(0.25) * PF_EXP(pf_lse_arg(l0 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l1 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l2 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l3 - m));
+    return m + PF_LOG(s);
+}
+
+/* log(w.x exp(l0) + w.y exp(l1) + w.z exp(l2)), weights >= 0. All weights <= 0 (or NaN):
+   -PF_REAL_MAX (the log of an empty sum, kept finite). */
+PF_DEF pf_real pf_esm_log_reduce3(pf_real l0, pf_real l1, pf_real l2, pf_vec3 w)
+{
+    pf_real m = -PF_REAL_MAX;
+    pf_real s;
+    if (w.x > PF_R(0.0) && l0 > m) m = l0;
+    if (w.y > PF_R(0.0) && l1 > m) m = l1;
+    if (w.z > PF_R(0.0) && l2 > m) m = l2;
+    s = (w.x > PF_R(0.0) ? w.x * PF_EXP(pf_lse_arg(l0 - m)) : PF_R(0.0))
+      + (w.y > PF_R(0.0) ? w.y * PF_EXP(pf_lse_arg(l1 - m)) : PF_R(0.0))
+      + (w.z > PF_R(0.0) ? w.z * PF_EXP(pf_lse_arg(l2 - m)) : PF_R(0.0));
+    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
+}
+
+/* 9 texels, separable weights (wx along rows, wy across rows; t<col><row>). */
+PF_DEF pf_real pf_esm_log_reduce3x3(pf_real t00, pf_real t10, pf_real t20, pf_real t01,
+                                    pf_real t11, pf_real t21, pf_real t02, pf_real t12,
+                                    pf_real t22, pf_vec3 wx, pf_vec3 wy)
+{
+    pf_real r0 = wy.x > PF_R(0.0) ? pf_esm_log_reduce3(t00, t10, t20, wx) : PF_R(0.0);
+    pf_real r1 = wy.y > PF_R(0.0) ? pf_esm_log_reduce3(t01, t11, t21, wx) : PF_R(0.0);
+    pf_real r2 = wy.z > PF_R(0.0) ? pf_esm_log_reduce3(t02, t12, t22, wx) : PF_R(0.0);
+    return pf_esm_log_reduce3(r0, r1, r2, wy);
+}
+
+/* What a bilinear sampler returns for an ESM map, in log space:
+   log((1-fx)(1-fy) e^t00 + fx (1-fy) e^t10 + (1-fx) fy e^t01 + fx fy e^t11). */
+PF_DEF pf_real pf_esm_log_bilinear(pf_real t00, pf_real t10, pf_real t01, pf_real t11,
+                                   pf_real fx, pf_real fy)
+{
+    pf_real gx = PF_R(1.0) - fx, gy = PF_R(1.0) - fy;
+    pf_real r0 = pf_esm_log_reduce3(t00, t10, t10, pf_vec3_make(gx, fx, PF_R(0.0)));
+    pf_real r1 = pf_esm_log_reduce3(t01, t11, t11, pf_vec3_make(gx, fx, PF_R(0.0)));
+    return pf_esm_log_reduce3(r0, r1, r1, pf_vec3_make(gy, fy, PF_R(0.0)));
+}
+
+/* Streaming log-sum-exp over N texels: lmax is the largest log seen, sum = sum_i w_i
+   exp(l_i - lmax), weight = sum_i w_i. Start from PF_ESM_LOG_SUM_EMPTY (or
+   pf_esm_log_sum_first), add texels with pf_esm_log_sum_add, read log(sum w e^l / sum w) with
+   pf_esm_log_sum_mean. */
+PF_STRUCT_BEGIN(pf_esm_log_sum)
+    pf_real lmax, sum, weight;
+PF_STRUCT_END(pf_esm_log_sum)
+
+PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
+{ pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
+/* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
+   in the portability generator). */
+#define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
+
+/* The sum of one texel l of weight w > 0 (a start without the empty state). */
+PF_DEF pf_esm_log_sum pf_esm_log_sum_first(pf_real l, pf_real w)
+{ return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY; }
+/* Adds texel l with weight w (w <= 0 or NaN: skipped). When l is a new maximum the running
+   sum is rescaled by exp(old max - l) <= 1, so nothing grows beyond sum(w). */
+PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
+{
+    if (!(w > PF_R(0.0))) return a;
+    if (l > a.lmax) {
+        a.sum = a.sum * PF_EXP(pf_lse_arg(a.lmax - l)) + w;
+        a.lmax = l;
+    } else {
+        a.sum = a.sum + w * PF_EXP(pf_lse_arg(l - a.lmax));
+    }
+    a.weight = a.weight + w;
+    return a;
+}
+
+/* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
+/* A subnormal sum / weight (flushed to 0 on GPUs and under -ffast-math) takes the logs apart. */
+PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
+{
+    pf_real r = a.sum / a.weight;
+    if (!(a.weight > PF_R(0.0))) return -PF_REAL_MAX;
+    return r >= PF_REAL_MIN ? a.lmax + PF_LOG(r) : a.lmax + (PF_LOG(a.sum) - PF_LOG(a.weight));
+}
+
+/* ---------------------------------------------------------------- slopes from a height map */
+/* Central difference (h_plus - h_minus) / (2 d), d the texel spacing: second order, error
+   (d^2/6) h''' + O(d^4). */
+PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
+{ return (h_plus - h_minus) / (PF_R(2.0) * spacing); }
+/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''),
+   the clamped border's stencil. For the far border pass the texels in reverse order and
+   negate. */
+PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
+{ return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing); }
+/* Slope moments of an interior texel of a height map from its four neighbours (left, right,
+   below, above) by central differences: slope = height_scale * (dh/dx, dh/dy)
+   (Dupuy et al. 2013 sec. 4.2; height scaling multiplies slopes by the scale and the
+   second moments by its square). texel_size_x/y: texel spacing in surface units. */
+PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp, pf_real h_ym,
+                                                      pf_real h_yp, pf_real texel_size_x,
+                                                      pf_real texel_size_y, pf_real height_scale)
+{
+    pf_real sx = height_scale * pf_height_slope_central(h_xm, h_xp, texel_size_x);
+    pf_real sy = height_scale * pf_height_slope_central(h_ym, h_yp, texel_size_y);
+    return pf_slope_moments_from_slope(sx, sy);
+}
+
+/* ================================================================ CPU only
+   Host code that walks caller-owned buffers and allocates nothing (linkage PF_CPU_DEF,
+   pf_core.h). Errors as in CONVENTIONS (Limits and errors) plus what each comment adds. */
+#ifndef PF_GLSL
+
+
+
+/* ---------------------------------------------------------------- N texels
+   Both weighted means skip texels of weight <= 0 (or NaN) without reading them, and divide the
+   weights by a divisor d first, so any finite weights work, under -ffast-math too (two weights
+   of PF_REAL_MAX give the plain mean): d = wmax 2^-32 (exact) for a largest weight wmax > 1,
+   else wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math
+   turns w / wmax into w * (1/wmax) with subnormals flushed to 0; 1/d >= 2^-96 is normal. */
+PF_CPU_DEF pf_real pfi_weight_divisor(const pf_real *weights, int n)
+{
+    pf_real m = PF_R(0.0);
+    int i;
+    for (i = 0; i < n; ++i)
+        if (weights[i] > m) m = weights[i];
+    return m > PF_R(1.0) ? m * PF_R(2.3283064365386963e-10) : m; /* 2^-32; +inf stays +inf */
+}
+
+/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
+   (texels: n C pf_reals, weights: n, out: C). No positive weight (n = 0 too): out is zeroed,
+   PF_OK. PF_ERR_SIZE when n C > PF_MAX_REALS. */
+PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
+                                        int n, pf_real *out)
+{
+    pf_real wsum = PF_R(0.0), d;
+    int i, k;
+    if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
+    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
+    d = pfi_weight_divisor(weights, n);
+    if (!(d <= PF_REAL_MAX)) return PF_ERR_ARG;
+    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
+    if (!(d > PF_R(0.0))) return PF_OK;
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
+    for (i = 0; i < n; ++i) {
+        /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
+           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
+        volatile pf_real wd = weights[i] / d;
+        pf_real w = wd / wsum;
+        if (!(weights[i] > PF_R(0.0))) continue;
+        for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
+    }
+    return PF_OK;
+}
+
+/* log(w / wmax) from wd = w / d and wmaxd = wmax / d (both <= 2^32): a ratio of two normal
+   numbers, with no reciprocal of a huge weight (volatile: -ffast-math would fold the two
+   divisions into one by wmax); a subnormal share (flushed to 0 on FTZ) as log(wd) -
+   log(wmaxd); -PF_REAL_MAX (counted as 0) when wd itself is below PF_REAL_MIN. */
+PF_CPU_DEF pf_real pfi_log_weight_share(pf_real w, pf_real d, pf_real wmaxd)
+{
+    volatile pf_real wd = w / d;
+    pf_real r = wd / wmaxd;
+    if (r >= PF_REAL_MIN) return PF_LOG(r);
+    return wd >= PF_REAL_MIN ? PF_LOG(wd) - PF_LOG(wmaxd) : -PF_REAL_MAX;
+}
+/* log(sum_i w_i exp(l_i) / sum_i w_i) (ESM, log space) over n texels, its log-sum-exp anchored
+   at the largest l_i + log(w_i / wmax), not the largest l_i: a texel with the largest log and a
+   tiny share of the weight would leave the others at the exp(-80) floor (wrong by e^8 over a
+   float ESM map's log range) and make sum / weight subnormal. The anchor term is 1, so the
+   floor costs at most n e^-80. Two logs, two exps per texel (pf_esm_log_sum_* streams more
+   cheaply). -PF_REAL_MAX when no weight is positive (n = 0 too) and for bad arguments (a NULL,
+   n < 0, a +inf weight). */
+PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
+{
+    pf_real d, wmaxd = PF_R(0.0), m = -PF_REAL_MAX, s = PF_R(0.0), ws = PF_R(0.0), lw;
+    int i;
+    if (!logs || !weights || n < 0) return -PF_REAL_MAX;
+    d = pfi_weight_divisor(weights, n);
+    if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i) wmaxd = pf_max(weights[i] / d, wmaxd); /* 2^32 or 1; NaN skipped */
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX)
+            m = pf_max(logs[i] + lw, m);
+    if (!(m > -PF_REAL_MAX)) return -PF_REAL_MAX;
+    for (i = 0; i < n; ++i)
+        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX) {
+            s += PF_EXP(pf_lse_arg(logs[i] + lw - m));
+            ws += PF_EXP(pf_lse_arg(lw));
+        }
+    return m + PF_LOG(s / ws); /* s, ws in [1, n] */
+}
+#endif /* !PF_GLSL */
+
+#endif /* PF_MOMENTS_H */
+
 /* ================================================================= include/pf_beckmann.h ====== */
 /* pf_beckmann.h - noncentered anisotropic Beckmann distribution from five linear slope
    moments, and the LEADR specular BRDF (Dupuy et al. 2013).
@@ -1238,61 +1817,8 @@ PF_DEF pf_real pf_g2_beckmann(pf_real nu_o, pf_real nu_i)
 
 #ifndef PF_GLSL
 /* pf_smith.h: above in this file */
+/* pf_moments.h: above in this file */
 #endif
-
-/* ---------------------------------------------------------------- the five linear moments */
-/* Raw moments E[x], E[y], E[x^2], E[y^2], E[xy] of the micro-slopes (x, y) over a footprint
-   (Dupuy et al. 2013 eq. 9). They are linear in the footprint weights, so they are what a
-   mip pyramid and a texture sampler may average; everything else is derived from them after
-   filtering. A slope is (-n.x/n.z, -n.y/n.z) for a micro-normal n, which for a height field
-   z = h(x, y) is the gradient (dh/dx, dh/dy). */
-PF_STRUCT_BEGIN(pf_slope_moments)
-    pf_real ex;
-    pf_real ey;
-    pf_real exx;
-    pf_real eyy;
-    pf_real exy;
-PF_STRUCT_END(pf_slope_moments)
-
-PF_DEF pf_slope_moments pf_slope_moments_make(pf_real ex, pf_real ey, pf_real exx, pf_real eyy,
-                                              pf_real exy)
-{
-    pf_slope_moments m;
-    m.ex = ex;
-    m.ey = ey;
-    m.exx = exx;
-    m.eyy = eyy;
-    m.exy = exy;
-    return m;
-}
-
-/* The moments of a single slope (x, y): (x, y, x^2, y^2, xy). One texel of a LEAN/LEADR map. */
-PF_DEF pf_slope_moments pf_slope_moments_from_slope(pf_real x, pf_real y)
-{
-    return pf_slope_moments_make(x, y, x * x, y * y, x * y);
-}
-
-/* The moments of the slope of a normal n (n.z > 0; not normalized is fine): slope
-   (-n.x/n.z, -n.y/n.z). n.z <= 0 has no slope: it is clamped to the smallest positive
-   pf_real so the result stays finite (huge slopes) instead of inf or NaN. */
-PF_DEF pf_slope_moments pf_slope_moments_from_normal(pf_vec3 n)
-{
-    pf_real z = pf_max(n.z, PF_REAL_MIN);
-    return pf_slope_moments_from_slope(-n.x / z, -n.y / z);
-}
-
-/* a + b, componentwise (moments are linear). */
-PF_DEF pf_slope_moments pf_slope_moments_add(pf_slope_moments a, pf_slope_moments b)
-{
-    return pf_slope_moments_make(a.ex + b.ex, a.ey + b.ey, a.exx + b.exx, a.eyy + b.eyy,
-                                 a.exy + b.exy);
-}
-
-/* w * a, componentwise. */
-PF_DEF pf_slope_moments pf_slope_moments_scale(pf_slope_moments a, pf_real w)
-{
-    return pf_slope_moments_make(w * a.ex, w * a.ey, w * a.exx, w * a.eyy, w * a.exy);
-}
 
 /* The raw moments of a distribution with the given mean and covariance (inverse of eq. 9). */
 PF_DEF pf_slope_moments pf_slope_moments_from_stats(pf_slope_stats s)
@@ -3425,72 +3951,49 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
 
 #endif /* PF_HEIGHT_H */
 
-/* ================================================================= include/pf_moments.h ====== */
-/* pf_moments.h - linear moments for pre-filtering: slope moments (LEAN/LEADR), scalar-map
-   moments, average normals (Toksvig), depth moments for shadow maps; their mip reductions,
-   mip pyramids and bilinear/trilinear sampling.
+/* ================================================================= include/pf_map.h ====== */
+/* pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
+   height-field march of the library, the pyramids of linear moments (slope, scalar, depth,
+   normal), their bilinear/trilinear sampling, heights to slopes and to unit normals, and the
+   slope-preserving height downsampler. Every module that bakes a map (pf_moments.h's texels,
+   pf_vmf_fit.h's lobe pyramid and scaling function, pf_horizon.h's horizon maps) uses these,
+   so a map built by one module is laid out, bordered and differentiated like every other.
 
-   WHY MOMENTS. A shading function non-linear in a map's values is filtered exactly when it is
-   rewritten as a linear function of per-texel quantities (Bruneton & Neyret 2012 sec. 7.1.1,
-   eq. 40): averaging those over a footprint then averages the function. Raw moments are such
-   quantities: the moments of a union (a mixture) of footprints are the weighted averages of
-   their moments (sec. 7.2). So everything here is averaged with plain weighted sums (a box mip
-   reduction, a bilinear or trilinear sampler), and mean, variance and covariance are formed
-   only after filtering, in the shader:
-     slope moments   E[x], E[y], E[x^2], E[y^2], E[xy] of micro-slopes (Olano & Baker 2010;
-                     Bruneton & Neyret 2012 eq. 19; Dupuy et al. 2013 eq. 9 and sec. 4.1);
-     scalar moments  E[f], E[f^2] of a colour-driving or height map: the mean and variance of a
-                     Gaussian filtering distribution (Heitz et al. 2014 sec. 4.2);
-     average normal  E[n] of unit normals, unnormalized: its length shrinks as the normals
-                     spread, which is what Toksvig's variance reads (pf_toksvig.h);
-     depth moments   (z, z^2) for VSM, exp-warped moments for EVSM, (z .. z^4) for moment
-                     shadow maps (Bruneton & Neyret 2012 sec. 5.2, eqs. 34-38); ESM's
-                     E[exp(c z)] as its logarithm, reduced with log-sum-exp (never overflows).
+   CPU only: everything here walks caller-owned buffers and allocates nothing (linkage
+   PF_CPU_DEF, pf_core.h); the header is empty under PF_GLSL. A shader reads what these
+   functions bake with the evaluators of pf_moments.h (the texels) and its own sampler.
 
-   USAGE (shader or CPU: the evaluators)
-     pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
-     pf_slope_moments m = pf_slope_moments_reduce2x2(t00, t10, t01, t11);   -- one mip texel
-     pf_slope_stats   s = pf_slope_moments_stats(m, base_var);               -- after filtering
-   USAGE (CPU: a whole pyramid in one caller buffer, no allocation)
+   USAGE (a whole pyramid in one caller buffer, no allocation)
      long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
      pf_real *pyr = <n * 5 pf_reals from the caller>;
      if (pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr) != PF_OK) ...
      pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, PF_BORDER_WRAP);
 
-   FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
-     texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
-                     pf_depth_moments2/4_make, _from_depth; pf_evsm2_from_depth;
-                     pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
-                     pf_csm_pair_make, _from_depth (convolution shadow maps);
-                     pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
-     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm, csm_pair (slope moments:
-                     pf_beckmann.h; pf_vec3: pf_core.h)
-     reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
-                     T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
-                     evsm_moments, csm_pair, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
-                     pf_mip_next_size, pf_mip_weights3 (odd sizes)
-     ESM log space   pf_esm_log_reduce2x2, _reduce3, _reduce3x3, _bilinear;
-                     pf_esm_log_sum_make, _first, _add, _mean, PF_ESM_LOG_SUM_EMPTY
-     height maps     pf_height_slope_central, _edge, pf_slope_moments_from_heights
-   FUNCTIONS (CPU only, linkage PF_CPU_DEF: they walk caller-owned buffers; compiled out under
-   PF_GLSL)
+   FUNCTIONS
      layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
+     borders         PF_BORDER_CLAMP, PF_BORDER_WRAP, pf_map_wrap (a wrapped index)
+     heights         pf_map_slope_stencil (the height-map stencil), pf_map_height (wrapped
+                     read), pf_map_node_slope (wrapped central difference at one node),
+                     pf_map_normals_from_heights (unit normals of the same slopes),
+                     pf_map_visible (the height-field march), pf_map_downsample_slopes and
+                     pf_map_downsample_scratch_size (slope-preserving downsampling)
      building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
                      pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
                      pf_depth_moment_channels, pf_depth_pyramid_from_depths,
                      pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
-     N texels        pf_moments_weighted_mean, pf_esm_log_weighted_mean
      sampling        pf_mip_sample_bilinear, _trilinear, _bilinear_log, _trilinear_log;
-                     pf_<T>_sample for the six T above, pf_esm_log_sample
+                     pf_<T>_sample for T in slope_moments, scalar_moments, depth_moments2,
+                     depth_moments4, evsm_moments, normal_avg; pf_esm_log_sample
 
-   CONVENTIONS (docs/moments.md gives the reasons and the tests behind each)
+   CONVENTIONS (docs/map.md gives the reasons and the tests behind each)
      Buffers. Texel (i, j) (column i, row j) of a map of C channels is pf_reals
      [(j w + i) C ...+ C - 1], as an RGBA32F upload; struct members are channels in order
      (slope ex, ey, exx, eyy, exy: 5; scalar, depth2: 2; depth4, evsm: 4; normal: 3; ESM: 1).
      Pyramid. Level l+1 is pf_mip_next_size of each side of level l, down to 1 x 1; levels are
      stored one after the other from level 0, each row-major. Odd sizes reduce as a polyphase
      box (pf_mip_weights3): every texel of a level has the same footprint and every level's
-     mean is level 0's, so the 1 x 1 top is the global mean.
+     mean is level 0's, so the 1 x 1 top is the global mean. (For power-of-two sides this is
+     also the vMF lobe pyramid's layout, pf_vmf_fit.h.)
      Sampling: the GPU's. Texel i of n is centred at u = (i + 0.5)/n; PF_BORDER_CLAMP clamps any
      u (infinities too) to the edge texel, PF_BORDER_WRAP repeats with u - floor(u) in pf_real
      (a u too large to have a fraction wraps to 0); NaN, and infinities under WRAP, are 0.
@@ -3499,7 +4002,8 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
      is height_scale * grad h (Dupuy et al. 2013 sec. 4.2) by pf_height_slope_central.
      PF_BORDER_WRAP for tiling maps; PF_BORDER_CLAMP reads no texel outside the map and uses
      pf_height_slope_edge on the first and last column and row (2 texels on an axis:
-     (h1 - h0)/d; 1 texel: slope 0).
+     (h1 - h0)/d; 1 texel: slope 0). The unit normal of slope (sx, sy) is
+     (-sx, -sy, 1)/sqrt(1 + sx^2 + sy^2) (pf_normal_avg_from_slope).
      Robustness. Weights are applied before summing (w a + w b, never w (a + b)), so values near
      the largest float (EVSM's exp(2c) = 1.6e38 at c = 44) reduce to finite values. A NaN
      texel makes NaN exactly the texels that average it with a nonzero weight; zero-weight
@@ -3507,392 +4011,41 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
      through the rounded weights is clamped to the range of its texels (not under -ffast-math).
      Limits and errors (pf_core.h, "sizes and errors"). Every builder and sampler returns
      PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; w, h or channels below 1;
-     n below 0; a border other than PF_BORDER_CLAMP / _WRAP; an unknown PF_DEPTH_* kind; a +inf
-     weight) or PF_ERR_SIZE (w or h above PF_MAX_SIDE, 2^24 by default; a pyramid, map or texel
-     buffer above PF_MAX_REALS pf_reals, 2^40 on 64-bit hosts). On those errors the typed
-     samplers return zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX;
-     pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices are long long.
+     a border other than PF_BORDER_CLAMP / _WRAP; an unknown PF_DEPTH_* kind) or PF_ERR_SIZE
+     (w or h above PF_MAX_SIDE, 2^24 by default; a pyramid or map above PF_MAX_REALS pf_reals,
+     2^40 on 64-bit hosts). On those errors the typed samplers return zeros, pf_esm_log_sample
+     -PF_REAL_MAX; pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices
+     are long long.
 
-   ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
-   timings). Reductions and sampling are sums of a few products: their moments equal the
-   mixture moments of their texels to a few ulps (tests/test_moments.c). A pyramid is built
-   in one pass, each level reduced while the rows it needs are in cache: the 5-moment pyramid
-   of a 4096^2 float height map writes at over half of memcpy's bandwidth (docs/moments.md).
+   ACCURACY AND COST (measured; docs/map.md and docs/moments.md have the tables,
+   bench/bench_moments.c and bench/bench_vmf.c the timings). Reductions and sampling are sums
+   of a few products: their moments equal the mixture moments of their texels to a few ulps
+   (tests/test_map.c). A pyramid is built in one pass, each level reduced while the rows it
+   needs are in cache: the 5-moment pyramid of a 4096^2 float height map writes at over half
+   of memcpy's bandwidth.
 
    SOURCES
-     Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
-     (eq. 19, Toksvig), 5.2 (eqs. 34-38) and 7.2; Heitz et al. 2014 sec. 4.2; Donnelly &
-     Lauritzen 2006 (VSM); Salvi 2008 / Annen et al. 2008 (ESM); Lauritzen & McCool 2008
-     (EVSM); Peters & Klein 2015 (moment shadow maps). */
-#ifndef PF_MOMENTS_H
-#define PF_MOMENTS_H
+     Dupuy et al. 2013 (LEADR) sec. 4.1-4.2; Bruneton & Neyret 2012 sec. 7.2 (moments of a
+     union are weighted means); Wu, Zhao, Yan, Ramamoorthi 2019 sec. 4.1, eqs. 9-10 (the
+     slope-preserving downsampling) and eq. 7 (visibility of a height field). */
+#ifndef PF_MAP_H
+#define PF_MAP_H
 
 #ifndef PF_GLSL
-/* pf_beckmann.h: above in this file */
-#endif
-
-/* ---------------------------------------------------------------- depth moments
-   Depths z are in [0, 1] (0 nearest the light); pf_shadow.h evaluates the filtered values. */
-
-/* Two moments (E[w], E[w^2]) of a depth or of a warped depth w: VSM stores w = z; EVSM-2
-   stores w = exp(c (2z - 1)). */
-PF_STRUCT_BEGIN(pf_depth_moments2)
-    pf_real m1, m2;
-PF_STRUCT_END(pf_depth_moments2)
-
-/* Four power moments of the reversed depth u = 1 - z: E[u], E[u^2], E[u^3], E[u^4] (moment
-   shadow maps, Peters & Klein 2015; reversed for fp32 precision near the far plane). */
-PF_STRUCT_BEGIN(pf_depth_moments4)
-    pf_real m1, m2, m3, m4;
-PF_STRUCT_END(pf_depth_moments4)
-
-/* EVSM-4 (Lauritzen & McCool 2008): with zs = 2z - 1 in [-1, 1], the moments of the positive
-   warp p = exp(c_pos zs) and of the negative warp n = -exp(-c_neg zs):
-   pos1 = E[p], pos2 = E[p^2], neg1 = E[n] (<= 0), neg2 = E[n^2]. */
-PF_STRUCT_BEGIN(pf_evsm_moments)
-    pf_real pos1, pos2, neg1, neg2;
-PF_STRUCT_END(pf_evsm_moments)
-
-/* Largest EVSM warp exponent c such that the second moment exp(2c) stays finite in the
-   storage format: fp32, exp(2c) <= FLT_MAX = 3.4e38 = exp(88.72) -> c <= 44.36 (44 kept);
-   fp16, exp(2c) <= 65504 = exp(11.09) -> c <= 5.545 (5.54 kept). */
-#define PF_EVSM_EXP_MAX_F32 PF_R(44.0)
-#define PF_EVSM_EXP_MAX_F16 PF_R(5.54)
-
-PF_DEF pf_depth_moments2 pf_depth_moments2_make(pf_real m1, pf_real m2)
-{ pf_depth_moments2 m; m.m1 = m1; m.m2 = m2; return m; }
-PF_DEF pf_depth_moments4 pf_depth_moments4_make(pf_real m1, pf_real m2, pf_real m3, pf_real m4)
-{ pf_depth_moments4 m; m.m1 = m1; m.m2 = m2; m.m3 = m3; m.m4 = m4; return m; }
-PF_DEF pf_evsm_moments pf_evsm_moments_make(pf_real pos1, pf_real pos2, pf_real neg1, pf_real neg2)
-{ pf_evsm_moments m; m.pos1 = pos1; m.pos2 = pos2; m.neg1 = neg1; m.neg2 = neg2; return m; }
-/* VSM texel: (z, z^2). */
-PF_DEF pf_depth_moments2 pf_depth_moments2_from_depth(pf_real z)
-{ return pf_depth_moments2_make(z, z * z); }
-/* MSM texel: powers of the reversed depth u = 1 - z, (u, u^2, u^3, u^4): fp32 keeps them to
-   2^-24 relative near the far plane, where z-powers lose the differences MSM needs (issue 17;
-   pf_shadow.h's MSM section). */
-PF_DEF pf_depth_moments4 pf_depth_moments4_from_depth(pf_real z)
-{ pf_real u = PF_R(1.0) - z, u2 = u * u; return pf_depth_moments4_make(u, u2, u2 * u, u2 * u2); }
-/* EVSM warps of a depth z in [0, 1]: exp(c (2z - 1)) and -exp(-c (2z - 1)). The caller keeps
-   c <= PF_EVSM_EXP_MAX_F32 (or _F16 for 16-bit storage) so the squares stay finite. */
-PF_DEF pf_real pf_evsm_warp_pos(pf_real z, pf_real c)
-{ return PF_EXP(c * (PF_R(2.0) * z - PF_R(1.0))); }
-PF_DEF pf_real pf_evsm_warp_neg(pf_real z, pf_real c)
-{ return -PF_EXP(-c * (PF_R(2.0) * z - PF_R(1.0))); }
-/* EVSM-2 texel: moments of the positive warp only. */
-PF_DEF pf_depth_moments2 pf_evsm2_from_depth(pf_real z, pf_real c_pos)
-{ pf_real p = pf_evsm_warp_pos(z, c_pos); return pf_depth_moments2_make(p, p * p); }
-/* EVSM-4 texel: moments of both warps. */
-PF_DEF pf_evsm_moments pf_evsm_moments_from_depth(pf_real z, pf_real c_pos, pf_real c_neg)
-{
-    pf_real p = pf_evsm_warp_pos(z, c_pos), n = pf_evsm_warp_neg(z, c_neg);
-    return pf_evsm_moments_make(p, p * p, n, n * n);
-}
-
-/* ESM texel in log space: log(exp(c z)) = c z (see "ESM in log space" below). */
-PF_DEF pf_real pf_esm_log_from_depth(pf_real z, pf_real c) { return c * z; }
-/* log(w0 exp(l0) + w1 exp(l1)) for weights w >= 0, without overflow: m + log(w0 exp(l0 - m) +
-   w1 exp(l1 - m)) with m the larger log among those of positive weight, so the sum holds a
-   term w exp(0) and cannot underflow to log(0) (a zero weight on the larger log gives the
-   other log + log(its weight)). Both weights <= 0 (or NaN): -PF_REAL_MAX, the log of an empty
-   sum kept finite; a NaN log propagates. */
-PF_DEF pf_real pf_esm_log_combine2(pf_real l0, pf_real w0, pf_real l1, pf_real w1)
-{
-    pf_real m = w0 > PF_R(0.0) ? (w1 > PF_R(0.0) ? pf_max(l0, l1) : l0) : l1;
-    pf_real s = (w0 > PF_R(0.0) ? w0 * PF_EXP(l0 - m) : PF_R(0.0))
-              + (w1 > PF_R(0.0) ? w1 * PF_EXP(l1 - m) : PF_R(0.0));
-    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
-}
-
-/* a + b and w a, componentwise (the moments are linear). */
-PF_DEF pf_depth_moments2 pf_depth_moments2_add(pf_depth_moments2 a, pf_depth_moments2 b)
-{ return pf_depth_moments2_make(a.m1 + b.m1, a.m2 + b.m2); }
-PF_DEF pf_depth_moments2 pf_depth_moments2_scale(pf_depth_moments2 a, pf_real w)
-{ return pf_depth_moments2_make(w * a.m1, w * a.m2); }
-PF_DEF pf_depth_moments4 pf_depth_moments4_add(pf_depth_moments4 a, pf_depth_moments4 b)
-{ return pf_depth_moments4_make(a.m1 + b.m1, a.m2 + b.m2, a.m3 + b.m3, a.m4 + b.m4); }
-PF_DEF pf_depth_moments4 pf_depth_moments4_scale(pf_depth_moments4 a, pf_real w)
-{ return pf_depth_moments4_make(w * a.m1, w * a.m2, w * a.m3, w * a.m4); }
-PF_DEF pf_evsm_moments pf_evsm_moments_add(pf_evsm_moments a, pf_evsm_moments b)
-{ return pf_evsm_moments_make(a.pos1 + b.pos1, a.pos2 + b.pos2, a.neg1 + b.neg1, a.neg2 + b.neg2); }
-PF_DEF pf_evsm_moments pf_evsm_moments_scale(pf_evsm_moments a, pf_real w)
-{ return pf_evsm_moments_make(w * a.pos1, w * a.pos2, w * a.neg1, w * a.neg2); }
-
-/* ---- convolution shadow maps (CSM; Annen et al. 2007, Bruneton & Neyret 2012 eqs. 36-37)
-   The Fourier basis of the depth test (pf_shadow.h, CSM section): harmonic k = 1..M of depth
-   z is the pair (cos(c_k z), sin(c_k z)), c_k = (2k - 1) pi. A texel of M harmonics holds 2M
-   values (the constant term of the series is implicit: its filtered value is the sum of the
-   filter's weights, 1); they are stored two harmonics per pf_csm_pair, one RGBA texel:
-   pair j holds harmonics 2j + 1 and 2j + 2. Every value is in [-1, 1] and linear in the
-   depth distribution, so any filter averages it. */
-PF_STRUCT_BEGIN(pf_csm_pair)
-    pf_real cos_a, sin_a, cos_b, sin_b;
-PF_STRUCT_END(pf_csm_pair)
-
-PF_DEF pf_csm_pair pf_csm_pair_make(pf_real cos_a, pf_real sin_a, pf_real cos_b, pf_real sin_b)
-{ pf_csm_pair m; m.cos_a = cos_a; m.sin_a = sin_a; m.cos_b = cos_b; m.sin_b = sin_b; return m; }
-/* Pair j (0-based) of depth z: frequencies (4j + 1) pi and (4j + 3) pi (j < 0 reads as 0). */
-PF_DEF pf_csm_pair pf_csm_pair_from_depth(pf_real z, int pair)
-{
-    pf_real fa = PF_R(4.0) * PF_R(pair < 0 ? 0 : pair) + PF_R(1.0);
-    pf_real pa = fa * z, pb = (fa + PF_R(2.0)) * z; /* phases in units of pi (PFI_SINPI: pf_core.h) */
-    return pf_csm_pair_make(PFI_COSPI(pa), PFI_SINPI(pa), PFI_COSPI(pb), PFI_SINPI(pb));
-}
-PF_DEF pf_csm_pair pf_csm_pair_add(pf_csm_pair a, pf_csm_pair b)
-{ return pf_csm_pair_make(a.cos_a + b.cos_a, a.sin_a + b.sin_a, a.cos_b + b.cos_b, a.sin_b + b.sin_b); }
-PF_DEF pf_csm_pair pf_csm_pair_scale(pf_csm_pair a, pf_real w)
-{ return pf_csm_pair_make(w * a.cos_a, w * a.sin_a, w * a.cos_b, w * a.sin_b); }
-
-/* ---------------------------------------------------------------- scalar-map moments
-   E[f], E[f^2] of a scalar map f (a height, or the value driving a colour map). After filtering
-   f is a Gaussian of mean E[f] and variance E[f^2] - E[f]^2 over the footprint, convolved with
-   the colour map (Heitz et al. 2014 sec. 4.2, eq. 9, whose "f^2 bar - f bar" means that). */
-PF_STRUCT_BEGIN(pf_scalar_moments)
-    pf_real m1, m2;
-PF_STRUCT_END(pf_scalar_moments)
-
-PF_DEF pf_scalar_moments pf_scalar_moments_make(pf_real m1, pf_real m2)
-{ pf_scalar_moments m; m.m1 = m1; m.m2 = m2; return m; }
-/* One texel: (f, f^2). */
-PF_DEF pf_scalar_moments pf_scalar_moments_from_value(pf_real f)
-{ return pf_scalar_moments_make(f, f * f); }
-PF_DEF pf_scalar_moments pf_scalar_moments_add(pf_scalar_moments a, pf_scalar_moments b)
-{ return pf_scalar_moments_make(a.m1 + b.m1, a.m2 + b.m2); }
-PF_DEF pf_scalar_moments pf_scalar_moments_scale(pf_scalar_moments a, pf_real w)
-{ return pf_scalar_moments_make(w * a.m1, w * a.m2); }
-PF_DEF pf_real pf_scalar_moments_mean(pf_scalar_moments m) { return m.m1; }
-/* Variance E[f^2] - E[f]^2, clamped at 0: rounding in the filtered moments (and 16-bit
-   storage) can make it slightly negative where the map is flat. NaN gives 0. */
-PF_DEF pf_real pf_scalar_moments_variance(pf_scalar_moments m)
-{ return pf_max(m.m2 - m.m1 * m.m1, PF_R(0.0)); }
-PF_DEF pf_real pf_scalar_moments_deviation(pf_scalar_moments m)
-{ return PF_SQRT(pf_scalar_moments_variance(m)); }
-
-/* ---------------------------------------------------------------- average normals
-   A texel of a normal map is a unit normal; the pyramid averages them without renormalizing,
-   so a coarse texel holds E[n], whose length |E[n]| <= 1 measures how much the normals below
-   it disagree (Toksvig 2005; pf_toksvig.h turns it into a variance). Type: pf_vec3. */
-
-/* The texel of a normal n: n normalized (the zero vector gives (0, 0, 1), see
-   pf_vec3_normalize). */
-PF_DEF pf_vec3 pf_normal_avg_from_normal(pf_vec3 n) { return pf_vec3_normalize(n); }
-/* The texel of a slope (x, y): the unit normal (-x, -y, 1)/sqrt(1 + x^2 + y^2)
-   (Dupuy et al. 2013 sec. 4.1 slope convention). */
-PF_DEF pf_vec3 pf_normal_avg_from_slope(pf_real x, pf_real y)
-{ return pf_vec3_normalize(pf_vec3_make(-x, -y, PF_R(1.0))); }
-
-/* ---------------------------------------------------------------- mip geometry */
-/* Size of the next mip level along one axis: floor(n/2), never below 1 (0 for n < 1). */
-PF_DEF int pf_mip_next_size(int n) { return n >= 2 ? n / 2 : (n >= 1 ? 1 : 0); }
-/* Weights of source texels 2j, 2j+1, 2j+2 for destination texel j when an axis of n_src
-   texels is reduced to pf_mip_next_size(n_src), the polyphase box (each destination texel
-   covers exactly n_src / n_dst source texels; docs/moments.md, Odd sizes):
-     n_src even (1/2, 1/2, 0); n_src = 2k + 1 (k - j, k, j + 1) / (2k + 1); n_src = 1 (1, 0, 0)
-   Separable in 2D: reduce3x3 in a corner where both sizes are odd, reduce3 on an odd edge.
-   The weights sum to 1; a zero weight means "do not read that texel" (it may be outside the
-   map). j is clamped to [0, n_dst - 1]; n_src < 1 gives (0, 0, 0). */
-PF_DEF pf_vec3 pf_mip_weights3(int j, int n_src)
-{
-    int k = n_src / 2;
-    int jc = j < 0 ? 0 : (j > k - 1 ? k - 1 : j);
-    pf_real n = PF_R(n_src);
-    if (n_src < 1) return pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
-    if (n_src == 1) return pf_vec3_make(PF_R(1.0), PF_R(0.0), PF_R(0.0));
-    if (n_src - 2 * k == 0) return pf_vec3_make(PF_R(0.5), PF_R(0.5), PF_R(0.0));
-    return pf_vec3_make(PF_R(k - jc) / n, PF_R(k) / n, PF_R(jc + 1) / n);
-}
-
-/* ---------------------------------------------------------------- reductions
-   PFI_MOM_STAMP(T, F, BOX) defines the six reductions of a moment type T (which has T_add and
-   T_scale) with function prefix F (BOX: the reduce2x2 body):
-     T F_reduce2x2(T a, T b, T c, T d)      the even-size mip texel: a/4 + b/4 + c/4 + d/4
-     T F_reduce3(T a, T b, T c, pf_vec3 w)  3 texels, w.x a + w.y b + w.z c (an odd edge;
-                                            w from pf_mip_weights3)
-     T F_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,
-                   pf_vec3 wx, pf_vec3 wy)  9 texels (an odd corner), t<col><row>: reduce3 by
-                                            wy of the three rows' reduce3 by wx
-     T F_accumulate(T acc, T t, pf_real w)  acc + w t: N texels one at a time (then scale by
-                                            1/sum(w))
-     T F_lerp(T a, T b, pf_real t)          (1 - t) a + t b
-     T F_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)
-                                            lerp by fy of the rows' lerps by fx (a sampler)
-   One body per operation, so every type computes the same sums in the same order and a fix
-   lands once; weights are applied to each texel before summing (T_add(a, T_scale(b, w)), see
-   CONVENTIONS). GLSL's preprocessor pastes ## like C's, so this pastes into shaders.
-   tests/portability/gen.awk expands the stamps, so the portability checks call and the fuzz
-   coverage check (tests/fuzz/coverage.sh) lists every generated function. */
-#define PFI_MOM_BOX(V)                                                                         \
-    { return V##_add(V##_add(V##_add(V##_scale(a, PF_R(0.25)), V##_scale(b, PF_R(0.25))),       \
-                             V##_scale(c, PF_R(0.25))), V##_scale(d, PF_R(0.25))); }
-#define PFI_MOM_STAMP(T, F, BOX)                                                               \
-    PF_DEF T F##_lerp(T a, T b, pf_real t)                                                     \
-    { return T##_add(T##_scale(a, PF_R(1.0) - t), T##_scale(b, t)); }                          \
-    PF_DEF T F##_reduce2x2(T a, T b, T c, T d) BOX(T)                                          \
-    PF_DEF T F##_reduce3(T a, T b, T c, pf_vec3 w)                                             \
-    { return T##_add(T##_add(T##_scale(a, w.x), T##_scale(b, w.y)), T##_scale(c, w.z)); }      \
-    PF_DEF T F##_reduce3x3(T t00, T t10, T t20, T t01, T t11, T t21, T t02, T t12, T t22,      \
-                           pf_vec3 wx, pf_vec3 wy)                                             \
-    { return F##_reduce3(F##_reduce3(t00, t10, t20, wx), F##_reduce3(t01, t11, t21, wx),       \
-                         F##_reduce3(t02, t12, t22, wx), wy); }                                \
-    PF_DEF T F##_accumulate(T acc, T t, pf_real w) { return T##_add(acc, T##_scale(t, w)); }   \
-    PF_DEF T F##_bilinear(T t00, T t10, T t01, T t11, pf_real fx, pf_real fy)                  \
-    { return F##_lerp(F##_lerp(t00, t10, fx), F##_lerp(t01, t11, fx), fy); }
-
-PFI_MOM_STAMP(pf_slope_moments, pf_slope_moments, PFI_MOM_BOX)
-PFI_MOM_STAMP(pf_scalar_moments, pf_scalar_moments, PFI_MOM_BOX)
-PFI_MOM_STAMP(pf_depth_moments2, pf_depth_moments2, PFI_MOM_BOX)
-PFI_MOM_STAMP(pf_depth_moments4, pf_depth_moments4, PFI_MOM_BOX)
-PFI_MOM_STAMP(pf_vec3, pf_normal_avg, PFI_MOM_BOX)
-
-/* EVSM-4's 2x2 box is midpoints of midpoints, a + (b - a)/2: with one constant weight q,
-   -ffast-math (and GPU compilers, which reassociate freely) factor q a + q b + q c + q d into
-   q (a + b + c + d), and four second moments near exp(2c) = 1.6e38 (c = 44) overflow the float
-   sum (the sweep found 14 inf per 10^6 under gcc -ffast-math); no compiler distributes the
-   half over b - a, so this stays finite in every build. |b - a| <= max(|a|, |b|) because
-   every member of an EVSM texel has one sign (pos1, pos2, neg2 >= 0, neg1 <= 0). Error <= 2
-   ulp (tests/test_moments.c); two operations more per member than the weighted sum. */
-PF_DEF pf_real pfi_midpoint(pf_real a, pf_real b) { return a + PF_R(0.5) * (b - a); }
-PF_DEF pf_evsm_moments pfi_evsm_moments_midpoint(pf_evsm_moments a, pf_evsm_moments b)
-{
-    return pf_evsm_moments_make(pfi_midpoint(a.pos1, b.pos1), pfi_midpoint(a.pos2, b.pos2),
-                                pfi_midpoint(a.neg1, b.neg1), pfi_midpoint(a.neg2, b.neg2));
-}
-#define PFI_MOM_MIDPOINTS(V)                                                                   \
-    { return pfi_evsm_moments_midpoint(pfi_evsm_moments_midpoint(a, b), pfi_evsm_moments_midpoint(c, d)); }
-PFI_MOM_STAMP(pf_evsm_moments, pf_evsm_moments, PFI_MOM_MIDPOINTS)
-PFI_MOM_STAMP(pf_csm_pair, pf_csm_pair, PFI_MOM_BOX) /* CSM: values in [-1, 1], no overflow */
-
-/* ---------------------------------------------------------------- ESM in log space
-   An ESM texel stores l = c z, not exp(c z) (which overflows float for c z > 88.7). A reduction
-   computes log(sum_i w_i exp(l_i)) as m + log(sum_i w_i exp(l_i - m)), m the largest l of
-   positive weight: every exponential is <= 1, the sum is in (0, sum w], the result finite for
-   any finite l and c. Zero-weight texels are skipped. l - m is floored at -80 (exp(-80) is
-   below the rounding of a sum that holds a 1), which keeps every exponential normal (libm's
-   underflow path and subnormals are slow). */
-#define PFI_LSE_ARG_MIN PF_R(-80.0)
-
-/* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
-PF_DEF pf_real pfi_lse_arg(pf_real d) { return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d; }
-/* log of the mean of exp(l) over 4 texels (the 2x2 box). */
-PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
-{
-    pf_real m = pf_max(pf_max(l0, l1), pf_max(l2, l3));
-    pf_real s = PF_R(0.25) * PF_EXP(pfi_lse_arg(l0 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l1 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l2 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l3 - m));
-    return m + PF_LOG(s);
-}
-
-/* log(w.x exp(l0) + w.y exp(l1) + w.z exp(l2)), weights >= 0. All weights <= 0 (or NaN):
-   -PF_REAL_MAX (the log of an empty sum, kept finite). */
-PF_DEF pf_real pf_esm_log_reduce3(pf_real l0, pf_real l1, pf_real l2, pf_vec3 w)
-{
-    pf_real m = -PF_REAL_MAX;
-    pf_real s;
-    if (w.x > PF_R(0.0) && l0 > m) m = l0;
-    if (w.y > PF_R(0.0) && l1 > m) m = l1;
-    if (w.z > PF_R(0.0) && l2 > m) m = l2;
-    s = (w.x > PF_R(0.0) ? w.x * PF_EXP(pfi_lse_arg(l0 - m)) : PF_R(0.0))
-      + (w.y > PF_R(0.0) ? w.y * PF_EXP(pfi_lse_arg(l1 - m)) : PF_R(0.0))
-      + (w.z > PF_R(0.0) ? w.z * PF_EXP(pfi_lse_arg(l2 - m)) : PF_R(0.0));
-    return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
-}
-
-/* 9 texels, separable weights (wx along rows, wy across rows; t<col><row>). */
-PF_DEF pf_real pf_esm_log_reduce3x3(pf_real t00, pf_real t10, pf_real t20, pf_real t01,
-                                    pf_real t11, pf_real t21, pf_real t02, pf_real t12,
-                                    pf_real t22, pf_vec3 wx, pf_vec3 wy)
-{
-    pf_real r0 = wy.x > PF_R(0.0) ? pf_esm_log_reduce3(t00, t10, t20, wx) : PF_R(0.0);
-    pf_real r1 = wy.y > PF_R(0.0) ? pf_esm_log_reduce3(t01, t11, t21, wx) : PF_R(0.0);
-    pf_real r2 = wy.z > PF_R(0.0) ? pf_esm_log_reduce3(t02, t12, t22, wx) : PF_R(0.0);
-    return pf_esm_log_reduce3(r0, r1, r2, wy);
-}
-
-/* What a bilinear sampler returns for an ESM map, in log space:
-   log((1-fx)(1-fy) e^t00 + fx (1-fy) e^t10 + (1-fx) fy e^t01 + fx fy e^t11). */
-PF_DEF pf_real pf_esm_log_bilinear(pf_real t00, pf_real t10, pf_real t01, pf_real t11,
-                                   pf_real fx, pf_real fy)
-{
-    pf_real gx = PF_R(1.0) - fx, gy = PF_R(1.0) - fy;
-    pf_real r0 = pf_esm_log_reduce3(t00, t10, t10, pf_vec3_make(gx, fx, PF_R(0.0)));
-    pf_real r1 = pf_esm_log_reduce3(t01, t11, t11, pf_vec3_make(gx, fx, PF_R(0.0)));
-    return pf_esm_log_reduce3(r0, r1, r1, pf_vec3_make(gy, fy, PF_R(0.0)));
-}
-
-/* Streaming log-sum-exp over N texels: lmax is the largest log seen, sum = sum_i w_i
-   exp(l_i - lmax), weight = sum_i w_i. Start from PF_ESM_LOG_SUM_EMPTY (or
-   pf_esm_log_sum_first), add texels with pf_esm_log_sum_add, read log(sum w e^l / sum w) with
-   pf_esm_log_sum_mean. */
-PF_STRUCT_BEGIN(pf_esm_log_sum)
-    pf_real lmax, sum, weight;
-PF_STRUCT_END(pf_esm_log_sum)
-
-PF_DEF pf_esm_log_sum pf_esm_log_sum_make(pf_real lmax, pf_real sum, pf_real weight)
-{ pf_esm_log_sum a; a.lmax = lmax; a.sum = sum; a.weight = weight; return a; }
-/* The empty sum (a macro, not a function: the shader subset has no zero-argument functions
-   in the portability generator). */
-#define PF_ESM_LOG_SUM_EMPTY pf_esm_log_sum_make(-PF_REAL_MAX, PF_R(0.0), PF_R(0.0))
-
-/* The sum of one texel l of weight w > 0 (a start without the empty state). */
-PF_DEF pf_esm_log_sum pf_esm_log_sum_first(pf_real l, pf_real w)
-{ return w > PF_R(0.0) ? pf_esm_log_sum_make(l, w, w) : PF_ESM_LOG_SUM_EMPTY; }
-/* Adds texel l with weight w (w <= 0 or NaN: skipped). When l is a new maximum the running
-   sum is rescaled by exp(old max - l) <= 1, so nothing grows beyond sum(w). */
-PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
-{
-    if (!(w > PF_R(0.0))) return a;
-    if (l > a.lmax) {
-        a.sum = a.sum * PF_EXP(pfi_lse_arg(a.lmax - l)) + w;
-        a.lmax = l;
-    } else {
-        a.sum = a.sum + w * PF_EXP(pfi_lse_arg(l - a.lmax));
-    }
-    a.weight = a.weight + w;
-    return a;
-}
-
-/* log of the weighted mean of exp(l): lmax + log(sum / weight). Empty: -PF_REAL_MAX. */
-/* A subnormal sum / weight (flushed to 0 on GPUs and under -ffast-math) takes the logs apart. */
-PF_DEF pf_real pf_esm_log_sum_mean(pf_esm_log_sum a)
-{
-    pf_real r = a.sum / a.weight;
-    if (!(a.weight > PF_R(0.0))) return -PF_REAL_MAX;
-    return r >= PF_REAL_MIN ? a.lmax + PF_LOG(r) : a.lmax + (PF_LOG(a.sum) - PF_LOG(a.weight));
-}
-
-/* ---------------------------------------------------------------- slopes from a height map */
-/* Central difference (h_plus - h_minus) / (2 d), d the texel spacing: second order, error
-   (d^2/6) h''' + O(d^4). */
-PF_DEF pf_real pf_height_slope_central(pf_real h_minus, pf_real h_plus, pf_real spacing)
-{ return (h_plus - h_minus) / (PF_R(2.0) * spacing); }
-/* Slope at h0 from h0, h1, h2 at 0, d, 2d: (-3 h0 + 4 h1 - h2) / (2 d) (error (d^2/3) h'''),
-   the clamped border's stencil. For the far border pass the texels in reverse order and
-   negate. */
-PF_DEF pf_real pf_height_slope_edge(pf_real h0, pf_real h1, pf_real h2, pf_real spacing)
-{ return (PF_R(4.0) * h1 - PF_R(3.0) * h0 - h2) / (PF_R(2.0) * spacing); }
-/* Slope moments of an interior texel of a height map from its four neighbours (left, right,
-   below, above) by central differences: slope = height_scale * (dh/dx, dh/dy)
-   (Dupuy et al. 2013 sec. 4.2; height scaling multiplies slopes by the scale and the
-   second moments by its square). texel_size_x/y: texel spacing in surface units. */
-PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp, pf_real h_ym,
-                                                      pf_real h_yp, pf_real texel_size_x,
-                                                      pf_real texel_size_y, pf_real height_scale)
-{
-    pf_real sx = height_scale * pf_height_slope_central(h_xm, h_xp, texel_size_x);
-    pf_real sy = height_scale * pf_height_slope_central(h_ym, h_yp, texel_size_y);
-    return pf_slope_moments_from_slope(sx, sy);
-}
-
-/* ================================================================ CPU only
-   Host code that walks caller-owned buffers and allocates nothing (linkage PF_CPU_DEF,
-   pf_core.h). Errors as in CONVENTIONS (Limits and errors) plus what each comment adds. */
-#ifndef PF_GLSL
+/* pf_moments.h: above in this file */
 
 /* Border handling of the height-map stencils and of sampling (any other value: PF_ERR_ARG). */
 #define PF_BORDER_CLAMP 0
 #define PF_BORDER_WRAP 1
+
+/* i modulo n in [0, n) for any i and n >= 1 (a wrapped texel index, PF_BORDER_WRAP), without
+   the overflow of ((i % n) + n) % n near the ends of the range. */
+PF_CPU_DEF long long pf_map_wrap(long long i, long long n)
+{
+    long long r = i % n;
+    return r < 0 ? r + n : r;
+}
+
 
 /* Depth-moment kinds of pf_depth_pyramid_from_depths (channels in brackets). */
 #define PF_DEPTH_VSM 0     /* [2] z, z^2                                 pf_depth_moments2 */
@@ -4035,7 +4188,7 @@ PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, in
     }
     for (t = 0; t < n; ++t)
         if (tap[t][k] > m) m = tap[t][k];
-    for (t = 0; t < n; ++t) s += w[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
+    for (t = 0; t < n; ++t) s += w[t] * PF_EXP(pf_lse_arg(tap[t][k] - m));
     return m + PF_LOG(s); /* s >= the largest weight > 0 unless a tap is NaN, which propagates */
 }
 
@@ -4104,14 +4257,14 @@ PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
    slope there is c[0] v[x[0]] + c[1] v[x[1]] + c[2] v[x[2]], k = height_scale / (2 spacing)
    folded into c: central (wrapped, or inside the map), (v1 - v0)/d for n = 2, the one-sided
    pf_height_slope_edge at a clamped border (mirrored at the far end), 0 for n = 1. */
-PF_CPU_DEF void pfi_slope_stencil(long long i, int n, int border, pf_real k, long long *x, pf_real *c)
+PF_CPU_DEF void pf_map_slope_stencil(long long i, int n, int border, pf_real k, long long *x, pf_real *c)
 {
     pf_real s = i == 0 ? k : -k;
     x[0] = x[1] = x[2] = i;
     c[0] = c[1] = c[2] = PF_R(0.0);
     if (n < 2) return;
     if (border == PF_BORDER_WRAP || (i > 0 && i < n - 1)) {
-        x[0] = pfi_wrap_index(i - 1, n), x[1] = pfi_wrap_index(i + 1, n);
+        x[0] = pf_map_wrap(i - 1, n), x[1] = pf_map_wrap(i + 1, n);
         c[0] = -k, c[1] = k;
     } else if (n == 2) {
         x[0] = 0, x[1] = 1;
@@ -4134,7 +4287,7 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
     long long y[3], x[3];
     pf_real cy[3], cx[3], c0, c1, c2;
     int i;
-    pfi_slope_stencil(r, h, border, ky, y, cy);
+    pf_map_slope_stencil(r, h, border, ky, y, cy);
     r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
     c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
     /* interior texels: branch-free, so the compiler can vectorize the row */
@@ -4144,7 +4297,7 @@ PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_re
     }
     /* the first and last texels of the row */
     for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
-        pfi_slope_stencil(i, w, border, kx, x, cx);
+        pf_map_slope_stencil(i, w, border, kx, x, cx);
         pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
                       c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
     }
@@ -4281,84 +4434,123 @@ PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int
     return PF_OK;
 }
 
-/* ---------------------------------------------------------------- N texels
-   Both weighted means skip texels of weight <= 0 (or NaN) without reading them, and divide the
-   weights by a divisor d first, so any finite weights work, under -ffast-math too (two weights
-   of PF_REAL_MAX give the plain mean): d = wmax 2^-32 (exact) for a largest weight wmax > 1,
-   else wmax. Not wmax itself: 1/wmax is subnormal in float for wmax > 2^126, and -ffast-math
-   turns w / wmax into w * (1/wmax) with subnormals flushed to 0; 1/d >= 2^-96 is normal. */
-PF_CPU_DEF pf_real pfi_weight_divisor(const pf_real *weights, int n)
+/* ---------------------------------------------------------------- height fields
+   A height map heights[y w + x] (world units, `texel` world units between nodes) read as a
+   PERIODIC surface: node (x, y) is texel (pf_map_wrap(x, w), pf_map_wrap(y, h)) for any x, y. */
+
+/* The height of node (x, y) of the periodic map (x, y any long long). */
+PF_CPU_DEF pf_real pf_map_height(const pf_real *hm, int w, int h, long long x, long long y)
 {
-    pf_real m = PF_R(0.0);
-    int i;
-    for (i = 0; i < n; ++i)
-        if (weights[i] > m) m = weights[i];
-    return m > PF_R(1.0) ? m * PF_R(2.3283064365386963e-10) : m; /* 2^-32; +inf stays +inf */
+    return hm[pf_map_wrap(y, h) * (long long)w + pf_map_wrap(x, w)];
 }
 
-/* out[k] = sum_i w_i texels[i C + k] / sum_i w_i for n >= 0 texels of C = `channels` pf_reals
-   (texels: n C pf_reals, weights: n, out: C). No positive weight (n = 0 too): out is zeroed,
-   PF_OK. PF_ERR_SIZE when n C > PF_MAX_REALS. */
-PF_CPU_DEF int pf_moments_weighted_mean(const pf_real *texels, int channels, const pf_real *weights,
-                                        int n, pf_real *out)
+/* The slope (dh/dx, dh/dy) of node (x, y) of the periodic map by central differences,
+   k (h(x + 1) - h(x - 1)) with k = 1/(2 texel): the PF_BORDER_WRAP stencil of
+   pf_map_slope_stencil at one node, evaluated as a scaled difference (the stencil's
+   -k a + k b rounds differently; both are the same second-order slope). */
+PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_real *sx,
+                                  pf_real *sy)
 {
-    pf_real wsum = PF_R(0.0), d;
-    int i, k;
-    if (!texels || !weights || !out || channels < 1 || n < 0) return PF_ERR_ARG;
-    if (pf_size_mul(n, channels) < 0) return PF_ERR_SIZE;
-    d = pfi_weight_divisor(weights, n);
-    if (!(d <= PF_REAL_MAX)) return PF_ERR_ARG;
-    for (k = 0; k < channels; ++k) out[k] = PF_R(0.0);
-    if (!(d > PF_R(0.0))) return PF_OK;
-    for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0)) wsum += weights[i] / d; /* in [1, n 2^32] */
-    for (i = 0; i < n; ++i) {
-        /* volatile: -ffast-math would otherwise fold the two divisions into one by d wsum,
-           which overflows for weights near PF_REAL_MAX (the issue 19 finding, back again) */
-        volatile pf_real wd = weights[i] / d;
-        pf_real w = wd / wsum;
-        if (!(weights[i] > PF_R(0.0))) continue;
-        for (k = 0; k < channels; ++k) out[k] += w * texels[(long long)i * channels + k];
+    pf_real k = PF_R(0.5) / texel;
+    *sx = k * (pf_map_height(hm, w, h, x + 1, y) - pf_map_height(hm, w, h, x - 1, y));
+    *sy = k * (pf_map_height(hm, w, h, x, y + 1) - pf_map_height(hm, w, h, x, y - 1));
+}
+
+/* THE HEIGHT-FIELD MARCH (pf_map_visible; the visibility V(w) of Wu et al. 2019 eq. 7 for one
+   node of a patch)
+   The ray from the texel's node toward w is marched cell by cell
+   over the BILINEAR surface through the nodes; within a cell the surface minus the ray is a
+   quadratic of the horizontal distance, so the test is exact (both ends and the vertex), no
+   step size. The first half texel is skipped (the facet stands for its half-texel
+   neighbourhood; the twisted bilinear patches around the node would otherwise shadow rays
+   that clear the facet). Only occluders INSIDE the patch count: the ray is free where its
+   horizontal path leaves [x0 - 1/2, x0 + n - 1/2] x [y0 - 1/2, y0 + n - 1/2] (the footprint
+   is all a filtered model of it can know; along an axis where n equals the map's side the
+   periodic map is unbounded) or rises above the highest node it can meet; a texel with
+   m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
+   (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
+   its own double-precision march as the independent oracle (it must not call include/), and
+   tests/test_map.c checks the two agree.
+   Arguments: the periodic map (hm, w, h, texel > 0), the node (x, y), a direction d (any
+   length, tangent frame), the patch (x0, y0, n: n x n nodes from (x0, y0), 1 <= n <= w, h),
+   `top` the highest height (world units) of the patch and its one-node ring. Returns 1 when the
+   node sees d, 0 when d.z <= 0, the node's facet faces away from d, or the ray is occluded.
+   Cost: the cells the ray crosses inside the patch (about 2 n at most; up to
+   PF_MAP_MARCH_MAX_CELLS where the patch spans the periodic map), 4 reads each. */
+/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
+   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
+#ifndef PF_MAP_MARCH_MAX_CELLS
+#  define PF_MAP_MARCH_MAX_CELLS 65536
+#endif
+/* Heights are read in texel units inside the march. */
+PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_vec3 d,
+                               long long x0, long long y0, long long n, pf_real top)
+{
+    pf_real sx, sy, r, dx, dy, rise, h0, t = PF_R(0.0), tend = PF_REAL_MAX, tnx, tny, tdx, tdy, it = PF_R(1.0) / texel;
+    long long ix, iy, ox, oy, cells;
+    int stx, sty;
+    if (!(d.z > PF_R(0.0))) return 0;
+    pf_map_node_slope(hm, w, h, texel, x, y, &sx, &sy);
+    if (!(d.z - sx * d.x - sy * d.y > PF_R(0.0))) return 0;
+    r = PF_SQRT(d.x * d.x + d.y * d.y);
+    h0 = pf_map_height(hm, w, h, x, y) * it;
+    top = top * it;
+    if (!(r > PF_R(0.0)) || h0 >= top) return 1;
+    dx = d.x / r;
+    dy = d.y / r;
+    rise = d.z / r;
+    if (PF_FABS(dx) < PF_R(1.0e-12)) dx = PF_R(0.0);
+    if (PF_FABS(dy) < PF_R(1.0e-12)) dy = PF_R(0.0);
+    ox = pf_map_wrap(x - x0, w);
+    oy = pf_map_wrap(y - y0, h);
+    /* the box's edges lie half a texel outside its first and last nodes */
+    if (n < w) {
+        if (dx > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - ox) - PF_R(0.5)) / dx);
+        if (dx < PF_R(0.0)) tend = pf_min(tend, ((pf_real)ox + PF_R(0.5)) / -dx);
     }
-    return PF_OK;
-}
-
-/* log(w / wmax) from wd = w / d and wmaxd = wmax / d (both <= 2^32): a ratio of two normal
-   numbers, with no reciprocal of a huge weight (volatile: -ffast-math would fold the two
-   divisions into one by wmax); a subnormal share (flushed to 0 on FTZ) as log(wd) -
-   log(wmaxd); -PF_REAL_MAX (counted as 0) when wd itself is below PF_REAL_MIN. */
-PF_CPU_DEF pf_real pfi_log_weight_share(pf_real w, pf_real d, pf_real wmaxd)
-{
-    volatile pf_real wd = w / d;
-    pf_real r = wd / wmaxd;
-    if (r >= PF_REAL_MIN) return PF_LOG(r);
-    return wd >= PF_REAL_MIN ? PF_LOG(wd) - PF_LOG(wmaxd) : -PF_REAL_MAX;
-}
-/* log(sum_i w_i exp(l_i) / sum_i w_i) (ESM, log space) over n texels, its log-sum-exp anchored
-   at the largest l_i + log(w_i / wmax), not the largest l_i: a texel with the largest log and a
-   tiny share of the weight would leave the others at the exp(-80) floor (wrong by e^8 over a
-   float ESM map's log range) and make sum / weight subnormal. The anchor term is 1, so the
-   floor costs at most n e^-80. Two logs, two exps per texel (pf_esm_log_sum_* streams more
-   cheaply). -PF_REAL_MAX when no weight is positive (n = 0 too) and for bad arguments (a NULL,
-   n < 0, a +inf weight). */
-PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *weights, int n)
-{
-    pf_real d, wmaxd = PF_R(0.0), m = -PF_REAL_MAX, s = PF_R(0.0), ws = PF_R(0.0), lw;
-    int i;
-    if (!logs || !weights || n < 0) return -PF_REAL_MAX;
-    d = pfi_weight_divisor(weights, n);
-    if (!(d > PF_R(0.0) && d <= PF_REAL_MAX)) return -PF_REAL_MAX;
-    for (i = 0; i < n; ++i) wmaxd = pf_max(weights[i] / d, wmaxd); /* 2^32 or 1; NaN skipped */
-    for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX)
-            m = pf_max(logs[i] + lw, m);
-    if (!(m > -PF_REAL_MAX)) return -PF_REAL_MAX;
-    for (i = 0; i < n; ++i)
-        if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX) {
-            s += PF_EXP(pfi_lse_arg(logs[i] + lw - m));
-            ws += PF_EXP(pfi_lse_arg(lw));
+    if (n < h) {
+        if (dy > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - oy) - PF_R(0.5)) / dy);
+        if (dy < PF_R(0.0)) tend = pf_min(tend, ((pf_real)oy + PF_R(0.5)) / -dy);
+    }
+    /* cell (ix, iy) spans [ix, ix + 1] x [iy, iy + 1] relative to the node, which is at 0 */
+    stx = dx > PF_R(0.0) ? 1 : -1;
+    sty = dy > PF_R(0.0) ? 1 : -1;
+    ix = dx >= PF_R(0.0) ? 0 : -1;
+    iy = dy >= PF_R(0.0) ? 0 : -1;
+    tdx = dx != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dx) : PF_REAL_MAX;
+    tdy = dy != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dy) : PF_REAL_MAX;
+    tnx = tdx;
+    tny = tdy;
+    for (cells = 0; cells < PF_MAP_MARCH_MAX_CELLS; ++cells) {
+        pf_real tout = pf_min(tnx, tny), ta = pf_max(t, PF_R(0.5)), tb = pf_min(tout, tend);
+        if (h0 + rise * t > top || t >= tend) return 1;
+        if (tb > ta) {
+            pf_real h00 = pf_map_height(hm, w, h, x + ix, y + iy) * it, h10 = pf_map_height(hm, w, h, x + ix + 1, y + iy) * it;
+            pf_real h01 = pf_map_height(hm, w, h, x + ix, y + iy + 1) * it;
+            pf_real h11 = pf_map_height(hm, w, h, x + ix + 1, y + iy + 1) * it;
+            pf_real u = dx * ta - (pf_real)ix, v = dy * ta - (pf_real)iy, len = tb - ta;
+            pf_real k = h11 - h10 - h01 + h00, gx = h10 - h00, gy = h01 - h00;
+            /* surface - ray = f0 + b s + c s^2 for s in [0, len] */
+            pf_real f0 = h00 + gx * u + gy * v + k * u * v - (h0 + rise * ta);
+            pf_real b = gx * dx + gy * dy + k * (u * dy + v * dx) - rise, c = k * dx * dy;
+            pf_real f1 = f0 + len * (b + c * len);
+            pf_real eps = PF_R(64.0) * PF_REAL_EPSILON * (PF_R(1.0) + PF_FABS(h0) + PF_FABS(rise * tb));
+            if (f0 > eps || f1 > eps) return 0;
+            if (c < PF_R(0.0)) {
+                pf_real sv = -b / (PF_R(2.0) * c);
+                if (sv > PF_R(0.0) && sv < len && f0 - b * b / (PF_R(4.0) * c) > eps) return 0;
+            }
         }
-    return m + PF_LOG(s / ws); /* s, ws in [1, n] */
+        t = tout;
+        if (tnx < tny) {
+            tnx += tdx;
+            ix += stx;
+        } else {
+            tny += tdy;
+            iy += sty;
+        }
+    }
+    return 0;
 }
 
 /* ---------------------------------------------------------------- sampling */
@@ -4373,8 +4565,8 @@ PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long l
     x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
     i = pfi_floor_index(x, -1, n - 1);
     *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
-    *i0 = border == PF_BORDER_WRAP ? pfi_wrap_index(i, n) : (i < 0 ? 0 : i);
-    *i1 = border == PF_BORDER_WRAP ? pfi_wrap_index(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
+    *i0 = border == PF_BORDER_WRAP ? pf_map_wrap(i, n) : (i < 0 ? 0 : i);
+    *i1 = border == PF_BORDER_WRAP ? pf_map_wrap(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
 }
 
 /* The taps of positive bilinear weight of (u, v) at one level of a pyramid. */
@@ -4470,9 +4662,251 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
     return t;
 }
 
+
+/* ================================================================ CPU only: slope-preserving
+   downsampling of a height map (Wu et al. 2019 sec. 4.1, eqs. 9-10)
+   A coarse height map read with lobes fitted to the fine normals must carry the fine map's
+   mean slope over each footprint: the lobes describe the normals around that mean, and a box
+   average of the heights does not keep it (on the bench's corpus the box map's slopes are off
+   by 1.2-3.9x the solve's error, docs/vmf.md). Wu et al. choose the coarse heights whose
+   slopes best match the footprints' mean slopes in least squares, with a small Laplacian
+   term for smoothness.
+   OUR DISCRETIZATION (the library's height-map convention, CONVENTIONS above: texels
+   at centres, the slope of a texel its central difference, one-sided at a clamped border):
+     s*_T   = factor x the mean, over the factor x factor fine texels of coarse texel T, of the
+              fine texels' slopes (pf_map_slope_stencil: what pf_slope_pyramid_from_heights'
+              level log2(factor) holds as E[sx], E[sy]), in height per COARSE texel;
+     (G H)_T = the coarse map's own slope at T by the same stencil (height per coarse texel);
+     (L H)_T = the 5-point Laplacian of the coarse map (sum of the 4 neighbours - 4 H_T;
+              wrapped, or the edge texel repeated under PF_BORDER_CLAMP);
+     minimize  E(H) = sum_T |(G H)_T - s*_T|^2 + reg_weight sum_T (L H)_T^2        (eq. 10)
+   (Wu et al. put heights on cell corners and take the bilinear cell's mean slope, eq. 9; on
+   the texel-centred grid the same role is played by the central difference, and using the
+   stencil every slope consumer of the library uses makes the coarse map's slopes exactly the
+   ones it is read with.) Every term is in height per coarse texel, so reg_weight is
+   dimensionless (the paper's w = 0.01) and the result does not depend on the texel spacing
+   (both slopes divide by it), which is therefore not an argument.
+   The normal equations (G^T G + reg_weight L^T L) H = G^T s* are singular along the
+   constant map (no slope sees it): THE MEAN IS PINNED to the box-downsampled map's mean (=
+   the fine map's mean), and the solve starts from that box map. SOLVER: conjugate gradients
+   on the normal equations (the matrix is never formed: each product is one pass of the three
+   stencils and one of their transposes), every residual projected to zero mean so rounding
+   cannot move the pinned mean; deterministic (fixed loop order, no threads). It stops after
+   max_iter iterations or when |r| <= tol |G^T s*| (r the recurrence's residual of the normal
+   equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
+   of two (exact) so that no difference overflows; a result beyond the pf_real range is
+   clamped to +-PF_REAL_MAX.
+   Arguments: fine w x h row-major; factor >= 1 dividing w and h (coarse (w/factor) x
+   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
+   PF_BORDER_CLAMP; reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
+   2-texel checkerboards, which no central difference sees, keep their box values; far above
+   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
+   the box map); tol finite >= 0; scratch: scratch_len >= pf_map_downsample_scratch_size(w,
+   h, factor) pf_reals; iters_out (iterations done) and residual_out (the final |r| over the
+   reference norm above) may be NULL.
+   Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
+   dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
+   height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
+   above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
+   the first pf_map_downsample_scratch_size reals of scratch is touched.
+   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
+   their transposes over the coarse map) and four vector passes; 512 x 512 -> 256 x 256 in
+   15-50 ms (float, tol 1e-5; docs/vmf.md has the table and the slope errors against the box
+   map). */
+
+#define PF_MAP_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
+
+/* pf_reals of scratch pf_map_downsample_slopes needs: 6 per coarse texel; 0 for sizes it
+   rejects (w, h or factor below 1, factor not dividing w and h, a side above PF_MAX_SIDE, or
+   more than PF_MAX_REALS). */
+PF_CPU_DEF long long pf_map_downsample_scratch_size(int w, int h, int factor)
+{
+    long long n;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || factor < 1 || w % factor != 0 || h % factor != 0) return 0;
+    if (pf_size_mul(w, h) < 0) return 0;
+    n = pf_size_mul3((long long)(w / factor), (long long)(h / factor), 6);
+    return n < 0 ? 0 : n;
+}
+
+/* sum of a[i] b[i] (b NULL: a[i]^2) in rows of w: per-row partial sums, so the rounding grows
+   with w + h, not w h */
+PF_CPU_DEF pf_real pfi_ds_dot(const pf_real *a, const pf_real *b, long long w, long long h)
+{
+    pf_real total = PF_R(0.0);
+    long long i, j;
+    for (j = 0; j < h; ++j) {
+        const pf_real *x = a + j * w, *y = (b ? b : a) + j * w;
+        pf_real row = PF_R(0.0);
+        for (i = 0; i < w; ++i) row += x[i] * y[i];
+        total += row;
+    }
+    return total;
+}
+PF_CPU_DEF pf_real pfi_ds_mean(const pf_real *a, long long w, long long h)
+{
+    pf_real total = PF_R(0.0);
+    long long i, j;
+    for (j = 0; j < h; ++j) {
+        pf_real row = PF_R(0.0);
+        for (i = 0; i < w; ++i) row += a[j * w + i];
+        total += row / (pf_real)w;
+    }
+    return total / (pf_real)h;
+}
+PF_CPU_DEF void pfi_ds_shift(pf_real *a, long long n, pf_real d)
+{
+    long long i;
+    for (i = 0; i < n; ++i) a[i] += d;
+}
+/* neighbour of index i on an axis of n: wrapped or clamped (the clamped Laplacian repeats the
+   edge texel: a zero normal derivative) */
+PF_CPU_DEF long long pfi_ds_nb(long long i, long long n, int border)
+{
+    if (border == PF_BORDER_WRAP) return pf_map_wrap(i, n);
+    return i < 0 ? 0 : (i >= n ? n - 1 : i);
+}
+
+/* gx = G_x v, gy = G_y v, lp = L v on the W x H coarse grid */
+PF_CPU_DEF void pfi_ds_forward(const pf_real *v, int W, int H, int border, pf_real *gx, pf_real *gy, pf_real *lp)
+{
+    long long I, J, xi[3], yi[3];
+    pf_real cx[3], cy[3];
+    for (J = 0; J < H; ++J) {
+        const pf_real *row = v + J * W, *up = v + pfi_ds_nb(J - 1, H, border) * W, *dn = v + pfi_ds_nb(J + 1, H, border) * W;
+        pf_map_slope_stencil(J, H, border, PF_R(0.5), yi, cy);
+        for (I = 0; I < W; ++I) {
+            long long t = J * W + I;
+            pf_map_slope_stencil(I, W, border, PF_R(0.5), xi, cx);
+            gx[t] = cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
+            gy[t] = cy[0] * v[yi[0] * W + I] + cy[1] * v[yi[1] * W + I] + cy[2] * v[yi[2] * W + I];
+            lp[t] = (row[pfi_ds_nb(I - 1, W, border)] + row[pfi_ds_nb(I + 1, W, border)]) + (up[I] + dn[I]) -
+                    PF_R(4.0) * row[I];
+        }
+    }
+}
+
+/* out = G_x^T gx + G_y^T gy + reg L^T lp (the transposes as scatters of the same stencils) */
+PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_real *lp, pf_real reg, int W, int H,
+                               int border, pf_real *out)
+{
+    long long I, J, k, xi[3], yi[3], n = (long long)W * H;
+    pf_real cx[3], cy[3];
+    for (k = 0; k < n; ++k) out[k] = PF_R(0.0);
+    for (J = 0; J < H; ++J) {
+        pf_real *row = out + J * W, *up = out + pfi_ds_nb(J - 1, H, border) * W, *dn = out + pfi_ds_nb(J + 1, H, border) * W;
+        pf_map_slope_stencil(J, H, border, PF_R(0.5), yi, cy);
+        for (I = 0; I < W; ++I) {
+            long long t = J * W + I;
+            pf_real a = gx[t], b = gy[t], l = reg * lp[t];
+            pf_map_slope_stencil(I, W, border, PF_R(0.5), xi, cx);
+            for (k = 0; k < 3; ++k) {
+                row[xi[k]] += cx[k] * a;
+                out[yi[k] * W + I] += cy[k] * b;
+            }
+            row[pfi_ds_nb(I - 1, W, border)] += l;
+            row[pfi_ds_nb(I + 1, W, border)] += l;
+            up[I] += l;
+            dn[I] += l;
+            row[I] -= PF_R(4.0) * l;
+        }
+    }
+}
+
+PF_CPU_DEF int pf_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
+                                        int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
+                                        long long scratch_len, int *iters_out, pf_real *residual_out)
+{
+    long long need, n, i, j, W, H, f = factor;
+    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, ref, mean, inv_f2;
+    int it = 0;
+    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
+    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
+    if (!(reg_weight >= PF_R(0.0) && reg_weight <= PF_MAP_DOWNSAMPLE_MAX_REG) || max_iter < 0 ||
+        !(tol >= PF_R(0.0) && tol <= PF_REAL_MAX))
+        return PF_ERR_ARG;
+    need = pf_map_downsample_scratch_size(w, h, factor);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    for (i = 0; i < (long long)w * h; ++i) {
+        pf_real a = PF_FABS(fine[i]);
+        if (!(a <= PF_REAL_MAX)) return PF_ERR_ARG; /* NaN or infinite */
+        maxabs = pf_max(maxabs, a);
+    }
+    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
+       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
+       -ffast-math) */
+    if (maxabs > PF_R(0.0)) {
+        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
+        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
+    }
+    W = w / factor, H = h / factor, n = W * H;
+    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
+    inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
+    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
+    for (i = 0; i < n; ++i) gx[i] = gy[i] = coarse[i] = PF_R(0.0);
+    for (j = 0; j < h; ++j) {
+        long long yi[3], xi[3], t0 = (j / f) * W;
+        pf_real cy[3], cx[3];
+        const pf_real *row = fine + j * w;
+        pf_map_slope_stencil(j, h, border, PF_R(0.5) * scale, yi, cy);
+        for (i = 0; i < w; ++i) {
+            long long t = t0 + i / f;
+            pf_map_slope_stencil(i, w, border, PF_R(0.5) * scale, xi, cx);
+            gx[t] += cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
+            gy[t] += cy[0] * fine[yi[0] * w + i] + cy[1] * fine[yi[1] * w + i] + cy[2] * fine[yi[2] * w + i];
+            coarse[t] += row[i] * scale;
+        }
+    }
+    /* mean fine slope (per fine texel) x f = per coarse texel */
+    for (i = 0; i < n; ++i) {
+        gx[i] *= inv_f2 * (pf_real)f;
+        gy[i] *= inv_f2 * (pf_real)f;
+        coarse[i] *= inv_f2;
+    }
+    mean = pfi_ds_mean(coarse, W, H);
+    for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
+    pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r); /* r = b = G^T s* */
+    bnorm = PF_SQRT(pfi_ds_dot(r, 0, W, H));
+    /* r = b - A x0 */
+    pfi_ds_forward(coarse, (int)W, (int)H, border, gx, gy, lp);
+    pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
+    for (i = 0; i < n; ++i) r[i] -= q[i];
+    pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
+    rr = pfi_ds_dot(r, 0, W, H);
+    ref = bnorm > PF_R(0.0) ? bnorm : PF_SQRT(rr);
+    for (i = 0; i < n; ++i) p[i] = r[i];
+    while (it < max_iter && PF_SQRT(rr) > tol * ref) {
+        pf_real pq, alpha, rr_new, beta;
+        pfi_ds_forward(p, (int)W, (int)H, border, gx, gy, lp);
+        pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
+        pq = pfi_ds_dot(p, q, W, H);
+        if (!(pq > PF_R(0.0))) break; /* p in the null space, or rounding: nothing left to gain */
+        alpha = rr / pq;
+        for (i = 0; i < n; ++i) {
+            coarse[i] += alpha * p[i];
+            r[i] -= alpha * q[i];
+        }
+        pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
+        rr_new = pfi_ds_dot(r, 0, W, H);
+        beta = rr_new / rr;
+        for (i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];
+        rr = rr_new;
+        ++it;
+    }
+    /* the pinned mean, exactly (rounding of the updates), then the heights' own scale */
+    pfi_ds_shift(coarse, n, mean - pfi_ds_mean(coarse, W, H));
+    for (i = 0; i < n; ++i) {
+        pf_real v = coarse[i] / scale;
+        coarse[i] = v > PF_REAL_MAX ? PF_REAL_MAX : (v < -PF_REAL_MAX ? -PF_REAL_MAX : v);
+    }
+    if (iters_out) *iters_out = it;
+    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
+    return PF_OK;
+}
 #endif /* !PF_GLSL */
 
-#endif /* PF_MOMENTS_H */
+#endif /* PF_MAP_H */
 
 /* ================================================================= include/pf_horizon.h ====== */
 /* pf_horizon.h - horizon maps pre-filtered as horizon distribution functions (HDF): the
@@ -4649,7 +5083,7 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
 #ifndef PF_GLSL
 /* pf_beckmann.h: above in this file */
 /* pf_gaussgrid.h: above in this file */
-/* pf_moments.h: above in this file */
+/* pf_map.h: above in this file */
 #endif
 
 /* Largest Legendre order count k stored per azimuth. */
@@ -5096,8 +5530,8 @@ PF_CPU_DEF pf_real pfi_horizon_bilinear(const pf_real *hm, int w, int h, pf_real
     long long ix = (long long)fx, iy = (long long)fy, ix1, iy1;
     const pf_real *r0, *r1;
     if (border == PF_BORDER_WRAP) {
-        ix = pfi_wrap_index(ix, w);
-        iy = pfi_wrap_index(iy, h);
+        ix = pf_map_wrap(ix, w);
+        iy = pf_map_wrap(iy, h);
         ix1 = ix + 1 == w ? 0 : ix + 1;
         iy1 = iy + 1 == h ? 0 : iy + 1;
     } else {
@@ -5163,11 +5597,11 @@ PF_CPU_DEF void pfi_horizon_fill(const pf_real *heights, int w, int h, pf_real s
     for (j = 0; j < h; ++j) {
         long long yy[3], xx[3];
         pf_real cy[3], cx[3];
-        pfi_slope_stencil(j, h, border, kx, yy, cy);
+        pf_map_slope_stencil(j, h, border, kx, yy, cy);
         for (i = 0; i < w; ++i) {
             pf_real *o = out + ((long long)j * w + i) * c, sx, sy;
             const pf_real *col = heights + i;
-            pfi_slope_stencil(i, w, border, kx, xx, cx);
+            pf_map_slope_stencil(i, w, border, kx, xx, cx);
             sx = cx[0] * heights[(long long)j * w + xx[0]] + cx[1] * heights[(long long)j * w + xx[1]]
                  + cx[2] * heights[(long long)j * w + xx[2]];
             sy = cy[0] * col[yy[0] * w] + cy[1] * col[yy[1] * w] + cy[2] * col[yy[2] * w];
@@ -6531,8 +6965,8 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
          s = pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b * sigma_b);
      }
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
-     CPU: pf_vmf_fit_normals(normals, NULL, n, 4, 24, &mixture);       -- EM, caller's buffers
-          pf_vmf_pyramid_from_normals(normals, NULL, w, h, 4, 24, pyr);   (see CPU ONLY below)
+     The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
+     pf_vmf_pyramid_from_normals, the scaling function).
 
    FUNCTIONS
      lobes       pf_vmf_normalization, pf_vmf_mean_cosine, pf_vmf_tangent_variance,
@@ -6549,14 +6983,9 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
                  pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked
      scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
                  pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
-     CPU only    pf_vmf_fit_normals, pf_vmf_pyramid_level_count, pf_vmf_pyramid_level_offset,
-                 pf_vmf_pyramid_texel_count, pf_vmf_pyramid_from_normals,
-                 pf_vmf_mixture_from_texel (struct pf_vmf_mixture: the fit's lobes);
-                 pf_vmf_downsample_slopes, pf_vmf_downsample_scratch_size (slope-preserving
-                 downsampling of the height map, Wu et al. 2019 eqs. 9-10);
-                 pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
-                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count, pf_vmf_scale_cell_count,
-                 pf_vmf_scale_vis_bytes (scaling function, Wu et al. 2019 eqs. 6-8, 12-14, 21-24)
+     facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
+     CPU baking  pf_vmf_fit.h (EM fit, lobe pyramid, scaling-function fit); pf_map.h
+                 (slope-preserving downsampling of the height map)
 
    CONVENTIONS
      Tangent frame of the macrosurface, +z up; directions and lobe axes unit vectors (lobe axes
@@ -6592,25 +7021,21 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
 /* pf_core.h: above in this file */
 /* pf_smith.h: above in this file */
 /* pf_beckmann.h: above in this file */
-/* pf_moments.h: above in this file */
 #endif
 
 #define PF_VMF_MAX_LOBES 16
 #define PF_VMF_KAPPA_MIN PF_R(1.0e-4)
 #define PF_VMF_KAPPA_MAX PF_R(1.0e5)
-/* EM stops when the mean log-likelihood per unit weight changes by less than this (relative,
-   at least absolute 1); CPU only */
-#ifndef PF_VMF_EM_TOLERANCE
-#  define PF_VMF_EM_TOLERANCE PF_R(1.0e-6)
-#endif
 
 /* Cap on the exponents the module passes to PF_EXP: exp(-80) = 1.8e-35 is still a normal float,
    so exp never underflows (libm's underflow path, which sets errno, made a far lobe cost 10x a
    near one in the bench), and a value this far down the tail is 0 to the shading. */
-#define PFI_VMF_EXP_CAP PF_R(80.0)
+#define PF_VMF_EXP_CAP PF_R(80.0)
 
 /* ---------------------------------------------------------------- one lobe */
-PF_DEF pf_real pfi_vmf_kappa(pf_real kappa)
+/* kappa clamped to [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; NaN reads as PF_VMF_KAPPA_MIN (the
+   CONVENTIONS' clamp, applied by every function that takes a kappa). */
+PF_DEF pf_real pf_vmf_kappa_clamp(pf_real kappa)
 {
     if (!(kappa > PF_VMF_KAPPA_MIN)) return PF_VMF_KAPPA_MIN; /* NaN too */
     return pf_min(kappa, PF_VMF_KAPPA_MAX);
@@ -6653,7 +7078,7 @@ PF_DEF pf_real pfi_vmf_one_minus_exp_neg(pf_real x)
    factored out). 1/(4 pi) as kappa -> 0, kappa/(2 pi) for large kappa. */
 PF_DEF pf_real pf_vmf_normalization(pf_real kappa)
 {
-    pf_real k = pfi_vmf_kappa(kappa);
+    pf_real k = pf_vmf_kappa_clamp(kappa);
     return k * (PF_R(0.5) * PF_INV_PI) / pfi_vmf_one_minus_exp_neg(PF_R(2.0) * k);
 }
 
@@ -6661,7 +7086,7 @@ PF_DEF pf_real pf_vmf_normalization(pf_real kappa)
    Series below the threshold (the difference cancels there), closed form above. */
 PF_DEF pf_real pf_vmf_mean_cosine(pf_real kappa)
 {
-    pf_real k = pfi_vmf_kappa(kappa), k2, e;
+    pf_real k = pf_vmf_kappa_clamp(kappa), k2, e;
 #ifdef PF_DOUBLE
     const pf_real series_below = PF_R(0.1);
 #else
@@ -6683,7 +7108,7 @@ PF_DEF pf_real pf_vmf_mean_cosine(pf_real kappa)
    A3(kappa)/kappa (E[(mu.w)^2] = 1 - 2 A3/kappa). ~1/kappa for large kappa, 1/3 at 0. */
 PF_DEF pf_real pf_vmf_tangent_variance(pf_real kappa)
 {
-    pf_real k = pfi_vmf_kappa(kappa);
+    pf_real k = pf_vmf_kappa_clamp(kappa);
     /* coth k = 1 + 2 e^(-2k) + ...: below rounding past k = 10 (float) / 20 (double), and then
        A3/k = (1 - 1/k)/k with no exp or log (the shading path's common case) */
 #ifdef PF_DOUBLE
@@ -6709,16 +7134,16 @@ PF_DEF pf_real pf_vmf_kappa_from_tangent_variance(pf_real v)
         if (pf_vmf_tangent_variance(PF_EXP(mid)) > v) lo = mid;
         else hi = mid;
     }
-    return pfi_vmf_kappa(PF_EXP(PF_R(0.5) * (lo + hi)));
+    return pf_vmf_kappa_clamp(PF_EXP(PF_R(0.5) * (lo + hi)));
 }
 
 /* g(w; kappa, mu) = C(kappa) exp(-kappa |w - mu|^2 / 2) for unit w and mu (= exp(kappa (mu.w
    - 1)), no cancellation near the peak, no overflow at large kappa). Per unit solid angle. */
 PF_DEF pf_real pf_vmf_lobe_eval(pf_vec3 mu, pf_real kappa, pf_vec3 w)
 {
-    pf_real k = pfi_vmf_kappa(kappa);
+    pf_real k = pf_vmf_kappa_clamp(kappa);
     pf_vec3 d = pf_vec3_sub(w, mu);
-    pf_real q = pf_min(PF_R(0.5) * k * pf_vec3_dot(d, d), PFI_VMF_EXP_CAP);
+    pf_real q = pf_min(PF_R(0.5) * k * pf_vec3_dot(d, d), PF_VMF_EXP_CAP);
     return pf_vmf_normalization(k) * PF_EXP(-q);
 }
 
@@ -6730,7 +7155,7 @@ PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
     pf_real rr = pfi_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
     pf_real one_minus = (PF_R(1.0) - rr) * (PF_R(1.0) + rr);
     if (!(one_minus * PF_VMF_KAPPA_MAX > rr * (PF_R(3.0) - rr * rr))) return PF_VMF_KAPPA_MAX;
-    return pfi_vmf_kappa(rr * (PF_R(3.0) - rr * rr) / one_minus);
+    return pf_vmf_kappa_clamp(rr * (PF_R(3.0) - rr * rr) / one_minus);
 }
 
 /* The one-lobe approximation of a vMF of kappa convolved with a vMF base lobe of kappa_b
@@ -6738,8 +7163,8 @@ PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
    small-angle rule 1/kappa' = 1/kappa + 1/kappa_b (angular variances add). */
 PF_DEF pf_real pf_vmf_convolve_kappa(pf_real kappa, pf_real kappa_b)
 {
-    pf_real a = pfi_vmf_kappa(kappa), b = pfi_vmf_kappa(kappa_b);
-    return pfi_vmf_kappa(a * (b / (a + b)));
+    pf_real a = pf_vmf_kappa_clamp(kappa), b = pf_vmf_kappa_clamp(kappa_b);
+    return pf_vmf_kappa_clamp(a * (b / (a + b)));
 }
 
 /* kappa of the vMF lobe matching a Beckmann lobe of slope deviation sigma per axis (Beckmann
@@ -6749,7 +7174,7 @@ PF_DEF pf_real pf_vmf_kappa_from_sigma(pf_real sigma)
 {
     pf_real s2 = sigma * sigma;
     if (!(s2 * PF_VMF_KAPPA_MAX > PF_R(1.0))) return PF_VMF_KAPPA_MAX;
-    return pfi_vmf_kappa(PF_R(1.0) / s2);
+    return pf_vmf_kappa_clamp(PF_R(1.0) / s2);
 }
 
 /* Gaussian slope statistics of a lobe (see DEFINITIONS, masking): mean -mu.xy/mu.z, covariance
@@ -6782,7 +7207,7 @@ PF_STRUCT_END(pf_vmf_lobe)
 
 /* The lobe (amp, mu = (mu_x, mu_y, sqrt(1 - mu_x^2 - mu_y^2)), kappa): the packed texel form,
    4 reals. An axis with mu_x^2 + mu_y^2 > 1 is rescaled onto the horizon; NaN axis components
-   read as 0, a negative or NaN amplitude as 0, kappa clamped (pfi_vmf_kappa). */
+   read as 0, a negative or NaN amplitude as 0, kappa clamped (pf_vmf_kappa_clamp). */
 PF_DEF pf_vmf_lobe pf_vmf_lobe_make(pf_real amp, pf_real mu_x, pf_real mu_y, pf_real kappa)
 {
     pf_vmf_lobe l;
@@ -6800,7 +7225,7 @@ PF_DEF pf_vmf_lobe pf_vmf_lobe_make(pf_real amp, pf_real mu_x, pf_real mu_y, pf_
     }
     l.amp = pf_max(amp, PF_R(0.0));
     l.mu = pf_vec3_make(x, y, PF_SQRT(pf_max(z2, PF_R(0.0))));
-    l.kappa = pfi_vmf_kappa(kappa);
+    l.kappa = pf_vmf_kappa_clamp(kappa);
     return l;
 }
 
@@ -6825,7 +7250,7 @@ PF_DEF pf_real pf_vmf_lobe_ndf(pf_vmf_lobe l, pf_vec3 w, pf_real kappa_b)
    density P22 over cos^4) of pf_vmf_lobe_slope_stats(mu, kappa, base_var): the lobe convolved
    with a Beckmann base lobe of slope variance base_var per axis, exactly in slope space
    (Gaussian variances add). Written here rather than through pf_beckmann_d so that its
-   exponent is capped at PFI_VMF_EXP_CAP (no libm underflow path) and its determinant floored
+   exponent is capped at PF_VMF_EXP_CAP (no libm underflow path) and its determinant floored
    at 1e-12 (base_var = 0 and a sharp lobe). Unit w; 0 for w.z <= 0. */
 PF_DEF pf_real pfi_vmf_ndf_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
 {
@@ -6837,7 +7262,7 @@ PF_DEF pf_real pfi_vmf_ndf_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
     det = pf_max(s.var_x * s.var_y - s.cov_xy * s.cov_xy, PF_R(1.0e-12));
     q = pf_max(s.var_y * dx * dx - PF_R(2.0) * s.cov_xy * dx * dy + s.var_x * dy * dy, PF_R(0.0));
     iz2 = iz * iz;
-    return amp * PF_EXP(-pf_min(PF_R(0.5) * q / det, PFI_VMF_EXP_CAP)) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det) *
+    return amp * PF_EXP(-pf_min(PF_R(0.5) * q / det, PF_VMF_EXP_CAP)) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det) *
            (iz2 * iz2);
 }
 
@@ -7091,8 +7516,7 @@ PF_DEF pf_real pf_vmf_sum_specular_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi,
 }
 
 /* ================================================================ scaling function: shader side
-   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction is the block "CPU only: SCALING
-   FUNCTION" below). The filtered specular f of a footprint is multiplied by
+   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction of T and S is pf_vmf_fit.h's). The filtered specular f of a footprint is multiplied by
    T(x) S(wi, wo): T one value per patch (a 2D texture), S a table over
    (theta_i, theta_o, phi_d) of nt x nt x np NODES (a 3D texture): theta_k = k theta_max /
    (nt - 1), phi_d,k = k pi / (np - 1) (phi_d the azimuth between wi and wo), so that the
@@ -7163,8 +7587,84 @@ PF_DEF pf_real pf_vmf_sum_specular_unmasked(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi
     return pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi)) * s.ndf / (PF_R(4.0) * area_o);
 }
 
+/* The base BRDF of one facet of slope (sx, sy): F(h.wi) D(h) G2 / 4 of a Beckmann lobe of slope
+   variance base_var about the slope (LEADR eqs. 10, 13, 16; h = (wo + wi)/|wo + wi|, G2 the
+   lobe's own Smith term 1/(1 + Lambda(wo) + Lambda(wi))), radiance toward wo per unit
+   radiance from wi with the light cosine included (as pf_vmf_sum_specular); 0 when a
+   direction is on or below the macrosurface or the facet, and when the half vector's slope
+   lies more than sqrt(80 base_var) from the facet's (D below 4e-18 of its peak). The facet
+   term of the scaling function's effective BRDF (pf_vmf_fit.h, Wu et al. 2019 eq. 6). */
+PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, pf_vec3 wo, pf_vec3 wi, pf_real f0)
+{
+    pf_slope_stats st = pf_slope_stats_make(sx, sy, base_var, base_var, PF_R(0.0));
+    pf_real ao = wo.z - sx * wo.x - sy * wo.y, ai = wi.z - sx * wi.x - sy * wi.y, lo, li;
+    pf_vec3 hv;
+    if (!(ao > PF_R(0.0)) || !(ai > PF_R(0.0)) || !(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
+    hv = pfi_vmf_half(wo, wi);
+    {
+        /* the lobe's exponent first: past 40 (D below 4e-18 of its peak) the facet adds nothing
+           the sum can hold, and the two Lambdas (erfc) are skipped: most facets of a patch are
+           that far from a narrow lobe's half vector */
+        pf_real ex = -hv.x / pf_max(hv.z, PF_R(1.0e-6)) - sx, ey = -hv.y / pf_max(hv.z, PF_R(1.0e-6)) - sy;
+        if (ex * ex + ey * ey > PF_R(80.0) * base_var) return PF_R(0.0);
+    }
+    lo = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wo), ao);
+    li = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wi), ai);
+    return pf_fresnel_schlick(f0, pf_vec3_dot(hv, wi)) * pfi_vmf_ndf_stats(PF_R(1.0), st, hv) /
+           (PF_R(4.0) * (PF_R(1.0) + lo + li));
+}
+
+#endif /* PF_VMF_H */
+
+/* ================================================================= include/pf_vmf_fit.h ====== */
+/* pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
+   normals, the lobe pyramid a shader fetches, and the scaling function of Wu et al. 2019
+   (eqs. 6-8, 12-14, 21-24) that corrects the multi-lobe BRDF toward the height field's
+   effective BRDF.
+
+   pf_vmf.h holds what a shader pastes (lobes, mixtures, their BRDF, the scaling function's
+   lookup); this header fits what those evaluators read. CPU only (linkage PF_CPU_DEF): it
+   walks caller-owned buffers and allocates nothing; empty under PF_GLSL. Map infrastructure
+   (pyramid layout, wrap, height stencils, the height-field march, the slope-preserving
+   downsampler) is pf_map.h's.
+
+   USAGE
+     pf_vmf_fit_normals(normals, NULL, n, 4, 24, &mixture);           -- EM on n normals
+     pf_vmf_pyramid_from_normals(normals, NULL, w, h, 4, 24, pyr);    -- one mixture per texel
+     then per texel: pf_vmf_mixture_from_texel, or a shader's 4 RGBA fetches (pf_vmf.h USAGE)
+
+   FUNCTIONS
+     fitting     pf_vmf_fit_normals (struct pf_vmf_mixture: the fit's lobes)
+     pyramid     pf_vmf_pyramid_level_count, pf_vmf_pyramid_level_offset,
+                 pf_vmf_pyramid_texel_count, pf_vmf_pyramid_from_normals,
+                 pf_vmf_mixture_from_texel
+     scaling     pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
+                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count,
+                 pf_vmf_scale_cell_count, pf_vmf_scale_vis_bytes
+
+   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md)
+     Fit of a 512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16. Scaling
+     function: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade
+     2304 direction pairs.
+
+   SOURCES
+     Wu, Zhao, Yan, Ramamoorthi 2019 eqs. 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun
+     2007 (spherical EM of vMF mixtures); Banerjee, Dhillon, Ghosh, Sra 2005 (kappa from the
+     mean resultant length). */
+#ifndef PF_VMF_FIT_H
+#define PF_VMF_FIT_H
+
 #ifndef PF_GLSL
-/* ================================================================ CPU only: mixtures
+/* pf_vmf.h: above in this file */
+/* pf_map.h: above in this file */
+
+/* EM stops when the mean log-likelihood per unit weight changes by less than this (relative,
+   at least absolute 1) */
+#ifndef PF_VMF_EM_TOLERANCE
+#  define PF_VMF_EM_TOLERANCE PF_R(1.0e-6)
+#endif
+
+/* ================================================================ mixtures
    The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1). Host code (a
    struct with arrays, which the portability generator does not synthesise); shade it lobe by
    lobe with pf_vmf_sum_add, as a shader does with the pyramid's texels. */
@@ -7304,7 +7804,7 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
                 top = pf_max(top, lg[k]);
             }
             for (k = 0; k < m.count; ++k) {
-                lg[k] = PF_EXP(pf_max(lg[k] - top, -PFI_VMF_EXP_CAP));
+                lg[k] = PF_EXP(pf_max(lg[k] - top, -PF_VMF_EXP_CAP));
                 tot += lg[k];
             }
             ll += wt * (top + PF_LOG(tot));
@@ -7329,7 +7829,7 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
             m.lobe[n].amp = W[k] / wsum;
             m.lobe[n].mu = pf_vec3_scale(r, PF_R(1.0) / len);
             m.lobe[n].kappa = one_minus_r2 * PF_VMF_KAPPA_MAX > rbar * (PF_R(3.0) - rbar * rbar)
-                             ? pfi_vmf_kappa(rbar * (PF_R(3.0) - rbar * rbar) / one_minus_r2)
+                             ? pf_vmf_kappa_clamp(rbar * (PF_R(3.0) - rbar * rbar) / one_minus_r2)
                              : PF_VMF_KAPPA_MAX;
             ++n;
         }
@@ -7363,7 +7863,7 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
                 top = pf_max(top, lg[k]);
             }
             for (k = 0; k < m.count; ++k) {
-                lg[k] = PF_EXP(pf_max(lg[k] - top, -PFI_VMF_EXP_CAP));
+                lg[k] = PF_EXP(pf_max(lg[k] - top, -PF_VMF_EXP_CAP));
                 tot += lg[k];
             }
             for (k = 0; k < m.count; ++k) {
@@ -7435,19 +7935,7 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
        f_eff = sum_t V_t(wo) V_t(wi) F D_t(h) G2_t / 4  /  sum_t a_t(wo),   a_t(w) = w.z - s_t.w.xy
    (eq. 8: the patch's projected area toward wo is that of its mean plane; radiance toward wo
    per unit radiance from wi, light cosine included, like pf_vmf_sum_specular).
-   VISIBILITY (pfi_vmf_visible): the ray from the texel's node toward w is marched cell by cell
-   over the BILINEAR surface through the nodes; within a cell the surface minus the ray is a
-   quadratic of the horizontal distance, so the test is exact (both ends and the vertex), no
-   step size. The first half texel is skipped (the facet stands for its half-texel
-   neighbourhood; the twisted bilinear patches around the node would otherwise shadow rays
-   that clear the facet). Only occluders INSIDE the patch count: the ray is free where its
-   horizontal path leaves [x0 - 1/2, x0 + n - 1/2] x [y0 - 1/2, y0 + n - 1/2] (the footprint
-   is all a filtered model of it can know; along an axis where n equals the map's side the
-   periodic map is unbounded) or rises above the highest node it can meet; a texel with
-   m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
-   (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
-   its own double-precision march as the independent oracle (it must not call include/), and
-   tests/test_vmf.c checks the two agree.
+   VISIBILITY: pf_map_visible (pf_map.h), the height-field march restricted to the patch.
    RATIO AND FACTORIZATION (eqs. 12, 14, 21-24): R(x, wi, wo) = f_eff / f_lobes with f_lobes the
    multi-lobe BRDF of eq. 5 for the patch's fitted lobes (pf_vmf_fit_normals on the patch's
    normals, slope form pf_vmf_sum_add with base_var = base_sigma^2), masking per `masking`:
@@ -7477,126 +7965,6 @@ PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights
 #define PF_VMF_SCALE_UNMASKED 0
 #define PF_VMF_SCALE_G_GAUSSIAN 1
 #define PF_VMF_SCALE_G_MIXTURE 2
-/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
-   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
-#ifndef PF_VMF_MARCH_MAX_CELLS
-#  define PF_VMF_MARCH_MAX_CELLS 65536
-#endif
-
-PF_CPU_DEF long long pfi_vmf_wrap(long long i, long long n)
-{
-    i %= n;
-    return i < 0 ? i + n : i;
-}
-
-PF_CPU_DEF pf_real pfi_vmf_height(const pf_real *hm, int w, int h, long long x, long long y)
-{
-    return hm[pfi_vmf_wrap(y, h) * (long long)w + pfi_vmf_wrap(x, w)];
-}
-
-/* central-difference slope of node (x, y), wrapping */
-PF_CPU_DEF void pfi_vmf_slope(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_real *sx,
-                              pf_real *sy)
-{
-    pf_real k = PF_R(0.5) / texel;
-    *sx = k * (pfi_vmf_height(hm, w, h, x + 1, y) - pfi_vmf_height(hm, w, h, x - 1, y));
-    *sy = k * (pfi_vmf_height(hm, w, h, x, y + 1) - pfi_vmf_height(hm, w, h, x, y - 1));
-}
-
-/* 1 when node (x, y) of the patch (x0, y0, n) sees w; top = the highest node of the patch
-   and its one-node ring, world units. See VISIBILITY above. Heights are read in texel units. */
-PF_CPU_DEF int pfi_vmf_visible(const pf_real *hm, int w, int h, pf_real texel, long long x, long long y, pf_vec3 d,
-                               long long x0, long long y0, long long n, pf_real top)
-{
-    pf_real sx, sy, r, dx, dy, rise, h0, t = PF_R(0.0), tend = PF_REAL_MAX, tnx, tny, tdx, tdy, it = PF_R(1.0) / texel;
-    long long ix, iy, ox, oy, cells;
-    int stx, sty;
-    if (!(d.z > PF_R(0.0))) return 0;
-    pfi_vmf_slope(hm, w, h, texel, x, y, &sx, &sy);
-    if (!(d.z - sx * d.x - sy * d.y > PF_R(0.0))) return 0;
-    r = PF_SQRT(d.x * d.x + d.y * d.y);
-    h0 = pfi_vmf_height(hm, w, h, x, y) * it;
-    top = top * it;
-    if (!(r > PF_R(0.0)) || h0 >= top) return 1;
-    dx = d.x / r;
-    dy = d.y / r;
-    rise = d.z / r;
-    if (PF_FABS(dx) < PF_R(1.0e-12)) dx = PF_R(0.0);
-    if (PF_FABS(dy) < PF_R(1.0e-12)) dy = PF_R(0.0);
-    ox = pfi_vmf_wrap(x - x0, w);
-    oy = pfi_vmf_wrap(y - y0, h);
-    /* the box's edges lie half a texel outside its first and last nodes */
-    if (n < w) {
-        if (dx > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - ox) - PF_R(0.5)) / dx);
-        if (dx < PF_R(0.0)) tend = pf_min(tend, ((pf_real)ox + PF_R(0.5)) / -dx);
-    }
-    if (n < h) {
-        if (dy > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - oy) - PF_R(0.5)) / dy);
-        if (dy < PF_R(0.0)) tend = pf_min(tend, ((pf_real)oy + PF_R(0.5)) / -dy);
-    }
-    /* cell (ix, iy) spans [ix, ix + 1] x [iy, iy + 1] relative to the node, which is at 0 */
-    stx = dx > PF_R(0.0) ? 1 : -1;
-    sty = dy > PF_R(0.0) ? 1 : -1;
-    ix = dx >= PF_R(0.0) ? 0 : -1;
-    iy = dy >= PF_R(0.0) ? 0 : -1;
-    tdx = dx != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dx) : PF_REAL_MAX;
-    tdy = dy != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dy) : PF_REAL_MAX;
-    tnx = tdx;
-    tny = tdy;
-    for (cells = 0; cells < PF_VMF_MARCH_MAX_CELLS; ++cells) {
-        pf_real tout = pf_min(tnx, tny), ta = pf_max(t, PF_R(0.5)), tb = pf_min(tout, tend);
-        if (h0 + rise * t > top || t >= tend) return 1;
-        if (tb > ta) {
-            pf_real h00 = pfi_vmf_height(hm, w, h, x + ix, y + iy) * it, h10 = pfi_vmf_height(hm, w, h, x + ix + 1, y + iy) * it;
-            pf_real h01 = pfi_vmf_height(hm, w, h, x + ix, y + iy + 1) * it;
-            pf_real h11 = pfi_vmf_height(hm, w, h, x + ix + 1, y + iy + 1) * it;
-            pf_real u = dx * ta - (pf_real)ix, v = dy * ta - (pf_real)iy, len = tb - ta;
-            pf_real k = h11 - h10 - h01 + h00, gx = h10 - h00, gy = h01 - h00;
-            /* surface - ray = f0 + b s + c s^2 for s in [0, len] */
-            pf_real f0 = h00 + gx * u + gy * v + k * u * v - (h0 + rise * ta);
-            pf_real b = gx * dx + gy * dy + k * (u * dy + v * dx) - rise, c = k * dx * dy;
-            pf_real f1 = f0 + len * (b + c * len);
-            pf_real eps = PF_R(64.0) * PF_REAL_EPSILON * (PF_R(1.0) + PF_FABS(h0) + PF_FABS(rise * tb));
-            if (f0 > eps || f1 > eps) return 0;
-            if (c < PF_R(0.0)) {
-                pf_real sv = -b / (PF_R(2.0) * c);
-                if (sv > PF_R(0.0) && sv < len && f0 - b * b / (PF_R(4.0) * c) > eps) return 0;
-            }
-        }
-        t = tout;
-        if (tnx < tny) {
-            tnx += tdx;
-            ix += stx;
-        } else {
-            tny += tdy;
-            iy += sty;
-        }
-    }
-    return 0;
-}
-
-/* the base BRDF of one facet of slope (sx, sy): F(h.wi) D(h) G2 / 4 of a Beckmann lobe of slope
-   variance base_var about the slope (LEADR eqs. 10, 13, 16), 0 when a direction is on or below
-   the facet */
-PF_CPU_DEF pf_real pfi_vmf_base_term(pf_real sx, pf_real sy, pf_real base_var, pf_vec3 wo, pf_vec3 wi, pf_real f0)
-{
-    pf_slope_stats st = pf_slope_stats_make(sx, sy, base_var, base_var, PF_R(0.0));
-    pf_real ao = wo.z - sx * wo.x - sy * wo.y, ai = wi.z - sx * wi.x - sy * wi.y, lo, li;
-    pf_vec3 hv;
-    if (!(ao > PF_R(0.0)) || !(ai > PF_R(0.0)) || !(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
-    hv = pfi_vmf_half(wo, wi);
-    {
-        /* the lobe's exponent first: past 40 (D below 4e-18 of its peak) the facet adds nothing
-           the sum can hold, and the two Lambdas (erfc) are skipped: most facets of a patch are
-           that far from a narrow lobe's half vector */
-        pf_real ex = -hv.x / pf_max(hv.z, PF_R(1.0e-6)) - sx, ey = -hv.y / pf_max(hv.z, PF_R(1.0e-6)) - sy;
-        if (ex * ex + ey * ey > PF_R(80.0) * base_var) return PF_R(0.0);
-    }
-    lo = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wo), ao);
-    li = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wi), ai);
-    return pf_fresnel_schlick(f0, pf_vec3_dot(hv, wi)) * pfi_vmf_ndf_stats(PF_R(1.0), st, hv) /
-           (PF_R(4.0) * (PF_R(1.0) + lo + li));
-}
 
 /* argument and size checks shared by the scaling functions (no data read) */
 PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texel, long long n)
@@ -7615,7 +7983,7 @@ PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, 
     pf_real hi = -PF_REAL_MAX;
     for (j = -1; j <= n; ++j)
         for (i = -1; i <= n; ++i) {
-            pf_real v = pfi_vmf_height(hm, w, h, x0 + i, y0 + j);
+            pf_real v = pf_map_height(hm, w, h, x0 + i, y0 + j);
             if (!(PF_FABS(v) < PF_R(0.25) * PF_REAL_MAX)) return PF_ERR_ARG; /* NaN, inf */
             hi = pf_max(hi, v);
         }
@@ -7635,13 +8003,13 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
         for (i = 0; i < n; ++i) {
             long long x = x0 + i, y = y0 + j;
             pf_real term;
-            pfi_vmf_slope(hm, w, h, texel, x, y, &sx, &sy);
+            pf_map_node_slope(hm, w, h, texel, x, y, &sx, &sy);
             area += wo.z - sx * wo.x - sy * wo.y;
             if (vis_o && (!vis_o[j * n + i] || !vis_i[j * n + i])) continue;
-            term = pfi_vmf_base_term(sx, sy, base_var, wo, wi, f0);
+            term = pf_vmf_facet_specular(sx, sy, base_var, wo, wi, f0);
             if (!(term > PF_R(0.0))) continue;
-            if (!vis_o && (!pfi_vmf_visible(hm, w, h, texel, x, y, wo, x0, y0, n, top) ||
-                           !pfi_vmf_visible(hm, w, h, texel, x, y, wi, x0, y0, n, top)))
+            if (!vis_o && (!pf_map_visible(hm, w, h, texel, x, y, wo, x0, y0, n, top) ||
+                           !pf_map_visible(hm, w, h, texel, x, y, wi, x0, y0, n, top)))
                 continue;
             num += term;
         }
@@ -7710,7 +8078,7 @@ PF_CPU_DEF pf_vec3 pfi_vmf_scale_dir(int it, int k, int nt, int np, pf_real thet
 PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
 {
     long long A = 2LL * (np - 1), ai = s % A, ti = (s / A) % nt, ao = (s / (A * nt)) % A, to = s / (A * nt * A);
-    long long d = pfi_vmf_wrap(ai - ao, A), k = d <= np - 1 ? d : A - d;
+    long long d = pf_map_wrap(ai - ao, A), k = d <= np - 1 ? d : A - d;
     return (ti * nt + to) * np + k;
 }
 
@@ -7756,8 +8124,8 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
         for (i = 0; i < n; ++i) {
             /* (-dx, -dy, 2 texel), the normal of the central differences without dividing by
                the texel (no overflow for a tiny texel); the fit normalizes it */
-            pf_real dx = pfi_vmf_height(heights, w, h, x0 + i + 1, y0 + j) - pfi_vmf_height(heights, w, h, x0 + i - 1, y0 + j);
-            pf_real dy = pfi_vmf_height(heights, w, h, x0 + i, y0 + j + 1) - pfi_vmf_height(heights, w, h, x0 + i, y0 + j - 1);
+            pf_real dx = pf_map_height(heights, w, h, x0 + i + 1, y0 + j) - pf_map_height(heights, w, h, x0 + i - 1, y0 + j);
+            pf_real dy = pf_map_height(heights, w, h, x0 + i, y0 + j + 1) - pf_map_height(heights, w, h, x0 + i, y0 + j - 1);
             pf_real m = pf_max(pf_max(PF_FABS(dx), PF_FABS(dy)), PF_R(2.0) * texel);
             normals_scratch[3 * (j * n + i)] = -dx / m;
             normals_scratch[3 * (j * n + i) + 1] = -dy / m;
@@ -7770,7 +8138,7 @@ PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real 
         unsigned char *vm = vis_scratch + d * nn;
         for (j = 0; j < n; ++j)
             for (i = 0; i < n; ++i)
-                vm[j * n + i] = (unsigned char)pfi_vmf_visible(heights, w, h, texel, x0 + i, y0 + j, dir, x0, y0, n, top);
+                vm[j * n + i] = (unsigned char)pf_map_visible(heights, w, h, texel, x0 + i, y0 + j, dir, x0, y0, n, top);
     }
     for (s = 0; s < count; ++s) {
         long long ai = s % A, ti = (s / A) % nt, ao = (s / (A * nt)) % A, to = s / (A * nt * A);
@@ -7968,8 +8336,8 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
 }
 /* ================================================================ end of SCALING FUNCTION */
 
-/* ================================================================ CPU only: the lobe pyramid
-   Level l of a w x h normal map (w, h powers of two) has max(1, w >> l) x max(1, h >> l)
+/* ================================================================ the lobe pyramid
+   pf_map.h's pyramid layout restricted to power-of-two sides: level l of a w x h normal map has max(1, w >> l) x max(1, h >> l)
    texels; texel (i, j) of level l covers the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1)
    fy), fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
    FINEST NORMALS of its footprint (not merged from the level below: merging m lobes of four
@@ -7989,25 +8357,20 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
    * 4 * lobes pf_reals. Nothing outside these is read or written. */
 PF_CPU_DEF int pfi_vmf_pow2(long long n) { return pf_size_side_ok(n) && (n & (n - 1)) == 0; }
 
+/* levels of the lobe pyramid: pf_mip_level_count (pf_map.h's layout), 0 unless w and h are
+   powers of two in [1, PF_MAX_SIDE] */
 PF_CPU_DEF int pf_vmf_pyramid_level_count(int w, int h)
 {
-    int l = 1;
     if (!pfi_vmf_pow2(w) || !pfi_vmf_pow2(h)) return 0;
-    while ((w >> (l - 1)) > 1 || (h >> (l - 1)) > 1) ++l;
-    return l;
+    return pf_mip_level_count(w, h);
 }
 
-/* texels before level `level` (level >= count: the total); -1 for bad sizes */
+/* texels before level `level` (level >= count: the total): pf_mip_level_offset; -1 for bad
+   sizes or a negative level */
 PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
 {
-    long long off = 0;
-    int l, n = pf_vmf_pyramid_level_count(w, h);
-    if (n == 0 || level < 0) return -1;
-    for (l = 0; l < level && l < n; ++l) {
-        long long lw = (w >> l) > 0 ? (w >> l) : 1, lh = (h >> l) > 0 ? (h >> l) : 1;
-        off += lw * lh;
-    }
-    return off;
+    if (pf_vmf_pyramid_level_count(w, h) == 0 || level < 0) return -1;
+    return pf_mip_level_offset(w, h, level);
 }
 
 /* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes */
@@ -8073,249 +8436,8 @@ PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lo
 }
 #undef PFI_VMF_FOREACH
 
-/* ================================================================ CPU only: slope-preserving
-   downsampling of a height map (Wu et al. 2019 sec. 4.1, eqs. 9-10)
-   A coarse height map read with lobes fitted to the fine normals must carry the fine map's
-   mean slope over each footprint: the lobes describe the normals around that mean, and a box
-   average of the heights does not keep it (on the bench's corpus the box map's slopes are off
-   by 1.2-3.9x the solve's error, docs/vmf.md). Wu et al. choose the coarse heights whose
-   slopes best match the footprints' mean slopes in least squares, with a small Laplacian
-   term for smoothness.
-   OUR DISCRETIZATION (the library's height-map convention, pf_moments.h CONVENTIONS: texels
-   at centres, the slope of a texel its central difference, one-sided at a clamped border):
-     s*_T   = factor x the mean, over the factor x factor fine texels of coarse texel T, of the
-              fine texels' slopes (pfi_slope_stencil: what pf_slope_pyramid_from_heights'
-              level log2(factor) holds as E[sx], E[sy]), in height per COARSE texel;
-     (G H)_T = the coarse map's own slope at T by the same stencil (height per coarse texel);
-     (L H)_T = the 5-point Laplacian of the coarse map (sum of the 4 neighbours - 4 H_T;
-              wrapped, or the edge texel repeated under PF_BORDER_CLAMP);
-     minimize  E(H) = sum_T |(G H)_T - s*_T|^2 + reg_weight sum_T (L H)_T^2        (eq. 10)
-   (Wu et al. put heights on cell corners and take the bilinear cell's mean slope, eq. 9; on
-   the texel-centred grid the same role is played by the central difference, and using the
-   stencil every slope consumer of the library uses makes the coarse map's slopes exactly the
-   ones it is read with.) Every term is in height per coarse texel, so reg_weight is
-   dimensionless (the paper's w = 0.01) and the result does not depend on the texel spacing
-   (both slopes divide by it), which is therefore not an argument.
-   The normal equations (G^T G + reg_weight L^T L) H = G^T s* are singular along the
-   constant map (no slope sees it): THE MEAN IS PINNED to the box-downsampled map's mean (=
-   the fine map's mean), and the solve starts from that box map. SOLVER: conjugate gradients
-   on the normal equations (the matrix is never formed: each product is one pass of the three
-   stencils and one of their transposes), every residual projected to zero mean so rounding
-   cannot move the pinned mean; deterministic (fixed loop order, no threads). It stops after
-   max_iter iterations or when |r| <= tol |G^T s*| (r the recurrence's residual of the normal
-   equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
-   of two (exact) so that no difference overflows; a result beyond the pf_real range is
-   clamped to +-PF_REAL_MAX.
-   Arguments: fine w x h row-major; factor >= 1 dividing w and h (coarse (w/factor) x
-   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
-   PF_BORDER_CLAMP; reg_weight in [0, PF_VMF_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
-   2-texel checkerboards, which no central difference sees, keep their box values; far above
-   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
-   the box map); tol finite >= 0; scratch: scratch_len >= pf_vmf_downsample_scratch_size(w,
-   h, factor) pf_reals; iters_out (iterations done) and residual_out (the final |r| over the
-   reference norm above) may be NULL.
-   Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
-   dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
-   height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
-   above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
-   the first pf_vmf_downsample_scratch_size reals of scratch is touched.
-   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
-   their transposes over the coarse map) and four vector passes; 512 x 512 -> 256 x 256 in
-   15-50 ms (float, tol 1e-5; docs/vmf.md has the table and the slope errors against the box
-   map). */
+#endif /* !PF_GLSL */
 
-#define PF_VMF_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
-
-/* pf_reals of scratch pf_vmf_downsample_slopes needs: 6 per coarse texel; 0 for sizes it
-   rejects (w, h or factor below 1, factor not dividing w and h, a side above PF_MAX_SIDE, or
-   more than PF_MAX_REALS). */
-PF_CPU_DEF long long pf_vmf_downsample_scratch_size(int w, int h, int factor)
-{
-    long long n;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || factor < 1 || w % factor != 0 || h % factor != 0) return 0;
-    if (pf_size_mul(w, h) < 0) return 0;
-    n = pf_size_mul3((long long)(w / factor), (long long)(h / factor), 6);
-    return n < 0 ? 0 : n;
-}
-
-/* sum of a[i] b[i] (b NULL: a[i]^2) in rows of w: per-row partial sums, so the rounding grows
-   with w + h, not w h */
-PF_CPU_DEF pf_real pfi_ds_dot(const pf_real *a, const pf_real *b, long long w, long long h)
-{
-    pf_real total = PF_R(0.0);
-    long long i, j;
-    for (j = 0; j < h; ++j) {
-        const pf_real *x = a + j * w, *y = (b ? b : a) + j * w;
-        pf_real row = PF_R(0.0);
-        for (i = 0; i < w; ++i) row += x[i] * y[i];
-        total += row;
-    }
-    return total;
-}
-PF_CPU_DEF pf_real pfi_ds_mean(const pf_real *a, long long w, long long h)
-{
-    pf_real total = PF_R(0.0);
-    long long i, j;
-    for (j = 0; j < h; ++j) {
-        pf_real row = PF_R(0.0);
-        for (i = 0; i < w; ++i) row += a[j * w + i];
-        total += row / (pf_real)w;
-    }
-    return total / (pf_real)h;
-}
-PF_CPU_DEF void pfi_ds_shift(pf_real *a, long long n, pf_real d)
-{
-    long long i;
-    for (i = 0; i < n; ++i) a[i] += d;
-}
-/* neighbour of index i on an axis of n: wrapped or clamped (the clamped Laplacian repeats the
-   edge texel: a zero normal derivative) */
-PF_CPU_DEF long long pfi_ds_nb(long long i, long long n, int border)
-{
-    if (border == PF_BORDER_WRAP) return pfi_wrap_index(i, n);
-    return i < 0 ? 0 : (i >= n ? n - 1 : i);
-}
-
-/* gx = G_x v, gy = G_y v, lp = L v on the W x H coarse grid */
-PF_CPU_DEF void pfi_ds_forward(const pf_real *v, int W, int H, int border, pf_real *gx, pf_real *gy, pf_real *lp)
-{
-    long long I, J, xi[3], yi[3];
-    pf_real cx[3], cy[3];
-    for (J = 0; J < H; ++J) {
-        const pf_real *row = v + J * W, *up = v + pfi_ds_nb(J - 1, H, border) * W, *dn = v + pfi_ds_nb(J + 1, H, border) * W;
-        pfi_slope_stencil(J, H, border, PF_R(0.5), yi, cy);
-        for (I = 0; I < W; ++I) {
-            long long t = J * W + I;
-            pfi_slope_stencil(I, W, border, PF_R(0.5), xi, cx);
-            gx[t] = cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
-            gy[t] = cy[0] * v[yi[0] * W + I] + cy[1] * v[yi[1] * W + I] + cy[2] * v[yi[2] * W + I];
-            lp[t] = (row[pfi_ds_nb(I - 1, W, border)] + row[pfi_ds_nb(I + 1, W, border)]) + (up[I] + dn[I]) -
-                    PF_R(4.0) * row[I];
-        }
-    }
-}
-
-/* out = G_x^T gx + G_y^T gy + reg L^T lp (the transposes as scatters of the same stencils) */
-PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_real *lp, pf_real reg, int W, int H,
-                               int border, pf_real *out)
-{
-    long long I, J, k, xi[3], yi[3], n = (long long)W * H;
-    pf_real cx[3], cy[3];
-    for (k = 0; k < n; ++k) out[k] = PF_R(0.0);
-    for (J = 0; J < H; ++J) {
-        pf_real *row = out + J * W, *up = out + pfi_ds_nb(J - 1, H, border) * W, *dn = out + pfi_ds_nb(J + 1, H, border) * W;
-        pfi_slope_stencil(J, H, border, PF_R(0.5), yi, cy);
-        for (I = 0; I < W; ++I) {
-            long long t = J * W + I;
-            pf_real a = gx[t], b = gy[t], l = reg * lp[t];
-            pfi_slope_stencil(I, W, border, PF_R(0.5), xi, cx);
-            for (k = 0; k < 3; ++k) {
-                row[xi[k]] += cx[k] * a;
-                out[yi[k] * W + I] += cy[k] * b;
-            }
-            row[pfi_ds_nb(I - 1, W, border)] += l;
-            row[pfi_ds_nb(I + 1, W, border)] += l;
-            up[I] += l;
-            dn[I] += l;
-            row[I] -= PF_R(4.0) * l;
-        }
-    }
-}
-
-PF_CPU_DEF int pf_vmf_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
-                                        int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
-                                        long long scratch_len, int *iters_out, pf_real *residual_out)
-{
-    long long need, n, i, j, W, H, f = factor;
-    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, ref, mean, inv_f2;
-    int it = 0;
-    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
-    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
-    if (!(reg_weight >= PF_R(0.0) && reg_weight <= PF_VMF_DOWNSAMPLE_MAX_REG) || max_iter < 0 ||
-        !(tol >= PF_R(0.0) && tol <= PF_REAL_MAX))
-        return PF_ERR_ARG;
-    need = pf_vmf_downsample_scratch_size(w, h, factor);
-    if (need <= 0) return PF_ERR_SIZE;
-    if (scratch_len < need) return PF_ERR_ARG;
-    for (i = 0; i < (long long)w * h; ++i) {
-        pf_real a = PF_FABS(fine[i]);
-        if (!(a <= PF_REAL_MAX)) return PF_ERR_ARG; /* NaN or infinite */
-        maxabs = pf_max(maxabs, a);
-    }
-    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
-       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
-       -ffast-math) */
-    if (maxabs > PF_R(0.0)) {
-        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
-        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
-    }
-    W = w / factor, H = h / factor, n = W * H;
-    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
-    inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
-    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
-    for (i = 0; i < n; ++i) gx[i] = gy[i] = coarse[i] = PF_R(0.0);
-    for (j = 0; j < h; ++j) {
-        long long yi[3], xi[3], t0 = (j / f) * W;
-        pf_real cy[3], cx[3];
-        const pf_real *row = fine + j * w;
-        pfi_slope_stencil(j, h, border, PF_R(0.5) * scale, yi, cy);
-        for (i = 0; i < w; ++i) {
-            long long t = t0 + i / f;
-            pfi_slope_stencil(i, w, border, PF_R(0.5) * scale, xi, cx);
-            gx[t] += cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
-            gy[t] += cy[0] * fine[yi[0] * w + i] + cy[1] * fine[yi[1] * w + i] + cy[2] * fine[yi[2] * w + i];
-            coarse[t] += row[i] * scale;
-        }
-    }
-    /* mean fine slope (per fine texel) x f = per coarse texel */
-    for (i = 0; i < n; ++i) {
-        gx[i] *= inv_f2 * (pf_real)f;
-        gy[i] *= inv_f2 * (pf_real)f;
-        coarse[i] *= inv_f2;
-    }
-    mean = pfi_ds_mean(coarse, W, H);
-    for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
-    pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r); /* r = b = G^T s* */
-    bnorm = PF_SQRT(pfi_ds_dot(r, 0, W, H));
-    /* r = b - A x0 */
-    pfi_ds_forward(coarse, (int)W, (int)H, border, gx, gy, lp);
-    pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
-    for (i = 0; i < n; ++i) r[i] -= q[i];
-    pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
-    rr = pfi_ds_dot(r, 0, W, H);
-    ref = bnorm > PF_R(0.0) ? bnorm : PF_SQRT(rr);
-    for (i = 0; i < n; ++i) p[i] = r[i];
-    while (it < max_iter && PF_SQRT(rr) > tol * ref) {
-        pf_real pq, alpha, rr_new, beta;
-        pfi_ds_forward(p, (int)W, (int)H, border, gx, gy, lp);
-        pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
-        pq = pfi_ds_dot(p, q, W, H);
-        if (!(pq > PF_R(0.0))) break; /* p in the null space, or rounding: nothing left to gain */
-        alpha = rr / pq;
-        for (i = 0; i < n; ++i) {
-            coarse[i] += alpha * p[i];
-            r[i] -= alpha * q[i];
-        }
-        pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
-        rr_new = pfi_ds_dot(r, 0, W, H);
-        beta = rr_new / rr;
-        for (i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];
-        rr = rr_new;
-        ++it;
-    }
-    /* the pinned mean, exactly (rounding of the updates), then the heights' own scale */
-    pfi_ds_shift(coarse, n, mean - pfi_ds_mean(coarse, W, H));
-    for (i = 0; i < n; ++i) {
-        pf_real v = coarse[i] / scale;
-        coarse[i] = v > PF_REAL_MAX ? PF_REAL_MAX : (v < -PF_REAL_MAX ? -PF_REAL_MAX : v);
-    }
-    if (iters_out) *iters_out = it;
-    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
-    return PF_OK;
-}
-#endif /* PF_GLSL */
-
-#endif /* PF_VMF_H */
+#endif /* PF_VMF_FIT_H */
 
 #endif /* PREFILTER_H */

@@ -21,7 +21,7 @@
 
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
-#include "pf_moments.h"
+#include "pf_map.h"
 
 /* ---------------------------------------------------------------- esm_reduce2x2 */
 PFB_METHOD(esm_log, pf_esm_log_reduce2x2(x, y, z, (x + y + z) / PF_R(3.0)))

@@ -25,7 +25,7 @@
 
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
-#include "pf_vmf.h"
+#include "pf_vmf_fit.h"
 #include "../tests/pf_oracle.h"
 
 /* ------------------------------------------------------------------ normalization */
@@ -360,7 +360,7 @@ static int scaling_main(int argc, char **argv)
 
 /* ------------------------------------------------------------------ downsampling (helper I)
    `bench_vmf-float --downsample` (not part of the method tables): the slope-preserving
-   downsampling of pf_vmf_downsample_slopes (Wu et al. 2019 eqs. 9-10) on the corpus's
+   downsampling of pf_map_downsample_slopes (Wu et al. 2019 eqs. 9-10) on the corpus's
    512 x 512 height maps (tests/pf_microsurface.h, wrapped), factors 2 (to 256 x 256) and 8:
    wall time of one solve (best of 3), CG iterations, and the RMS error of the coarse map's
    slopes against the fine footprints' mean slopes (long double, computed here from the
@@ -393,7 +393,7 @@ static int downsample_main(void)
     const int N = 512;
     const pf_real tol = sizeof(pf_real) == 4 ? PF_R(1e-5) : PF_R(1e-8);
     int ki, fi;
-    printf("\n== vmf_downsample (%s): pf_vmf_downsample_slopes, 512 x 512 corpus maps, wrap, reg_weight 0.01, tol %g, max_iter 2000\n",
+    printf("\n== vmf_downsample (%s): pf_map_downsample_slopes, 512 x 512 corpus maps, wrap, reg_weight 0.01, tol %g, max_iter 2000\n",
            PFB_BUILD, (double)tol);
     printf("  %-14s %6s %8s %6s %12s %12s %12s %9s\n", "kind", "factor", "ms", "iters", "rms_slope", "err_box", "err_solve",
            "solve/box");
@@ -412,7 +412,7 @@ static int downsample_main(void)
         }
         for (fi = 0; fi < 2; ++fi) {
             int f = factors[fi], W = N / f, n = W * W, it = 0, rep;
-            long long need = pf_vmf_downsample_scratch_size(N, N, f);
+            long long need = pf_map_downsample_scratch_size(N, N, f);
             pf_real *coarse = (pf_real *)malloc((size_t)n * sizeof(pf_real)), *box = (pf_real *)calloc((size_t)n, sizeof(pf_real));
             pf_real *scratch = (pf_real *)malloc((size_t)need * sizeof(pf_real));
             long double *sx = (long double *)calloc((size_t)n, sizeof(long double));
@@ -433,7 +433,7 @@ static int downsample_main(void)
             for (i = 0; i < n; ++i) s2 += sx[i] * sx[i] + sy[i] * sy[i];
             for (rep = 0; rep < 3; ++rep) {
                 double t0 = pfb_now_ns();
-                if (pf_vmf_downsample_slopes(fine, N, N, f, PF_BORDER_WRAP, PF_R(0.01), 2000, tol, coarse, scratch, need, &it,
+                if (pf_map_downsample_slopes(fine, N, N, f, PF_BORDER_WRAP, PF_R(0.01), 2000, tol, coarse, scratch, need, &it,
                                              NULL) != PF_OK) {
                     fprintf(stderr, "downsample: solve failed\n");
                     return 1;

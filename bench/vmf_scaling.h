@@ -14,9 +14,11 @@
    Shading: pf_vmf_scale_apply(T, pf_vmf_scale_lookup(S, ...), f) (docs/vmf.md).
    Cost: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade 2304
    direction pairs; 16 training patches plus T for 64 texels take ~30 s (512^2 map, level 6).
-   Needs pf_vmf.h and <math.h> before it. */
+   Needs <math.h> before it. */
 #ifndef PF_BENCH_VMF_SCALING_H
 #define PF_BENCH_VMF_SCALING_H
+
+#include "pf_vmf_fit.h"
 
 #define VS_NT 6
 #define VS_NP 5

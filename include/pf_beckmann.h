@@ -56,61 +56,8 @@
 
 #ifndef PF_GLSL
 #  include "pf_smith.h"
+#  include "pf_moments.h"
 #endif
-
-/* ---------------------------------------------------------------- the five linear moments */
-/* Raw moments E[x], E[y], E[x^2], E[y^2], E[xy] of the micro-slopes (x, y) over a footprint
-   (Dupuy et al. 2013 eq. 9). They are linear in the footprint weights, so they are what a
-   mip pyramid and a texture sampler may average; everything else is derived from them after
-   filtering. A slope is (-n.x/n.z, -n.y/n.z) for a micro-normal n, which for a height field
-   z = h(x, y) is the gradient (dh/dx, dh/dy). */
-PF_STRUCT_BEGIN(pf_slope_moments)
-    pf_real ex;
-    pf_real ey;
-    pf_real exx;
-    pf_real eyy;
-    pf_real exy;
-PF_STRUCT_END(pf_slope_moments)
-
-PF_DEF pf_slope_moments pf_slope_moments_make(pf_real ex, pf_real ey, pf_real exx, pf_real eyy,
-                                              pf_real exy)
-{
-    pf_slope_moments m;
-    m.ex = ex;
-    m.ey = ey;
-    m.exx = exx;
-    m.eyy = eyy;
-    m.exy = exy;
-    return m;
-}
-
-/* The moments of a single slope (x, y): (x, y, x^2, y^2, xy). One texel of a LEAN/LEADR map. */
-PF_DEF pf_slope_moments pf_slope_moments_from_slope(pf_real x, pf_real y)
-{
-    return pf_slope_moments_make(x, y, x * x, y * y, x * y);
-}
-
-/* The moments of the slope of a normal n (n.z > 0; not normalized is fine): slope
-   (-n.x/n.z, -n.y/n.z). n.z <= 0 has no slope: it is clamped to the smallest positive
-   pf_real so the result stays finite (huge slopes) instead of inf or NaN. */
-PF_DEF pf_slope_moments pf_slope_moments_from_normal(pf_vec3 n)
-{
-    pf_real z = pf_max(n.z, PF_REAL_MIN);
-    return pf_slope_moments_from_slope(-n.x / z, -n.y / z);
-}
-
-/* a + b, componentwise (moments are linear). */
-PF_DEF pf_slope_moments pf_slope_moments_add(pf_slope_moments a, pf_slope_moments b)
-{
-    return pf_slope_moments_make(a.ex + b.ex, a.ey + b.ey, a.exx + b.exx, a.eyy + b.eyy,
-                                 a.exy + b.exy);
-}
-
-/* w * a, componentwise. */
-PF_DEF pf_slope_moments pf_slope_moments_scale(pf_slope_moments a, pf_real w)
-{
-    return pf_slope_moments_make(w * a.ex, w * a.ey, w * a.exx, w * a.eyy, w * a.exy);
-}
 
 /* The raw moments of a distribution with the given mean and covariance (inverse of eq. 9). */
 PF_DEF pf_slope_moments pf_slope_moments_from_stats(pf_slope_stats s)

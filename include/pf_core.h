@@ -665,14 +665,6 @@ PF_CPU_DEF long long pf_size_mul3(long long a, long long b, long long c)
 /* 1 when n is a valid side: 1 <= n <= PF_MAX_SIDE. */
 PF_CPU_DEF int pf_size_side_ok(long long n) { return n >= 1 && n <= PF_MAX_SIDE; }
 
-/* i modulo n in [0, n) for any i and n >= 1 (a wrapped texel index), without the overflow of
-   ((i % n) + n) % n near the ends of the range. */
-PF_CPU_DEF long long pfi_wrap_index(long long i, long long n)
-{
-    long long r = i % n;
-    return r < 0 ? r + n : r;
-}
-
 /* floor(x) as an index clamped to [lo, hi] (lo <= hi); NaN gives lo. The comparisons happen in
    pf_real before any conversion, so no x (huge, infinite, NaN) reaches an out-of-range
    float-to-integer conversion, which is undefined behaviour in C. */

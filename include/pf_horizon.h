@@ -172,7 +172,7 @@
 #ifndef PF_GLSL
 #  include "pf_beckmann.h"
 #  include "pf_gaussgrid.h"
-#  include "pf_moments.h"
+#  include "pf_map.h"
 #endif
 
 /* Largest Legendre order count k stored per azimuth. */
@@ -619,8 +619,8 @@ PF_CPU_DEF pf_real pfi_horizon_bilinear(const pf_real *hm, int w, int h, pf_real
     long long ix = (long long)fx, iy = (long long)fy, ix1, iy1;
     const pf_real *r0, *r1;
     if (border == PF_BORDER_WRAP) {
-        ix = pfi_wrap_index(ix, w);
-        iy = pfi_wrap_index(iy, h);
+        ix = pf_map_wrap(ix, w);
+        iy = pf_map_wrap(iy, h);
         ix1 = ix + 1 == w ? 0 : ix + 1;
         iy1 = iy + 1 == h ? 0 : iy + 1;
     } else {
@@ -686,11 +686,11 @@ PF_CPU_DEF void pfi_horizon_fill(const pf_real *heights, int w, int h, pf_real s
     for (j = 0; j < h; ++j) {
         long long yy[3], xx[3];
         pf_real cy[3], cx[3];
-        pfi_slope_stencil(j, h, border, kx, yy, cy);
+        pf_map_slope_stencil(j, h, border, kx, yy, cy);
         for (i = 0; i < w; ++i) {
             pf_real *o = out + ((long long)j * w + i) * c, sx, sy;
             const pf_real *col = heights + i;
-            pfi_slope_stencil(i, w, border, kx, xx, cx);
+            pf_map_slope_stencil(i, w, border, kx, xx, cx);
             sx = cx[0] * heights[(long long)j * w + xx[0]] + cx[1] * heights[(long long)j * w + xx[1]]
                  + cx[2] * heights[(long long)j * w + xx[2]];
             sy = cy[0] * col[yy[0] * w] + cy[1] * col[yy[1] * w] + cy[2] * col[yy[2] * w];

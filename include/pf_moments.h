@@ -23,11 +23,8 @@
      pf_slope_moments t = pf_slope_moments_from_heights(hl, hr, hd, hu, dx, dy, scale);
      pf_slope_moments m = pf_slope_moments_reduce2x2(t00, t10, t01, t11);   -- one mip texel
      pf_slope_stats   s = pf_slope_moments_stats(m, base_var);               -- after filtering
-   USAGE (CPU: a whole pyramid in one caller buffer, no allocation)
-     long long n = pf_mip_texel_count(w, h);              -- texels of all levels together
-     pf_real *pyr = <n * 5 pf_reals from the caller>;
-     if (pf_slope_pyramid_from_heights(heights, w, h, dx, dy, scale, PF_BORDER_WRAP, pyr) != PF_OK) ...
-     pf_slope_moments m = pf_slope_moments_sample(pyr, w, h, lod, u, v, PF_BORDER_WRAP);
+   The CPU side (pyramids of these texels from a map, their sampling, the border rule and
+   layout) is pf_map.h; this header is what a shader pastes, plus two CPU means of N texels.
 
    FUNCTIONS (shader subset: pure functions of scalars and by-value structs)
      texels          pf_scalar_moments_make, _from_value, _mean, _variance, _deviation;
@@ -35,8 +32,10 @@
                      pf_evsm_moments_make, _from_depth; pf_evsm_warp_pos, _neg;
                      pf_csm_pair_make, _from_depth (convolution shadow maps);
                      pf_normal_avg_from_normal, _from_slope; pf_esm_log_from_depth, _combine2
-     linear algebra  pf_<T>_add, _scale for scalar, depth2, depth4, evsm, csm_pair (slope moments:
-                     pf_beckmann.h; pf_vec3: pf_core.h)
+     slope moments   pf_slope_moments (struct), pf_slope_moments_make, _from_slope, _from_normal
+                     (their statistics and distribution: pf_beckmann.h)
+     linear algebra  pf_<T>_add, _scale for slope_moments, scalar, depth2, depth4, evsm,
+                     csm_pair (pf_vec3: pf_core.h)
      reductions      pf_<T>_reduce2x2, _reduce3, _reduce3x3, _accumulate, _lerp, _bilinear for
                      T in slope_moments, scalar_moments, depth_moments2, depth_moments4,
                      evsm_moments, csm_pair, normal_avg (a pf_vec3), signatures at PFI_MOM_STAMP;
@@ -46,27 +45,13 @@
      height maps     pf_height_slope_central, _edge, pf_slope_moments_from_heights
    FUNCTIONS (CPU only, linkage PF_CPU_DEF: they walk caller-owned buffers; compiled out under
    PF_GLSL)
-     layout          pf_mip_level_count, _level_size, _level_offset, pf_mip_texel_count
-     building        pf_mip_build (any channel count), pf_mip_build_log (ESM),
-                     pf_slope_moments_map_from_heights (level 0), pf_slope_pyramid_from_heights,
-                     pf_depth_moment_channels, pf_depth_pyramid_from_depths,
-                     pf_scalar_pyramid_from_values, pf_normal_pyramid_from_normals
      N texels        pf_moments_weighted_mean, pf_esm_log_weighted_mean
-     sampling        pf_mip_sample_bilinear, _trilinear, _bilinear_log, _trilinear_log;
-                     pf_<T>_sample for the six T above, pf_esm_log_sample
 
    CONVENTIONS (docs/moments.md gives the reasons and the tests behind each)
      Buffers. Texel (i, j) (column i, row j) of a map of C channels is pf_reals
      [(j w + i) C ...+ C - 1], as an RGBA32F upload; struct members are channels in order
      (slope ex, ey, exx, eyy, exy: 5; scalar, depth2: 2; depth4, evsm: 4; normal: 3; ESM: 1).
-     Pyramid. Level l+1 is pf_mip_next_size of each side of level l, down to 1 x 1; levels are
-     stored one after the other from level 0, each row-major. Odd sizes reduce as a polyphase
-     box (pf_mip_weights3): every texel of a level has the same footprint and every level's
-     mean is level 0's, so the 1 x 1 top is the global mean.
-     Sampling: the GPU's. Texel i of n is centred at u = (i + 0.5)/n; PF_BORDER_CLAMP clamps any
-     u (infinities too) to the edge texel, PF_BORDER_WRAP repeats with u - floor(u) in pf_real
-     (a u too large to have a fraction wraps to 0); NaN, and infinities under WRAP, are 0.
-     A trilinear lod is clamped to [0, levels - 1] (NaN: 0).
+     Pyramids, sampling, borders: pf_map.h (CONVENTIONS there).
      Height maps. Texel (i, j) sits at ((i + 0.5) dx, (j + 0.5) dy), row j + 1 is +y; the slope
      is height_scale * grad h (Dupuy et al. 2013 sec. 4.2) by pf_height_slope_central.
      PF_BORDER_WRAP for tiling maps; PF_BORDER_CLAMP reads no texel outside the map and uses
@@ -77,19 +62,14 @@
      texel makes NaN exactly the texels that average it with a nonzero weight; zero-weight
      texels are never read. A level or sample of texels near +-PF_REAL_MAX that overflows
      through the rounded weights is clamped to the range of its texels (not under -ffast-math).
-     Limits and errors (pf_core.h, "sizes and errors"). Every builder and sampler returns
-     PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; w, h or channels below 1;
-     n below 0; a border other than PF_BORDER_CLAMP / _WRAP; an unknown PF_DEPTH_* kind; a +inf
-     weight) or PF_ERR_SIZE (w or h above PF_MAX_SIDE, 2^24 by default; a pyramid, map or texel
-     buffer above PF_MAX_REALS pf_reals, 2^40 on 64-bit hosts). On those errors the typed
-     samplers return zeros, pf_esm_log_sample and pf_esm_log_weighted_mean -PF_REAL_MAX;
-     pf_mip_texel_count is 0 for a size no builder accepts. Offsets and indices are long long.
+     Limits and errors (pf_core.h, "sizes and errors"). pf_moments_weighted_mean returns
+     PF_OK or, having written nothing, PF_ERR_ARG (a NULL pointer; channels below 1; n below
+     0; a +inf weight) or PF_ERR_SIZE (a texel buffer above PF_MAX_REALS pf_reals);
+     pf_esm_log_weighted_mean returns -PF_REAL_MAX for those.
 
    ACCURACY AND COST (measured; docs/moments.md has the tables, bench/bench_moments.c the
-   timings). Reductions and sampling are sums of a few products: their moments equal the
-   mixture moments of their texels to a few ulps (tests/test_moments.c). A pyramid is built
-   in one pass, each level reduced while the rows it needs are in cache: the 5-moment pyramid
-   of a 4096^2 float height map writes at over half of memcpy's bandwidth (docs/moments.md).
+   timings). Reductions are sums of a few products: their moments equal the mixture moments
+   of their texels to a few ulps (tests/test_moments.c).
 
    SOURCES
      Dupuy et al. 2013 (LEADR) sec. 4.1-4.2, eqs. 9, 11, 12; Bruneton & Neyret 2012 sec. 3.2.1
@@ -100,8 +80,63 @@
 #define PF_MOMENTS_H
 
 #ifndef PF_GLSL
-#  include "pf_beckmann.h"
+#  include "pf_core.h"
 #endif
+
+/* ---------------------------------------------------------------- the five linear moments */
+/* Raw moments E[x], E[y], E[x^2], E[y^2], E[xy] of the micro-slopes (x, y) over a footprint
+   (Dupuy et al. 2013 eq. 9). They are linear in the footprint weights, so they are what a
+   mip pyramid and a texture sampler may average; everything else is derived from them after
+   filtering. A slope is (-n.x/n.z, -n.y/n.z) for a micro-normal n, which for a height field
+   z = h(x, y) is the gradient (dh/dx, dh/dy). */
+PF_STRUCT_BEGIN(pf_slope_moments)
+    pf_real ex;
+    pf_real ey;
+    pf_real exx;
+    pf_real eyy;
+    pf_real exy;
+PF_STRUCT_END(pf_slope_moments)
+
+PF_DEF pf_slope_moments pf_slope_moments_make(pf_real ex, pf_real ey, pf_real exx, pf_real eyy,
+                                              pf_real exy)
+{
+    pf_slope_moments m;
+    m.ex = ex;
+    m.ey = ey;
+    m.exx = exx;
+    m.eyy = eyy;
+    m.exy = exy;
+    return m;
+}
+
+/* The moments of a single slope (x, y): (x, y, x^2, y^2, xy). One texel of a LEAN/LEADR map. */
+PF_DEF pf_slope_moments pf_slope_moments_from_slope(pf_real x, pf_real y)
+{
+    return pf_slope_moments_make(x, y, x * x, y * y, x * y);
+}
+
+/* The moments of the slope of a normal n (n.z > 0; not normalized is fine): slope
+   (-n.x/n.z, -n.y/n.z). n.z <= 0 has no slope: it is clamped to the smallest positive
+   pf_real so the result stays finite (huge slopes) instead of inf or NaN. */
+PF_DEF pf_slope_moments pf_slope_moments_from_normal(pf_vec3 n)
+{
+    pf_real z = pf_max(n.z, PF_REAL_MIN);
+    return pf_slope_moments_from_slope(-n.x / z, -n.y / z);
+}
+
+/* a + b, componentwise (moments are linear). */
+PF_DEF pf_slope_moments pf_slope_moments_add(pf_slope_moments a, pf_slope_moments b)
+{
+    return pf_slope_moments_make(a.ex + b.ex, a.ey + b.ey, a.exx + b.exx, a.eyy + b.eyy,
+                                 a.exy + b.exy);
+}
+
+/* w * a, componentwise. */
+PF_DEF pf_slope_moments pf_slope_moments_scale(pf_slope_moments a, pf_real w)
+{
+    return pf_slope_moments_make(w * a.ex, w * a.ey, w * a.exx, w * a.eyy, w * a.exy);
+}
+
 
 /* ---------------------------------------------------------------- depth moments
    Depths z are in [0, 1] (0 nearest the light); pf_shadow.h evaluates the filtered values. */
@@ -341,18 +376,18 @@ PFI_MOM_STAMP(pf_csm_pair, pf_csm_pair, PFI_MOM_BOX) /* CSM: values in [-1, 1], 
    any finite l and c. Zero-weight texels are skipped. l - m is floored at -80 (exp(-80) is
    below the rounding of a sum that holds a 1), which keeps every exponential normal (libm's
    underflow path and subnormals are slow). */
-#define PFI_LSE_ARG_MIN PF_R(-80.0)
+#define PF_LSE_ARG_MIN PF_R(-80.0)
 
-/* d floored at PFI_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
-PF_DEF pf_real pfi_lse_arg(pf_real d) { return d < PFI_LSE_ARG_MIN ? PFI_LSE_ARG_MIN : d; }
+/* d floored at PF_LSE_ARG_MIN; NaN stays NaN (so a NaN texel still propagates). */
+PF_DEF pf_real pf_lse_arg(pf_real d) { return d < PF_LSE_ARG_MIN ? PF_LSE_ARG_MIN : d; }
 /* log of the mean of exp(l) over 4 texels (the 2x2 box). */
 PF_DEF pf_real pf_esm_log_reduce2x2(pf_real l0, pf_real l1, pf_real l2, pf_real l3)
 {
     pf_real m = pf_max(pf_max(l0, l1), pf_max(l2, l3));
-    pf_real s = PF_R(0.25) * PF_EXP(pfi_lse_arg(l0 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l1 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l2 - m))
-              + PF_R(0.25) * PF_EXP(pfi_lse_arg(l3 - m));
+    pf_real s = PF_R(0.25) * PF_EXP(pf_lse_arg(l0 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l1 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l2 - m))
+              + PF_R(0.25) * PF_EXP(pf_lse_arg(l3 - m));
     return m + PF_LOG(s);
 }
 
@@ -365,9 +400,9 @@ PF_DEF pf_real pf_esm_log_reduce3(pf_real l0, pf_real l1, pf_real l2, pf_vec3 w)
     if (w.x > PF_R(0.0) && l0 > m) m = l0;
     if (w.y > PF_R(0.0) && l1 > m) m = l1;
     if (w.z > PF_R(0.0) && l2 > m) m = l2;
-    s = (w.x > PF_R(0.0) ? w.x * PF_EXP(pfi_lse_arg(l0 - m)) : PF_R(0.0))
-      + (w.y > PF_R(0.0) ? w.y * PF_EXP(pfi_lse_arg(l1 - m)) : PF_R(0.0))
-      + (w.z > PF_R(0.0) ? w.z * PF_EXP(pfi_lse_arg(l2 - m)) : PF_R(0.0));
+    s = (w.x > PF_R(0.0) ? w.x * PF_EXP(pf_lse_arg(l0 - m)) : PF_R(0.0))
+      + (w.y > PF_R(0.0) ? w.y * PF_EXP(pf_lse_arg(l1 - m)) : PF_R(0.0))
+      + (w.z > PF_R(0.0) ? w.z * PF_EXP(pf_lse_arg(l2 - m)) : PF_R(0.0));
     return s > PF_R(0.0) ? m + PF_LOG(s) : (s == s ? -PF_REAL_MAX : s);
 }
 
@@ -416,10 +451,10 @@ PF_DEF pf_esm_log_sum pf_esm_log_sum_add(pf_esm_log_sum a, pf_real l, pf_real w)
 {
     if (!(w > PF_R(0.0))) return a;
     if (l > a.lmax) {
-        a.sum = a.sum * PF_EXP(pfi_lse_arg(a.lmax - l)) + w;
+        a.sum = a.sum * PF_EXP(pf_lse_arg(a.lmax - l)) + w;
         a.lmax = l;
     } else {
-        a.sum = a.sum + w * PF_EXP(pfi_lse_arg(l - a.lmax));
+        a.sum = a.sum + w * PF_EXP(pf_lse_arg(l - a.lmax));
     }
     a.weight = a.weight + w;
     return a;
@@ -462,396 +497,7 @@ PF_DEF pf_slope_moments pf_slope_moments_from_heights(pf_real h_xm, pf_real h_xp
    pf_core.h). Errors as in CONVENTIONS (Limits and errors) plus what each comment adds. */
 #ifndef PF_GLSL
 
-/* Border handling of the height-map stencils and of sampling (any other value: PF_ERR_ARG). */
-#define PF_BORDER_CLAMP 0
-#define PF_BORDER_WRAP 1
 
-/* Depth-moment kinds of pf_depth_pyramid_from_depths (channels in brackets). */
-#define PF_DEPTH_VSM 0     /* [2] z, z^2                                 pf_depth_moments2 */
-#define PF_DEPTH_EVSM2 1   /* [2] p, p^2, p = exp(c_pos (2z - 1))        pf_depth_moments2 */
-#define PF_DEPTH_EVSM4 2   /* [4] p, p^2, n, n^2, n = -exp(-c_neg (2z-1)) pf_evsm_moments */
-#define PF_DEPTH_MSM 3     /* [4] u, u^2, u^3, u^4, u = 1 - z            pf_depth_moments4 */
-#define PF_DEPTH_ESM_LOG 4 /* [1] c_pos z, reduced with log-sum-exp      pf_esm_log_* */
-/* CSM, M = 4, 8, 16 harmonics: [2M] cos(c_k z), sin(c_k z), c_k = (2k - 1) pi, k = 1..M, in
-   that order (M/2 pf_csm_pair texels; pf_shadow_csm) */
-#define PF_DEPTH_CSM4 5
-#define PF_DEPTH_CSM8 6
-#define PF_DEPTH_CSM16 7
-
-/* More levels than any int-sized map has (2^31 texels on a side gives 32). */
-#define PF_MIP_MAX_LEVELS 32
-
-/* ---------------------------------------------------------------- pyramid layout */
-/* Number of levels of a w x h pyramid, the 1 x 1 top included (0 if w < 1 or h < 1). */
-PF_CPU_DEF int pf_mip_level_count(int w, int h)
-{
-    int n = w >= 1 && h >= 1;
-    for (; n > 0 && (w > 1 || h > 1); ++n) w = pf_mip_next_size(w), h = pf_mip_next_size(h);
-    return n;
-}
-
-/* Size along one axis at a level: n halved (floor, never below 1) level times (0 for n < 1). */
-PF_CPU_DEF int pf_mip_level_size(int n, int level)
-{
-    for (; level > 0 && n > 1; --level) n = pf_mip_next_size(n);
-    return n < 1 ? 0 : n;
-}
-
-/* Where level `level` starts, in texels from the start of the pyramid (multiply by the
-   channel count for pf_reals); level >= pf_mip_level_count gives the total. Any int w, h: the
-   sum stays below 2^63. */
-PF_CPU_DEF long long pf_mip_level_offset(int w, int h, int level)
-{
-    long long off = 0;
-    int l, nl = pf_mip_level_count(w, h);
-    for (l = 0; l < level && l < nl; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h))
-        off += (long long)w * (long long)h;
-    return off;
-}
-
-/* The pyramid checks: PF_ERR_ARG for a NULL p or w, h, channels < 1; PF_ERR_SIZE for a side
-   above PF_MAX_SIDE or a pyramid of more than PF_MAX_REALS pf_reals; else PF_OK. */
-PF_CPU_DEF int pfi_mip_check(const void *p, int w, int h, int channels)
-{
-    if (!p || w < 1 || h < 1 || channels < 1) return PF_ERR_ARG;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
-    return pf_size_mul(pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS), channels) < 0 ? PF_ERR_SIZE : PF_OK;
-}
-
-/* Texels of the whole pyramid of a w x h base (all levels, one buffer of
-   pf_mip_texel_count(w, h) * channels pf_reals). 0 when w or h is below 1 or above
-   PF_MAX_SIDE or the texels alone exceed PF_MAX_REALS; a builder of C channels also rejects
-   (PF_ERR_SIZE) a count with count * C > PF_MAX_REALS. */
-PF_CPU_DEF long long pf_mip_texel_count(int w, int h)
-{ return pfi_mip_check(&w, w, h, 1) == PF_OK ? pf_mip_level_offset(w, h, PF_MIP_MAX_LEVELS) : 0; }
-
-/* ---------------------------------------------------------------- level reduction (private)
-   A cascade over rows: as soon as the source rows a destination row needs are complete (2j,
-   2j+1 and, for odd heights, 2j+2), that row is reduced, and the same check runs one level up;
-   each level is computed while the rows it reads are still in cache, so a pyramid built from a
-   map costs about one pass over memory. */
-typedef struct pfi_mip_cascade {
-    pf_real *pyr;
-    int channels, log_space, levels;
-    int lw[PF_MIP_MAX_LEVELS], lh[PF_MIP_MAX_LEVELS], next_row[PF_MIP_MAX_LEVELS];
-    long long off[PF_MIP_MAX_LEVELS]; /* in pf_reals */
-} pfi_mip_cascade;
-
-/* pfi_mip_check's code; on PF_OK c is ready. */
-PF_CPU_DEF int pfi_mip_cascade_init(pfi_mip_cascade *c, pf_real *pyr, int w, int h, int channels,
-                                    int log_space)
-{
-    int l, rc = pfi_mip_check(pyr, w, h, channels);
-    long long off = 0;
-    if (rc != PF_OK) return rc;
-    c->levels = pf_mip_level_count(w, h);
-    c->pyr = pyr, c->channels = channels, c->log_space = log_space;
-    for (l = 0; l < c->levels; ++l, w = pf_mip_next_size(w), h = pf_mip_next_size(h)) {
-        c->lw[l] = w, c->lh[l] = h, c->next_row[l] = 0, c->off[l] = off;
-        off += (long long)w * (long long)h * (long long)channels;
-    }
-    return PF_OK;
-}
-
-/* The 2x2 box with a compile-time channel count (the common case: both sizes even). Plain
-   builds sum the four products q a + q b + q c + q d (IEEE order, no overflow, the fastest
-   loop). -ffast-math factors that into q (a + b + c + d), which overflows for texels above
-   PF_REAL_MAX / 4 (see pf_evsm_moments_reduce2x2); there each pair is averaged as a midpoint,
-   a + (b - a)/2 for one sign, (a + b)/2 for opposite signs (neither exceeds max(|a|, |b|)). */
-#ifdef __FAST_MATH__
-PF_CPU_DEF pf_real pfi_mip_mid(pf_real a, pf_real b)
-{ return (a >= PF_R(0.0)) == (b >= PF_R(0.0)) ? a + PF_R(0.5) * (b - a) : PF_R(0.5) * (a + b); }
-#endif
-PF_CPU_DEF void pfi_mip_box_row(pf_real *dst, const pf_real *a, const pf_real *b, int dw, int nc)
-{
-    const pf_real q = PF_R(0.25);
-    long long i;
-    int k;
-    for (i = 0; i < dw; ++i) {
-        const pf_real *a0 = a + 2 * i * nc, *b0 = b + 2 * i * nc;
-        pf_real *d = dst + i * nc;
-#ifdef __FAST_MATH__
-        (void)q;
-        for (k = 0; k < nc; ++k)
-            d[k] = pfi_mip_mid(pfi_mip_mid(a0[k], a0[nc + k]), pfi_mip_mid(b0[k], b0[nc + k]));
-#else
-        for (k = 0; k < nc; ++k) d[k] = q * a0[k] + q * a0[nc + k] + q * b0[k] + q * b0[nc + k];
-#endif
-    }
-}
-
-/* Number of source texels with a nonzero weight along an axis of n_src texels. */
-PF_CPU_DEF int pfi_mip_taps(int n_src) { return n_src == 1 ? 1 : ((n_src & 1) ? 3 : 2); }
-/* A weighted mean s of n taps (tap[t][k], positive weights) that overflowed: the rounded
-   weights may sum to a little more than 1, so taps near +-PF_REAL_MAX can give +-inf; the mean
-   lies between the smallest and the largest tap, so s is clamped there (NaN stays NaN). */
-PF_CPU_DEF pf_real pfi_taps_clamp(pf_real s, const pf_real *const *tap, int n, long long k)
-{
-    pf_real lo = tap[0][k], hi = tap[0][k];
-    int t;
-    for (t = 1; t < n; ++t) lo = pf_min(lo, tap[t][k]), hi = pf_max(hi, tap[t][k]);
-    return pf_clamp(s, lo, hi);
-}
-/* Channel k of the weighted mean of n taps of positive weights w: sum w[t] tap[t][k] (clamped
-   as above when it overflows) or, in log space, log sum w[t] exp(tap[t][k]) by log-sum-exp. */
-PF_CPU_DEF pf_real pfi_taps_mean(const pf_real *const *tap, const pf_real *w, int n, long long k,
-                                 int log_space)
-{
-    pf_real s = PF_R(0.0), m = -PF_REAL_MAX;
-    int t;
-    if (!log_space) {
-        for (t = 0; t < n; ++t) s += w[t] * tap[t][k];
-        /* only +-inf is clamped: a NaN s is returned as is (CUDA's fmin/fmax clamp would
-           turn it into lo) */
-        return !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pfi_taps_clamp(s, tap, n, k);
-    }
-    for (t = 0; t < n; ++t)
-        if (tap[t][k] > m) m = tap[t][k];
-    for (t = 0; t < n; ++t) s += w[t] * PF_EXP(pfi_lse_arg(tap[t][k] - m));
-    return m + PF_LOG(s); /* s >= the largest weight > 0 unless a tap is NaN, which propagates */
-}
-
-/* Reduces row j of level l + 1 from level l. */
-PF_CPU_DEF void pfi_mip_reduce_row(const pfi_mip_cascade *c, int l, int j)
-{
-    const int nc = c->channels, sw = c->lw[l], sh = c->lh[l], dw = c->lw[l + 1];
-    const pf_real *src = c->pyr + c->off[l];
-    pf_real *dst = c->pyr + c->off[l + 1] + (long long)j * dw * nc;
-    const pf_real *rows[3];
-    pf_vec3 vy = pf_mip_weights3(j, sh), vx;
-    int ny = pfi_mip_taps(sh), nx = pfi_mip_taps(sw), b, a, k;
-    long long i;
-    for (b = 0; b < ny; ++b) rows[b] = src + (2LL * j + b) * sw * nc;
-    if (!c->log_space && nx == 2 && ny == 2) {
-        switch (nc) { /* constant channel counts let the compiler unroll and vectorize */
-        case 1: pfi_mip_box_row(dst, rows[0], rows[1], dw, 1); return;
-        case 2: pfi_mip_box_row(dst, rows[0], rows[1], dw, 2); return;
-        case 3: pfi_mip_box_row(dst, rows[0], rows[1], dw, 3); return;
-        case 4: pfi_mip_box_row(dst, rows[0], rows[1], dw, 4); return;
-        case 5: pfi_mip_box_row(dst, rows[0], rows[1], dw, 5); return;
-        default: pfi_mip_box_row(dst, rows[0], rows[1], dw, nc); return;
-        }
-    }
-    if (c->log_space && nx == 2 && ny == 2) {
-        for (i = 0; i < dw; ++i)
-            for (k = 0; k < nc; ++k) {
-                const pf_real *a0 = rows[0] + 2 * i * nc + k, *b0 = rows[1] + 2 * i * nc + k;
-                dst[i * nc + k] = pf_esm_log_reduce2x2(a0[0], a0[nc], b0[0], b0[nc]);
-            }
-        return;
-    }
-    for (i = 0; i < dw; ++i) { /* odd sizes: up to 3 x 3 taps, every weight positive */
-        pf_real wy[3], wx[3], wt[9];
-        const pf_real *tap[9];
-        int nt = 0;
-        vx = pf_mip_weights3((int)i, sw);
-        wx[0] = vx.x, wx[1] = vx.y, wx[2] = vx.z, wy[0] = vy.x, wy[1] = vy.y, wy[2] = vy.z;
-        for (b = 0; b < ny; ++b)
-            for (a = 0; a < nx; ++a, ++nt) {
-                wt[nt] = wy[b] * wx[a];
-                tap[nt] = rows[b] + (2 * i + a) * nc;
-            }
-        for (k = 0; k < nc; ++k) dst[i * nc + k] = pfi_taps_mean(tap, wt, nt, k, c->log_space);
-    }
-}
-
-/* Row r of level l is complete: reduce every row above that now has all its inputs. */
-PF_CPU_DEF void pfi_mip_push_row(pfi_mip_cascade *c, int l, int r)
-{
-    while (l + 1 < c->levels) {
-        int j = c->next_row[l + 1], sh = c->lh[l];
-        int last = sh == 1 ? 0 : ((sh & 1) ? 2 * j + 2 : 2 * j + 1);
-        if (j >= c->lh[l + 1] || last > r) return;
-        pfi_mip_reduce_row(c, l, j);
-        c->next_row[++l] = j + 1, r = j;
-    }
-}
-
-/* ---------------------------------------------------------------- building
-   pyr always holds pf_mip_texel_count(w, h) * channels pf_reals; errors as in CONVENTIONS.
-   Each builder writes level 0 row by row and pushes each row into the cascade (one pass).
-   They stay separate functions with their own loops: merged into one, the compiler made the
-   depth loops slower (MSM pyramid 1.5x in bench_moments). */
-/* The height-map stencil at index i of an axis of n texels (CONVENTIONS, Height maps): the
-   slope there is c[0] v[x[0]] + c[1] v[x[1]] + c[2] v[x[2]], k = height_scale / (2 spacing)
-   folded into c: central (wrapped, or inside the map), (v1 - v0)/d for n = 2, the one-sided
-   pf_height_slope_edge at a clamped border (mirrored at the far end), 0 for n = 1. */
-PF_CPU_DEF void pfi_slope_stencil(long long i, int n, int border, pf_real k, long long *x, pf_real *c)
-{
-    pf_real s = i == 0 ? k : -k;
-    x[0] = x[1] = x[2] = i;
-    c[0] = c[1] = c[2] = PF_R(0.0);
-    if (n < 2) return;
-    if (border == PF_BORDER_WRAP || (i > 0 && i < n - 1)) {
-        x[0] = pfi_wrap_index(i - 1, n), x[1] = pfi_wrap_index(i + 1, n);
-        c[0] = -k, c[1] = k;
-    } else if (n == 2) {
-        x[0] = 0, x[1] = 1;
-        c[0] = -PF_R(2.0) * k, c[1] = PF_R(2.0) * k;
-    } else {
-        x[1] = i == 0 ? 1 : n - 2, x[2] = i == 0 ? 2 : n - 3;
-        c[0] = -PF_R(3.0) * s, c[1] = PF_R(4.0) * s, c[2] = -s;
-    }
-}
-
-/* Stores the slope moments of slope (sx, sy). */
-PF_CPU_DEF void pfi_put_slope(pf_real *o, pf_real sx, pf_real sy)
-{ o[0] = sx, o[1] = sy, o[2] = sx * sx, o[3] = sy * sy, o[4] = sx * sy; }
-/* Row r of the slope-moment map of a height map (5 channels). */
-PF_CPU_DEF void pfi_slope_row(const pf_real *heights, int w, int h, int r, pf_real dx, pf_real dy,
-                              pf_real height_scale, int border, pf_real *out)
-{
-    const pf_real ky = height_scale / (PF_R(2.0) * dy), kx = height_scale / (PF_R(2.0) * dx);
-    const pf_real *row = heights + (long long)r * w, *r0, *r1, *r2;
-    long long y[3], x[3];
-    pf_real cy[3], cx[3], c0, c1, c2;
-    int i;
-    pfi_slope_stencil(r, h, border, ky, y, cy);
-    r0 = heights + y[0] * w, r1 = heights + y[1] * w, r2 = heights + y[2] * w;
-    c0 = cy[0], c1 = cy[1], c2 = cy[2]; /* scalars: the stores below cannot alias them */
-    /* interior texels: branch-free, so the compiler can vectorize the row */
-    for (i = 1; i < w - 1; ++i) {
-        pf_real sx = kx * (row[i + 1] - row[i - 1]);
-        pfi_put_slope(out + 5 * i, sx, c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
-    }
-    /* the first and last texels of the row */
-    for (i = 0; i < w; i = (i == 0 && w > 1) ? w - 1 : w) {
-        pfi_slope_stencil(i, w, border, kx, x, cx);
-        pfi_put_slope(out + 5 * i, cx[0] * row[x[0]] + cx[1] * row[x[1]] + cx[2] * row[x[2]],
-                      c0 * r0[i] + c1 * r1[i] + c2 * r2[i]);
-    }
-}
-
-/* Level 0 only: the slope moments (5 interleaved channels, pf_slope_moments order) of every
-   texel of a w x h height map, into out (w h 5 pf_reals). heights: w h pf_reals, row-major;
-   dx, dy: texel spacing; height_scale multiplies the heights; border: PF_BORDER_WRAP or
-   PF_BORDER_CLAMP (CONVENTIONS, Height maps). PF_ERR_SIZE when w h 5 > PF_MAX_REALS. */
-PF_CPU_DEF int pf_slope_moments_map_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                                 pf_real dy, pf_real height_scale, int border,
-                                                 pf_real *out)
-{
-    int r;
-    if (!heights || !out || w < 1 || h < 1 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))
-        return PF_ERR_ARG;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul3(w, h, 5) < 0) return PF_ERR_SIZE;
-    for (r = 0; r < h; ++r)
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, out + (long long)r * w * 5);
-    return PF_OK;
-}
-
-/* Channels per texel of a PF_DEPTH_* kind (0 for an unknown kind). */
-PF_CPU_DEF int pf_depth_moment_channels(int kind)
-{
-    if (kind == PF_DEPTH_VSM || kind == PF_DEPTH_EVSM2) return 2;
-    if (kind == PF_DEPTH_EVSM4 || kind == PF_DEPTH_MSM) return 4;
-    if (kind == PF_DEPTH_CSM4 || kind == PF_DEPTH_CSM8 || kind == PF_DEPTH_CSM16)
-        return 8 << (kind - PF_DEPTH_CSM4); /* 2M */
-    return kind == PF_DEPTH_ESM_LOG ? 1 : 0;
-}
-
-/* Stores a texel's members in order. */
-PF_CPU_DEF void pfi_put_d2(pf_real *t, pf_depth_moments2 m) { t[0] = m.m1; t[1] = m.m2; }
-PF_CPU_DEF void pfi_put_d4(pf_real *t, pf_depth_moments4 m) { t[0] = m.m1; t[1] = m.m2; t[2] = m.m3; t[3] = m.m4; }
-PF_CPU_DEF void pfi_put_evsm(pf_real *t, pf_evsm_moments m) { t[0] = m.pos1; t[1] = m.pos2; t[2] = m.neg1; t[3] = m.neg2; }
-PF_CPU_DEF void pfi_put_v3(pf_real *t, pf_vec3 m) { t[0] = m.x; t[1] = m.y; t[2] = m.z; }
-/* The 2M CSM basis values of depth z (M = nc / 2), through the shader constructor so that
-   CPU and GPU texels agree. */
-PF_CPU_DEF void pfi_put_csm(pf_real *t, pf_real z, int nc)
-{
-    int j;
-    for (j = 0; 4 * j < nc; ++j) {
-        pf_csm_pair p = pf_csm_pair_from_depth(z, j);
-        t[4 * j] = p.cos_a; t[4 * j + 1] = p.sin_a; t[4 * j + 2] = p.cos_b; t[4 * j + 3] = p.sin_b;
-    }
-}
-
-PF_CPU_DEF int pfi_mip_build(pf_real *pyr, int w, int h, int channels, int log_space)
-{
-    pfi_mip_cascade c;
-    int r, rc = pfi_mip_cascade_init(&c, pyr, w, h, channels, log_space);
-    if (rc != PF_OK) return rc;
-    for (r = 0; r < h; ++r) pfi_mip_push_row(&c, 0, r);
-    return PF_OK;
-}
-/* Builds levels 1 .. top of a pyramid whose level 0 (w x h texels of `channels` interleaved
-   pf_reals, at the start of pyr) the caller has filled; any linear moment type (the channel
-   count says which). */
-PF_CPU_DEF int pf_mip_build(pf_real *pyr, int w, int h, int channels)
-{ return pfi_mip_build(pyr, w, h, channels, 0); }
-/* The same for log-space ESM maps: every channel is reduced with log-sum-exp (each level
-   holds log of the mean of exp over its footprint). */
-PF_CPU_DEF int pf_mip_build_log(pf_real *pyr, int w, int h, int channels)
-{ return pfi_mip_build(pyr, w, h, channels, 1); }
-
-/* The whole 5-moment pyramid of a height map in one pass: level 0 as
-   pf_slope_moments_map_from_heights (same arguments). pyr: pf_mip_texel_count(w, h) * 5
-   pf_reals. */
-PF_CPU_DEF int pf_slope_pyramid_from_heights(const pf_real *heights, int w, int h, pf_real dx,
-                                             pf_real dy, pf_real height_scale, int border,
-                                             pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int r, rc;
-    if (!heights || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
-    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 5, 0)) != PF_OK) return rc;
-    for (r = 0; r < h; ++r) {
-        pfi_slope_row(heights, w, h, r, dx, dy, height_scale, border, pyr + (long long)r * w * 5);
-        pfi_mip_push_row(&c, 0, r);
-    }
-    return PF_OK;
-}
-
-/* The pyramid of a depth map (w h depths in [0, 1], row-major) for one PF_DEPTH_* kind:
-   c_pos is the EVSM positive exponent and the ESM exponent, c_neg the EVSM negative one
-   (ignored by the others). PF_DEPTH_ESM_LOG stores c_pos z and reduces in log space.
-   pyr: pf_mip_texel_count(w, h) * pf_depth_moment_channels(kind) pf_reals. */
-PF_CPU_DEF int pf_depth_pyramid_from_depths(const pf_real *depths, int w, int h, int kind,
-                                            pf_real c_pos, pf_real c_neg, pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int nc = pf_depth_moment_channels(kind), r, i, rc;
-    if (!depths || nc == 0) return PF_ERR_ARG;
-    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, nc, kind == PF_DEPTH_ESM_LOG)) != PF_OK) return rc;
-    for (r = 0; r < h; ++r) {
-        const pf_real *z = depths + (long long)r * w;
-        pf_real *o = pyr + (long long)r * w * nc;
-        switch (kind) { /* outside the loops, so each loop vectorizes */
-        case PF_DEPTH_VSM: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_depth_moments2_from_depth(z[i])); break;
-        case PF_DEPTH_EVSM2: for (i = 0; i < w; ++i) pfi_put_d2(o + 2 * i, pf_evsm2_from_depth(z[i], c_pos)); break;
-        case PF_DEPTH_EVSM4:
-            for (i = 0; i < w; ++i) pfi_put_evsm(o + 4 * i, pf_evsm_moments_from_depth(z[i], c_pos, c_neg));
-            break;
-        case PF_DEPTH_MSM: for (i = 0; i < w; ++i) pfi_put_d4(o + 4 * i, pf_depth_moments4_from_depth(z[i])); break;
-        case PF_DEPTH_CSM4: case PF_DEPTH_CSM8: case PF_DEPTH_CSM16:
-            for (i = 0; i < w; ++i) pfi_put_csm(o + (long long)nc * i, z[i], nc);
-            break;
-        default: for (i = 0; i < w; ++i) o[i] = pf_esm_log_from_depth(z[i], c_pos); break;
-        }
-        pfi_mip_push_row(&c, 0, r);
-    }
-    return PF_OK;
-}
-/* The pyramid of scalar-map moments (2 channels: f, f^2) of a w x h map of values: the same
-   texels as PF_DEPTH_VSM's (z, z^2), so the same builder. */
-PF_CPU_DEF int pf_scalar_pyramid_from_values(const pf_real *values, int w, int h, pf_real *pyr)
-{ return pf_depth_pyramid_from_depths(values, w, h, PF_DEPTH_VSM, PF_R(0.0), PF_R(0.0), pyr); }
-/* The pyramid of average normals (3 channels) of a normal map (w h normals, 3 interleaved
-   pf_reals each; normalized here, so 8-bit-decoded normals may be passed as they are). */
-PF_CPU_DEF int pf_normal_pyramid_from_normals(const pf_real *normals, int w, int h, pf_real *pyr)
-{
-    pfi_mip_cascade c;
-    int r, i, rc;
-    if (!normals) return PF_ERR_ARG;
-    if ((rc = pfi_mip_cascade_init(&c, pyr, w, h, 3, 0)) != PF_OK) return rc;
-    for (r = 0; r < h; ++r) {
-        const pf_real *n = normals + (long long)r * w * 3;
-        pf_real *o = pyr + (long long)r * w * 3;
-        for (i = 0; i < w; ++i)
-            pfi_put_v3(o + 3 * i, pf_normal_avg_from_normal(pf_vec3_make(n[3 * i], n[3 * i + 1], n[3 * i + 2])));
-        pfi_mip_push_row(&c, 0, r);
-    }
-    return PF_OK;
-}
 
 /* ---------------------------------------------------------------- N texels
    Both weighted means skip texels of weight <= 0 (or NaN) without reading them, and divide the
@@ -927,121 +573,11 @@ PF_CPU_DEF pf_real pf_esm_log_weighted_mean(const pf_real *logs, const pf_real *
     if (!(m > -PF_REAL_MAX)) return -PF_REAL_MAX;
     for (i = 0; i < n; ++i)
         if (weights[i] > PF_R(0.0) && (lw = pfi_log_weight_share(weights[i], d, wmaxd)) > -PF_REAL_MAX) {
-            s += PF_EXP(pfi_lse_arg(logs[i] + lw - m));
-            ws += PF_EXP(pfi_lse_arg(lw));
+            s += PF_EXP(pf_lse_arg(logs[i] + lw - m));
+            ws += PF_EXP(pf_lse_arg(lw));
         }
     return m + PF_LOG(s / ws); /* s, ws in [1, n] */
 }
-
-/* ---------------------------------------------------------------- sampling */
-/* Texel indices (long long, in [0, n)) and the fraction for coordinate u on an axis of n
-   texels, under the Sampling convention (CONVENTIONS). */
-PF_CPU_DEF void pfi_mip_axis(pf_real u, int n, int border, long long *i0, long long *i1, pf_real *f)
-{
-    pf_real x;
-    long long i;
-    if (border == PF_BORDER_WRAP) u = (u - u == PF_R(0.0)) ? u - PF_FLOOR(u) : PF_R(0.0);
-    else u = (u == u) ? pf_clamp(u, PF_R(0.0), PF_R(1.0)) : PF_R(0.0);
-    x = u * PF_R(n) - PF_R(0.5); /* in [-0.5, n - 0.5] */
-    i = pfi_floor_index(x, -1, n - 1);
-    *f = pf_clamp(x - PF_R(i), PF_R(0.0), PF_R(1.0));
-    *i0 = border == PF_BORDER_WRAP ? pfi_wrap_index(i, n) : (i < 0 ? 0 : i);
-    *i1 = border == PF_BORDER_WRAP ? pfi_wrap_index(i + 1, n) : (i + 1 > n - 1 ? n - 1 : i + 1);
-}
-
-/* The taps of positive bilinear weight of (u, v) at one level of a pyramid. */
-typedef struct pfi_mip_bilerp { const pf_real *tap[4]; pf_real w[4]; int n; } pfi_mip_bilerp;
-
-PF_CPU_DEF pfi_mip_bilerp pfi_mip_bilerp_at(const pf_real *pyr, int w, int h, int channels,
-                                            int level, pf_real u, pf_real v, int border)
-{
-    pfi_mip_bilerp b;
-    int lw = pf_mip_level_size(w, level), lh = pf_mip_level_size(h, level), t;
-    long long x[2], y[2];
-    pf_real fx, fy;
-    pyr += pf_mip_level_offset(w, h, level) * channels;
-    pfi_mip_axis(u, lw, border, &x[0], &x[1], &fx);
-    pfi_mip_axis(v, lh, border, &y[0], &y[1], &fy);
-    for (t = 0, b.n = 0; t < 4; ++t) {
-        pf_real wt = ((t & 1) ? fx : PF_R(1.0) - fx) * ((t & 2) ? fy : PF_R(1.0) - fy);
-        if (!(wt > PF_R(0.0))) continue;
-        b.tap[b.n] = pyr + (y[t >> 1] * lw + x[t & 1]) * channels;
-        b.w[b.n++] = wt;
-    }
-    return b;
-}
-
-/* The shared sampler: PF_OK, or the error with out untouched. */
-PF_CPU_DEF int pfi_mip_sample(const pf_real *pyr, int w, int h, int channels, pf_real lod,
-                              pf_real u, pf_real v, int border, int log_space, pf_real *out)
-{
-    int nl, l0, k, rc = pfi_mip_check(pyr, w, h, channels);
-    pf_real fl;
-    pfi_mip_bilerp b0, b1;
-    if (rc == PF_OK && (!out || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP))) rc = PF_ERR_ARG;
-    if (rc != PF_OK) return rc;
-    nl = pf_mip_level_count(w, h);
-    if (!(lod > PF_R(0.0))) lod = PF_R(0.0); /* NaN too */
-    if (lod > PF_R(nl - 1)) lod = PF_R(nl - 1);
-    l0 = (int)PF_FLOOR(lod);
-    fl = lod - PF_R(l0);
-    b0 = pfi_mip_bilerp_at(pyr, w, h, channels, l0, u, v, border);
-    if (!(fl > PF_R(0.0)) || l0 + 1 >= nl) {
-        for (k = 0; k < channels; ++k) out[k] = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
-        return PF_OK;
-    }
-    b1 = pfi_mip_bilerp_at(pyr, w, h, channels, l0 + 1, u, v, border);
-    for (k = 0; k < channels; ++k) {
-        pf_real a = pfi_taps_mean(b0.tap, b0.w, b0.n, k, log_space);
-        pf_real c = pfi_taps_mean(b1.tap, b1.w, b1.n, k, log_space), s;
-        if (log_space) {
-            out[k] = pf_esm_log_combine2(a, PF_R(1.0) - fl, c, fl);
-            continue;
-        }
-        s = (PF_R(1.0) - fl) * a + fl * c;
-        out[k] = !(s < -PF_REAL_MAX || s > PF_REAL_MAX) ? s : pf_clamp(s, pf_min(a, c), pf_max(a, c)); /* NaN as is */
-    }
-    return PF_OK;
-}
-
-/* Bilinear sample of level `level` (clamped to the pyramid) at (u, v): `channels` pf_reals
-   into out. PF_OK, or the error with out untouched. */
-PF_CPU_DEF int pf_mip_sample_bilinear(const pf_real *pyr, int w, int h, int channels, int level,
-                                      pf_real u, pf_real v, int border, pf_real *out)
-{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 0, out); }
-/* Trilinear sample: bilinear at floor(lod) and floor(lod) + 1, blended by the fraction. */
-PF_CPU_DEF int pf_mip_sample_trilinear(const pf_real *pyr, int w, int h, int channels, pf_real lod,
-                                       pf_real u, pf_real v, int border, pf_real *out)
-{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 0, out); }
-/* The same for log-space (ESM) pyramids: the weights apply to exp of the texels. */
-PF_CPU_DEF int pf_mip_sample_bilinear_log(const pf_real *pyr, int w, int h, int channels, int level,
-                                          pf_real u, pf_real v, int border, pf_real *out)
-{ return pfi_mip_sample(pyr, w, h, channels, PF_R(level < 0 ? 0 : level), u, v, border, 1, out); }
-PF_CPU_DEF int pf_mip_sample_trilinear_log(const pf_real *pyr, int w, int h, int channels, pf_real lod,
-                                           pf_real u, pf_real v, int border, pf_real *out)
-{ return pfi_mip_sample(pyr, w, h, channels, lod, u, v, border, 1, out); }
-/* Typed trilinear samples (an integer lod is a bilinear sample of that level), one stamp per
-   type: T pf_<T>_sample(pyr, w, h, lod, u, v, border) for the six T of the reductions.
-   Bad arguments (those pf_mip_sample_trilinear rejects) return all zeros. */
-#define PFI_TYPED_SAMPLE(T, F, NC, MAKE)                                                       \
-    PF_CPU_DEF T F(const pf_real *pyr, int w, int h, pf_real lod, pf_real u, pf_real v, int border) \
-    { pf_real t[5] = {0, 0, 0, 0, 0}; pfi_mip_sample(pyr, w, h, NC, lod, u, v, border, 0, t); return MAKE; }
-PFI_TYPED_SAMPLE(pf_slope_moments, pf_slope_moments_sample, 5, pf_slope_moments_make(t[0], t[1], t[2], t[3], t[4]))
-PFI_TYPED_SAMPLE(pf_scalar_moments, pf_scalar_moments_sample, 2, pf_scalar_moments_make(t[0], t[1]))
-PFI_TYPED_SAMPLE(pf_depth_moments2, pf_depth_moments2_sample, 2, pf_depth_moments2_make(t[0], t[1]))
-PFI_TYPED_SAMPLE(pf_depth_moments4, pf_depth_moments4_sample, 4, pf_depth_moments4_make(t[0], t[1], t[2], t[3]))
-PFI_TYPED_SAMPLE(pf_evsm_moments, pf_evsm_moments_sample, 4, pf_evsm_moments_make(t[0], t[1], t[2], t[3]))
-PFI_TYPED_SAMPLE(pf_vec3, pf_normal_avg_sample, 3, pf_vec3_make(t[0], t[1], t[2]))
-
-/* The ESM log sample; bad arguments return -PF_REAL_MAX (the log of an empty sum). */
-PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real lod, pf_real u,
-                                     pf_real v, int border)
-{
-    pf_real t = -PF_REAL_MAX;
-    pfi_mip_sample(pyr, w, h, 1, lod, u, v, border, 1, &t);
-    return t;
-}
-
 #endif /* !PF_GLSL */
 
 #endif /* PF_MOMENTS_H */

@@ -680,24 +680,6 @@ static void edge_size_helpers(void)
     PF_CHECK(pf_size_side_ok(1) && pf_size_side_ok(PF_MAX_SIDE) && !pf_size_side_ok(0) &&
                  !pf_size_side_ok(PF_MAX_SIDE + 1) && !pf_size_side_ok(-5),
              "side limits");
-    /* wrap: every i against the slow definition, near the ends of the range too */
-    {
-        static const long long n_list[] = {1, 2, 3, 7, (1LL << 24), 2147483647LL};
-        static const long long i_list[] = {-9223372036854775807LL - 1, -2147483648LL, -7, -1, 0, 1, 6, 7,
-                                           2147483647LL, 9223372036854775807LL};
-        int a, b;
-        bad = 0;
-        for (a = 0; a < 6; ++a)
-            for (b = 0; b < 10; ++b) {
-                long long n = n_list[a], x = i_list[b], r = pfi_wrap_index(x, n);
-                /* r must be in [0, n) and congruent to x: (x - r) divisible by n, computed in
-                   long double only for the divisibility of exact small remainders */
-                long long back = x % n;
-                if (back < 0) back += n;
-                if (r < 0 || r >= n || r != back) bad++;
-            }
-        PF_CHECK(bad == 0, "%d wrong wrapped indices", bad);
-    }
     /* floor to a clamped index: huge values never reach the conversion; NaN and infinities
        neither (not under -ffast-math, which lets the compiler assume they never occur) */
     PF_CHECK(pfi_floor_index(PF_REAL_MAX, 0, 2147483647LL) == 2147483647LL &&

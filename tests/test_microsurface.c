@@ -10,7 +10,7 @@
    next to its check and the measured numbers are printed as notes. edge_* tests (finite,
    in-range outputs at degenerate inputs) also run under -ffast-math. */
 #include "pf_beckmann.h"
-#include "pf_moments.h"
+#include "pf_map.h"
 #include "pf_microsurface.h"
 #include "pf_oracle.h"
 #include "pf_test.h"

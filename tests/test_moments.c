@@ -23,7 +23,8 @@
 #endif
 #include <limits.h>
 #include <string.h>
-#include "pf_moments.h"
+#include "pf_beckmann.h"
+#include "pf_map.h"
 #include "pf_oracle.h"
 #include "pf_test.h"
 

@@ -8,6 +8,7 @@
    rounded to pf_real, as fp32 storage would hold them. The same bodies run in float, double,
    C++ and under sanitizers; edge_* tests also run under -ffast-math. */
 #include "pf_shadow.h"
+#include "pf_map.h"
 #include "pf_test.h"
 #include "shadow_scenes.h"
 

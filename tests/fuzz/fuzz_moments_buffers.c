@@ -1,5 +1,5 @@
 /* tests/fuzz/fuzz_moments_buffers.c - libFuzzer harness for the pointer-taking CPU-only functions of
-   include/pf_moments.h against the size and error rules of include/pf_core.h: sizes from the
+   include/pf_moments.h (the weighted means of N texels) against the size and error rules of include/pf_core.h: sizes from the
    whole int range, exact-size guarded buffers (huge accepted maps as untouched MAP_NORESERVE
    mappings; builders and filters run only on buffers of at most 2^16 reals), return codes,
    nothing written on error, outputs written, finite and in range (see tests/fuzz/pf_buffers.h).

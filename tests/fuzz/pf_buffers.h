@@ -1604,6 +1604,73 @@ static void pfb_w_table_build(pfc_ctx *c, int a) { (void)a; pfb_d_table_build(c)
 static void pfb_w_table_lookup(pfc_ctx *c, int a) { (void)a; pfb_d_table_lookup(c); }
 static void pfb_w_hermite(pfc_ctx *c, int a) { (void)a; pfb_d_hermite(c); }
 
+/* ---------------------------------------------------------------- pf_map.h: height fields */
+/* pf_map_wrap (which 0), pf_map_slope_stencil (1), pf_map_height and pf_map_node_slope (2),
+   pf_map_visible (3): against the driver's own arithmetic, on guarded maps of at most 16 x 16
+   heights (every read of the periodic map must land inside them). */
+static void pfb_d_map_heights(pfc_ctx *c, int which)
+{
+    if (which == 0) {
+        long long i = pfb_ll(c), n = pfb_ll(c), r, q;
+        if (n < 1) n = 1;
+        pfb_setcall("pf_map_wrap(%lld, %lld)", i, n);
+        r = pf_map_wrap(i, n);
+        q = i % n; /* r - q is 0 or n: the same residue */
+        if (r < 0 || r >= n || !(r == q || r == q + n)) pfb_fail(PFB_VALUE, "pf_map_wrap = %lld", r);
+        return;
+    }
+    if (which == 1) {
+        int n = pfb_int(c, 1, 40), border = pfb_border(c), t;
+        long long i = n > 0 ? (long long)(pfc_next(c) % (pfc_u32)n) : 0, x[3];
+        pf_real k = pfb_val(c, 20), cf[3], sum, mag;
+        if (n < 1) return; /* the contract needs n >= 1 and i in [0, n) */
+        pfb_setcall("pf_map_slope_stencil(%lld, %d, %d, %a)", i, n, border, (double)k);
+        pf_map_slope_stencil(i, n, border, k, x, cf);
+        sum = cf[0] + cf[1] + cf[2];
+        mag = PF_FABS(cf[0]) + PF_FABS(cf[1]) + PF_FABS(cf[2]);
+        for (t = 0; t < 3; ++t)
+            if (x[t] < 0 || x[t] >= n) pfb_fail(PFB_VALUE, "stencil index %lld outside [0, %d)", x[t], n);
+        /* a difference stencil: the coefficients sum to 0 (a constant map has no slope) */
+        if (!(PF_FABS(sum) <= PF_R(8.0) * PF_REAL_EPSILON * mag)) pfb_fail(PFB_VALUE, "stencil sums to %a", (double)sum);
+        if (n == 1 && mag != PF_R(0.0)) pfb_fail(PFB_VALUE, "n = 1 has no slope");
+        return;
+    }
+    {
+        int w = 1 + (int)(pfc_next(c) % 16u), h = 1 + (int)(pfc_next(c) % 16u), at_start = PFC_R(pfc_next(c)) < 8;
+        long long x = pfb_ll(c) % 1000003, y = pfb_ll(c) % 1000003, xw, yw;
+        pf_real *hm = pfb_map((long long)w * h, at_start), texel = pfb_coord(c, PF_R(0.25), PF_R(4.0));
+        if (!hm) return;
+        pfb_fill(c, hm, (long long)w * h, 4);
+        xw = ((x % w) + w) % w;
+        yw = ((y % h) + h) % h;
+        if (which == 2) {
+            pf_real sx, sy, k, ex, ey;
+            pfb_setcall("pf_map_height / pf_map_node_slope(%dx%d, %a, %lld, %lld)", w, h, (double)texel, x, y);
+            if (pf_map_height(hm, w, h, x, y) != hm[yw * w + xw]) pfb_fail(PFB_VALUE, "pf_map_height reads the wrong texel");
+            if (!(texel > PF_R(0.0)) || !(texel <= PF_REAL_MAX)) return; /* texel > 0 finite by contract */
+            pf_map_node_slope(hm, w, h, texel, x, y, &sx, &sy);
+            k = PF_R(0.5) / texel;
+            ex = k * (hm[yw * w + (xw + 1) % w] - hm[yw * w + (xw + w - 1) % w]);
+            ey = k * (hm[((yw + 1) % h) * w + xw] - hm[((yw + h - 1) % h) * w + xw]);
+            if (!(sx == ex || (sx != sx && ex != ex)) || !(sy == ey || (sy != sy && ey != ey)))
+                pfb_fail(PFB_VALUE, "pf_map_node_slope (%a, %a), want (%a, %a)", (double)sx, (double)sy, (double)ex, (double)ey);
+        } else {
+            int n = 1 + (int)(pfc_next(c) % 16u), v;
+            long long x0 = pfb_ll(c) % 1000003, y0 = pfb_ll(c) % 1000003, t;
+            pf_vec3 d = pfc_dir_any(c);
+            pf_real top = -PF_REAL_MAX;
+            if (n > w) n = w;
+            if (n > h) n = h;
+            if (!(texel > PF_R(0.0)) || !(texel <= PF_REAL_MAX)) return;
+            for (t = 0; t < (long long)w * h; ++t) top = pf_max(top, hm[t]);
+            pfb_setcall("pf_map_visible(%dx%d, %a, (%lld, %lld), d, (%lld, %lld, %d))", w, h, (double)texel, x, y, x0, y0, n);
+            v = pf_map_visible(hm, w, h, texel, x, y, d, x0, y0, n, top);
+            if (v != 0 && v != 1) pfb_fail(PFB_VALUE, "pf_map_visible = %d", v);
+            if (v == 1 && !(d.z > PF_R(0.0))) pfb_fail(PFB_VALUE, "visible toward d.z <= 0");
+        }
+    }
+}
+
 /* ---------------------------------------------------------------- pf_horizon.h */
 /* pf_horizon_channels (which 2), pf_horizon_map (0), pf_horizon_pyramid (1). Accepted builds run
    with at most 64 march steps (the march costs max_steps per texel and azimuth at the highest
@@ -1832,7 +1899,7 @@ static void pfb_d_vmf(pfc_ctx *c, int which)
     }
 }
 
-/* pf_vmf_downsample_slopes (which 0), pf_vmf_downsample_scratch_size (1). Accepted solves run
+/* pf_map_downsample_slopes (which 0), pf_map_downsample_scratch_size (1). Accepted solves run
    on at most pfb_work_cap reals with at most 40 iterations; heights over every regime of
    pfb_fill (constant, zero, up to 2^20), one of them NaN or infinite in 1 draw of 8 (then
    PF_ERR_ARG and nothing written); scratch mapped at exactly the documented size (the
@@ -1845,7 +1912,7 @@ static long long pfb_ds_need(long long w, long long h, long long f)
 }
 static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
 {
-    const char *fn = "pf_vmf_downsample_slopes";
+    const char *fn = "pf_map_downsample_slopes";
     int w = pfb_int(c, 1, 16), h = pfb_int(c, 1, 16), f = pfb_int(c, 1, 4), border = pfb_border(c), null = pfb_null(c, 3);
     int max_iter = pfb_int(c, 0, 40), at_start = PFC_R(pfc_next(c)) < 4, rc, allowed, it = -7;
     pf_real reg = pfb_coord(c, PF_R(0.0), PF_R(0.1)), tol = pfb_coord(c, PF_R(0.0), PF_R(1e-3)), res = PF_R(-7.0);
@@ -1855,9 +1922,9 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
     pf_real *hm, *out, *scr;
     if (which == 1) {
         long long want = pfb_ds_need(w, h, f);
-        pfb_setcall("pf_vmf_downsample_scratch_size(%d, %d, %d)", w, h, f);
-        if (pf_vmf_downsample_scratch_size(w, h, f) != want)
-            pfb_fail(PFB_VALUE, "scratch size %lld, want %lld", pf_vmf_downsample_scratch_size(w, h, f), want);
+        pfb_setcall("pf_map_downsample_scratch_size(%d, %d, %d)", w, h, f);
+        if (pf_map_downsample_scratch_size(w, h, f) != want)
+            pfb_fail(PFB_VALUE, "scratch size %lld, want %lld", pf_map_downsample_scratch_size(w, h, f), want);
         return;
     }
     need = pfb_ds_need(w, h, f);
@@ -1891,7 +1958,7 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
         b[0] = null == 1 ? 0 : pfb_small();
         b[1] = null == 2 ? 0 : pfb_small();
         b[2] = null == 3 ? 0 : pfb_small();
-        rc = pf_vmf_downsample_slopes(b[0], w, h, f, border, reg, max_iter, tol, b[1], b[2], slen, &it, &res);
+        rc = pf_map_downsample_slopes(b[0], w, h, f, border, reg, max_iter, tol, b[1], b[2], slen, &it, &res);
         pfb_rc_check(rc, allowed, fn);
         pfb_check_untouched(b, 3);
         if (it != -7 || res != PF_R(-7.0)) pfb_fail(PFB_WROTE, "iters/residual written on error");
@@ -1906,7 +1973,7 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
     if (PFC_R(bad_u) < 2) hm[PFC_B(bad_u) % (pfc_u32)nf] = pfc_from_bits(PFC_R(bad_u) ? 0x7F800000u : 0x7FC00000u);
     pfb_fill_canary(out, nc);
     if (pfb_t) pfb_t->run += 1;
-    rc = pf_vmf_downsample_slopes(hm, w, h, f, border, reg, max_iter, tol, out, scr, slen, &it, &res);
+    rc = pf_map_downsample_slopes(hm, w, h, f, border, reg, max_iter, tol, out, scr, slen, &it, &res);
     if (PFC_R(bad_u) < 2) {
         pfb_rc_check(rc, PFB_A_ARG, fn);
         if (pfb_count_changed(out, nc) || it != -7) pfb_fail(PFB_WROTE, "rejected NaN/inf heights but wrote");
@@ -2137,27 +2204,27 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
 
 static const pfb_entry pfb_table[] = {
     { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
-    { "pf_mip_texel_count pf_mip_level_count pf_mip_level_offset pf_mip_level_size pf_depth_moment_channels", "moments", pfb_w_layout, 0 },
-    { "pf_mip_build", "moments", pfb_d_mip_build, 0 },
-    { "pf_mip_build_log", "moments", pfb_d_mip_build, 1 },
-    { "pf_slope_moments_map_from_heights", "moments", pfb_d_slope, 0 },
-    { "pf_slope_pyramid_from_heights", "moments", pfb_d_slope, 1 },
-    { "pf_depth_pyramid_from_depths", "moments", pfb_d_pyramid_from, 0 },
-    { "pf_scalar_pyramid_from_values", "moments", pfb_d_pyramid_from, 1 },
-    { "pf_normal_pyramid_from_normals", "moments", pfb_d_pyramid_from, 2 },
+    { "pf_mip_texel_count pf_mip_level_count pf_mip_level_offset pf_mip_level_size pf_depth_moment_channels", "map", pfb_w_layout, 0 },
+    { "pf_mip_build", "map", pfb_d_mip_build, 0 },
+    { "pf_mip_build_log", "map", pfb_d_mip_build, 1 },
+    { "pf_slope_moments_map_from_heights", "map", pfb_d_slope, 0 },
+    { "pf_slope_pyramid_from_heights", "map", pfb_d_slope, 1 },
+    { "pf_depth_pyramid_from_depths", "map", pfb_d_pyramid_from, 0 },
+    { "pf_scalar_pyramid_from_values", "map", pfb_d_pyramid_from, 1 },
+    { "pf_normal_pyramid_from_normals", "map", pfb_d_pyramid_from, 2 },
     { "pf_moments_weighted_mean", "moments", pfb_d_weighted_mean, 0 },
     { "pf_esm_log_weighted_mean", "moments", pfb_d_weighted_mean, 1 },
-    { "pf_mip_sample_bilinear", "moments", pfb_d_sample, PFB_S_BIL },
-    { "pf_mip_sample_trilinear", "moments", pfb_d_sample, PFB_S_TRI },
-    { "pf_mip_sample_bilinear_log", "moments", pfb_d_sample, PFB_S_BIL_LOG },
-    { "pf_mip_sample_trilinear_log", "moments", pfb_d_sample, PFB_S_TRI_LOG },
-    { "pf_slope_moments_sample", "moments", pfb_d_sample, PFB_S_SLOPE },
-    { "pf_scalar_moments_sample", "moments", pfb_d_sample, PFB_S_SCALAR },
-    { "pf_depth_moments2_sample", "moments", pfb_d_sample, PFB_S_D2 },
-    { "pf_depth_moments4_sample", "moments", pfb_d_sample, PFB_S_D4 },
-    { "pf_evsm_moments_sample", "moments", pfb_d_sample, PFB_S_EVSM },
-    { "pf_normal_avg_sample", "moments", pfb_d_sample, PFB_S_NORMAL },
-    { "pf_esm_log_sample", "moments", pfb_d_sample, PFB_S_ESM },
+    { "pf_mip_sample_bilinear", "map", pfb_d_sample, PFB_S_BIL },
+    { "pf_mip_sample_trilinear", "map", pfb_d_sample, PFB_S_TRI },
+    { "pf_mip_sample_bilinear_log", "map", pfb_d_sample, PFB_S_BIL_LOG },
+    { "pf_mip_sample_trilinear_log", "map", pfb_d_sample, PFB_S_TRI_LOG },
+    { "pf_slope_moments_sample", "map", pfb_d_sample, PFB_S_SLOPE },
+    { "pf_scalar_moments_sample", "map", pfb_d_sample, PFB_S_SCALAR },
+    { "pf_depth_moments2_sample", "map", pfb_d_sample, PFB_S_D2 },
+    { "pf_depth_moments4_sample", "map", pfb_d_sample, PFB_S_D4 },
+    { "pf_evsm_moments_sample", "map", pfb_d_sample, PFB_S_EVSM },
+    { "pf_normal_avg_sample", "map", pfb_d_sample, PFB_S_NORMAL },
+    { "pf_esm_log_sample", "map", pfb_d_sample, PFB_S_ESM },
     { "pf_colormap_filter", "height", pfb_d_colormap, 0 },
     { "pf_height_colormap_filter", "height", pfb_d_colormap, 1 },
     { "pf_transfer_moments_filter", "height", pfb_d_colormap, 2 },
@@ -2172,17 +2239,21 @@ static const pfb_entry pfb_table[] = {
     { "pf_horizon_map", "horizon", pfb_d_horizon, 0 },
     { "pf_horizon_pyramid", "horizon", pfb_d_horizon, 1 },
     { "pf_horizon_channels", "horizon", pfb_d_horizon, 2 },
-    { "pf_vmf_fit_normals", "vmf", pfb_d_vmf, 0 },
-    { "pf_vmf_pyramid_from_normals", "vmf", pfb_d_vmf, 1 },
-    { "pf_vmf_pyramid_level_count pf_vmf_pyramid_level_offset pf_vmf_pyramid_texel_count", "vmf", pfb_d_vmf, 2 },
-    { "pf_vmf_mixture_from_texel", "vmf", pfb_d_vmf, 3 },
-    { "pf_vmf_downsample_slopes", "vmf", pfb_d_vmf_downsample, 0 },
-    { "pf_vmf_downsample_scratch_size", "vmf", pfb_d_vmf_downsample, 1 },
-    { "pf_vmf_effective_brdf", "vmf", pfb_d_vmf_scale, 0 },
-    { "pf_vmf_scale_patch", "vmf", pfb_d_vmf_scale, 1 },
-    { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf", pfb_d_vmf_scale, 2 },
-    { "pf_vmf_scale_factor pf_vmf_scale_t", "vmf", pfb_d_vmf_scale, 3 },
-    { "pf_vmf_scale_lookup", "vmf", pfb_d_vmf_scale, 4 },
+    { "pf_vmf_fit_normals", "vmf_fit", pfb_d_vmf, 0 },
+    { "pf_vmf_pyramid_from_normals", "vmf_fit", pfb_d_vmf, 1 },
+    { "pf_vmf_pyramid_level_count pf_vmf_pyramid_level_offset pf_vmf_pyramid_texel_count", "vmf_fit", pfb_d_vmf, 2 },
+    { "pf_vmf_mixture_from_texel", "vmf_fit", pfb_d_vmf, 3 },
+    { "pf_map_wrap", "map", pfb_d_map_heights, 0 },
+    { "pf_map_slope_stencil", "map", pfb_d_map_heights, 1 },
+    { "pf_map_height pf_map_node_slope", "map", pfb_d_map_heights, 2 },
+    { "pf_map_visible", "map", pfb_d_map_heights, 3 },
+    { "pf_map_downsample_slopes", "map", pfb_d_vmf_downsample, 0 },
+    { "pf_map_downsample_scratch_size", "map", pfb_d_vmf_downsample, 1 },
+    { "pf_vmf_effective_brdf", "vmf_fit", pfb_d_vmf_scale, 0 },
+    { "pf_vmf_scale_patch", "vmf_fit", pfb_d_vmf_scale, 1 },
+    { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_fit", pfb_d_vmf_scale, 2 },
+    { "pf_vmf_scale_factor pf_vmf_scale_t", "vmf_fit", pfb_d_vmf_scale, 3 },
+    { "pf_vmf_scale_lookup", "vmf_fit", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

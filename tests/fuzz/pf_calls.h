@@ -32,7 +32,8 @@
 #include "pf_core.h"
 #include "pf_smith.h"
 #include "pf_beckmann.h"
-#include "pf_moments.h"
+#include "pf_map.h"
+#include "pf_vmf_fit.h"
 #include "pf_toksvig.h"
 #include "pf_shadow.h"
 #include "pf_gaussgrid.h"
@@ -1065,6 +1066,7 @@ static pf_real pfc_esm_l(pfc_ctx *c)
     k = PFC_R(u) < 8 ? PF_R(80.0) : pfc_p2((int)(PFC_B(u) % 13u));
     return pfc_keep(c, k * z);
 }
+static void pfc_f_pf_lse_arg(pfc_ctx *c) { pfc_in(c, pf_lse_arg(pfc_sym(c, 40)), PF_LSE_ARG_MIN, PF_REAL_MAX); }
 static void pfc_f_pf_esm_log_reduce2x2(pfc_ctx *c)
 {
     pf_real a = pfc_esm_l(c), b = pfc_esm_l(c), d = pfc_esm_l(c), e = pfc_esm_l(c);
@@ -1768,6 +1770,13 @@ static void pfc_out_vmf_sum(pfc_ctx *c, pf_vmf_sum s)
     pfc_ge0(c, s.amp); pfc_ge0(c, s.ndf); pfc_out(c, s.ex); pfc_out(c, s.ey); pfc_ge0(c, s.exx); pfc_ge0(c, s.eyy);
     pfc_out(c, s.exy); pfc_ge0(c, s.excess_o); pfc_ge0(c, s.excess_i);
 }
+static void pfc_f_pf_vmf_kappa_clamp(pfc_ctx *c) { pfc_in(c, pf_vmf_kappa_clamp(pfc_kappa(c)), PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX); }
+static void pfc_f_pf_vmf_facet_specular(pfc_ctx *c)
+{
+    pf_real sx = pfc_sym(c, 4), sy = pfc_sym(c, 4), v = pf_max(pfc_var(c, 0), PF_R(1.0e-6));
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pfc_ge0(c, pf_vmf_facet_specular(sx, sy, v, wo, wi, pfc_u01(c)));
+}
 static void pfc_f_pf_vmf_normalization(pfc_ctx *c) { pfc_ge0(c, pf_vmf_normalization(pfc_kappa(c))); }
 static void pfc_f_pf_vmf_mean_cosine(pfc_ctx *c) { pfc_01(c, pf_vmf_mean_cosine(pfc_kappa(c))); }
 static void pfc_f_pf_vmf_tangent_variance(pfc_ctx *c) { pfc_in(c, pf_vmf_tangent_variance(pfc_kappa(c)), PF_R(0.0), PF_R(0.334)); }
@@ -1963,11 +1972,11 @@ static const pfc_entry pfc_table[] = {
     PFC_E(smith, pf_smith_separable, PFC_WIDE, "G1s in [0, 1]", "product of G1s clamped to [0, 1] (NaN to 0); double-counts occlusion (<= joint)"),
     PFC_E(smith, pf_g2_beckmann, PFC_WIDE, "every finite nu pair", "0 when either nu <= 0"),
     /* beckmann */
-    PFC_E(beckmann, pf_slope_moments_make, 0, "raw moments of the stats domain", "constructor"),
-    PFC_E(beckmann, pf_slope_moments_from_slope, 0, "slopes +-[0, 2^40]", "squares overflow past |slope| ~ 1.8e19 (f)"),
-    PFC_E(beckmann, pf_slope_moments_from_normal, 0, "unit normals with n.z > 0 (down to 1e-18)", "n.z <= 0 clamped to PF_REAL_MIN: huge slopes, squares overflow to inf (outside the domain)"),
-    PFC_E(beckmann, pf_slope_moments_add, 0, PFC_LIN, PFC_LINREG),
-    PFC_E(beckmann, pf_slope_moments_scale, 0, PFC_LIN, PFC_LINREG),
+    PFC_E(moments, pf_slope_moments_make, 0, "raw moments of the stats domain", "constructor"),
+    PFC_E(moments, pf_slope_moments_from_slope, 0, "slopes +-[0, 2^40]", "squares overflow past |slope| ~ 1.8e19 (f)"),
+    PFC_E(moments, pf_slope_moments_from_normal, 0, "unit normals with n.z > 0 (down to 1e-18)", "n.z <= 0 clamped to PF_REAL_MIN: huge slopes, squares overflow to inf (outside the domain)"),
+    PFC_E(moments, pf_slope_moments_add, 0, PFC_LIN, PFC_LINREG),
+    PFC_E(moments, pf_slope_moments_scale, 0, PFC_LIN, PFC_LINREG),
     PFC_E(beckmann, pf_slope_moments_from_stats, 0, "stats domain", PFC_LINREG),
     PFC_E(beckmann, pf_slope_moments_stats, 0, "filtered moments (variance slightly negative, |r| slightly > 1), base_var incl. negative", "variance clamped at 0, |r| at 1, then max(base_var, 1e-6) added: always positive definite"),
     PFC_E(beckmann, pf_slope_stats_correlation, 0, "stats domain", "0 when a variance is 0; clamped to [-1, 1]"),
@@ -2049,6 +2058,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(moments, pf_normal_avg_reduce3x3, 0, "|n| <= 1 vectors, convex weights", PFC_LINREG),
     PFC_E(moments, pf_normal_avg_accumulate, 0, "|n| <= 1 vectors, w in [0, 1]", PFC_LINREG),
     PFC_E(moments, pf_normal_avg_bilinear, 0, "|n| <= 1 vectors, fx, fy in [0, 1]", PFC_LINREG),
+    PFC_E(moments, pf_lse_arg, 0, "+-2^40", "floored at -80"),
     PFC_E(moments, pf_esm_log_reduce2x2, 0, "logs c z (c <= 2^12) and -PF_REAL_MAX (empty)", "log-sum-exp: finite for finite logs"),
     PFC_E(moments, pf_esm_log_reduce3, 0, "logs as reduce2x2, convex weights", "all weights <= 0: -PF_REAL_MAX"),
     PFC_E(moments, pf_esm_log_reduce3x3, 0, "logs as reduce2x2, convex weights", "as reduce3"),
@@ -2185,6 +2195,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(masks, pf_masks_complement, 0, "any mask, n -40..200", "n clamped to [0, 128]; bits past n are 0"),
     PFC_E(masks, pf_masks_visible_fraction, 0, "any masks, n -3..200", "as coverage"),
     /* vmf */
+    PFC_E(vmf, pf_vmf_kappa_clamp, 0, "kappa 0, < 0, 2^-60 .. 2^60", "in [1e-4, 1e5]; NaN -> 1e-4"),
     PFC_E(vmf, pf_vmf_normalization, 0, "kappa 0, < 0, 2^-60 .. 2^60", "kappa clamped to [1e-4, 1e5]"),
     PFC_E(vmf, pf_vmf_mean_cosine, 0, "kappa as above", "series below 0.5 (f) / 0.1 (d)"),
     PFC_E(vmf, pf_vmf_tangent_variance, 0, "kappa as above", "(1 - 1/k)/k past 10 (f) / 20 (d)"),
@@ -2212,6 +2223,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the macrosurface"),
     PFC_E(vmf, pf_vmf_sum_specular_mixture, 0, "sums of 1-4 lobes (vMF form), directions, f0", ">= 0"),
     PFC_E(vmf, pf_vmf_sum_specular_unmasked, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
+    PFC_E(vmf, pf_vmf_facet_specular, 0, "slopes +-2^4, base variance >= 1e-6, unit directions (grazing, below), f0 [0, 1]", ">= 0, 0 below the macrosurface or the facet"),
     PFC_E(vmf, pf_vmf_scale_coords, 0, "directions, theta_max +-2^4", "each coordinate in [0, 1]"),
     PFC_E(vmf, pf_vmf_scale_texel_pos, 0, "u +-2^20, n in [-2, 64]", "in [0, max(n - 1, 0)]"),
     PFC_E(vmf, pf_vmf_scale_trilinear, 0, "8 values and 3 fractions in [0, 1]", "in [0, 1] (rounding)"),

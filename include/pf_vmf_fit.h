@@ -1,0 +1,822 @@
+/* pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
+   normals, the lobe pyramid a shader fetches, and the scaling function of Wu et al. 2019
+   (eqs. 6-8, 12-14, 21-24) that corrects the multi-lobe BRDF toward the height field's
+   effective BRDF.
+
+   pf_vmf.h holds what a shader pastes (lobes, mixtures, their BRDF, the scaling function's
+   lookup); this header fits what those evaluators read. CPU only (linkage PF_CPU_DEF): it
+   walks caller-owned buffers and allocates nothing; empty under PF_GLSL. Map infrastructure
+   (pyramid layout, wrap, height stencils, the height-field march, the slope-preserving
+   downsampler) is pf_map.h's.
+
+   USAGE
+     pf_vmf_fit_normals(normals, NULL, n, 4, 24, &mixture);           -- EM on n normals
+     pf_vmf_pyramid_from_normals(normals, NULL, w, h, 4, 24, pyr);    -- one mixture per texel
+     then per texel: pf_vmf_mixture_from_texel, or a shader's 4 RGBA fetches (pf_vmf.h USAGE)
+
+   FUNCTIONS
+     fitting     pf_vmf_fit_normals (struct pf_vmf_mixture: the fit's lobes)
+     pyramid     pf_vmf_pyramid_level_count, pf_vmf_pyramid_level_offset,
+                 pf_vmf_pyramid_texel_count, pf_vmf_pyramid_from_normals,
+                 pf_vmf_mixture_from_texel
+     scaling     pf_vmf_effective_brdf, pf_vmf_scale_patch, pf_vmf_scale_factor,
+                 pf_vmf_scale_t, pf_vmf_scale_lookup, pf_vmf_scale_sample_count,
+                 pf_vmf_scale_cell_count, pf_vmf_scale_vis_bytes
+
+   ACCURACY AND COST (tests/test_vmf_fit.c, bench/bench_vmf.c; docs/vmf_fit.md)
+     Fit of a 512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16. Scaling
+     function: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade
+     2304 direction pairs.
+
+   SOURCES
+     Wu, Zhao, Yan, Ramamoorthi 2019 eqs. 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun
+     2007 (spherical EM of vMF mixtures); Banerjee, Dhillon, Ghosh, Sra 2005 (kappa from the
+     mean resultant length). */
+#ifndef PF_VMF_FIT_H
+#define PF_VMF_FIT_H
+
+#ifndef PF_GLSL
+#  include "pf_vmf.h"
+#  include "pf_map.h"
+
+/* EM stops when the mean log-likelihood per unit weight changes by less than this (relative,
+   at least absolute 1) */
+#ifndef PF_VMF_EM_TOLERANCE
+#  define PF_VMF_EM_TOLERANCE PF_R(1.0e-6)
+#endif
+
+/* ================================================================ mixtures
+   The fit's output: up to PF_VMF_MAX_LOBES lobes (amplitudes summing to 1). Host code (a
+   struct with arrays, which the portability generator does not synthesise); shade it lobe by
+   lobe with pf_vmf_sum_add, as a shader does with the pyramid's texels. */
+typedef struct pf_vmf_mixture {
+    pf_vmf_lobe lobe[PF_VMF_MAX_LOBES];
+    int count;
+} pf_vmf_mixture;
+
+/* ================================================================ CPU only: fitting
+   Spherical EM (Banerjee et al. 2005; Han et al. 2007 sec. 4) of m vMF lobes to weighted
+   unit normals, on caller-owned buffers, no allocation: each iteration is ONE pass that
+   computes every normal's responsibilities on the fly and accumulates, per lobe, W = sum w r,
+   D = sum w r (x - mu_old) and S = sum w r |x - mu_old|^2 (relative to the previous axis, so
+   that the concentration needs no 1 - |R|/W cancellation: W^2 (1 - rbar^2) = W S - |D|^2
+   exactly, by the parallel-axis rule). Then a = W / sum W, mu = (W mu_old + D) normalized,
+   kappa = rbar (3 - rbar^2) / (1 - rbar^2) (Banerjee et al.'s approximation), clamped.
+   SEEDING (deterministic): lobe 0 on the weighted mean normal, each next lobe on the normal
+   farthest (largest 1 - mu.x) from every lobe so far (first such in memory order); seeding
+   stops early when every normal lies within 1e-7 (1 - cos) of a lobe, so the fit may return
+   fewer lobes than asked. Initial kappa from the whole set's resultant, at least 1.
+   ITERATIONS: at most `iterations` EM steps; it stops earlier when the mean log-likelihood
+   changes by less than 1e-6. Lobes whose weight share falls below 1e-6 are dropped.
+   DEGENERATE INPUT: normals with a NaN or infinite component, zero length, or a weight that is
+   NaN, infinite or <= 0 are skipped; weights are divided by the largest usable one first (no
+   sum can overflow). No usable normal: PF_ERR_ARG, and *out is set to one flat
+   lobe (a = 1, mu = +z, kappa = PF_VMF_KAPPA_MAX), so it is always finite.
+   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
+   PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
+PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
+{
+    pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], l2, wt;
+    wt = weights ? weights[i] : PF_R(1.0);
+    if (!(wt > PF_R(0.0)) || !(wt < PF_REAL_MAX)) return 0;
+    if (!(PF_FABS(a) < PF_R(1.0e18)) || !(PF_FABS(b) < PF_R(1.0e18)) || !(PF_FABS(c) < PF_R(1.0e18))) return 0;
+    l2 = a * a + b * b + c * c;
+    if (!(l2 > PF_R(1.0e-30))) return 0;
+    l2 = PF_R(1.0) / PF_SQRT(l2);
+    *x = pf_vec3_make(a * l2, b * l2, c * l2);
+    *w = wt;
+    return 1;
+}
+
+/* the block walker: rows of bw normals, `row` normals apart, bh rows (a pyramid footprint) */
+#define PFI_VMF_FOREACH(...)                                                                    \
+    for (yy = 0; yy < bh; ++yy)                                                                \
+        for (xx = 0; xx < bw; ++xx) {                                                          \
+            long long id = yy * row + xx;                                                      \
+            if (!pfi_vmf_read(normals, weights, id, &x, &wt)) continue;                        \
+            wt = wt * wscale;                                                                  \
+            __VA_ARGS__                                                                        \
+        }
+
+PF_CPU_DEF pf_vmf_mixture pfi_vmf_mixture_empty(void)
+{
+    pf_vmf_mixture m;
+    int i;
+    for (i = 0; i < PF_VMF_MAX_LOBES; ++i) m.lobe[i] = pf_vmf_lobe_make(PF_R(0.0), PF_R(0.0), PF_R(0.0), PF_R(1.0));
+    m.count = 0;
+    return m;
+}
+
+PF_CPU_DEF pf_vmf_mixture pfi_vmf_flat(void)
+{
+    pf_vmf_mixture m = pfi_vmf_mixture_empty();
+    m.lobe[0] = pf_vmf_lobe_make(PF_R(1.0), PF_R(0.0), PF_R(0.0), PF_VMF_KAPPA_MAX);
+    m.count = 1;
+    return m;
+}
+
+PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights, long long row, long long bw,
+                                 long long bh, int lobes, int iterations, pf_vmf_mixture *out)
+{
+    pf_vmf_mixture m = pfi_vmf_mixture_empty();
+    pf_vec3 x, sum = pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
+    pf_real wt, wsum = PF_R(0.0), logc[PF_VMF_MAX_LOBES], prev_ll = PF_R(0.0), wscale = PF_R(1.0), wmax = PF_R(0.0);
+    long long xx, yy;
+    int k, it, n;
+    /* weights divided by the largest usable one, so that no sum of the fit can overflow */
+    PFI_VMF_FOREACH(wmax = pf_max(wmax, wt);)
+    if (!(wmax > PF_R(0.0))) {
+        *out = pfi_vmf_flat();
+        return PF_ERR_ARG;
+    }
+    wscale = PF_R(1.0) / wmax;
+    PFI_VMF_FOREACH(sum = pf_vec3_add(sum, pf_vec3_scale(x, wt)); wsum += wt;)
+    if (!(wsum > PF_R(0.0)) || !(wsum < PF_REAL_MAX)) {
+        *out = pfi_vmf_flat();
+        return PF_ERR_ARG;
+    }
+    /* seeding */
+    {
+        pf_real len = pf_vec3_length(sum), kappa0;
+        pf_vec3 mu0 = len > PF_R(0.0) ? pf_vec3_scale(sum, PF_R(1.0) / len) : pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
+        kappa0 = pf_max(pf_vmf_kappa_from_mean_length(len / wsum), PF_R(1.0));
+        m.lobe[0].mu = mu0;
+        m.lobe[0].kappa = kappa0;
+        m.count = 1;
+        for (k = 1; k < lobes; ++k) {
+            pf_real best = PF_R(1.0e-7);
+            pf_vec3 pick = mu0;
+            int found = 0, j;
+            PFI_VMF_FOREACH({
+                pf_real dmin = PF_R(4.0);
+                for (j = 0; j < m.count; ++j) {
+                    pf_vec3 d = pf_vec3_sub(x, m.lobe[j].mu);
+                    dmin = pf_min(dmin, PF_R(0.5) * pf_vec3_dot(d, d));
+                }
+                if (dmin > best) {
+                    best = dmin;
+                    pick = x;
+                    found = 1;
+                }
+            })
+            if (!found) break;
+            m.lobe[m.count].mu = pick;
+            m.lobe[m.count].kappa = kappa0;
+            m.count++;
+        }
+        for (k = 0; k < m.count; ++k) m.lobe[k].amp = PF_R(1.0) / (pf_real)m.count;
+    }
+    /* EM */
+    for (it = 0; it < iterations && m.count > 1; ++it) {
+        pf_real W[PF_VMF_MAX_LOBES], S[PF_VMF_MAX_LOBES], ll = PF_R(0.0);
+        pf_vec3 D[PF_VMF_MAX_LOBES];
+        for (k = 0; k < m.count; ++k) {
+            W[k] = S[k] = PF_R(0.0);
+            D[k] = pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
+            logc[k] = PF_LOG(m.lobe[k].amp * pf_vmf_normalization(m.lobe[k].kappa));
+        }
+        PFI_VMF_FOREACH({
+            pf_real lg[PF_VMF_MAX_LOBES], d2[PF_VMF_MAX_LOBES], top = -PF_REAL_MAX, tot = PF_R(0.0);
+            pf_vec3 dv[PF_VMF_MAX_LOBES];
+            for (k = 0; k < m.count; ++k) {
+                dv[k] = pf_vec3_sub(x, m.lobe[k].mu);
+                d2[k] = pf_vec3_dot(dv[k], dv[k]);
+                lg[k] = logc[k] - PF_R(0.5) * m.lobe[k].kappa * d2[k];
+                top = pf_max(top, lg[k]);
+            }
+            for (k = 0; k < m.count; ++k) {
+                lg[k] = PF_EXP(pf_max(lg[k] - top, -PF_VMF_EXP_CAP));
+                tot += lg[k];
+            }
+            ll += wt * (top + PF_LOG(tot));
+            for (k = 0; k < m.count; ++k) {
+                pf_real r = wt * lg[k] / tot;
+                W[k] += r;
+                S[k] += r * d2[k];
+                D[k] = pf_vec3_add(D[k], pf_vec3_scale(dv[k], r));
+            }
+        })
+        /* M step; empty lobes dropped (compacted in order) */
+        n = 0;
+        for (k = 0; k < m.count; ++k) {
+            pf_vec3 r;
+            pf_real len, one_minus_r2, rbar;
+            if (!(W[k] > PF_R(1.0e-6) * wsum)) continue;
+            r = pf_vec3_add(pf_vec3_scale(m.lobe[k].mu, W[k]), D[k]);
+            len = pf_vec3_length(r);
+            if (!(len > PF_R(0.0))) continue;
+            rbar = pf_min(len / W[k], PF_R(1.0));
+            one_minus_r2 = pf_max((W[k] * S[k] - pf_vec3_dot(D[k], D[k])) / (W[k] * W[k]), PF_R(0.0));
+            m.lobe[n].amp = W[k] / wsum;
+            m.lobe[n].mu = pf_vec3_scale(r, PF_R(1.0) / len);
+            m.lobe[n].kappa = one_minus_r2 * PF_VMF_KAPPA_MAX > rbar * (PF_R(3.0) - rbar * rbar)
+                             ? pf_vmf_kappa_clamp(rbar * (PF_R(3.0) - rbar * rbar) / one_minus_r2)
+                             : PF_VMF_KAPPA_MAX;
+            ++n;
+        }
+        m.count = n;
+        for (k = n; k < PF_VMF_MAX_LOBES; ++k) m.lobe[k].amp = PF_R(0.0);
+        ll = ll / wsum;
+        if (it > 0 && PF_FABS(ll - prev_ll) <= PF_VMF_EM_TOLERANCE * pf_max(PF_R(1.0), PF_FABS(ll))) break;
+        prev_ll = ll;
+    }
+    /* FINAL PASS, in slope space: the EM's responsibilities partition the normals; each lobe's
+       stored axis and kappa are then matched to the responsibility-weighted slope mean s_k and
+       slope variance (trace) of its share: mu = (-s_k, 1)/|.|, kappa such that
+       pf_vmf_lobe_slope_stats' trace v (1/mu.z^4 + 1/mu.z^2) equals it. So the slope-form
+       BRDF's lobes carry the footprint's slope moments (one lobe: LEADR's mean and the trace
+       of its covariance); the spherical kappa of Banerjee's rule underestimates the slope
+       spread of a Gaussian-slope footprint (tan against sin: 0.74 against 0.10 error on the
+       bench's gaussian_fine kind at one lobe). Slopes of normals within 1e-3 of the horizon
+       are read at mu.z = 1e-3. */
+    {
+        pf_real W[PF_VMF_MAX_LOBES], S2[PF_VMF_MAX_LOBES], SX[PF_VMF_MAX_LOBES], SY[PF_VMF_MAX_LOBES];
+        for (k = 0; k < m.count; ++k) {
+            W[k] = S2[k] = SX[k] = SY[k] = PF_R(0.0);
+            logc[k] = PF_LOG(m.lobe[k].amp * pf_vmf_normalization(m.lobe[k].kappa));
+        }
+        PFI_VMF_FOREACH({
+            pf_real lg[PF_VMF_MAX_LOBES], top = -PF_REAL_MAX, tot = PF_R(0.0);
+            pf_real iz = PF_R(1.0) / pf_max(x.z, PF_R(1.0e-3)), sx = -x.x * iz, sy = -x.y * iz;
+            for (k = 0; k < m.count; ++k) {
+                pf_vec3 dv = pf_vec3_sub(x, m.lobe[k].mu);
+                lg[k] = logc[k] - PF_R(0.5) * m.lobe[k].kappa * pf_vec3_dot(dv, dv);
+                top = pf_max(top, lg[k]);
+            }
+            for (k = 0; k < m.count; ++k) {
+                lg[k] = PF_EXP(pf_max(lg[k] - top, -PF_VMF_EXP_CAP));
+                tot += lg[k];
+            }
+            for (k = 0; k < m.count; ++k) {
+                pf_real r = wt * lg[k] / tot;
+                W[k] += r;
+                SX[k] += r * sx;
+                SY[k] += r * sy;
+                S2[k] += r * (sx * sx + sy * sy);
+            }
+        })
+        n = 0;
+        for (k = 0; k < m.count; ++k) {
+            pf_real mx, my, tr, iz2;
+            if (!(W[k] > PF_R(1.0e-6) * wsum)) continue;
+            mx = SX[k] / W[k];
+            my = SY[k] / W[k];
+            tr = pf_max(S2[k] / W[k] - mx * mx - my * my, PF_R(0.0));
+            iz2 = PF_R(1.0) + mx * mx + my * my;
+            m.lobe[n].amp = W[k] / wsum;
+            m.lobe[n].mu = pf_vec3_scale(pf_vec3_make(-mx, -my, PF_R(1.0)), PF_R(1.0) / PF_SQRT(iz2));
+            m.lobe[n].kappa = pf_vmf_kappa_from_tangent_variance(tr / (iz2 * iz2 + iz2));
+            ++n;
+        }
+        m.count = n;
+        for (k = n; k < PF_VMF_MAX_LOBES; ++k) m.lobe[k].amp = PF_R(0.0);
+        if (n == 0) {
+            *out = pfi_vmf_flat();
+            return PF_ERR_ARG;
+        }
+    }
+    /* lobe axes on the upper hemisphere (the packed form's convention) */
+    for (k = 0; k < m.count; ++k)
+        if (m.lobe[k].mu.z < PF_R(0.0)) {
+            pf_vec3 a = m.lobe[k].mu;
+            pf_real l = PF_SQRT(a.x * a.x + a.y * a.y);
+            m.lobe[k].mu = l > PF_R(0.0) ? pf_vec3_make(a.x / l, a.y / l, PF_R(0.0)) : pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
+        }
+    *out = m;
+    return PF_OK;
+}
+
+/* Fits up to `lobes` vMF lobes to count unit normals (3 pf_reals each; non-unit ones are
+   normalized) with optional weights (NULL: all 1). See the block comment above. */
+PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights, long long count, int lobes,
+                                  int iterations, pf_vmf_mixture *out)
+{
+    if (!out) return PF_ERR_ARG;
+    if (!normals || count < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0) {
+        *out = pfi_vmf_flat();
+        return PF_ERR_ARG;
+    }
+    if (pf_size_mul(count, 3) < 0) {
+        *out = pfi_vmf_flat();
+        return PF_ERR_SIZE;
+    }
+    return pfi_vmf_fit_block(normals, weights, count, count, 1, lobes, iterations, out);
+}
+
+/* ================================================================ CPU only: SCALING FUNCTION
+   (Wu et al. 2019 eqs. 6-8, 12-14 and sec. 6 eqs. 21-24; interreflections, sec. 5,
+   are not modelled).
+   EFFECTIVE BRDF (eqs. 6-8, single bounce) of an n x n patch of a periodic height map
+   heights[y w + x] (world units, `texel` world units between nodes), texels (x0 + i, y0 + j)
+   wrapping: every texel is a facet of its central-difference slope s_t (as
+   tests/pf_microsurface.h and pf_slope_pyramid_from_heights level 0) shaded by the base BRDF,
+   a Beckmann lobe of slope deviation base_sigma around s_t with Schlick Fresnel and the lobe's
+   own Smith G2 (LEADR eqs. 10, 13, 16-17: the bench's base BRDF), kept when the texel's node
+   sees both wo and wi:
+       f_eff = sum_t V_t(wo) V_t(wi) F D_t(h) G2_t / 4  /  sum_t a_t(wo),   a_t(w) = w.z - s_t.w.xy
+   (eq. 8: the patch's projected area toward wo is that of its mean plane; radiance toward wo
+   per unit radiance from wi, light cosine included, like pf_vmf_sum_specular).
+   VISIBILITY: pf_map_visible (pf_map.h), the height-field march restricted to the patch.
+   RATIO AND FACTORIZATION (eqs. 12, 14, 21-24): R(x, wi, wo) = f_eff / f_lobes with f_lobes the
+   multi-lobe BRDF of eq. 5 for the patch's fitted lobes (pf_vmf_fit_normals on the patch's
+   normals, slope form pf_vmf_sum_add with base_var = base_sigma^2), masking per `masking`:
+   PF_VMF_SCALE_UNMASKED (eq. 5 as written: R carries all the masking-shadowing),
+   PF_VMF_SCALE_G_GAUSSIAN (pf_vmf_sum_specular), PF_VMF_SCALE_G_MIXTURE
+   (pf_vmf_sum_specular_mixture). Samples per patch (pf_vmf_scale_patch): one direction set,
+   the nt theta nodes times A = 2 (np - 1) azimuths a pi/(np - 1), and every (wo, wi) pair of
+   it: phi_d falls on the np phi_d nodes exactly, each node gets A (ends) or 2 A (inner)
+   samples per patch and theta pair, and the mirror pairs are among them (a narrow highlight
+   is sampled at its peak). Sample order ((k_to A + a_o) nt + k_ti) A + a_i.
+   T and S (pf_vmf_scale_factor): the rank-1 fit of eq. 21 minimizing the error IN BRDF UNITS,
+   sum_{x, samples} (f_eff - T(x) S(cell) f_lobes)^2, by alternating least squares (T(x) =
+   sum f_eff f_lobes S / sum (f_lobes S)^2 over the patch's samples, S likewise over the
+   patches), then T scaled to mean 1 (Wu et al. sec. 7). Why not eqs. 22-24's plain means of
+   R: where the narrow lobes put almost no energy R is a ratio of two tiny numbers (the paper
+   adds an epsilon), and a plain mean weights those samples as much as the highlight; the fit
+   in BRDF units weights them by their energy, and is still exact when R is separable (the
+   plain means are exact then too). Cells or patches without energy get 1.
+   REGULARIZATION: the samples are node directions, so a patch whose highlight falls between
+   them, or a cell that only the lobes' far tails reach (where f_eff, whose facets skip the
+   base lobe's tail, is exactly 0), is decided by a few tiny samples: unregularized, S had
+   cells of exactly 0 at every level of the bench's maps (trilinear reads spread them onto the
+   highlights) and T ranged 0.13-10.8 at 64-256 texels. Each T and S is therefore the
+   least-squares value with a prior pulling it toward 1 whose weight is `shrink` times the
+   average energy sum (S f_lobes)^2 of a patch (for T) or sum (T f_lobes)^2 of a cell (for S):
+   well-sampled values keep their fit, poorly sampled ones stay near 1 (no scaling). */
+#define PF_VMF_SCALE_UNMASKED 0
+#define PF_VMF_SCALE_G_GAUSSIAN 1
+#define PF_VMF_SCALE_G_MIXTURE 2
+
+/* argument and size checks shared by the scaling functions (no data read) */
+PF_CPU_DEF int pfi_vmf_patch_sizes(const pf_real *hm, int w, int h, pf_real texel, long long n)
+{
+    if (!hm || n < 1 || w < 1 || h < 1 || !(texel > PF_R(0.0)) || !(texel < PF_REAL_MAX)) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
+    if (n > w || n > h) return PF_ERR_ARG;
+    return PF_OK;
+}
+
+/* the data check, after every size check: finite heights in the patch and its one-node ring;
+   *top gets the highest of them */
+PF_CPU_DEF int pfi_vmf_patch_top(const pf_real *hm, int w, int h, long long x0, long long y0, long long n, pf_real *top)
+{
+    long long i, j;
+    pf_real hi = -PF_REAL_MAX;
+    for (j = -1; j <= n; ++j)
+        for (i = -1; i <= n; ++i) {
+            pf_real v = pf_map_height(hm, w, h, x0 + i, y0 + j);
+            if (!(PF_FABS(v) < PF_R(0.25) * PF_REAL_MAX)) return PF_ERR_ARG; /* NaN, inf */
+            hi = pf_max(hi, v);
+        }
+    *top = hi;
+    return PF_OK;
+}
+
+/* f_eff accumulation over the patch, visibility either marched (vis_o NULL) or read from two
+   n x n byte maps (both given) */
+PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real texel, long long x0, long long y0,
+                                     long long n, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0, pf_real top,
+                                     const unsigned char *vis_o, const unsigned char *vis_i)
+{
+    pf_real num = PF_R(0.0), area = PF_R(0.0), sx, sy;
+    long long i, j;
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            long long x = x0 + i, y = y0 + j;
+            pf_real term;
+            pf_map_node_slope(hm, w, h, texel, x, y, &sx, &sy);
+            area += wo.z - sx * wo.x - sy * wo.y;
+            if (vis_o && (!vis_o[j * n + i] || !vis_i[j * n + i])) continue;
+            term = pf_vmf_facet_specular(sx, sy, base_var, wo, wi, f0);
+            if (!(term > PF_R(0.0))) continue;
+            if (!vis_o && (!pf_map_visible(hm, w, h, texel, x, y, wo, x0, y0, n, top) ||
+                           !pf_map_visible(hm, w, h, texel, x, y, wi, x0, y0, n, top)))
+                continue;
+            num += term;
+        }
+    return area > PF_R(0.0) ? num / area : PF_R(0.0);
+}
+
+/* The single-bounce effective BRDF of the n x n patch from (x0, y0) (Wu et al. 2019 eqs. 6-8;
+   see the block comment) toward wo from wi (unit, tangent frame) into *out; 0 when either
+   direction is on or below the macrosurface or the patch's mean plane faces away.
+   Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
+   below 1, n > w or n > h, texel or base_sigma not finite and > 0, a non-finite height in the
+   patch or its one-texel ring; PF_ERR_SIZE for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
+   Cost: 2 n^2 marches of at most n cells. Reads only heights[0 .. w h). */
+PF_CPU_DEF int pf_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
+                                     pf_vec3 wo, pf_vec3 wi, pf_real base_sigma, pf_real f0, pf_real *out)
+{
+    pf_real top = PF_R(0.0);
+    int rc;
+    if (!out) return PF_ERR_ARG;
+    *out = PF_R(0.0);
+    if (!(base_sigma > PF_R(0.0)) || !(base_sigma < PF_R(1.0e15))) return PF_ERR_ARG;
+    rc = pfi_vmf_patch_sizes(heights, w, h, texel, n);
+    if (rc == PF_OK) rc = pfi_vmf_patch_top(heights, w, h, x0, y0, n, &top);
+    if (rc != PF_OK) return rc;
+    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_OK;
+    *out = pfi_vmf_effective(heights, w, h, texel, x0, y0, n, wo, wi, base_sigma * base_sigma, f0, top, 0, 0);
+    return PF_OK;
+}
+
+/* samples per patch, (2 nt (np - 1))^2 (every pair of nt thetas times 2 (np - 1) azimuths);
+   0 for nt or np below 2 or a count above PF_MAX_REALS */
+PF_CPU_DEF long long pf_vmf_scale_sample_count(int nt, int np)
+{
+    long long d;
+    if (nt < 2 || np < 2) return 0;
+    d = pf_size_mul3(2, nt, np - 1);
+    d = d < 0 ? -1 : pf_size_mul(d, d);
+    return d < 0 ? 0 : d;
+}
+
+/* nodes (cells) of S: nt nt np (0 for nt or np below 2 or too large) */
+PF_CPU_DEF long long pf_vmf_scale_cell_count(int nt, int np)
+{
+    long long c = (nt < 2 || np < 2) ? -1 : pf_size_mul3(nt, nt, np);
+    return c < 0 ? 0 : c;
+}
+
+/* bytes of pf_vmf_scale_patch's visibility scratch: 2 nt (np - 1) n^2 (one n x n map per
+   direction); 0 for bad sizes */
+PF_CPU_DEF long long pf_vmf_scale_vis_bytes(int nt, int np, int n)
+{
+    long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pf_size_mul3(2, nt, np - 1);
+    d = d < 0 ? -1 : pf_size_mul3(d, n, n);
+    return d < 0 ? 0 : d;
+}
+
+/* the sample directions: theta node it, azimuth a pi / (np - 1) */
+PF_CPU_DEF pf_vec3 pfi_vmf_scale_dir(int it, int k, int nt, int np, pf_real theta_max)
+{
+    pf_real th = (pf_real)it * theta_max / (pf_real)(nt - 1);
+    pf_real ph = (pf_real)k * PF_PI / (pf_real)(np - 1);
+    return pf_vec3_make(PF_SIN(th) * PF_COS(ph), PF_SIN(th) * PF_SIN(ph), PF_COS(th));
+}
+
+/* S cell of sample s (sample order in the block comment) */
+PF_CPU_DEF long long pfi_vmf_scale_cell(long long s, int nt, int np)
+{
+    long long A = 2LL * (np - 1), ai = s % A, ti = (s / A) % nt, ao = (s / (A * nt)) % A, to = s / (A * nt * A);
+    long long d = pf_map_wrap(ai - ao, A), k = d <= np - 1 ? d : A - d;
+    return (ti * nt + to) * np + k;
+}
+
+/* One patch's samples of the scaling function (see the block comment): for every sample s,
+   f_eff[s] (eqs. 6-8) and f_lobes[s] (eq. 5 with the patch's `lobes` fitted lobes, EM budget
+   `iterations`, masking PF_VMF_SCALE_*); R = f_eff / f_lobes. Directions: thetas
+   k theta_max / (nt - 1), theta_max in (0, pi/2). Caller buffers: normals_scratch 3 n^2 pf_reals,
+   vis_scratch pf_vmf_scale_vis_bytes(nt, np, n) bytes, f_eff and f_lobes
+   pf_vmf_scale_sample_count(nt, np) pf_reals each; nothing outside them is written.
+   Errors: those of pf_vmf_effective_brdf, and PF_ERR_ARG for a NULL buffer, lobes outside
+   [1, 16], iterations < 0, nt or np < 2, theta_max outside (0, pi/2), an unknown masking;
+   PF_ERR_SIZE when a buffer's size exceeds PF_MAX_REALS (every size is checked before any
+   height is read). The fit cannot fail on finite heights (every normal has z = 2 texel > 0
+   before normalization); if it did, PF_ERR_ARG. Cost: 2 nt (np - 1) n^2 marches
+   and up to (2 nt (np - 1))^2 n^2 base-lobe evaluations (facets far from the half vector's
+   slope skip theirs). */
+PF_CPU_DEF int pf_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n, int lobes,
+                                  int iterations, pf_real base_sigma, pf_real f0, int masking, int nt, int np,
+                                  pf_real theta_max, pf_real *normals_scratch, unsigned char *vis_scratch,
+                                  pf_real *f_eff, pf_real *f_lobes)
+{
+    pf_real top = PF_R(0.0), bv;
+    pf_vmf_mixture mix;
+    long long nn, dirs, count, A, s, i, j;
+    int rc, d;
+    if (!normals_scratch || !vis_scratch || !f_eff || !f_lobes || lobes < 1 || lobes > PF_VMF_MAX_LOBES ||
+        iterations < 0 || nt < 2 || np < 2 || !(theta_max > PF_R(0.0)) || !(theta_max < PF_R(0.5) * PF_PI) ||
+        masking < PF_VMF_SCALE_UNMASKED || masking > PF_VMF_SCALE_G_MIXTURE)
+        return PF_ERR_ARG;
+    if (!(base_sigma > PF_R(0.0)) || !(base_sigma < PF_R(1.0e15))) return PF_ERR_ARG;
+    rc = pfi_vmf_patch_sizes(heights, w, h, texel, n);
+    if (rc != PF_OK) return rc;
+    nn = (long long)n * n;
+    count = pf_vmf_scale_sample_count(nt, np);
+    if (count == 0 || pf_vmf_scale_vis_bytes(nt, np, n) == 0 || pf_size_mul(nn, 3) < 0) return PF_ERR_SIZE;
+    rc = pfi_vmf_patch_top(heights, w, h, x0, y0, n, &top); /* reads data: after every size check */
+    if (rc != PF_OK) return rc;
+    A = 2LL * (np - 1);
+    dirs = nt * A;
+    bv = base_sigma * base_sigma;
+    /* the patch's normals and its lobes */
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            /* (-dx, -dy, 2 texel), the normal of the central differences without dividing by
+               the texel (no overflow for a tiny texel); the fit normalizes it */
+            pf_real dx = pf_map_height(heights, w, h, x0 + i + 1, y0 + j) - pf_map_height(heights, w, h, x0 + i - 1, y0 + j);
+            pf_real dy = pf_map_height(heights, w, h, x0 + i, y0 + j + 1) - pf_map_height(heights, w, h, x0 + i, y0 + j - 1);
+            pf_real m = pf_max(pf_max(PF_FABS(dx), PF_FABS(dy)), PF_R(2.0) * texel);
+            normals_scratch[3 * (j * n + i)] = -dx / m;
+            normals_scratch[3 * (j * n + i) + 1] = -dy / m;
+            normals_scratch[3 * (j * n + i) + 2] = PF_R(2.0) * texel / m;
+        }
+    if (pf_vmf_fit_normals(normals_scratch, 0, nn, lobes, iterations, &mix) != PF_OK) return PF_ERR_ARG;
+    /* one visibility map per direction of the set */
+    for (d = 0; d < dirs; ++d) {
+        pf_vec3 dir = pfi_vmf_scale_dir((int)(d / A), (int)(d % A), nt, np, theta_max);
+        unsigned char *vm = vis_scratch + d * nn;
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n; ++i)
+                vm[j * n + i] = (unsigned char)pf_map_visible(heights, w, h, texel, x0 + i, y0 + j, dir, x0, y0, n, top);
+    }
+    for (s = 0; s < count; ++s) {
+        long long ai = s % A, ti = (s / A) % nt, ao = (s / (A * nt)) % A, to = s / (A * nt * A);
+        pf_vec3 wo = pfi_vmf_scale_dir((int)to, (int)ao, nt, np, theta_max);
+        pf_vec3 wi = pfi_vmf_scale_dir((int)ti, (int)ai, nt, np, theta_max);
+        pf_vmf_sum sum = pf_vmf_sum_zero();
+        int k;
+        f_eff[s] = pfi_vmf_effective(heights, w, h, texel, x0, y0, n, wo, wi, bv, f0, top,
+                                     vis_scratch + (to * A + ao) * nn, vis_scratch + (ti * A + ai) * nn);
+        for (k = 0; k < mix.count; ++k) {
+            sum = pf_vmf_sum_add(sum, mix.lobe[k], wo, wi, bv);
+            if (masking == PF_VMF_SCALE_G_MIXTURE) sum = pf_vmf_sum_add_masking(sum, mix.lobe[k], wo, wi, bv);
+        }
+        f_lobes[s] = masking == PF_VMF_SCALE_UNMASKED    ? pf_vmf_sum_specular_unmasked(sum, wo, wi, f0)
+                     : masking == PF_VMF_SCALE_G_GAUSSIAN ? pf_vmf_sum_specular(sum, wo, wi, f0)
+                                                          : pf_vmf_sum_specular_mixture(sum, wo, wi, f0);
+    }
+    return PF_OK;
+}
+
+/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
+   `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
+   patch after patch, as pf_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
+   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
+   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
+   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
+   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
+   pf_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
+   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
+   of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
+   for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
+   T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
+   not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
+   Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
+   outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
+PF_CPU_DEF int pf_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
+                                   int iterations, pf_real shrink, pf_real *t_out, pf_real *s_out, pf_real *scratch,
+                                   pf_real *prior_out, pf_real *err)
+{
+    long long cells, count, x, b, s;
+    pf_real *num, *den, mean;
+    int it;
+    if (!f_eff || !f_lobes || !t_out || !s_out || !scratch || patches < 1 || nt < 2 || np < 2 || iterations < 1 ||
+        !(shrink >= PF_R(0.0)) || !(shrink <= PF_R(1.0e6)))
+        return PF_ERR_ARG;
+    cells = pf_vmf_scale_cell_count(nt, np);
+    count = pf_vmf_scale_sample_count(nt, np);
+    if (cells == 0 || count == 0 || pf_size_mul(count, patches) < 0 || pf_size_mul3(cells, patches, 2) < 0)
+        return PF_ERR_SIZE;
+    num = scratch;
+    den = scratch + cells * patches;
+    for (b = 0; b < cells * patches; ++b) num[b] = den[b] = PF_R(0.0);
+    /* per (patch, cell): sum f_eff f_lobes and sum f_lobes^2 (the normal equations) */
+    for (x = 0; x < patches; ++x)
+        for (s = 0; s < count; ++s) {
+            pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
+            long long c = x * cells + pfi_vmf_scale_cell(s, nt, np);
+            e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
+            l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
+            num[c] += e * l;
+            den[c] += l * l;
+        }
+    for (b = 0; b < cells; ++b) s_out[b] = PF_R(1.0);
+    for (x = 0; x < patches; ++x) t_out[x] = PF_R(1.0);
+    for (it = 0; it < iterations; ++it) {
+        /* T step: each patch's energy q first (kept in t_out, which this step overwrites),
+           the prior's weight `shrink` times their mean, then T from q and sum e l S */
+        pf_real prior = PF_R(0.0);
+        for (x = 0; x < patches; ++x) {
+            pf_real q = PF_R(0.0);
+            for (b = 0; b < cells; ++b) q += den[x * cells + b] * s_out[b] * s_out[b];
+            t_out[x] = q;
+            prior += q;
+        }
+        prior = shrink * prior / (pf_real)patches;
+        prior = prior < PF_REAL_MAX ? prior : PF_R(0.0); /* overflowed energies: no prior */
+        for (x = 0; x < patches; ++x) {
+            pf_real a = PF_R(0.0);
+            for (b = 0; b < cells; ++b) a += num[x * cells + b] * s_out[b];
+            a = (a + prior) / (t_out[x] + prior);
+            t_out[x] = a < PF_REAL_MAX ? a : PF_R(1.0); /* no energy and no prior (NaN), overflow */
+        }
+        /* S step: likewise with each cell's energy (kept in s_out) and their mean */
+        prior = PF_R(0.0);
+        for (b = 0; b < cells; ++b) {
+            pf_real q = PF_R(0.0);
+            for (x = 0; x < patches; ++x) q += den[x * cells + b] * t_out[x] * t_out[x];
+            s_out[b] = q;
+            prior += q;
+        }
+        prior = shrink * prior / (pf_real)cells;
+        prior = prior < PF_REAL_MAX ? prior : PF_R(0.0);
+        for (b = 0; b < cells; ++b) {
+            pf_real a = PF_R(0.0);
+            for (x = 0; x < patches; ++x) a += num[x * cells + b] * t_out[x];
+            a = (a + prior) / (s_out[b] + prior);
+            s_out[b] = a < PF_REAL_MAX ? a : PF_R(1.0);
+        }
+    }
+    mean = PF_R(0.0);
+    for (x = 0; x < patches; ++x) mean += t_out[x];
+    mean /= (pf_real)patches;
+    if (mean > PF_R(0.0)) {
+        for (x = 0; x < patches; ++x) t_out[x] /= mean;
+        for (b = 0; b < cells; ++b) s_out[b] *= mean;
+    }
+    /* the prior for pf_vmf_scale_t on other patches of the same level: shrink times the mean
+       patch energy sum_s (S f_lobes)^2 under the final S */
+    if (prior_out) {
+        pf_real e_sum = PF_R(0.0);
+        for (x = 0; x < patches; ++x)
+            for (b = 0; b < cells; ++b) e_sum += den[x * cells + b] * s_out[b] * s_out[b];
+        e_sum = shrink * e_sum / (pf_real)patches;
+        *prior_out = e_sum < PF_REAL_MAX ? e_sum : PF_R(0.0);
+    }
+    if (err) {
+        pf_real e0 = PF_R(0.0), e1 = PF_R(0.0), ref = PF_R(0.0), l2 = PF_R(0.0), r0 = PF_R(0.0), rr = PF_R(0.0), floor_l;
+        for (x = 0; x < patches; ++x)
+            for (s = 0; s < count; ++s) {
+                pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
+                e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
+                l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
+                e0 += (e - ts * l) * (e - ts * l);
+                e1 += (e - l) * (e - l);
+                ref += e * e;
+                l2 += l * l;
+            }
+        floor_l = PF_R(0.01) * PF_SQRT(l2 / (pf_real)(count * patches));
+        for (x = 0; x < patches; ++x)
+            for (s = 0; s < count; ++s) {
+                pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s], R;
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
+                if (!(l > floor_l) || !(l < PF_REAL_MAX)) continue;
+                R = (e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0)) / l;
+                r0 += (R - ts) * (R - ts);
+                rr += R * R;
+            }
+        err[0] = ref > PF_R(0.0) ? PF_SQRT(e0 / ref) : PF_R(0.0);
+        err[1] = ref > PF_R(0.0) ? PF_SQRT(e1 / ref) : PF_R(0.0);
+        err[2] = rr > PF_R(0.0) ? PF_SQRT(r0 / rr) : PF_R(0.0);
+    }
+    return PF_OK;
+}
+
+/* T of one patch given a level's S table (pf_vmf_scale_factor's s_out) from the patch's own
+   samples (f_eff, f_lobes: pf_vmf_scale_sample_count(nt, np) pf_reals each, as
+   pf_vmf_scale_patch writes them): (sum e l S + prior) / (sum (l S)^2 + prior), S of each
+   sample's cell, prior from pf_vmf_scale_factor's prior_out (>= 0). Non-finite or negative
+   samples count as 0. 1 for a NULL buffer, bad sizes, a negative or NaN prior, a patch
+   without energy and no prior, or sums that overflow. */
+PF_CPU_DEF pf_real pf_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes, int nt, int np, const pf_real *s_table,
+                                  pf_real prior)
+{
+    long long count = pf_vmf_scale_sample_count(nt, np), s;
+    pf_real a = PF_R(0.0), q = PF_R(0.0);
+    if (!f_eff || !f_lobes || !s_table || count == 0 || pf_vmf_scale_cell_count(nt, np) == 0 || !(prior >= PF_R(0.0)))
+        return PF_R(1.0);
+    for (s = 0; s < count; ++s) {
+        pf_real e = f_eff[s], l = f_lobes[s];
+        e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
+        l = l > PF_R(0.0) && l < PF_REAL_MAX ? l * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
+        a += e * l;
+        q += l * l;
+    }
+    a = (a + prior) / (q + prior);
+    return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
+}
+
+/* S at (wo, wi) from the table (CPU side of the shader lookup: pf_vmf_scale_coords,
+   pf_vmf_scale_texel_pos, 8 reads, pf_vmf_scale_trilinear). NULL table or bad sizes: 1 (no
+   scaling). */
+PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_real theta_max, pf_vec3 wo, pf_vec3 wi)
+{
+    pf_vec3 c, f;
+    pf_real p0, p1, p2;
+    long long a0, a1, b0, b1, c0, c1;
+    if (!table || pf_vmf_scale_cell_count(nt, np) == 0) return PF_R(1.0);
+    c = pf_vmf_scale_coords(wo, wi, theta_max);
+    p0 = pf_vmf_scale_texel_pos(c.x, nt);
+    p1 = pf_vmf_scale_texel_pos(c.y, nt);
+    p2 = pf_vmf_scale_texel_pos(c.z, np);
+    a0 = (long long)p0;
+    b0 = (long long)p1;
+    c0 = (long long)p2;
+    a1 = a0 + 1 < nt ? a0 + 1 : a0;
+    b1 = b0 + 1 < nt ? b0 + 1 : b0;
+    c1 = c0 + 1 < np ? c0 + 1 : c0;
+    f = pf_vec3_make(p0 - (pf_real)a0, p1 - (pf_real)b0, p2 - (pf_real)c0);
+#define PFI_VMF_S(a, b, c) table[((a) * nt + (b)) * np + (c)]
+    return pf_vmf_scale_trilinear(PFI_VMF_S(a0, b0, c0), PFI_VMF_S(a1, b0, c0), PFI_VMF_S(a0, b1, c0),
+                                  PFI_VMF_S(a1, b1, c0), PFI_VMF_S(a0, b0, c1), PFI_VMF_S(a1, b0, c1),
+                                  PFI_VMF_S(a0, b1, c1), PFI_VMF_S(a1, b1, c1), f);
+#undef PFI_VMF_S
+}
+/* ================================================================ end of SCALING FUNCTION */
+
+/* ================================================================ the lobe pyramid
+   pf_map.h's pyramid layout restricted to power-of-two sides: level l of a w x h normal map has max(1, w >> l) x max(1, h >> l)
+   texels; texel (i, j) of level l covers the finest texels [i fx, (i + 1) fx) x [j fy, (j + 1)
+   fy), fx = w / (w >> l) (a box: what a mip level holds). Every level is FITTED FROM THE
+   FINEST NORMALS of its footprint (not merged from the level below: merging m lobes of four
+   children into m is itself a fit, and the finest normals are at hand); cost ~ levels x
+   texels x lobes x iterations exps (docs/vmf.md has the measured time).
+   LAYOUT (what a shader fetches): levels one after another from level 0, texels row-major,
+   4 * lobes pf_reals per texel: for each lobe (mu.x, mu.y, kappa, amp) - an RGBA texel per
+   lobe (mu.z = sqrt(1 - x^2 - y^2)). A fit that returns fewer lobes pads with amp = 0,
+   mu = +z, kappa = 1. Bytes per texel: 16 m in float32 (16, 32, 64, 128, 256 for m = 1, 2, 4, 8, 16),
+   8 m in half floats (kappa <= 1e5 fits half's range; its 11-bit precision is 0.05% on kappa).
+   A texel whose footprint has no usable normal gets the flat lobe (amp 1, mu = +z, kappa =
+   PF_VMF_KAPPA_MAX) and the call still returns PF_OK.
+   Errors: PF_ERR_ARG for NULL normals or pyr, w or h below 1 or not a power of two, lobes
+   outside [1, 16], iterations < 0; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer above
+   PF_MAX_REALS.
+   normals: w * h * 3 pf_reals; weights: w * h or NULL; pyr: pf_vmf_pyramid_texel_count(w, h)
+   * 4 * lobes pf_reals. Nothing outside these is read or written. */
+PF_CPU_DEF int pfi_vmf_pow2(long long n) { return pf_size_side_ok(n) && (n & (n - 1)) == 0; }
+
+/* levels of the lobe pyramid: pf_mip_level_count (pf_map.h's layout), 0 unless w and h are
+   powers of two in [1, PF_MAX_SIDE] */
+PF_CPU_DEF int pf_vmf_pyramid_level_count(int w, int h)
+{
+    if (!pfi_vmf_pow2(w) || !pfi_vmf_pow2(h)) return 0;
+    return pf_mip_level_count(w, h);
+}
+
+/* texels before level `level` (level >= count: the total): pf_mip_level_offset; -1 for bad
+   sizes or a negative level */
+PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
+{
+    if (pf_vmf_pyramid_level_count(w, h) == 0 || level < 0) return -1;
+    return pf_mip_level_offset(w, h, level);
+}
+
+/* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes */
+PF_CPU_DEF long long pf_vmf_pyramid_texel_count(int w, int h)
+{
+    long long t = pf_vmf_pyramid_level_offset(w, h, 64);
+    return t < 0 ? 0 : t;
+}
+
+PF_CPU_DEF void pfi_vmf_store(pf_real *dst, pf_vmf_mixture m, int lobes)
+{
+    int k;
+    for (k = 0; k < lobes; ++k) {
+        int live = k < m.count;
+        dst[4 * k] = live ? m.lobe[k].mu.x : PF_R(0.0);
+        dst[4 * k + 1] = live ? m.lobe[k].mu.y : PF_R(0.0);
+        dst[4 * k + 2] = live ? m.lobe[k].kappa : PF_R(1.0);
+        dst[4 * k + 3] = live ? m.lobe[k].amp : PF_R(0.0);
+    }
+}
+
+PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real *weights, int w, int h, int lobes,
+                                           int iterations, pf_real *pyr)
+{
+    int levels, l;
+    long long off = 0;
+    if (!normals || !pyr || w < 1 || h < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0)
+        return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
+    levels = pf_vmf_pyramid_level_count(w, h);
+    if (levels == 0) return PF_ERR_ARG; /* not powers of two */
+    if (pf_size_mul3(pf_vmf_pyramid_texel_count(w, h), 4, lobes) < 0 || pf_size_mul3(w, h, 3) < 0)
+        return PF_ERR_SIZE;
+    for (l = 0; l < levels; ++l) {
+        long long lw = (w >> l) > 0 ? (w >> l) : 1, lh = (h >> l) > 0 ? (h >> l) : 1;
+        long long fx = w / lw, fy = h / lh, i, j;
+        for (j = 0; j < lh; ++j)
+            for (i = 0; i < lw; ++i) {
+                pf_vmf_mixture m;
+                long long first = j * fy * w + i * fx;
+                if (pfi_vmf_fit_block(normals + 3 * first, weights ? weights + first : weights, w, fx, fy, lobes,
+                                      iterations, &m) != PF_OK)
+                    m = pfi_vmf_flat();
+                pfi_vmf_store(pyr + (off + j * lw + i) * 4 * lobes, m, lobes);
+            }
+        off += lw * lh;
+    }
+    return PF_OK;
+}
+
+/* The mixture stored at one texel of the pyramid (4 * lobes pf_reals): what a shader's
+   `lobes` RGBA fetches and pf_vmf_lobe_make calls give. Lobes with amp = 0 (padding) are
+   skipped. lobes is clamped to [1, 16]; texel NULL gives an empty mixture (count 0). */
+PF_CPU_DEF pf_vmf_mixture pf_vmf_mixture_from_texel(const pf_real *texel, int lobes)
+{
+    pf_vmf_mixture m = pfi_vmf_mixture_empty();
+    int k, n = lobes < 1 ? 1 : (lobes > PF_VMF_MAX_LOBES ? PF_VMF_MAX_LOBES : lobes);
+    if (!texel) return m;
+    for (k = 0; k < n; ++k)
+        if (texel[4 * k + 3] > PF_R(0.0))
+            m.lobe[m.count++] = pf_vmf_lobe_make(texel[4 * k + 3], texel[4 * k], texel[4 * k + 1], texel[4 * k + 2]);
+    return m;
+}
+#undef PFI_VMF_FOREACH
+
+#endif /* !PF_GLSL */
+
+#endif /* PF_VMF_FIT_H */

@@ -1,0 +1,571 @@
+/* test_vmf_fit.c - tests of include/pf_vmf_fit.h (the EM fit, the lobe pyramid, the scaling
+   function).
+
+   The truth is never the module's own formula:
+   - EM: normals sampled (seeded) from known vMF mixtures must give back the lobes;
+   - degenerate input: equal normals, zero and NaN weights, NaN normals, bad sizes, and
+     canaries after every buffer;
+   - the scaling function (Wu et al. 2019 eqs. 6-8, 12-14, 21-24): a flat patch's effective
+     BRDF is the base lobe's, Helmholtz reciprocity, the in-footprint reference of
+     tests/pf_microsurface.h, the rank-1 factorization of a separable ratio recovered exactly,
+     the prior's effect, the table lookup against its trilinear definition, bad input through
+     guarded buffers.
+   Same bodies in float and double; edge_* tests also run under -ffast-math. */
+/* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */
+#if defined(__unix__) && !defined(_DEFAULT_SOURCE)
+#  define _DEFAULT_SOURCE 1
+#endif
+#include "pf_vmf_fit.h"
+#include "pf_oracle.h"
+#include "pf_test.h"
+#include "pf_microsurface.h"
+
+/* ------------------------------------------------------------------ seeded sampling */
+typedef struct trng { unsigned long long s; } trng;
+static double trng_u(trng *r)
+{
+    unsigned long long z = (r->s += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return ((double)(z >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+
+/* one normal from a vMF of axis mu, kappa: cos t = 1 + log(u + (1 - u) e^(-2 kappa)) / kappa */
+static void sample_vmf(trng *r, const double mu[3], double kappa, double out[3])
+{
+    double u = trng_u(r), ph = 2.0 * PFM_PI * trng_u(r);
+    double c = 1.0 + log(u + (1.0 - u) * exp(-2.0 * kappa)) / kappa, s = sqrt(fmax(0.0, 1.0 - c * c));
+    double t1[3], t2[3], a[3] = { 1, 0, 0 }, l;
+    int k;
+    if (fabs(mu[0]) > 0.9) {
+        a[0] = 0;
+        a[1] = 1;
+    }
+    t1[0] = a[1] * mu[2] - a[2] * mu[1];
+    t1[1] = a[2] * mu[0] - a[0] * mu[2];
+    t1[2] = a[0] * mu[1] - a[1] * mu[0];
+    l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+    for (k = 0; k < 3; ++k) t1[k] /= l;
+    t2[0] = mu[1] * t1[2] - mu[2] * t1[1];
+    t2[1] = mu[2] * t1[0] - mu[0] * t1[2];
+    t2[2] = mu[0] * t1[1] - mu[1] * t1[0];
+    for (k = 0; k < 3; ++k) out[k] = c * mu[k] + s * (cos(ph) * t1[k] + sin(ph) * t2[k]);
+}
+
+static void dir_deg(double theta, double phi, double w[3])
+{
+    theta *= PFM_PI / 180.0;
+    phi *= PFM_PI / 180.0;
+    w[0] = sin(theta) * cos(phi);
+    w[1] = sin(theta) * sin(phi);
+    w[2] = cos(theta);
+}
+static pf_vec3 V(const double w[3]) { return pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]); }
+
+/* ------------------------------------------------------------------ EM */
+static void test_em_recovers_mixture(void)
+{
+    static const double amp[3] = { 0.5, 0.3, 0.2 }, kap[3] = { 400.0, 150.0, 800.0 };
+    static const double th[3] = { 0.0, 25.0, 30.0 }, ph[3] = { 0.0, 40.0, 200.0 };
+    enum { N = 20000 };
+    pf_real *nr = (pf_real *)malloc(N * 3 * sizeof(pf_real));
+    trng r;
+    pf_vmf_mixture m;
+    long double worst_ang = 0, worst_amp = 0, worst_k = 0;
+    int i, k, j;
+    r.s = 77;
+    for (i = 0; i < N; ++i) {
+        double u = trng_u(&r), mu[3], x[3];
+        k = u < amp[0] ? 0 : (u < amp[0] + amp[1] ? 1 : 2);
+        dir_deg(th[k], ph[k], mu);
+        sample_vmf(&r, mu, kap[k], x);
+        for (j = 0; j < 3; ++j) nr[3 * i + j] = (pf_real)x[j];
+    }
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, N, 3, 50, &m) == PF_OK, "fit failed");
+    PF_CHECK(m.count == 3, "%d lobes", m.count);
+    for (k = 0; k < 3 && m.count == 3; ++k) {
+        double mu[3];
+        long double best = 10, ea, ek;
+        int bj = 0;
+        dir_deg(th[k], ph[k], mu);
+        for (j = 0; j < 3; ++j) {
+            long double d = acosl(fminl(1.0L, (long double)(mu[0] * (double)m.lobe[j].mu.x + mu[1] * (double)m.lobe[j].mu.y +
+                                                            mu[2] * (double)m.lobe[j].mu.z)));
+            if (d < best) {
+                best = d;
+                bj = j;
+            }
+        }
+        ea = fabsl((long double)m.lobe[bj].amp - (long double)amp[k]);
+        ek = fabsl((long double)m.lobe[bj].kappa - (long double)kap[k]) / (long double)kap[k];
+        if (best > worst_ang) worst_ang = best;
+        if (ea > worst_amp) worst_amp = ea;
+        if (ek > worst_k) worst_k = ek;
+    }
+    pf_test_note("3 lobes from 20000 normals: axis %.2Lg deg, amplitude %.4Lf, kappa %.3Lf (rel)",
+                 worst_ang * 180.0L / PF_TEST_PI, worst_amp, worst_k);
+    PF_CHECK(worst_ang <= 0.01L && worst_amp <= 0.01L && worst_k <= 0.1L, "axis %.3Lg rad, amp %.4Lf, kappa %.3Lf",
+             worst_ang, worst_amp, worst_k);
+    free(nr);
+}
+
+static void test_em_deterministic_and_weighted(void)
+{
+    /* the same input twice gives the same bits; weight 2 on a point = the point twice */
+    enum { N = 600 };
+    pf_real nr[2 * N * 3], w[2 * N];
+    pf_vmf_mixture a, b, c;
+    trng r;
+    int i, j, same = 1, close = 1;
+    r.s = 5;
+    for (i = 0; i < N; ++i) {
+        double mu[3], x[3];
+        dir_deg(i % 2 ? 20.0 : 0.0, i % 3 ? 0.0 : 120.0, mu);
+        sample_vmf(&r, mu, 200.0, x);
+        for (j = 0; j < 3; ++j) nr[3 * i + j] = nr[3 * (N + i) + j] = (pf_real)x[j];
+        w[i] = PF_R(2.0);
+        w[N + i] = PF_R(1.0);
+    }
+    pf_vmf_fit_normals(nr, NULL, N, 4, 30, &a);
+    pf_vmf_fit_normals(nr, NULL, N, 4, 30, &b);
+    pf_vmf_fit_normals(nr, w, N, 4, 30, &c); /* weights 2 on the first N */
+    same = a.count == b.count;
+    for (i = 0; i < a.count && same; ++i) /* field by field: the struct may have padding */
+        same = a.lobe[i].amp == b.lobe[i].amp && a.lobe[i].kappa == b.lobe[i].kappa && a.lobe[i].mu.x == b.lobe[i].mu.x && a.lobe[i].mu.y == b.lobe[i].mu.y &&
+               a.lobe[i].mu.z == b.lobe[i].mu.z;
+    for (i = 0; i < a.count; ++i)
+        if (fabs((double)(a.lobe[i].amp - c.lobe[i].amp)) > 1e-5 || fabs((double)(a.lobe[i].kappa - c.lobe[i].kappa)) > 1e-3 * (double)a.lobe[i].kappa)
+            close = 0;
+    PF_CHECK(same, "two fits differ");
+    PF_CHECK(close && a.count == c.count, "uniform weights 2 changed the fit");
+}
+
+/* ------------------------------------------------------------------ degenerate input, buffers */
+/* NaN inputs: not an edge_ test (-ffast-math compiles NaN tests away; its results on NaN
+   input are undefined) */
+static void test_fit_degenerate(void)
+{
+    pf_real nr[3 * 16], wz[16], pyr[400];
+    pf_vmf_mixture m;
+    int i, rc;
+    for (i = 0; i < 16; ++i) {
+        nr[3 * i] = PF_R(0.3);
+        nr[3 * i + 1] = PF_R(0.0);
+        nr[3 * i + 2] = PF_R(0.9);
+        wz[i] = PF_R(0.0);
+    }
+    rc = pf_vmf_fit_normals(nr, NULL, 16, 8, 20, &m);
+    PF_CHECK(rc == PF_OK && m.count == 1 && m.lobe[0].kappa == PF_VMF_KAPPA_MAX, "equal normals: rc %d, %d lobes", rc, m.count);
+    rc = pf_vmf_fit_normals(nr, wz, 16, 4, 20, &m);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 1 && m.lobe[0].mu.z == PF_R(1.0), "zero weights: rc %d", rc);
+    nr[0] = (pf_real)NAN;
+    nr[4] = (pf_real)INFINITY;
+    wz[5] = (pf_real)NAN;
+    for (i = 6; i < 16; ++i) wz[i] = PF_R(1.0);
+    nr[3 * 7 + 1] = PF_R(0.2);
+    rc = pf_vmf_fit_normals(nr, wz, 16, 4, 20, &m);
+    PF_CHECK(rc == PF_OK && m.count >= 1, "NaN normals skipped: rc %d", rc);
+    for (i = 0; i < m.count; ++i)
+        PF_CHECK(isfinite((double)m.lobe[i].amp) && isfinite((double)m.lobe[i].kappa) && isfinite((double)m.lobe[i].mu.z), "lobe %d not finite", i);
+    for (i = 0; i < 16 * 3; ++i) nr[i] = (pf_real)NAN;
+    rc = pf_vmf_fit_normals(nr, NULL, 16, 4, 20, &m);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 1, "all NaN: rc %d", rc);
+    PF_CHECK(pf_vmf_fit_normals(NULL, NULL, 16, 4, 20, &m) == PF_ERR_ARG, "NULL normals");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 0, 20, &m) == PF_ERR_ARG, "0 lobes");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, PF_VMF_MAX_LOBES + 1, 20, &m) == PF_ERR_ARG, "17 lobes");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 0, 4, 20, &m) == PF_ERR_ARG, "0 normals");
+    PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 4, 20, NULL) == PF_ERR_ARG, "NULL out");
+    /* pyramid of a NaN map: flat lobes, PF_OK, nothing past the buffer */
+    for (i = 0; i < 400; ++i) pyr[i] = PF_R(-7.0);
+    PF_CHECK(pf_vmf_pyramid_texel_count(4, 4) == 21, "texel count %lld", pf_vmf_pyramid_texel_count(4, 4));
+    rc = pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, 2, 10, pyr);
+    PF_CHECK(rc == PF_OK, "NaN map rc %d", rc);
+    for (i = 0; i < 21 * 8; ++i) PF_CHECK(isfinite((double)pyr[i]) && pyr[i] != PF_R(-7.0), "texel value %d unwritten", i);
+    for (i = 21 * 8; i < 400; ++i) PF_CHECK(pyr[i] == PF_R(-7.0), "canary %d overwritten", i);
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 3, 4, 2, 10, pyr) == PF_ERR_ARG, "non power of two");
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, PF_VMF_MAX_LOBES + 1, 10, pyr) == PF_ERR_ARG, "17 lobes");
+    PF_CHECK(pf_vmf_pyramid_from_normals(NULL, NULL, 4, 4, 2, 10, pyr) == PF_ERR_ARG, "NULL");
+    PF_CHECK(pf_vmf_pyramid_texel_count(0, 4) == 0 && pf_vmf_pyramid_level_offset(5, 4, 1) == -1, "bad sizes");
+}
+
+static void test_pyramid_levels(void)
+{
+    /* 8 x 4 map: levels 8x4, 4x2, 2x1, 1x1; the top texel equals the fit of the whole map,
+       every level-0 texel its own normal (one sharp lobe) */
+    enum { W = 8, H = 4 };
+    pf_real nr[W * H * 3], pyr[43 * 4 * 2 + 8];
+    trng r;
+    pf_vmf_mixture whole, top, t0;
+    long long off;
+    int i, j, ok = 1;
+    r.s = 3;
+    for (i = 0; i < W * H; ++i) {
+        double mu[3] = { 0, 0, 1 }, x[3];
+        sample_vmf(&r, mu, 20.0, x);
+        for (j = 0; j < 3; ++j) nr[3 * i + j] = (pf_real)x[j];
+    }
+    for (i = 0; i < (int)(sizeof pyr / sizeof pyr[0]); ++i) pyr[i] = PF_R(-7.0);
+    PF_CHECK(pf_vmf_pyramid_level_count(W, H) == 4, "levels %d", pf_vmf_pyramid_level_count(W, H));
+    PF_CHECK(pf_vmf_pyramid_texel_count(W, H) == 32 + 8 + 2 + 1, "texels %lld", pf_vmf_pyramid_texel_count(W, H));
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, W, H, 2, 30, pyr) == PF_OK, "rc");
+    off = pf_vmf_pyramid_level_offset(W, H, 3);
+    top = pf_vmf_mixture_from_texel(pyr + off * 8, 2);
+    pf_vmf_fit_normals(nr, NULL, W * H, 2, 30, &whole);
+    PF_CHECK(top.count == whole.count, "top %d lobes, whole %d", top.count, whole.count);
+    for (i = 0; i < top.count && i < whole.count; ++i)
+        if (top.lobe[i].amp != whole.lobe[i].amp || top.lobe[i].kappa != whole.lobe[i].kappa || top.lobe[i].mu.x != whole.lobe[i].mu.x) ok = 0;
+    PF_CHECK(ok, "top texel differs from the fit of the whole map");
+    t0 = pf_vmf_mixture_from_texel(pyr + 5 * 8, 2);
+    PF_CHECK(t0.count == 1 && t0.lobe[0].kappa == PF_VMF_KAPPA_MAX &&
+                 fabs((double)(t0.lobe[0].mu.x - nr[15] / pf_vec3_length(pf_vec3_make(nr[15], nr[16], nr[17])))) < 1e-5,
+             "level-0 texel 5: %d lobes, kappa %g", t0.count, (double)t0.lobe[0].kappa);
+    for (i = 43 * 8; i < (int)(sizeof pyr / sizeof pyr[0]); ++i) PF_CHECK(pyr[i] == PF_R(-7.0), "canary %d", i);
+}
+
+/* ================================================================== scaling function (helper J)
+   Oracles: the base lobe of tests/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
+   the exchange of wo and wi (reciprocity, exact for a whole periodic map); a wall's shadow in
+   closed form; the test header's own march and reference (pfm_visibility_map_box,
+   pfm_reference_shade: an independent implementation in double); a separable R built by hand. */
+static pf_real *scale_heights(const pfm_surface *s)
+{
+    pf_real *hm = (pf_real *)malloc((size_t)s->w * s->h * sizeof(pf_real));
+    size_t i;
+    if (hm)
+        for (i = 0; i < (size_t)s->w * s->h; ++i) hm[i] = (pf_real)s->height[i];
+    return hm;
+}
+
+static void test_scale_flat_patch_is_base(void)
+{
+    static pf_real hm[16 * 16];
+    long double worst = 0;
+    int a, b, c;
+    memset(hm, 0, sizeof hm);
+    for (a = 0; a < 5; ++a)
+        for (b = 0; b < 5; ++b)
+            for (c = 0; c < 4; ++c) {
+                double wo[3], wi[3], ref;
+                pf_real got = PF_R(-1.0);
+                dir_deg(5.0 + 17.0 * a, 0.0, wo);
+                dir_deg(3.0 + 18.0 * b, 180.0 - 40.0 * c, wi);
+                PF_CHECK(pf_vmf_effective_brdf(hm, 16, 16, PF_R(0.5), 3, 5, 8, V(wo), V(wi), PF_R(0.2), PF_R(0.04), &got) ==
+                             PF_OK,
+                         "call");
+                ref = pfm_base_specular(wo, wi, 0.0, 0.0, 0.2, 0.04) / wo[2];
+                if (ref > 1e-6) {
+                    long double e = fabsl((long double)got - (long double)ref) / (long double)ref;
+                    if (e > worst) worst = e;
+                } else
+                    PF_CHECK(fabs((double)got - ref) <= 1e-6, "tail %g vs %g", (double)got, ref);
+            }
+    pf_test_note("flat patch: effective BRDF vs the base lobe (pfm_base_specular / cos): max rel %.2Le", worst);
+    PF_CHECK(worst <= 2000.0L * PF_TEST_EPS, "rel %.3Le", worst);
+}
+
+static void test_scale_reciprocity(void)
+{
+    pfm_surface s;
+    pf_real *hm;
+    long double worst = 0;
+    int a;
+    if (pfm_surface_make(&s, 32, 32, 1.0, pfm_params_default(PFM_GAUSSIAN_FINE)) != 0 || !(hm = scale_heights(&s))) {
+        PF_CHECK(0, "setup");
+        return;
+    }
+    for (a = 0; a < 40; ++a) {
+        double wo[3], wi[3];
+        pf_real f1 = 0, f2 = 0;
+        long double l, r;
+        dir_deg(5.0 + 1.7 * a, 11.0 * a, wo);
+        dir_deg(70.0 - 1.6 * a, 180.0 + 7.0 * a, wi);
+        PF_CHECK(pf_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &f1) == PF_OK &&
+                     pf_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wi), V(wo), PF_R(0.1), PF_R(0.04), &f2) == PF_OK,
+                 "call");
+        /* whole periodic map: the projected area is n^2 w.z, so f / cos(light) is symmetric */
+        l = (long double)f1 / (long double)(pf_real)wi[2];
+        r = (long double)f2 / (long double)(pf_real)wo[2];
+        if (l + r > 0 && fabsl(l - r) / (l + r) > worst) worst = fabsl(l - r) / (l + r);
+    }
+    pf_test_note("reciprocity f(wo, wi)/cos_i = f(wi, wo)/cos_o, 32^2 gaussian_fine: max rel %.2Le", worst);
+    PF_CHECK(worst <= 1e3L * PF_TEST_EPS, "rel %.3Le", worst);
+    free(hm);
+    pfm_surface_free(&s);
+}
+
+/* the effective BRDF against tests/pf_microsurface.h's own in-footprint march and reference */
+static void test_scale_vs_microsurface_reference(void)
+{
+    static const int kinds[3] = { PFM_RIDGES, PFM_TILES, PFM_GAUSSIAN_FINE };
+    int ki;
+    for (ki = 0; ki < 3; ++ki) {
+        pfm_surface s;
+        pf_real *hm;
+        unsigned char *vo = (unsigned char *)malloc(64 * 64), *vi = (unsigned char *)malloc(64 * 64);
+        long double num = 0, den = 0;
+        int a;
+        if (!vo || !vi || pfm_surface_make(&s, 64, 64, 1.0, pfm_params_default(kinds[ki])) != 0 ||
+            !(hm = scale_heights(&s))) {
+            PF_CHECK(0, "setup");
+            free(vo);
+            free(vi);
+            return;
+        }
+        for (a = 0; a < 24; ++a) {
+            double wo[3], wi[3];
+            pfm_shade sh;
+            pf_real got = 0;
+            dir_deg(10.0 + 2.8 * a, 37.0 * a, wo);
+            dir_deg(70.0 - 2.5 * a, 37.0 * a + 150.0 + 3.0 * a, wi);
+            pfm_visibility_map_box(&s, wo, 8, 24, 32, NULL, vo);
+            pfm_visibility_map_box(&s, wi, 8, 24, 32, NULL, vi);
+            sh = pfm_reference_shade(&s, vo, vi, 8, 24, 32, wo, wi, 0.1, 0.04);
+            PF_CHECK(pf_vmf_effective_brdf(hm, 64, 64, PF_R(1.0), 8, 24, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &got) ==
+                         PF_OK,
+                     "call");
+            num += ((long double)got - (long double)sh.spec) * ((long double)got - (long double)sh.spec);
+            den += (long double)sh.spec * (long double)sh.spec;
+        }
+        pf_test_note("%s 32^2 patch, 24 direction pairs: effective BRDF vs pfm_reference_shade (box march), rel L2 %.2Le",
+                     pfm_kind_name(kinds[ki]), sqrtl(num / den));
+        PF_CHECK(den > 0 && sqrtl(num / den) <= (sizeof(pf_real) == 4 ? 2e-3L : 1e-9L), "%s rel L2 %.3Le",
+                 pfm_kind_name(kinds[ki]), sqrtl(num / den));
+        free(hm);
+        free(vo);
+        free(vi);
+        pfm_surface_free(&s);
+    }
+}
+
+/* the prior toward 1 (shrink): well-sampled values keep their least-squares fit, a cell that
+   only tails reach (f_eff exactly 0, f_lobes tiny: the case that left cells of S at 0 in the
+   bench) and a patch without energy stay near 1; pf_vmf_scale_t with the returned prior gives
+   a training patch's own T back, and every value against a closed form computed here */
+static void test_scale_factor_shrink(void)
+{
+    enum { NT = 3, NP = 2, P = 6 };
+    long long cnt = pf_vmf_scale_sample_count(NT, NP), cells = pf_vmf_scale_cell_count(NT, NP), s, c;
+    pf_real fe[P * 36], fl[P * 36], scr[2 * 18 * P], T[P], S[18], S0[18], T0[P], prior = PF_R(-1.0), t_one;
+    long double a = 0, q = 0, worst_fit = 0;
+    trng r;
+    int x, weak = 5, tail_cell = 7;
+    r.s = 91;
+    for (x = 0; x < P; ++x)
+        for (s = 0; s < cnt; ++s) {
+            c = pfi_vmf_scale_cell(s, NT, NP);
+            fl[x * cnt + s] = (pf_real)(0.5 + trng_u(&r)) * (x == weak ? PF_R(1e-4) : PF_R(1.0)) * (c == tail_cell ? PF_R(1e-3) : PF_R(1.0));
+            /* R = 1.5 on patch 0, 0.8 elsewhere; the tail cell's f_eff is exactly 0 */
+            fe[x * cnt + s] = c == tail_cell ? PF_R(0.0) : (x == 0 ? PF_R(1.5) : PF_R(0.8)) * fl[x * cnt + s];
+        }
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.0), T0, S0, scr, NULL, NULL) == PF_OK, "plain");
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 40, PF_R(0.1), T, S, scr, &prior, NULL) == PF_OK, "shrink");
+    pf_test_note("tail cell: S %.3g (plain %.3g); weak patch T %.3g (plain %.3g); patch 0 / patch 1 T ratio %.4g (plain %.4g)",
+                 (double)S[tail_cell], (double)S0[tail_cell], (double)T[weak], (double)T0[weak], (double)(T[0] / T[1]),
+                 (double)(T0[0] / T0[1]));
+    PF_CHECK(S0[tail_cell] == PF_R(0.0), "plain least squares puts the tail cell at 0: %g", (double)S0[tail_cell]);
+    /* with the prior: the tail cell holds ~1e-6 of a cell's energy, so its T S stays near 1
+       (plain least squares: 0) */
+    for (c = 0; c < cells; ++c)
+        if (c != tail_cell) worst_fit = fmaxl(worst_fit, fabsl((long double)S[c] / (long double)S[0] - 1.0L));
+    PF_CHECK(fabsl((long double)S[tail_cell] * (long double)T[1] - 1.0L) <= 0.35L,
+             "tail cell scaled by %g, not near 1", (double)(S[tail_cell] * T[1]));
+    /* every other cell fits the same R, so only the prior separates them: a cell of energy q is
+       pulled 0.1 qbar / (q + 0.1 qbar) of the way toward 1, and the cells' energies differ */
+    PF_CHECK(worst_fit <= 0.03L, "well-sampled cells moved by %.3Lg", worst_fit);
+    /* patch 0's ratio 1.5 / 0.8 survives within the prior's 10% pull */
+    PF_CHECK(fabsl((long double)(T[0] / T[1]) / (1.5L / 0.8L) - 1.0L) <= 0.1L, "T ratio %g", (double)(T[0] / T[1]));
+    /* the weak patch (1e-4 of the energy) gets no T of its own (1 before T's normalization to
+       mean 1), so T S is the unnormalized S, a few % from 1 here; plain least squares gave it
+       its data's 0.8 relative to patch 1 */
+    PF_CHECK(fabsl((long double)T[weak] * (long double)S[0] - 1.0L) <= 0.05L, "weak patch T S = %g", (double)(T[weak] * S[0]));
+    /* pf_vmf_scale_t: the closed form (sum e l S + p) / (sum (l S)^2 + p), computed here */
+    for (s = 0; s < cnt; ++s) {
+        long double l = (long double)fl[cnt + s] * (long double)S[pfi_vmf_scale_cell(s, NT, NP)];
+        a += (long double)fe[cnt + s] * l;
+        q += l * l;
+    }
+    t_one = pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, prior);
+    a = (a + (long double)prior) / (q + (long double)prior); /* the closed form */
+    PF_CHECK(prior > PF_R(0.0) && fabsl((long double)t_one / a - 1.0L) <= 1e3L * PF_TEST_EPS, "pf_vmf_scale_t %g against %Lg",
+             (double)t_one, a);
+    PF_CHECK(pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) == PF_R(1.0) ||
+                 fabs((double)pf_vmf_scale_t(fe + cnt, fl + cnt, NT, NP, S, PF_R(1e30)) - 1.0) <= 1e-6,
+             "a huge prior gives 1");
+}
+
+/* a separable R = T0(x) S0(cell) must be recovered exactly by the rank-1 fit */
+static void test_scale_factor_separable(void)
+{
+    enum { NT = 3, NP = 2, P = 5 };
+    long long cnt = pf_vmf_scale_sample_count(NT, NP), cells = pf_vmf_scale_cell_count(NT, NP), s, c;
+    pf_real *fe = (pf_real *)malloc((size_t)(cnt * P) * sizeof(pf_real)), *fl = (pf_real *)malloc((size_t)(cnt * P) * sizeof(pf_real));
+    pf_real *scr = (pf_real *)malloc((size_t)(2 * cells * P) * sizeof(pf_real)), T[P], S[NT * NT * NP], err[3], t0[P],
+            s0[NT * NT * NP];
+    trng r;
+    long double worst = 0, ratio;
+    int x;
+    r.s = 77;
+    PF_CHECK(cnt == 36 && cells == 18, "counts %lld %lld", cnt, cells);
+    if (!fe || !fl || !scr) {
+        PF_CHECK(0, "alloc");
+        return;
+    }
+    for (x = 0; x < P; ++x) t0[x] = (pf_real)(0.5 + trng_u(&r));
+    for (c = 0; c < cells; ++c) s0[c] = (pf_real)(0.2 + 2.0 * trng_u(&r));
+    for (x = 0; x < P; ++x)
+        for (s = 0; s < cnt; ++s) {
+            fl[x * cnt + s] = (pf_real)(trng_u(&r) * trng_u(&r) * 3.0);
+            fe[x * cnt + s] = t0[x] * s0[pfi_vmf_scale_cell(s, NT, NP)] * fl[x * cnt + s];
+        }
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, P, NT, NP, 60, PF_R(0.0), T, S, scr, NULL, err) == PF_OK, "factor");
+    ratio = (long double)T[0] / (long double)t0[0];
+    for (x = 0; x < P; ++x) worst = fmaxl(worst, fabsl((long double)T[x] / (long double)t0[x] / ratio - 1.0L));
+    for (c = 0; c < cells; ++c) worst = fmaxl(worst, fabsl((long double)S[c] * ratio / (long double)s0[c] - 1.0L));
+    pf_test_note("separable R: T S recovered to %.2Le, errors %.2e (BRDF) %.2e (R), unscaled %.2e", worst, (double)err[0],
+                 (double)err[2], (double)err[1]);
+    PF_CHECK(worst <= 100.0L * PF_TEST_EPS && err[0] <= 100 * PF_REAL_EPSILON && err[2] <= 100 * PF_REAL_EPSILON &&
+                 err[1] > PF_R(0.1),
+             "worst %.3Le err %g %g", worst, (double)err[0], (double)err[2]);
+    ratio = 0;
+    for (x = 0; x < P; ++x) ratio += (long double)T[x];
+    PF_CHECK(fabsl(ratio / (long double)P - 1.0L) <= 10.0L * PF_TEST_EPS, "T mean %.17Lg", ratio / (long double)P);
+    free(fe);
+    free(fl);
+    free(scr);
+}
+
+/* the lookup returns a cell's value at its centre directions, the shader path equals the CPU
+   lookup, and pf_vmf_scale_apply multiplies; half-way between two theta nodes it is their mean */
+static void test_scale_lookup(void)
+{
+    enum { NT = 4, NP = 3 };
+    pf_real tab[NT * NT * NP], tm = PF_R(1.3);
+    int a, b, c, bad = 0;
+    for (a = 0; a < NT * NT * NP; ++a) tab[a] = (pf_real)(1 + a);
+    for (a = 0; a < NT; ++a)
+        for (b = 0; b < NT; ++b)
+            for (c = 0; c < NP; ++c) {
+                /* wo at azimuth 0, wi at c pi/(np - 1): node c of phi_d (undefined at theta 0) */
+                pf_vec3 wo = pfi_vmf_scale_dir(b, 0, NT, NP, tm), wi = pfi_vmf_scale_dir(a, c, NT, NP, tm);
+                pf_real got;
+                if ((a == 0 || b == 0) && c != 0) continue;
+                got = pf_vmf_scale_lookup(tab, NT, NP, tm, wo, wi);
+                if (PF_FABS(got - tab[(a * NT + b) * NP + c]) > PF_R(1e-4) * tab[(a * NT + b) * NP + c]) bad++;
+            }
+    PF_CHECK(bad == 0, "%d nodes read wrong", bad);
+    {
+        pf_real th = PF_R(1.5) * tm / (pf_real)(NT - 1), got;
+        pf_vec3 wo = pfi_vmf_scale_dir(2, 0, NT, NP, tm);
+        pf_vec3 wi = pf_vec3_make(PF_SIN(th) * PF_COS(PF_PI), PF_SIN(th) * PF_SIN(PF_PI), PF_COS(th));
+        got = pf_vmf_scale_lookup(tab, NT, NP, tm, wo, wi);
+        PF_CHECK(PF_FABS(got - PF_R(0.5) * (tab[(1 * NT + 2) * NP + 2] + tab[(2 * NT + 2) * NP + 2])) <= PF_R(1e-3),
+                 "half-way %g", (double)got);
+    }
+    PF_CHECK(pf_vmf_scale_lookup(0, NT, NP, tm, pf_vec3_make(0, 0, 1), pf_vec3_make(0, 0, 1)) == PF_R(1.0), "NULL table");
+    PF_CHECK(pf_vmf_scale_apply(PF_R(2.0), PF_R(3.0), PF_R(0.5)) == PF_R(3.0) &&
+                 pf_vmf_scale_apply(PF_R(-1.0), PF_R(1.0), PF_R(1.0)) == PF_R(0.0) &&
+                 pf_vmf_scale_apply((pf_real)NAN, PF_R(1.0), PF_R(1.0)) == PF_R(0.0),
+             "apply");
+}
+
+/* bad input, every buffer exactly its documented size behind guard pages */
+static void test_scale_bad_input_guarded(void)
+{
+    const int W = 16, N = 8, NT = 2, NP = 2;
+    long long cnt = pf_vmf_scale_sample_count(NT, NP), vb = pf_vmf_scale_vis_bytes(NT, NP, N), cells = pf_vmf_scale_cell_count(NT, NP);
+    size_t hb = (size_t)W * W * sizeof(pf_real), nb = (size_t)3 * N * N * sizeof(pf_real), fb = (size_t)cnt * sizeof(pf_real);
+    pf_real *hm = (pf_real *)pf_test_guarded_alloc(hb), *nr = (pf_real *)pf_test_guarded_alloc(nb);
+    pf_real *fe = (pf_real *)pf_test_guarded_alloc(fb), *fl = (pf_real *)pf_test_guarded_alloc(fb);
+    pf_real *T = (pf_real *)pf_test_guarded_alloc(sizeof(pf_real)), *S = (pf_real *)pf_test_guarded_alloc((size_t)cells * sizeof(pf_real));
+    pf_real *scr = (pf_real *)pf_test_guarded_alloc((size_t)(2 * cells) * sizeof(pf_real)), out = PF_R(7.0), err[3], prior = PF_R(-1.0);
+    unsigned char *vis = (unsigned char *)pf_test_guarded_alloc((size_t)vb);
+    pf_vec3 z = pf_vec3_make(PF_R(0.3), PF_R(0.0), PF_R(0.9539392));
+    int i;
+    if (!hm || !nr || !fe || !fl || !T || !S || !scr || !vis) {
+        pf_test_note("guarded allocation unsupported: skipped");
+        return;
+    }
+    for (i = 0; i < W * W; ++i) hm[i] = (pf_real)(0.3 * sin(0.7 * i) + 0.2 * cos(1.3 * (i / W)));
+    /* valid calls at the patch in the map's last corner (wrapping reads) touch nothing outside */
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), W - 3, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_OK &&
+                 pf_test_finite(out) && out >= PF_R(0.0),
+             "valid brdf %g", (double)out);
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), W - 3, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), PF_VMF_SCALE_G_MIXTURE, NT,
+                                NP, PF_R(1.2), nr, vis, fe, fl) == PF_OK,
+             "valid patch");
+    for (i = 0; i < cnt; ++i) PF_CHECK(pf_test_finite(fe[i]) && pf_test_finite(fl[i]) && fe[i] >= 0 && fl[i] >= 0, "sample %d", i);
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(1.0), T, S, scr, &prior, err) == PF_OK && pf_test_finite(T[0]) &&
+                 pf_test_finite(prior) && prior >= 0,
+             "valid factor");
+    PF_CHECK(pf_test_finite(pf_vmf_scale_t(fe, fl, NT, NP, S, prior)), "valid T");
+    /* errors */
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), NULL) == PF_ERR_ARG, "NULL out");
+    PF_CHECK(pf_vmf_effective_brdf(NULL, W, W, PF_R(1.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
+             "NULL heights");
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, W + 1, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n > w");
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, 0, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "n = 0");
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(0.0), 0, 0, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG, "texel 0");
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, 0, N, z, z, (pf_real)NAN, PF_R(1.0), &out) == PF_ERR_ARG, "sigma NaN");
+    PF_CHECK(pf_vmf_effective_brdf(hm, (int)(PF_MAX_SIDE + 1), 1, PF_R(1.0), 0, 0, 1, z, z, PF_R(0.1), PF_R(1.0), &out) ==
+                 PF_ERR_SIZE,
+             "side");
+    hm[(W - 4) * W + 2] = (pf_real)NAN; /* inside the patch (0, W - 5, N): rows W - 5 .. W + 2 wrap */
+    PF_CHECK(pf_vmf_effective_brdf(hm, W, W, PF_R(1.0), 0, W - 5, N, z, z, PF_R(0.1), PF_R(1.0), &out) == PF_ERR_ARG && out == 0,
+             "NaN height");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, W - 5, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, vis, fe,
+                                fl) == PF_ERR_ARG,
+             "NaN height, patch");
+    hm[(W - 4) * W + 2] = PF_R(0.0);
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, PF_VMF_MAX_LOBES + 1, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP,
+                                PF_R(1.2), nr, vis, fe, fl) == PF_ERR_ARG,
+             "lobes 17");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 3, NT, NP, PF_R(1.2), nr, vis, fe, fl) ==
+                 PF_ERR_ARG,
+             "masking 3");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.6), nr, vis, fe, fl) ==
+                 PF_ERR_ARG,
+             "theta_max >= pi/2");
+    PF_CHECK(pf_vmf_scale_patch(hm, W, W, PF_R(1.0), 0, 0, N, 2, 8, PF_R(0.1), PF_R(1.0), 0, NT, NP, PF_R(1.2), nr, NULL, fe, fl) ==
+                 PF_ERR_ARG,
+             "NULL scratch");
+    PF_CHECK(pf_vmf_scale_factor(fe, fl, 0, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 0, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, NULL, 1, NT, NP, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, PF_R(-1.0), T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, NT, NP, 4, (pf_real)NAN, T, S, scr, NULL, err) == PF_ERR_ARG &&
+                 pf_vmf_scale_factor(fe, fl, 1, 1 << 30, 1 << 30, 4, PF_R(0.0), T, S, scr, NULL, err) == PF_ERR_SIZE,
+             "factor errors");
+    PF_CHECK(pf_vmf_scale_t(NULL, fl, NT, NP, S, PF_R(0.0)) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, 1, NP, S, PF_R(0.0)) == PF_R(1.0) &&
+                 pf_vmf_scale_t(fe, fl, NT, NP, NULL, PF_R(0.0)) == PF_R(1.0) &&
+                 pf_vmf_scale_t(fe, fl, NT, NP, S, (pf_real)NAN) == PF_R(1.0) && pf_vmf_scale_t(fe, fl, NT, NP, S, PF_R(-1.0)) == PF_R(1.0),
+             "T errors");
+    PF_CHECK(pf_vmf_scale_sample_count(1, 2) == 0 && pf_vmf_scale_cell_count(2, 1) == 0 && pf_vmf_scale_vis_bytes(2, 2, 0) == 0,
+             "size queries");
+    pf_test_guarded_free(hm, hb);
+    pf_test_guarded_free(nr, nb);
+    pf_test_guarded_free(fe, fb);
+    pf_test_guarded_free(fl, fb);
+    pf_test_guarded_free(T, sizeof(pf_real));
+    pf_test_guarded_free(S, (size_t)cells * sizeof(pf_real));
+    pf_test_guarded_free(scr, (size_t)(2 * cells) * sizeof(pf_real));
+    pf_test_guarded_free(vis, (size_t)vb);
+}
+/* ================================================================== end of scaling function tests */
+
+int main(int argc, char **argv)
+{
+    PF_TEST_BEGIN(argc, argv);
+    PF_TEST_RUN(test_em_recovers_mixture);
+    PF_TEST_RUN(test_em_deterministic_and_weighted);
+    PF_TEST_RUN(test_pyramid_levels);
+    PF_TEST_RUN(test_fit_degenerate);
+    PF_TEST_RUN(test_scale_flat_patch_is_base);
+    PF_TEST_RUN(test_scale_reciprocity);
+    PF_TEST_RUN(test_scale_vs_microsurface_reference);
+    PF_TEST_RUN(test_scale_factor_separable);
+    PF_TEST_RUN(test_scale_factor_shrink);
+    PF_TEST_RUN(test_scale_lookup);
+    PF_TEST_RUN(test_scale_bad_input_guarded);
+    return PF_TEST_END();
+}
