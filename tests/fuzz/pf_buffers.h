@@ -1848,9 +1848,11 @@ static void pfb_d_vmf(pfc_ctx *c, int which)
         pfb_fill(c, nr, nn, 2);
         if (use_w) pfb_fill_weights(c, wt, n);
         if (pfb_t) pfb_t->run += 1;
+        m.count = -77;
         rc = pf_vmf_fit_normals(nr, wt, n, lobes, iters, &m);
         if (!pfb_rc_check(rc, PFB_A_OK | PFB_A_ARG, fn)) return;
-        pfb_vmf_check_mixture(&m, rc == PF_OK ? lobes : 1, fn);
+        if (rc == PF_OK) pfb_vmf_check_mixture(&m, lobes, fn);
+        else if (m.count != -77) pfb_fail(PFB_WROTE, "%s: *out written on an error", fn); /* no usable normal */
         if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
         return;
     } else {
