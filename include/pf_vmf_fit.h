@@ -129,12 +129,12 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
     pf_vmf_mixture m = pfi_vmf_mixture_empty();
     pf_vec3 x, sum = pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(0.0));
     pf_real wt, wsum = PF_R(0.0), logc[PF_VMF_MAX_LOBES], prev_ll = PF_R(0.0), wscale = PF_R(1.0), wmax = PF_R(0.0);
-    /* the first pass reads raw weights: wscale is 1 there, and (wt 1) 1 = wt */
     long long xx, yy;
     int k, it, n;
     /* weights divided by the largest usable one (times 1/sqrt(wmax) twice: 1/wmax itself
        overflows for a subnormal wmax and is subnormal for wmax near PF_REAL_MAX), so that any
-       finite positive weights are used and no sum of the fit can overflow */
+       finite positive weights are used and no sum of the fit can overflow; the first pass
+       reads them unscaled (wscale 1) */
     PFI_VMF_FOREACH(wmax = pf_max(wmax, wt);)
     if (!(wmax > PF_R(0.0))) return PF_ERR_ARG;
     wscale = PF_R(1.0) / PF_SQRT(wmax);
@@ -398,7 +398,8 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
    direction is on or below the macrosurface or the patch's mean plane faces away.
    Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
    below 1, n > w or n > h, texel or base_sigma not finite and > 0, a height in the patch or
-   its one-texel ring that is not finite or of magnitude PF_REAL_MAX / 4 or more; PF_ERR_SIZE for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
+   its one-texel ring that is not finite or of magnitude PF_REAL_MAX / 4 or more; PF_ERR_SIZE
+   for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
    Cost: 2 n^2 marches of at most 2 n + 1 cells each (n along each axis, periodic maps
    included). Reads only heights[0 .. w h). Accepted heights: finite with |height| below
    PF_REAL_MAX / 4 (the bound keeps every central difference finite); larger ones are the
