@@ -7809,7 +7809,10 @@ PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long
     b /= m;
     c /= m;
     l2 = a * a + b * b + c * c;
-    if (!(l2 >= PF_R(1.0))) return 0; /* a NaN component (or its -ffast-math residue) */
+    /* l2 is in [1, 3] (the largest component is +-1): below 1/2 only for a NaN component.
+       Not >= 1: -ffast-math's a * (1/m) can round the largest component to 1 - eps, and the
+       passes of the fit must all read the same normals. */
+    if (!(l2 >= PF_R(0.5))) return 0;
     l2 = PF_R(1.0) / PF_SQRT(l2);
     *x = pf_vec3_make(a * l2, b * l2, c * l2);
     *w = wt;

@@ -1946,7 +1946,10 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
     pfb_side(&ex, w, 1);
     pfb_side(&ex, h, 1);
     if (f < 1) ex.small = 1;
-    if (!pfb_border_ok(border) || !(reg >= 0 && reg <= PF_R(1.0e6)) || max_iter < 0 || !(tol >= 0 && tol <= PF_REAL_MAX))
+    /* finiteness on the bits: under -ffast-math the comparisons alone are folded (a NaN reg
+       would read as accepted here while the library, testing the bits, rejects it) */
+    if (!pfb_border_ok(border) || !pfb_finite(reg) || !(reg >= 0 && reg <= PF_R(1.0e6)) || max_iter < 0 ||
+        !pfb_finite(tol) || !(tol >= 0 && tol <= PF_REAL_MAX))
         ex.arg = 1;
     if (!ex.small && !ex.size) {
         nf = pfb_mul(w, h);
