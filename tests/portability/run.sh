@@ -546,7 +546,10 @@ cell_list() {
     # not the x87's excess precision.
     if [ "$PF_HAVE_M32" = 1 ]; then
         M32="-m32 -msse2 -mfpmath=sse"
-        SAN32="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+        # clang's -Warray-bounds sees the constant indices of test_height's far-corner table
+        # test exceed the 32-bit address space (the test skips itself at run time there): kept
+        # a warning in the clang cells
+        SAN32="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-error=array-bounds"
         echo "x86-32-gcc-float full - - gcc $M32 -std=c99 $WC99 -O2"
         echo "x86-32-gcc-double full - - gcc $M32 -std=c99 $WC99 -O2 -DPF_DOUBLE"
         echo "x86-32-clang-san-float full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32"
