@@ -4485,8 +4485,10 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    neighbourhood; the twisted bilinear patches around the node would otherwise shadow rays
    that clear the facet). Only occluders INSIDE the patch count: the ray is free where its
    horizontal path leaves [x0 - 1/2, x0 + n - 1/2] x [y0 - 1/2, y0 + n - 1/2] (the footprint
-   is all a filtered model of it can know; along an axis where n equals the map's side the
-   periodic map is unbounded) or rises above the highest node it can meet; a texel with
+   is all a filtered model of it can know; along an axis where n equals the map's side, one
+   period: n - 1/2 texels from the texel's node, past which the ray is over the same nodes
+   again) or rises above the highest node it can meet, so a march visits at most 2 n + 1
+   cells, periodic maps included; a texel with
    m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
    (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
    its own double-precision march as the independent oracle (it must not call include/), and
@@ -4495,9 +4497,11 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    length, tangent frame), the patch (x0, y0, n: n x n nodes from (x0, y0), 1 <= n <= w, h),
    `top` the highest height (world units) of the patch and its one-node ring. Returns 1 when the
    node sees d, 0 when d.z <= 0, the node's facet faces away from d, or the ray is occluded.
-   Cost: the cells the ray crosses inside the patch (about 2 n at most; up to
-   PF_MAP_MARCH_MAX_CELLS where the patch spans the periodic map), 4 reads each. */
-/* most cells a march visits before it calls the ray occluded (~1e-4 rad above the horizon) */
+   Cost: the cells the ray crosses inside the patch, at most 2 n + 1 (n along each axis; a
+   periodic axis is followed for one period), 4 reads each; PF_MAP_MARCH_MAX_CELLS caps the
+   march (a ray it stops is called occluded), which only binds for n above 32767. */
+/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
+   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
 #ifndef PF_MAP_MARCH_MAX_CELLS
 #  define PF_MAP_MARCH_MAX_CELLS 65536
 #endif
@@ -4526,10 +4530,16 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
     if (n < w) {
         if (dx > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - ox) - PF_R(0.5)) / dx);
         if (dx < PF_R(0.0)) tend = pf_min(tend, ((pf_real)ox + PF_R(0.5)) / -dx);
+    } else if (dx != PF_R(0.0)) {
+        /* periodic axis: one period, n - 1/2 texels from the node (past it the ray is over
+           the same nodes again) */
+        tend = pf_min(tend, ((pf_real)n - PF_R(0.5)) / PF_FABS(dx));
     }
     if (n < h) {
         if (dy > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - oy) - PF_R(0.5)) / dy);
         if (dy < PF_R(0.0)) tend = pf_min(tend, ((pf_real)oy + PF_R(0.5)) / -dy);
+    } else if (dy != PF_R(0.0)) {
+        tend = pf_min(tend, ((pf_real)n - PF_R(0.5)) / PF_FABS(dy));
     }
     /* cell (ix, iy) spans [ix, ix + 1] x [iy, iy + 1] relative to the node, which is at 0 */
     stx = dx > PF_R(0.0) ? 1 : -1;
@@ -4540,7 +4550,8 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
     tdy = dy != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dy) : PF_REAL_MAX;
     tnx = tdx;
     tny = tdy;
-    for (cells = 0; cells < PF_MAP_MARCH_MAX_CELLS; ++cells) {
+    /* the path ends within n texels along each axis: at most 2 n + 1 cells */
+    for (cells = 0; cells < 2 * n + 2 && cells < PF_MAP_MARCH_MAX_CELLS; ++cells) {
         pf_real tout = pf_min(tnx, tny), ta = pf_max(t, PF_R(0.5)), tb = pf_min(tout, tend);
         if (h0 + rise * t > top || t >= tend) return 1;
         if (tb > ta) {
@@ -4569,7 +4580,7 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
             iy += sty;
         }
     }
-    return 0;
+    return cells >= 2 * n + 2; /* past the patch (rounding at its edge): free; past the cap: occluded */
 }
 
 /* ---------------------------------------------------------------- sampling */
@@ -4714,19 +4725,34 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
    of two (exact) so that no difference overflows; a result beyond the pf_real range is
    clamped to +-PF_REAL_MAX.
-   Arguments (pf_map_downsample_desc below): factor >= 1 dividing w and h (coarse (w/factor) x
-   (h/factor), row-major); reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
-   2-texel checkerboards, which no central difference sees, keep their box values; the bound
-   keeps every product finite); max_iter >= 0 (0: the box map); tol finite >= 0; scratch_len >=
-   pf_map_downsample_scratch_size(w, h, factor); iters_out (iterations done) and residual_out
-   (the final |r| over the reference norm above) may be NULL.
+   SAFEGUARDS, for every accepted argument (reg_weight 0 and tol 0 included): a CG step is
+   taken only while p^T A p > 64 eps |A| |p|^2 (a direction A cannot tell from its null
+   space, e.g. the checkerboards at reg_weight ~ 0, ends the solve instead of dividing
+   rounding noise by rounding noise); at most min(max_iter, 4 n + 256) iterations (n coarse
+   texels), and fewer when |r|^2 has not halved in 64 + 4 sqrt(n) iterations (stagnation);
+   then the TRUE residual |G^T s* - A H| is computed from the fine map again, and when it is
+   not finite or above the box map's the box map is returned (iters_out 0). So the result is
+   finite, its true residual is at most the box map's, and residual_out reports it.
+   Arguments (pf_map_downsample_desc below; its zero defaults resolved first): fine w x h
+   row-major; factor >= 1 dividing w and h (coarse (w/factor) x
+   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
+   PF_BORDER_CLAMP; reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
+   2-texel checkerboards, which no central difference sees, keep their box values; far above
+   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
+   the box map); tol finite >= 0; scratch: scratch_len >= pf_map_downsample_scratch_size(w,
+   h, factor) pf_reals; iters_out (the iterations of the returned map: 0 for the box map)
+   and residual_out (the TRUE final |G^T s* - A H| over the reference norm above; in float
+   at reg_weight ~ 1e6 it is the rounding of A H, up to ~10) may be NULL.
    Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
    dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
-   height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
+   height (tested on the bits: under -ffast-math too), a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
    above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
    the first pf_map_downsample_scratch_size reals of scratch is touched.
-   Cost: one pass over the fine map, then per iteration one product and four vector passes;
-   512 x 512 -> 256 x 256 in 15-50 ms (float, tol 1e-5; docs/map.md has the table). */
+   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
+   their transposes over the coarse map) and five vector passes, at most min(max_iter,
+   4 n + 256) iterations, then two more passes over the fine map; 512 x 512 -> 256 x 256 in
+   15-50 ms (float, tol 1e-5; docs/map.md has the table and the slope errors against the box
+   map). */
 
 #define PF_MAP_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
 
@@ -4826,39 +4852,33 @@ PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_re
     }
 }
 
-PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
-                                        int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
-                                        long long scratch_len, int *iters_out, pf_real *residual_out)
+/* 1 when x is finite, read from its bits (exponent not all ones): -ffinite-math-only (part of
+   -ffast-math) folds every comparison-based test to 1, and the solve must still reject a NaN
+   or infinite height. The union is C99's type punning (and what C++ compilers support). */
+PF_CPU_DEF int pfi_ds_finite(pf_real x)
 {
-    long long need, n, i, j, W, H, f = factor;
-    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, ref, mean, inv_f2;
-    int it = 0;
-    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
-    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
-    if (!(reg_weight >= PF_R(0.0) && reg_weight <= PF_MAP_DOWNSAMPLE_MAX_REG) || max_iter < 0 ||
-        !(tol >= PF_R(0.0) && tol <= PF_REAL_MAX))
-        return PF_ERR_ARG;
-    need = pf_map_downsample_scratch_size(w, h, factor);
-    if (need <= 0) return PF_ERR_SIZE;
-    if (scratch_len < need) return PF_ERR_ARG;
-    for (i = 0; i < (long long)w * h; ++i) {
-        pf_real a = PF_FABS(fine[i]);
-        if (!(a <= PF_REAL_MAX)) return PF_ERR_ARG; /* NaN or infinite */
-        maxabs = pf_max(maxabs, a);
+#ifdef PF_REAL_IS_FLOAT
+    union { float f; unsigned int u; } b;
+    b.f = x;
+    return (b.u & 0x7f800000u) != 0x7f800000u;
+#else
+    union { double f; unsigned long long u; } b;
+    b.f = x;
+    return ((b.u >> 52) & 0x7ffu) != 0x7ffu;
+#endif
+}
+
+/* the target slopes s* (gx, gy: factor x the mean fine slope, height per coarse texel) and,
+   when box is not NULL, the box-downsampled map, of the fine map times `scale`: one pass */
+PF_CPU_DEF void pfi_ds_target(const pf_real *fine, int w, int h, long long f, int border, pf_real scale, long long W,
+                              long long n, pf_real *gx, pf_real *gy, pf_real *box)
+{
+    long long i, j;
+    pf_real inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
+    for (i = 0; i < n; ++i) {
+        gx[i] = gy[i] = PF_R(0.0);
+        if (box) box[i] = PF_R(0.0);
     }
-    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
-       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
-       -ffast-math) */
-    if (maxabs > PF_R(0.0)) {
-        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
-        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
-    }
-    W = w / factor, H = h / factor, n = W * H;
-    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
-    inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
-    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
-    for (i = 0; i < n; ++i) gx[i] = gy[i] = coarse[i] = PF_R(0.0);
     for (j = 0; j < h; ++j) {
         long long yi[3], xi[3], t0 = (j / f) * W;
         pf_real cy[3], cx[3];
@@ -4869,15 +4889,66 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
             pf_map_slope_stencil(i, w, border, PF_R(0.5) * scale, xi, cx);
             gx[t] += cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
             gy[t] += cy[0] * fine[yi[0] * w + i] + cy[1] * fine[yi[1] * w + i] + cy[2] * fine[yi[2] * w + i];
-            coarse[t] += row[i] * scale;
+            if (box) box[t] += row[i] * scale;
         }
     }
     /* mean fine slope (per fine texel) x f = per coarse texel */
     for (i = 0; i < n; ++i) {
         gx[i] *= inv_f2 * (pf_real)f;
         gy[i] *= inv_f2 * (pf_real)f;
-        coarse[i] *= inv_f2;
+        if (box) box[i] *= inv_f2;
     }
+}
+
+/* |b - A x|^2 of the normal equations with the constant removed (x = coarse; b from the fine
+   map): r gets the residual; gx, gy, lp, q are overwritten */
+PF_CPU_DEF pf_real pfi_ds_true_residual(const pf_real *fine, int w, int h, long long f, int border, pf_real scale,
+                                        pf_real reg, const pf_real *x, long long W, long long H, pf_real *r,
+                                        pf_real *q, pf_real *gx, pf_real *gy, pf_real *lp)
+{
+    long long i, n = W * H;
+    pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, 0);
+    for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
+    pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r);
+    pfi_ds_forward(x, (int)W, (int)H, border, gx, gy, lp);
+    pfi_ds_adjoint(gx, gy, lp, reg, (int)W, (int)H, border, q);
+    for (i = 0; i < n; ++i) r[i] -= q[i];
+    pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
+    return pfi_ds_dot(r, 0, W, H);
+}
+
+PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
+                                         int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
+                                         long long scratch_len, int *iters_out, pf_real *residual_out)
+{
+    long long need, n, i, W, H, f = factor, cap, stall = 0;
+    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, rr_box, rr_mark, ref, mean;
+    pf_real anorm, true_rr;
+    int it = 0;
+    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
+    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
+    if (!pfi_ds_finite(reg_weight) || !(reg_weight >= PF_R(0.0) && reg_weight <= PF_MAP_DOWNSAMPLE_MAX_REG) ||
+        max_iter < 0 || !pfi_ds_finite(tol) || !(tol >= PF_R(0.0)))
+        return PF_ERR_ARG;
+    need = pf_map_downsample_scratch_size(w, h, factor);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    for (i = 0; i < (long long)w * h; ++i) {
+        if (!pfi_ds_finite(fine[i])) return PF_ERR_ARG; /* NaN or infinite, tested on the bits */
+        maxabs = pf_max(maxabs, PF_FABS(fine[i]));
+    }
+    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
+       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
+       -ffast-math) */
+    if (maxabs > PF_R(0.0)) {
+        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
+        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
+    }
+    W = w / factor, H = h / factor, n = W * H;
+    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
+    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
+    pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, coarse);
     mean = pfi_ds_mean(coarse, W, H);
     for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
     pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r); /* r = b = G^T s* */
@@ -4887,15 +4958,27 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
     pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
     for (i = 0; i < n; ++i) r[i] -= q[i];
     pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
-    rr = pfi_ds_dot(r, 0, W, H);
+    rr = rr_box = rr_mark = pfi_ds_dot(r, 0, W, H);
     ref = bnorm > PF_R(0.0) ? bnorm : PF_SQRT(rr);
     for (i = 0; i < n; ++i) p[i] = r[i];
-    while (it < max_iter && PF_SQRT(rr) > tol * ref) {
-        pf_real pq, alpha, rr_new, beta;
+    /* SAFEGUARDS (every argument, reg 0 and tol 0 included; the normal equations are singular
+       along the constant and, under WRAP at reg_weight ~ 0, nearly so along the 2-texel
+       checkerboards, where plain CG divided rounding noise by rounding noise):
+       - a step is taken only when p^T A p > 64 eps |A| |p|^2 (|A| <= 32 + 64 reg_weight, the
+         stencils' row sums): a direction that A cannot tell from its null space ends the solve;
+       - at most cap = 4 n + 256 iterations (CG ends in n steps in exact arithmetic), and the
+         solve ends when |r|^2 has not halved in 64 + 4 sqrt(n) iterations (stagnation);
+       - at the end the TRUE residual |b - A x| is computed from the fine map again; when it
+         is not finite or above the box map's, the box map is returned (iterations 0). */
+    anorm = PF_R(32.0) + PF_R(64.0) * reg_weight;
+    cap = 4 * n + 256;
+    while (it < max_iter && it < cap && PF_SQRT(rr) > tol * ref) {
+        pf_real pq, pp, alpha, rr_new, beta;
         pfi_ds_forward(p, (int)W, (int)H, border, gx, gy, lp);
         pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
         pq = pfi_ds_dot(p, q, W, H);
-        if (!(pq > PF_R(0.0))) break; /* p in the null space, or rounding: nothing left to gain */
+        pp = pfi_ds_dot(p, 0, W, H);
+        if (!(pq > PF_R(64.0) * PF_REAL_EPSILON * anorm * pp)) break; /* p (numerically) in the null space */
         alpha = rr / pq;
         for (i = 0; i < n; ++i) {
             coarse[i] += alpha * p[i];
@@ -4903,19 +4986,36 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
         }
         pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
         rr_new = pfi_ds_dot(r, 0, W, H);
+        ++it;
+        if (!(rr_new > PF_R(0.0))) {
+            rr = rr_new;
+            break; /* exact solution, or a non-finite residual (checked below) */
+        }
         beta = rr_new / rr;
         for (i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];
         rr = rr_new;
-        ++it;
+        if (rr <= PF_R(0.5) * rr_mark) {
+            rr_mark = rr;
+            stall = 0;
+        } else if (++stall > 64 + 4 * (long long)PF_SQRT((pf_real)n)) {
+            break;
+        }
     }
-    /* the pinned mean, exactly (rounding of the updates), then the heights' own scale */
+    /* the pinned mean, exactly (rounding of the updates), then the true residual */
     pfi_ds_shift(coarse, n, mean - pfi_ds_mean(coarse, W, H));
+    true_rr = it > 0 ? pfi_ds_true_residual(fine, w, h, f, border, scale, reg_weight, coarse, W, H, r, q, gx, gy, lp)
+                     : rr_box;
+    if (it > 0 && (!pfi_ds_finite(true_rr) || !(true_rr <= rr_box))) {
+        pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, coarse); /* back to the box map */
+        true_rr = rr_box;
+        it = 0;
+    }
     for (i = 0; i < n; ++i) {
         pf_real v = coarse[i] / scale;
         coarse[i] = v > PF_REAL_MAX ? PF_REAL_MAX : (v < -PF_REAL_MAX ? -PF_REAL_MAX : v);
     }
     if (iters_out) *iters_out = it;
-    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
+    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(true_rr) / ref : PF_R(0.0);
     return PF_OK;
 }
 /* A downsampling's description; ZERO MEANS THE DEFAULT (negative reg_weight, max_iter, tol: 0). */
@@ -6199,8 +6299,10 @@ PF_CPU_DEF int pfi_masks_finite(pf_real x) { return x >= -PF_REAL_MAX && x <= PF
    1e-4 of its edge). table must hold pf_masks_table_words(n_samples, n_theta, n_v) ints; every
    word is written (unused bits 0). Returns PF_OK; PF_ERR_ARG for an unknown shape, NULL
    pointers, n_samples outside [1, 128], n_theta < 1, n_v < 2, or a sample that is not finite
-   or outside the footprint; PF_ERR_SIZE for n_theta or n_v above 32768. Nothing is written on
-   an error. */
+   or outside the footprint; PF_ERR_SIZE for n_theta or n_v above 32768 or a table of more
+   than PF_MAX_REALS words (pf_masks_table_words returns 0 for exactly the sizes rejected: on
+   32-bit hosts PF_MAX_REALS = 2^28, so 32768 x 4096 x 4 words is refused there). Nothing is
+   written on an error. */
 PF_CPU_DEF int pf_masks_table_build(int shape, int n_theta, int n_v, const pf_real *xy, int n_samples, int *table)
 {
     int i, j, k, w, words;
@@ -6208,6 +6310,9 @@ PF_CPU_DEF int pf_masks_table_build(int shape, int n_theta, int n_v, const pf_re
     if (shape != PF_MASKS_SQUARE && shape != PF_MASKS_DISK) return PF_ERR_ARG;
     if (!xy || !table || n_samples < 1 || n_samples > PF_MASKS_MAX_SAMPLES || n_theta < 1 || n_v < 2) return PF_ERR_ARG;
     if (n_theta > PF_MASKS_MAX_GRID || n_v > PF_MASKS_MAX_GRID) return PF_ERR_SIZE;
+    /* the table's size in the checked arithmetic: above PF_MAX_REALS (32-bit hosts) no offset
+       below could be formed as a pointer difference */
+    if (pf_masks_table_words(n_samples, n_theta, n_v) == 0) return PF_ERR_SIZE;
     for (k = 0; k < n_samples; ++k) {
         pf_real x = xy[2 * k], y = xy[2 * k + 1];
         if (!pfi_masks_finite(x) || !pfi_masks_finite(y)) return PF_ERR_ARG;
@@ -7522,11 +7627,12 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     if (mixture_smith != 0) {
         /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
            mixture's own facing area P_i = (area_i + excess_i) / amp */
-        pf_real wz = wi.z * s.amp;
+        /* P_i / wi.z with P_i divided by amp first (amp is normal, wi.z amp may be
+           subnormal, which -ffast-math flushes to 0: 0 / 0) */
         den = area_o + s.excess_o +
               pf_max(area_o, PF_R(0.0)) *
                   (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
-                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
+                                      : pf_max((area_i + s.excess_i) / s.amp, wi.z) / wi.z - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pf_beckmann_facing_area(wo, st) +
@@ -7535,8 +7641,9 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
-    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den */
-    return f * s.ndf / (PF_R(4.0) * den);
+    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den; ndf / den first: both scale with
+       amp, and F ndf alone is subnormal (0 under -ffast-math) for an amp near PF_REAL_MIN */
+    return (s.ndf / den) * (f * PF_R(0.25));
 }
 
 /* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
@@ -7720,19 +7827,31 @@ typedef struct pf_vmf_mixture {
    fewer lobes than asked. Initial kappa from the whole set's resultant, at least 1.
    ITERATIONS: at most `iterations` EM steps; it stops earlier when the mean log-likelihood
    changes by less than 1e-6. Lobes whose weight share falls below 1e-6 are dropped.
-   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights NaN,
-   infinite or <= 0, are skipped; weights are divided by the largest usable one first (no sum
-   can overflow). No usable normal: PF_ERR_ARG, *out one flat lobe (a = 1, mu = +z, kappa =
-   PF_VMF_KAPPA_MAX). Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside
-   [1, 16], iterations < 0; PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
+   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights that
+   are NaN, infinite or <= 0, are skipped; every other normal and weight is used, however tiny
+   or huge (subnormal to PF_REAL_MAX): each normal is divided by its largest component before
+   it is normalized, and the weights by the largest usable one (no sum can overflow). Under
+   -ffast-math subnormal normals and weights read as 0 (flushed). No usable normal:
+   PF_ERR_ARG and *out is not written (pf_core.h: nothing is written on an error).
+   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
+   PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
-    pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], l2, wt;
+    pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], m, l2, wt;
     wt = weights ? weights[i] : PF_R(1.0);
-    if (!(wt > PF_R(0.0)) || !(wt < PF_REAL_MAX)) return 0;
-    if (!(PF_FABS(a) < PF_R(1.0e18)) || !(PF_FABS(b) < PF_R(1.0e18)) || !(PF_FABS(c) < PF_R(1.0e18))) return 0;
+    if (!(wt > PF_R(0.0)) || !(wt <= PF_REAL_MAX)) return 0;
+    /* divided by the largest component first: every finite non-zero normal, 1e-40 or 1e38
+       long, normalizes without an overflow or underflow of its squared length (in [1, 3]) */
+    m = pf_max(pf_max(PF_FABS(a), PF_FABS(b)), PF_FABS(c));
+    if (!(m > PF_R(0.0)) || !(m <= PF_REAL_MAX)) return 0;
+    a /= m;
+    b /= m;
+    c /= m;
     l2 = a * a + b * b + c * c;
-    if (!(l2 > PF_R(1.0e-30))) return 0;
+    /* l2 is in [1, 3] (the largest component is +-1): below 1/2 only for a NaN component.
+       Not >= 1: -ffast-math's a * (1/m) can round the largest component to 1 - eps, and the
+       passes of the fit must all read the same normals. */
+    if (!(l2 >= PF_R(0.5))) return 0;
     l2 = PF_R(1.0) / PF_SQRT(l2);
     *x = pf_vec3_make(a * l2, b * l2, c * l2);
     *w = wt;
@@ -7745,7 +7864,7 @@ PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long
         for (xx = 0; xx < bw; ++xx) {                                                          \
             long long id = yy * row + xx;                                                      \
             if (!pfi_vmf_read(normals, weights, id, &x, &wt)) continue;                        \
-            wt = wt * wscale;                                                                  \
+            wt = (wt * wscale) * wscale;                                                       \
             __VA_ARGS__                                                                        \
         }
 
@@ -7774,18 +7893,16 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
     pf_real wt, wsum = PF_R(0.0), logc[PF_VMF_MAX_LOBES], prev_ll = PF_R(0.0), wscale = PF_R(1.0), wmax = PF_R(0.0);
     long long xx, yy;
     int k, it, n;
-    /* weights divided by the largest usable one, so that no sum of the fit can overflow */
+    /* weights divided by the largest usable one (times 1/sqrt(wmax) twice: 1/wmax itself
+       overflows for a subnormal wmax and is subnormal for wmax near PF_REAL_MAX), so that any
+       finite positive weights are used and no sum of the fit can overflow; the first pass
+       reads them unscaled (wscale 1) */
     PFI_VMF_FOREACH(wmax = pf_max(wmax, wt);)
-    if (!(wmax > PF_R(0.0))) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
-    wscale = PF_R(1.0) / wmax;
-    PFI_VMF_FOREACH(sum = pf_vec3_add(sum, pf_vec3_scale(x, wt)); wsum += wt;)
-    if (!(wsum > PF_R(0.0)) || !(wsum < PF_REAL_MAX)) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
+    if (!(wmax > PF_R(0.0))) return PF_ERR_ARG;
+    wscale = PF_R(1.0) / PF_SQRT(wmax);
+    wmax = PF_R(0.0);
+    PFI_VMF_FOREACH(sum = pf_vec3_add(sum, pf_vec3_scale(x, wt)); wsum += wt; wmax = pf_max(wmax, wt);)
+    if (!(wsum > PF_R(0.0)) || !(wsum < PF_REAL_MAX) || !(wmax > PF_R(0.25))) return PF_ERR_ARG;
     /* seeding */
     {
         pf_real len = pf_vec3_length(sum), kappa0;
@@ -7921,10 +8038,7 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
         }
         m.count = n;
         for (k = n; k < PF_VMF_MAX_LOBES; ++k) m.lobe[k].amp = PF_R(0.0);
-        if (n == 0) {
-            *out = pfi_vmf_flat();
-            return PF_ERR_ARG;
-        }
+        if (n == 0) return PF_ERR_ARG;
     }
     /* lobe axes on the upper hemisphere (the packed form's convention) */
     for (k = 0; k < m.count; ++k)
@@ -7942,15 +8056,8 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
 PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights, long long count, int lobes,
                                   int iterations, pf_vmf_mixture *out)
 {
-    if (!out) return PF_ERR_ARG;
-    if (!normals || count < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
-    if (pf_size_mul(count, 3) < 0) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_SIZE;
-    }
+    if (!out || !normals || count < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0) return PF_ERR_ARG;
+    if (pf_size_mul(count, 3) < 0) return PF_ERR_SIZE;
     return pfi_vmf_fit_block(normals, weights, count, count, 1, lobes, iterations, out);
 }
 
@@ -8041,10 +8148,17 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
     return area > PF_R(0.0) ? num / area : PF_R(0.0);
 }
 
-/* f_eff of the n x n patch from (x0, y0) toward wo from wi (unit) into *out; 0 when either is
-   on or below the macrosurface or the mean plane faces away. Errors (*out 0): PF_ERR_ARG for
-   NULL heights or out, n, w or h below 1, n > w or h, texel or base_sigma not finite > 0, a
-   non-finite height in the patch or its ring; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. */
+/* The single-bounce effective BRDF of the n x n patch from (x0, y0) (Wu et al. 2019 eqs. 6-8;
+   see the block comment) toward wo from wi (unit, tangent frame) into *out; 0 when either
+   direction is on or below the macrosurface or the patch's mean plane faces away.
+   Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
+   below 1, n > w or n > h, texel or base_sigma not finite and > 0, a height in the patch or
+   its one-texel ring that is not finite or of magnitude PF_REAL_MAX / 4 or more; PF_ERR_SIZE
+   for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
+   Cost: 2 n^2 marches of at most 2 n + 1 cells each (n along each axis, periodic maps
+   included). Reads only heights[0 .. w h). Accepted heights: finite with |height| below
+   PF_REAL_MAX / 4 (the bound keeps every central difference finite); larger ones are the
+   PF_ERR_ARG of a non-finite height. */
 PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
                                      pf_vec3 wo, pf_vec3 wi, pf_real base_sigma, pf_real f0, pf_real *out)
 {
@@ -8061,27 +8175,31 @@ PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_r
     return PF_OK;
 }
 
-/* samples per patch, (2 nt (np - 1))^2 (direction pairs); 0 for nt, np < 2 or too large */
+/* samples per patch, (2 nt (np - 1))^2 (every pair of nt thetas times 2 (np - 1) azimuths);
+   0 for nt or np below 2 or above PF_MAX_SIDE, or a count above PF_MAX_REALS */
 PF_CPU_DEF long long pf_vmf_scale_sample_count(int nt, int np)
 {
     long long d;
-    if (nt < 2 || np < 2) return 0;
+    if (nt < 2 || np < 2 || !pf_size_side_ok(nt) || !pf_size_side_ok(np)) return 0;
     d = pf_size_mul3(2, nt, np - 1);
     d = d < 0 ? -1 : pf_size_mul(d, d);
     return d < 0 ? 0 : d;
 }
 
-/* nodes (cells) of S: nt nt np (0 for nt or np below 2 or too large) */
+/* nodes (cells) of S: nt nt np (0 for nt or np below 2 or above PF_MAX_SIDE, or nt nt np
+   above PF_MAX_REALS) */
 PF_CPU_DEF long long pf_vmf_scale_cell_count(int nt, int np)
 {
-    long long c = (nt < 2 || np < 2) ? -1 : pf_size_mul3(nt, nt, np);
+    long long c = (nt < 2 || np < 2 || !pf_size_side_ok(nt) || !pf_size_side_ok(np)) ? -1 : pf_size_mul3(nt, nt, np);
     return c < 0 ? 0 : c;
 }
 
 /* visibility bytes of one n x n patch: 2 nt (np - 1) n^2 (a map per direction); 0 for bad sizes */
 PF_CPU_DEF long long pf_vmf_scale_vis_bytes(int nt, int np, int n)
 {
-    long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pf_size_mul3(2, nt, np - 1);
+    long long d = (nt < 2 || np < 2 || n < 1 || !pf_size_side_ok(nt) || !pf_size_side_ok(np) || !pf_size_side_ok(n))
+                      ? -1
+                      : pf_size_mul3(2, nt, np - 1);
     d = d < 0 ? -1 : pf_size_mul3(d, n, n);
     return d < 0 ? 0 : d;
 }
@@ -8175,14 +8293,39 @@ PF_CPU_DEF int pfi_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real
     return PF_OK;
 }
 
-/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np)) from the samples of `patches`
-   patches (patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares
-   fit in BRDF units, `iterations` (>= 1) alternating rounds, T scaled to mean 1, each value
-   pulled toward 1 by a prior `shrink` (>= 0) times the mean energy of a patch (T) or cell (S):
-   T(x) = (sum e l S + p) / (sum (l S)^2 + p). prior_out (NULL or 1): p for pfi_vmf_scale_t on
-   other patches of the level. scratch: 2 patches cells pf_reals. err (NULL or 3): the relative
-   L2 error of T S f_lobes against f_eff, of f_lobes alone, and of T S against R = f_eff /
-   f_lobes where f_lobes exceeds 1% of its RMS. Non-finite or negative samples count as 0.
+/* a power of two c with max(e, l) c in [0.5, 2) over the finite positive samples of f_eff and
+   f_lobes (n of each; 1 when there are none): the fits below run on c e and c l, which leaves
+   T, S and every ratio unchanged (exact scaling) while no product e l or l^2 of a set near
+   PF_REAL_MAX overflows or of a set near PF_REAL_MIN underflows; c stays finite (below 2^102
+   in float, 2^969 in double), so a subnormal set is only scaled toward 1 */
+PF_CPU_DEF pf_real pfi_vmf_sample_scale(const pf_real *f_eff, const pf_real *f_lobes, long long n)
+{
+    pf_real m = PF_R(0.0), c = PF_R(1.0);
+    long long s;
+    for (s = 0; s < n; ++s) {
+        pf_real e = f_eff[s], l = f_lobes[s];
+        if (e > PF_R(0.0) && e <= PF_REAL_MAX) m = pf_max(m, e);
+        if (l > PF_R(0.0) && l <= PF_REAL_MAX) m = pf_max(m, l);
+    }
+    if (!(m > PF_R(0.0))) return c;
+    while (m * c >= PF_R(2.0)) c *= PF_R(0.5);
+    while (m * c < PF_R(0.5) && c < PF_R(0.125) * PF_REAL_MAX * PF_REAL_EPSILON) c *= PF_R(2.0);
+    return c;
+}
+
+/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
+   `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
+   patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
+   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
+   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
+   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
+   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
+   pfi_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
+   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
+   of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
+   for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
+   T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
+   not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
    Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
    outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
@@ -8190,7 +8333,7 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
                                    pf_real *prior_out, pf_real *err)
 {
     long long cells, count, x, b, s;
-    pf_real *num, *den, mean;
+    pf_real *num, *den, mean, cs;
     int it;
     if (!f_eff || !f_lobes || !t_out || !s_out || !scratch || patches < 1 || nt < 2 || np < 2 || iterations < 1 ||
         !(shrink >= PF_R(0.0)) || !(shrink <= PF_R(1.0e6)))
@@ -8202,13 +8345,16 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
     num = scratch;
     den = scratch + cells * patches;
     for (b = 0; b < cells * patches; ++b) num[b] = den[b] = PF_R(0.0);
+    /* every sum below runs on the samples times one power of two cs (exact; T and S do not
+       change): sample sets near PF_REAL_MAX or PF_REAL_MIN are fitted, not overflowed */
+    cs = pfi_vmf_sample_scale(f_eff, f_lobes, count * patches);
     /* per (patch, cell): sum f_eff f_lobes and sum f_lobes^2 (the normal equations) */
     for (x = 0; x < patches; ++x)
         for (s = 0; s < count; ++s) {
             pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
             long long c = x * cells + pfi_vmf_scale_cell(s, nt, np);
-            e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-            l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
+            e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+            l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
             num[c] += e * l;
             den[c] += l * l;
         }
@@ -8250,11 +8396,13 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
         }
     }
     mean = PF_R(0.0);
-    for (x = 0; x < patches; ++x) mean += t_out[x];
-    mean /= (pf_real)patches;
-    if (mean > PF_R(0.0)) {
+    for (x = 0; x < patches; ++x) mean += t_out[x] / (pf_real)patches; /* each <= PF_REAL_MAX: no overflow */
+    if (mean > PF_R(0.0) && mean <= PF_REAL_MAX) {
         for (x = 0; x < patches; ++x) t_out[x] /= mean;
-        for (b = 0; b < cells; ++b) s_out[b] *= mean;
+        for (b = 0; b < cells; ++b) {
+            pf_real v = s_out[b] * mean;
+            s_out[b] = v <= PF_REAL_MAX ? v : PF_REAL_MAX;
+        }
     }
     /* the prior for pfi_vmf_scale_t on other patches of the same level: shrink times the mean
        patch energy sum_s (S f_lobes)^2 under the final S */
@@ -8262,35 +8410,68 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
         pf_real e_sum = PF_R(0.0);
         for (x = 0; x < patches; ++x)
             for (b = 0; b < cells; ++b) e_sum += den[x * cells + b] * s_out[b] * s_out[b];
-        e_sum = shrink * e_sum / (pf_real)patches;
+        /* back to the samples' own units: divided by cs^2 (one cs at a time) */
+        e_sum = shrink * e_sum / (pf_real)patches / cs / cs;
         *prior_out = e_sum < PF_REAL_MAX ? e_sum : PF_R(0.0);
     }
     if (err) {
+        /* every term on the scaled samples (cs e, cs l) and the ratios R and T S divided by
+           their largest value rm first: each squared term is at most 4, so no sum overflows
+           and no error is inf / inf (NaN); a product T S l beyond PF_REAL_MAX is read as
+           PF_REAL_MAX */
         pf_real e0 = PF_R(0.0), e1 = PF_R(0.0), ref = PF_R(0.0), l2 = PF_R(0.0), r0 = PF_R(0.0), rr = PF_R(0.0), floor_l;
+        pf_real em = PF_R(0.0), rm = PF_R(0.0);
         for (x = 0; x < patches; ++x)
             for (s = 0; s < count; ++s) {
                 pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
-                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
-                e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-                l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
-                e0 += (e - ts * l) * (e - ts * l);
-                e1 += (e - l) * (e - l);
-                ref += e * e;
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)], tl;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                tl = ts * l;
+                em = pf_max(em, pf_max(pf_max(e, l), tl <= PF_REAL_MAX ? tl : PF_REAL_MAX));
                 l2 += l * l;
             }
+        em = em > PF_R(0.0) ? em : PF_R(1.0);
         floor_l = PF_R(0.01) * PF_SQRT(l2 / (pf_real)(count * patches));
+        for (x = 0; x < patches; ++x)
+            for (s = 0; s < count; ++s) {
+                pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)], tl;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                tl = ts * l;
+                tl = (tl <= PF_REAL_MAX ? tl : PF_REAL_MAX) / em;
+                e /= em;
+                l /= em;
+                e0 += (e - tl) * (e - tl);
+                e1 += (e - l) * (e - l);
+                ref += e * e;
+                if (l * em > floor_l) {
+                    pf_real R = e / l;
+                    R = R <= PF_REAL_MAX ? R : PF_REAL_MAX;
+                    rm = pf_max(rm, pf_max(R, ts <= PF_REAL_MAX ? ts : PF_REAL_MAX));
+                }
+            }
+        rm = rm > PF_R(0.0) ? rm : PF_R(1.0);
         for (x = 0; x < patches; ++x)
             for (s = 0; s < count; ++s) {
                 pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s], R;
                 pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
-                if (!(l > floor_l) || !(l < PF_REAL_MAX)) continue;
-                R = (e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0)) / l;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                if (!(l > floor_l)) continue;
+                R = e / l;
+                R = (R <= PF_REAL_MAX ? R : PF_REAL_MAX) / rm;
+                ts = (ts <= PF_REAL_MAX ? ts : PF_REAL_MAX) / rm;
                 r0 += (R - ts) * (R - ts);
                 rr += R * R;
             }
         err[0] = ref > PF_R(0.0) ? PF_SQRT(e0 / ref) : PF_R(0.0);
         err[1] = ref > PF_R(0.0) ? PF_SQRT(e1 / ref) : PF_R(0.0);
         err[2] = rr > PF_R(0.0) ? PF_SQRT(r0 / rr) : PF_R(0.0);
+        /* a ratio of two sums that underflowed to subnormals is still finite; anything else
+           (only possible under -ffast-math) reads as 0 */
+        for (b = 0; b < 3; ++b) err[b] = err[b] >= PF_R(0.0) && err[b] <= PF_REAL_MAX ? err[b] : PF_R(0.0);
     }
     return PF_OK;
 }
@@ -8303,16 +8484,19 @@ PF_CPU_DEF pf_real pfi_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes,
                                   pf_real prior)
 {
     long long count = pf_vmf_scale_sample_count(nt, np), s;
-    pf_real a = PF_R(0.0), q = PF_R(0.0);
+    pf_real a = PF_R(0.0), q = PF_R(0.0), cs;
     if (!f_eff || !f_lobes || !s_table || count == 0 || pf_vmf_scale_cell_count(nt, np) == 0 || !(prior >= PF_R(0.0)))
         return PF_R(1.0);
+    /* the samples times a power of two (pfi_vmf_sample_scale), the prior times its square */
+    cs = pfi_vmf_sample_scale(f_eff, f_lobes, count);
     for (s = 0; s < count; ++s) {
         pf_real e = f_eff[s], l = f_lobes[s];
-        e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-        l = l > PF_R(0.0) && l < PF_REAL_MAX ? l * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
+        e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+        l = l > PF_R(0.0) && l <= PF_REAL_MAX ? (l * cs) * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
         a += e * l;
         q += l * l;
     }
+    prior = (prior * cs) * cs;
     a = (a + prior) / (q + prior);
     return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
 }
@@ -8329,13 +8513,15 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
     p0 = pf_vmf_scale_texel_pos(c.x, nt);
     p1 = pf_vmf_scale_texel_pos(c.y, nt);
     p2 = pf_vmf_scale_texel_pos(c.z, np);
-    a0 = (long long)p0;
-    b0 = (long long)p1;
-    c0 = (long long)p2;
+    /* node indices clamped in pf_real before the conversion: a position that rounds past the
+       last node (or any NaN) cannot address outside the nt nt np table */
+    a0 = pf_floor_index(p0, 0, nt - 1);
+    b0 = pf_floor_index(p1, 0, nt - 1);
+    c0 = pf_floor_index(p2, 0, np - 1);
     a1 = a0 + 1 < nt ? a0 + 1 : a0;
     b1 = b0 + 1 < nt ? b0 + 1 : b0;
     c1 = c0 + 1 < np ? c0 + 1 : c0;
-    f = pf_vec3_make(p0 - (pf_real)a0, p1 - (pf_real)b0, p2 - (pf_real)c0);
+    f = pf_vec3_make(pfi_vmf_unit(p0 - (pf_real)a0), pfi_vmf_unit(p1 - (pf_real)b0), pfi_vmf_unit(p2 - (pf_real)c0));
 #define PFI_VMF_S(a, b, c) table[((a) * nt + (b)) * np + (c)]
     return pf_vmf_scale_trilinear(PFI_VMF_S(a0, b0, c0), PFI_VMF_S(a1, b0, c0), PFI_VMF_S(a0, b1, c0),
                                   PFI_VMF_S(a1, b1, c0), PFI_VMF_S(a0, b0, c1), PFI_VMF_S(a1, b0, c1),
@@ -8377,11 +8563,12 @@ PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
     return pf_mip_level_offset(w, h, level);
 }
 
-/* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes */
+/* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes and for a count
+   above PF_MAX_REALS (2^24 x 2^24 on every host) */
 PF_CPU_DEF long long pf_vmf_pyramid_texel_count(int w, int h)
 {
     long long t = pf_vmf_pyramid_level_offset(w, h, 64);
-    return t < 0 ? 0 : t;
+    return t < 0 || t > PF_MAX_REALS ? 0 : t;
 }
 
 PF_CPU_DEF void pfi_vmf_store(pf_real *dst, pf_vmf_mixture m, int lobes)
@@ -8406,7 +8593,8 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
     if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
     levels = pf_vmf_pyramid_level_count(w, h);
     if (levels == 0) return PF_ERR_ARG; /* not powers of two */
-    if (pf_size_mul3(pf_vmf_pyramid_texel_count(w, h), 4, lobes) < 0 || pf_size_mul3(w, h, 3) < 0)
+    if (pf_vmf_pyramid_texel_count(w, h) == 0 || pf_size_mul3(pf_vmf_pyramid_texel_count(w, h), 4, lobes) < 0 ||
+        pf_size_mul3(w, h, 3) < 0)
         return PF_ERR_SIZE;
     for (l = 0; l < levels; ++l) {
         long long lw = (w >> l) > 0 ? (w >> l) : 1, lh = (h >> l) > 0 ? (h >> l) : 1;

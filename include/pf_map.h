@@ -531,8 +531,10 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    neighbourhood; the twisted bilinear patches around the node would otherwise shadow rays
    that clear the facet). Only occluders INSIDE the patch count: the ray is free where its
    horizontal path leaves [x0 - 1/2, x0 + n - 1/2] x [y0 - 1/2, y0 + n - 1/2] (the footprint
-   is all a filtered model of it can know; along an axis where n equals the map's side the
-   periodic map is unbounded) or rises above the highest node it can meet; a texel with
+   is all a filtered model of it can know; along an axis where n equals the map's side, one
+   period: n - 1/2 texels from the texel's node, past which the ray is over the same nodes
+   again) or rises above the highest node it can meet, so a march visits at most 2 n + 1
+   cells, periodic maps included; a texel with
    m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
    (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
    its own double-precision march as the independent oracle (it must not call include/), and
@@ -541,9 +543,11 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    length, tangent frame), the patch (x0, y0, n: n x n nodes from (x0, y0), 1 <= n <= w, h),
    `top` the highest height (world units) of the patch and its one-node ring. Returns 1 when the
    node sees d, 0 when d.z <= 0, the node's facet faces away from d, or the ray is occluded.
-   Cost: the cells the ray crosses inside the patch (about 2 n at most; up to
-   PF_MAP_MARCH_MAX_CELLS where the patch spans the periodic map), 4 reads each. */
-/* most cells a march visits before it calls the ray occluded (~1e-4 rad above the horizon) */
+   Cost: the cells the ray crosses inside the patch, at most 2 n + 1 (n along each axis; a
+   periodic axis is followed for one period), 4 reads each; PF_MAP_MARCH_MAX_CELLS caps the
+   march (a ray it stops is called occluded), which only binds for n above 32767. */
+/* largest number of cells a march visits before it calls the ray occluded (a ray that rises
+   less than the patch's height range over this many texels: within ~1e-4 rad of the horizon) */
 #ifndef PF_MAP_MARCH_MAX_CELLS
 #  define PF_MAP_MARCH_MAX_CELLS 65536
 #endif
@@ -572,10 +576,16 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
     if (n < w) {
         if (dx > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - ox) - PF_R(0.5)) / dx);
         if (dx < PF_R(0.0)) tend = pf_min(tend, ((pf_real)ox + PF_R(0.5)) / -dx);
+    } else if (dx != PF_R(0.0)) {
+        /* periodic axis: one period, n - 1/2 texels from the node (past it the ray is over
+           the same nodes again) */
+        tend = pf_min(tend, ((pf_real)n - PF_R(0.5)) / PF_FABS(dx));
     }
     if (n < h) {
         if (dy > PF_R(0.0)) tend = pf_min(tend, ((pf_real)(n - oy) - PF_R(0.5)) / dy);
         if (dy < PF_R(0.0)) tend = pf_min(tend, ((pf_real)oy + PF_R(0.5)) / -dy);
+    } else if (dy != PF_R(0.0)) {
+        tend = pf_min(tend, ((pf_real)n - PF_R(0.5)) / PF_FABS(dy));
     }
     /* cell (ix, iy) spans [ix, ix + 1] x [iy, iy + 1] relative to the node, which is at 0 */
     stx = dx > PF_R(0.0) ? 1 : -1;
@@ -586,7 +596,8 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
     tdy = dy != PF_R(0.0) ? PF_R(1.0) / PF_FABS(dy) : PF_REAL_MAX;
     tnx = tdx;
     tny = tdy;
-    for (cells = 0; cells < PF_MAP_MARCH_MAX_CELLS; ++cells) {
+    /* the path ends within n texels along each axis: at most 2 n + 1 cells */
+    for (cells = 0; cells < 2 * n + 2 && cells < PF_MAP_MARCH_MAX_CELLS; ++cells) {
         pf_real tout = pf_min(tnx, tny), ta = pf_max(t, PF_R(0.5)), tb = pf_min(tout, tend);
         if (h0 + rise * t > top || t >= tend) return 1;
         if (tb > ta) {
@@ -615,7 +626,7 @@ PF_CPU_DEF int pf_map_visible(const pf_real *hm, int w, int h, pf_real texel, lo
             iy += sty;
         }
     }
-    return 0;
+    return cells >= 2 * n + 2; /* past the patch (rounding at its edge): free; past the cap: occluded */
 }
 
 /* ---------------------------------------------------------------- sampling */
@@ -760,19 +771,34 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    equations; a target with no slope at all uses |r_0| instead). Heights are scaled by a power
    of two (exact) so that no difference overflows; a result beyond the pf_real range is
    clamped to +-PF_REAL_MAX.
-   Arguments (pf_map_downsample_desc below): factor >= 1 dividing w and h (coarse (w/factor) x
-   (h/factor), row-major); reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
-   2-texel checkerboards, which no central difference sees, keep their box values; the bound
-   keeps every product finite); max_iter >= 0 (0: the box map); tol finite >= 0; scratch_len >=
-   pf_map_downsample_scratch_size(w, h, factor); iters_out (iterations done) and residual_out
-   (the final |r| over the reference norm above) may be NULL.
+   SAFEGUARDS, for every accepted argument (reg_weight 0 and tol 0 included): a CG step is
+   taken only while p^T A p > 64 eps |A| |p|^2 (a direction A cannot tell from its null
+   space, e.g. the checkerboards at reg_weight ~ 0, ends the solve instead of dividing
+   rounding noise by rounding noise); at most min(max_iter, 4 n + 256) iterations (n coarse
+   texels), and fewer when |r|^2 has not halved in 64 + 4 sqrt(n) iterations (stagnation);
+   then the TRUE residual |G^T s* - A H| is computed from the fine map again, and when it is
+   not finite or above the box map's the box map is returned (iters_out 0). So the result is
+   finite, its true residual is at most the box map's, and residual_out reports it.
+   Arguments (pf_map_downsample_desc below; its zero defaults resolved first): fine w x h
+   row-major; factor >= 1 dividing w and h (coarse (w/factor) x
+   (h/factor), row-major, into coarse); border PF_BORDER_WRAP (tiling maps) or
+   PF_BORDER_CLAMP; reg_weight in [0, PF_MAP_DOWNSAMPLE_MAX_REG = 1e6] (at 0, under WRAP,
+   2-texel checkerboards, which no central difference sees, keep their box values; far above
+   1 the Laplacian alone decides; the bound keeps every product finite); max_iter >= 0 (0:
+   the box map); tol finite >= 0; scratch: scratch_len >= pf_map_downsample_scratch_size(w,
+   h, factor) pf_reals; iters_out (the iterations of the returned map: 0 for the box map)
+   and residual_out (the TRUE final |G^T s* - A H| over the reference norm above; in float
+   at reg_weight ~ 1e6 it is the rounding of A H, up to ~10) may be NULL.
    Errors: PF_ERR_ARG for NULL fine, coarse or scratch, w or h below 1, factor below 1 or not
    dividing w and h, an unknown border, a bad reg_weight, max_iter or tol, a NaN or infinite
-   height, a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
+   height (tested on the bits: under -ffast-math too), a scratch_len below the size; PF_ERR_SIZE for a side above PF_MAX_SIDE or a buffer
    above PF_MAX_REALS. On an error nothing is written. Nothing outside fine (read), coarse and
    the first pf_map_downsample_scratch_size reals of scratch is touched.
-   Cost: one pass over the fine map, then per iteration one product and four vector passes;
-   512 x 512 -> 256 x 256 in 15-50 ms (float, tol 1e-5; docs/map.md has the table). */
+   Cost: one pass over the fine map, then per iteration one product (three 3-tap stencils and
+   their transposes over the coarse map) and five vector passes, at most min(max_iter,
+   4 n + 256) iterations, then two more passes over the fine map; 512 x 512 -> 256 x 256 in
+   15-50 ms (float, tol 1e-5; docs/map.md has the table and the slope errors against the box
+   map). */
 
 #define PF_MAP_DOWNSAMPLE_MAX_REG PF_R(1.0e6)
 
@@ -872,39 +898,33 @@ PF_CPU_DEF void pfi_ds_adjoint(const pf_real *gx, const pf_real *gy, const pf_re
     }
 }
 
-PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
-                                        int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
-                                        long long scratch_len, int *iters_out, pf_real *residual_out)
+/* 1 when x is finite, read from its bits (exponent not all ones): -ffinite-math-only (part of
+   -ffast-math) folds every comparison-based test to 1, and the solve must still reject a NaN
+   or infinite height. The union is C99's type punning (and what C++ compilers support). */
+PF_CPU_DEF int pfi_ds_finite(pf_real x)
 {
-    long long need, n, i, j, W, H, f = factor;
-    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, ref, mean, inv_f2;
-    int it = 0;
-    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
-    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
-    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
-    if (!(reg_weight >= PF_R(0.0) && reg_weight <= PF_MAP_DOWNSAMPLE_MAX_REG) || max_iter < 0 ||
-        !(tol >= PF_R(0.0) && tol <= PF_REAL_MAX))
-        return PF_ERR_ARG;
-    need = pf_map_downsample_scratch_size(w, h, factor);
-    if (need <= 0) return PF_ERR_SIZE;
-    if (scratch_len < need) return PF_ERR_ARG;
-    for (i = 0; i < (long long)w * h; ++i) {
-        pf_real a = PF_FABS(fine[i]);
-        if (!(a <= PF_REAL_MAX)) return PF_ERR_ARG; /* NaN or infinite */
-        maxabs = pf_max(maxabs, a);
+#ifdef PF_REAL_IS_FLOAT
+    union { float f; unsigned int u; } b;
+    b.f = x;
+    return (b.u & 0x7f800000u) != 0x7f800000u;
+#else
+    union { double f; unsigned long long u; } b;
+    b.f = x;
+    return ((b.u >> 52) & 0x7ffu) != 0x7ffu;
+#endif
+}
+
+/* the target slopes s* (gx, gy: factor x the mean fine slope, height per coarse texel) and,
+   when box is not NULL, the box-downsampled map, of the fine map times `scale`: one pass */
+PF_CPU_DEF void pfi_ds_target(const pf_real *fine, int w, int h, long long f, int border, pf_real scale, long long W,
+                              long long n, pf_real *gx, pf_real *gy, pf_real *box)
+{
+    long long i, j;
+    pf_real inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
+    for (i = 0; i < n; ++i) {
+        gx[i] = gy[i] = PF_R(0.0);
+        if (box) box[i] = PF_R(0.0);
     }
-    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
-       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
-       -ffast-math) */
-    if (maxabs > PF_R(0.0)) {
-        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
-        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
-    }
-    W = w / factor, H = h / factor, n = W * H;
-    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
-    inv_f2 = PF_R(1.0) / ((pf_real)f * (pf_real)f);
-    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
-    for (i = 0; i < n; ++i) gx[i] = gy[i] = coarse[i] = PF_R(0.0);
     for (j = 0; j < h; ++j) {
         long long yi[3], xi[3], t0 = (j / f) * W;
         pf_real cy[3], cx[3];
@@ -915,15 +935,66 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
             pf_map_slope_stencil(i, w, border, PF_R(0.5) * scale, xi, cx);
             gx[t] += cx[0] * row[xi[0]] + cx[1] * row[xi[1]] + cx[2] * row[xi[2]];
             gy[t] += cy[0] * fine[yi[0] * w + i] + cy[1] * fine[yi[1] * w + i] + cy[2] * fine[yi[2] * w + i];
-            coarse[t] += row[i] * scale;
+            if (box) box[t] += row[i] * scale;
         }
     }
     /* mean fine slope (per fine texel) x f = per coarse texel */
     for (i = 0; i < n; ++i) {
         gx[i] *= inv_f2 * (pf_real)f;
         gy[i] *= inv_f2 * (pf_real)f;
-        coarse[i] *= inv_f2;
+        if (box) box[i] *= inv_f2;
     }
+}
+
+/* |b - A x|^2 of the normal equations with the constant removed (x = coarse; b from the fine
+   map): r gets the residual; gx, gy, lp, q are overwritten */
+PF_CPU_DEF pf_real pfi_ds_true_residual(const pf_real *fine, int w, int h, long long f, int border, pf_real scale,
+                                        pf_real reg, const pf_real *x, long long W, long long H, pf_real *r,
+                                        pf_real *q, pf_real *gx, pf_real *gy, pf_real *lp)
+{
+    long long i, n = W * H;
+    pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, 0);
+    for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
+    pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r);
+    pfi_ds_forward(x, (int)W, (int)H, border, gx, gy, lp);
+    pfi_ds_adjoint(gx, gy, lp, reg, (int)W, (int)H, border, q);
+    for (i = 0; i < n; ++i) r[i] -= q[i];
+    pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
+    return pfi_ds_dot(r, 0, W, H);
+}
+
+PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int factor, int border, pf_real reg_weight,
+                                         int max_iter, pf_real tol, pf_real *coarse, pf_real *scratch,
+                                         long long scratch_len, int *iters_out, pf_real *residual_out)
+{
+    long long need, n, i, W, H, f = factor, cap, stall = 0;
+    pf_real *r, *p, *q, *gx, *gy, *lp, maxabs = PF_R(0.0), scale = PF_R(1.0), bnorm, rr, rr_box, rr_mark, ref, mean;
+    pf_real anorm, true_rr;
+    int it = 0;
+    if (!fine || !coarse || !scratch || w < 1 || h < 1 || factor < 1) return PF_ERR_ARG;
+    if (!pf_size_side_ok(w) || !pf_size_side_ok(h) || pf_size_mul(w, h) < 0) return PF_ERR_SIZE;
+    if (w % factor != 0 || h % factor != 0 || (border != PF_BORDER_CLAMP && border != PF_BORDER_WRAP)) return PF_ERR_ARG;
+    if (!pfi_ds_finite(reg_weight) || !(reg_weight >= PF_R(0.0) && reg_weight <= PF_MAP_DOWNSAMPLE_MAX_REG) ||
+        max_iter < 0 || !pfi_ds_finite(tol) || !(tol >= PF_R(0.0)))
+        return PF_ERR_ARG;
+    need = pf_map_downsample_scratch_size(w, h, factor);
+    if (need <= 0) return PF_ERR_SIZE;
+    if (scratch_len < need) return PF_ERR_ARG;
+    for (i = 0; i < (long long)w * h; ++i) {
+        if (!pfi_ds_finite(fine[i])) return PF_ERR_ARG; /* NaN or infinite, tested on the bits */
+        maxabs = pf_max(maxabs, PF_FABS(fine[i]));
+    }
+    /* power-of-two scale to max |height| in [1, 4): exact, no slope difference overflows, and
+       the scale stays a normal number (2^-126 at worst in float: no flush to 0 under
+       -ffast-math) */
+    if (maxabs > PF_R(0.0)) {
+        while (maxabs * scale >= PF_R(4.0)) scale *= PF_R(0.5);
+        while (maxabs * scale < PF_R(1.0) && scale < PF_R(1.0e30)) scale *= PF_R(2.0);
+    }
+    W = w / factor, H = h / factor, n = W * H;
+    r = scratch, p = r + n, q = p + n, gx = q + n, gy = gx + n, lp = gy + n;
+    /* s* (gx, gy) and the box map (coarse), one pass over the fine map */
+    pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, coarse);
     mean = pfi_ds_mean(coarse, W, H);
     for (i = 0; i < n; ++i) lp[i] = PF_R(0.0);
     pfi_ds_adjoint(gx, gy, lp, PF_R(0.0), (int)W, (int)H, border, r); /* r = b = G^T s* */
@@ -933,15 +1004,27 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
     pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
     for (i = 0; i < n; ++i) r[i] -= q[i];
     pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
-    rr = pfi_ds_dot(r, 0, W, H);
+    rr = rr_box = rr_mark = pfi_ds_dot(r, 0, W, H);
     ref = bnorm > PF_R(0.0) ? bnorm : PF_SQRT(rr);
     for (i = 0; i < n; ++i) p[i] = r[i];
-    while (it < max_iter && PF_SQRT(rr) > tol * ref) {
-        pf_real pq, alpha, rr_new, beta;
+    /* SAFEGUARDS (every argument, reg 0 and tol 0 included; the normal equations are singular
+       along the constant and, under WRAP at reg_weight ~ 0, nearly so along the 2-texel
+       checkerboards, where plain CG divided rounding noise by rounding noise):
+       - a step is taken only when p^T A p > 64 eps |A| |p|^2 (|A| <= 32 + 64 reg_weight, the
+         stencils' row sums): a direction that A cannot tell from its null space ends the solve;
+       - at most cap = 4 n + 256 iterations (CG ends in n steps in exact arithmetic), and the
+         solve ends when |r|^2 has not halved in 64 + 4 sqrt(n) iterations (stagnation);
+       - at the end the TRUE residual |b - A x| is computed from the fine map again; when it
+         is not finite or above the box map's, the box map is returned (iterations 0). */
+    anorm = PF_R(32.0) + PF_R(64.0) * reg_weight;
+    cap = 4 * n + 256;
+    while (it < max_iter && it < cap && PF_SQRT(rr) > tol * ref) {
+        pf_real pq, pp, alpha, rr_new, beta;
         pfi_ds_forward(p, (int)W, (int)H, border, gx, gy, lp);
         pfi_ds_adjoint(gx, gy, lp, reg_weight, (int)W, (int)H, border, q);
         pq = pfi_ds_dot(p, q, W, H);
-        if (!(pq > PF_R(0.0))) break; /* p in the null space, or rounding: nothing left to gain */
+        pp = pfi_ds_dot(p, 0, W, H);
+        if (!(pq > PF_R(64.0) * PF_REAL_EPSILON * anorm * pp)) break; /* p (numerically) in the null space */
         alpha = rr / pq;
         for (i = 0; i < n; ++i) {
             coarse[i] += alpha * p[i];
@@ -949,19 +1032,36 @@ PF_CPU_DEF int pfi_map_downsample_slopes(const pf_real *fine, int w, int h, int 
         }
         pfi_ds_shift(r, n, -pfi_ds_mean(r, W, H));
         rr_new = pfi_ds_dot(r, 0, W, H);
+        ++it;
+        if (!(rr_new > PF_R(0.0))) {
+            rr = rr_new;
+            break; /* exact solution, or a non-finite residual (checked below) */
+        }
         beta = rr_new / rr;
         for (i = 0; i < n; ++i) p[i] = r[i] + beta * p[i];
         rr = rr_new;
-        ++it;
+        if (rr <= PF_R(0.5) * rr_mark) {
+            rr_mark = rr;
+            stall = 0;
+        } else if (++stall > 64 + 4 * (long long)PF_SQRT((pf_real)n)) {
+            break;
+        }
     }
-    /* the pinned mean, exactly (rounding of the updates), then the heights' own scale */
+    /* the pinned mean, exactly (rounding of the updates), then the true residual */
     pfi_ds_shift(coarse, n, mean - pfi_ds_mean(coarse, W, H));
+    true_rr = it > 0 ? pfi_ds_true_residual(fine, w, h, f, border, scale, reg_weight, coarse, W, H, r, q, gx, gy, lp)
+                     : rr_box;
+    if (it > 0 && (!pfi_ds_finite(true_rr) || !(true_rr <= rr_box))) {
+        pfi_ds_target(fine, w, h, f, border, scale, W, n, gx, gy, coarse); /* back to the box map */
+        true_rr = rr_box;
+        it = 0;
+    }
     for (i = 0; i < n; ++i) {
         pf_real v = coarse[i] / scale;
         coarse[i] = v > PF_REAL_MAX ? PF_REAL_MAX : (v < -PF_REAL_MAX ? -PF_REAL_MAX : v);
     }
     if (iters_out) *iters_out = it;
-    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(rr) / ref : PF_R(0.0);
+    if (residual_out) *residual_out = ref > PF_R(0.0) ? PF_SQRT(true_rr) / ref : PF_R(0.0);
     return PF_OK;
 }
 /* A downsampling's description; ZERO MEANS THE DEFAULT (negative reg_weight, max_iter, tol: 0). */

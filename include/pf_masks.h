@@ -487,8 +487,10 @@ PF_CPU_DEF int pfi_masks_finite(pf_real x) { return x >= -PF_REAL_MAX && x <= PF
    1e-4 of its edge). table must hold pf_masks_table_words(n_samples, n_theta, n_v) ints; every
    word is written (unused bits 0). Returns PF_OK; PF_ERR_ARG for an unknown shape, NULL
    pointers, n_samples outside [1, 128], n_theta < 1, n_v < 2, or a sample that is not finite
-   or outside the footprint; PF_ERR_SIZE for n_theta or n_v above 32768. Nothing is written on
-   an error. */
+   or outside the footprint; PF_ERR_SIZE for n_theta or n_v above 32768 or a table of more
+   than PF_MAX_REALS words (pf_masks_table_words returns 0 for exactly the sizes rejected: on
+   32-bit hosts PF_MAX_REALS = 2^28, so 32768 x 4096 x 4 words is refused there). Nothing is
+   written on an error. */
 PF_CPU_DEF int pf_masks_table_build(int shape, int n_theta, int n_v, const pf_real *xy, int n_samples, int *table)
 {
     int i, j, k, w, words;
@@ -496,6 +498,9 @@ PF_CPU_DEF int pf_masks_table_build(int shape, int n_theta, int n_v, const pf_re
     if (shape != PF_MASKS_SQUARE && shape != PF_MASKS_DISK) return PF_ERR_ARG;
     if (!xy || !table || n_samples < 1 || n_samples > PF_MASKS_MAX_SAMPLES || n_theta < 1 || n_v < 2) return PF_ERR_ARG;
     if (n_theta > PF_MASKS_MAX_GRID || n_v > PF_MASKS_MAX_GRID) return PF_ERR_SIZE;
+    /* the table's size in the checked arithmetic: above PF_MAX_REALS (32-bit hosts) no offset
+       below could be formed as a pointer difference */
+    if (pf_masks_table_words(n_samples, n_theta, n_v) == 0) return PF_ERR_SIZE;
     for (k = 0; k < n_samples; ++k) {
         pf_real x = xy[2 * k], y = xy[2 * k + 1];
         if (!pfi_masks_finite(x) || !pfi_masks_finite(y)) return PF_ERR_ARG;

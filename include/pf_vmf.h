@@ -568,11 +568,12 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     if (mixture_smith != 0) {
         /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
            mixture's own facing area P_i = (area_i + excess_i) / amp */
-        pf_real wz = wi.z * s.amp;
+        /* P_i / wi.z with P_i divided by amp first (amp is normal, wi.z amp may be
+           subnormal, which -ffast-math flushes to 0: 0 / 0) */
         den = area_o + s.excess_o +
               pf_max(area_o, PF_R(0.0)) *
                   (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
-                                      : pf_max(area_i + s.excess_i, wz) / wz - PF_R(1.0));
+                                      : pf_max((area_i + s.excess_i) / s.amp, wi.z) / wi.z - PF_R(1.0));
     } else {
         pf_slope_stats st = pf_vmf_sum_stats(s);
         den = s.amp * (pf_beckmann_facing_area(wo, st) +
@@ -581,8 +582,9 @@ PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_rea
     }
     if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
     f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
-    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den */
-    return f * s.ndf / (PF_R(4.0) * den);
+    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den; ndf / den first: both scale with
+       amp, and F ndf alone is subnormal (0 under -ffast-math) for an amp near PF_REAL_MIN */
+    return (s.ndf / den) * (f * PF_R(0.25));
 }
 
 /* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G

@@ -60,19 +60,31 @@ typedef struct pf_vmf_mixture {
    fewer lobes than asked. Initial kappa from the whole set's resultant, at least 1.
    ITERATIONS: at most `iterations` EM steps; it stops earlier when the mean log-likelihood
    changes by less than 1e-6. Lobes whose weight share falls below 1e-6 are dropped.
-   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights NaN,
-   infinite or <= 0, are skipped; weights are divided by the largest usable one first (no sum
-   can overflow). No usable normal: PF_ERR_ARG, *out one flat lobe (a = 1, mu = +z, kappa =
-   PF_VMF_KAPPA_MAX). Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside
-   [1, 16], iterations < 0; PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
+   DEGENERATE INPUT: normals with a NaN or infinite component or zero length, and weights that
+   are NaN, infinite or <= 0, are skipped; every other normal and weight is used, however tiny
+   or huge (subnormal to PF_REAL_MAX): each normal is divided by its largest component before
+   it is normalized, and the weights by the largest usable one (no sum can overflow). Under
+   -ffast-math subnormal normals and weights read as 0 (flushed). No usable normal:
+   PF_ERR_ARG and *out is not written (pf_core.h: nothing is written on an error).
+   Errors: PF_ERR_ARG for NULL normals or out, count < 1, lobes outside [1, PF_VMF_MAX_LOBES = 16], iterations < 0;
+   PF_ERR_SIZE when count * 3 exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long long i, pf_vec3 *x, pf_real *w)
 {
-    pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], l2, wt;
+    pf_real a = normals[3 * i], b = normals[3 * i + 1], c = normals[3 * i + 2], m, l2, wt;
     wt = weights ? weights[i] : PF_R(1.0);
-    if (!(wt > PF_R(0.0)) || !(wt < PF_REAL_MAX)) return 0;
-    if (!(PF_FABS(a) < PF_R(1.0e18)) || !(PF_FABS(b) < PF_R(1.0e18)) || !(PF_FABS(c) < PF_R(1.0e18))) return 0;
+    if (!(wt > PF_R(0.0)) || !(wt <= PF_REAL_MAX)) return 0;
+    /* divided by the largest component first: every finite non-zero normal, 1e-40 or 1e38
+       long, normalizes without an overflow or underflow of its squared length (in [1, 3]) */
+    m = pf_max(pf_max(PF_FABS(a), PF_FABS(b)), PF_FABS(c));
+    if (!(m > PF_R(0.0)) || !(m <= PF_REAL_MAX)) return 0;
+    a /= m;
+    b /= m;
+    c /= m;
     l2 = a * a + b * b + c * c;
-    if (!(l2 > PF_R(1.0e-30))) return 0;
+    /* l2 is in [1, 3] (the largest component is +-1): below 1/2 only for a NaN component.
+       Not >= 1: -ffast-math's a * (1/m) can round the largest component to 1 - eps, and the
+       passes of the fit must all read the same normals. */
+    if (!(l2 >= PF_R(0.5))) return 0;
     l2 = PF_R(1.0) / PF_SQRT(l2);
     *x = pf_vec3_make(a * l2, b * l2, c * l2);
     *w = wt;
@@ -85,7 +97,7 @@ PF_CPU_DEF int pfi_vmf_read(const pf_real *normals, const pf_real *weights, long
         for (xx = 0; xx < bw; ++xx) {                                                          \
             long long id = yy * row + xx;                                                      \
             if (!pfi_vmf_read(normals, weights, id, &x, &wt)) continue;                        \
-            wt = wt * wscale;                                                                  \
+            wt = (wt * wscale) * wscale;                                                       \
             __VA_ARGS__                                                                        \
         }
 
@@ -114,18 +126,16 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
     pf_real wt, wsum = PF_R(0.0), logc[PF_VMF_MAX_LOBES], prev_ll = PF_R(0.0), wscale = PF_R(1.0), wmax = PF_R(0.0);
     long long xx, yy;
     int k, it, n;
-    /* weights divided by the largest usable one, so that no sum of the fit can overflow */
+    /* weights divided by the largest usable one (times 1/sqrt(wmax) twice: 1/wmax itself
+       overflows for a subnormal wmax and is subnormal for wmax near PF_REAL_MAX), so that any
+       finite positive weights are used and no sum of the fit can overflow; the first pass
+       reads them unscaled (wscale 1) */
     PFI_VMF_FOREACH(wmax = pf_max(wmax, wt);)
-    if (!(wmax > PF_R(0.0))) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
-    wscale = PF_R(1.0) / wmax;
-    PFI_VMF_FOREACH(sum = pf_vec3_add(sum, pf_vec3_scale(x, wt)); wsum += wt;)
-    if (!(wsum > PF_R(0.0)) || !(wsum < PF_REAL_MAX)) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
+    if (!(wmax > PF_R(0.0))) return PF_ERR_ARG;
+    wscale = PF_R(1.0) / PF_SQRT(wmax);
+    wmax = PF_R(0.0);
+    PFI_VMF_FOREACH(sum = pf_vec3_add(sum, pf_vec3_scale(x, wt)); wsum += wt; wmax = pf_max(wmax, wt);)
+    if (!(wsum > PF_R(0.0)) || !(wsum < PF_REAL_MAX) || !(wmax > PF_R(0.25))) return PF_ERR_ARG;
     /* seeding */
     {
         pf_real len = pf_vec3_length(sum), kappa0;
@@ -261,10 +271,7 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
         }
         m.count = n;
         for (k = n; k < PF_VMF_MAX_LOBES; ++k) m.lobe[k].amp = PF_R(0.0);
-        if (n == 0) {
-            *out = pfi_vmf_flat();
-            return PF_ERR_ARG;
-        }
+        if (n == 0) return PF_ERR_ARG;
     }
     /* lobe axes on the upper hemisphere (the packed form's convention) */
     for (k = 0; k < m.count; ++k)
@@ -282,15 +289,8 @@ PF_CPU_DEF int pfi_vmf_fit_block(const pf_real *normals, const pf_real *weights,
 PF_CPU_DEF int pf_vmf_fit_normals(const pf_real *normals, const pf_real *weights, long long count, int lobes,
                                   int iterations, pf_vmf_mixture *out)
 {
-    if (!out) return PF_ERR_ARG;
-    if (!normals || count < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_ARG;
-    }
-    if (pf_size_mul(count, 3) < 0) {
-        *out = pfi_vmf_flat();
-        return PF_ERR_SIZE;
-    }
+    if (!out || !normals || count < 1 || lobes < 1 || lobes > PF_VMF_MAX_LOBES || iterations < 0) return PF_ERR_ARG;
+    if (pf_size_mul(count, 3) < 0) return PF_ERR_SIZE;
     return pfi_vmf_fit_block(normals, weights, count, count, 1, lobes, iterations, out);
 }
 
@@ -381,10 +381,17 @@ PF_CPU_DEF pf_real pfi_vmf_effective(const pf_real *hm, int w, int h, pf_real te
     return area > PF_R(0.0) ? num / area : PF_R(0.0);
 }
 
-/* f_eff of the n x n patch from (x0, y0) toward wo from wi (unit) into *out; 0 when either is
-   on or below the macrosurface or the mean plane faces away. Errors (*out 0): PF_ERR_ARG for
-   NULL heights or out, n, w or h below 1, n > w or h, texel or base_sigma not finite > 0, a
-   non-finite height in the patch or its ring; PF_ERR_SIZE above PF_MAX_SIDE or PF_MAX_REALS. */
+/* The single-bounce effective BRDF of the n x n patch from (x0, y0) (Wu et al. 2019 eqs. 6-8;
+   see the block comment) toward wo from wi (unit, tangent frame) into *out; 0 when either
+   direction is on or below the macrosurface or the patch's mean plane faces away.
+   Errors (*out set to 0 when out is not NULL): PF_ERR_ARG for NULL heights or out, n, w or h
+   below 1, n > w or n > h, texel or base_sigma not finite and > 0, a height in the patch or
+   its one-texel ring that is not finite or of magnitude PF_REAL_MAX / 4 or more; PF_ERR_SIZE
+   for w or h above PF_MAX_SIDE or w h > PF_MAX_REALS.
+   Cost: 2 n^2 marches of at most 2 n + 1 cells each (n along each axis, periodic maps
+   included). Reads only heights[0 .. w h). Accepted heights: finite with |height| below
+   PF_REAL_MAX / 4 (the bound keeps every central difference finite); larger ones are the
+   PF_ERR_ARG of a non-finite height. */
 PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_real texel, int x0, int y0, int n,
                                      pf_vec3 wo, pf_vec3 wi, pf_real base_sigma, pf_real f0, pf_real *out)
 {
@@ -401,27 +408,31 @@ PF_CPU_DEF int pfi_vmf_effective_brdf(const pf_real *heights, int w, int h, pf_r
     return PF_OK;
 }
 
-/* samples per patch, (2 nt (np - 1))^2 (direction pairs); 0 for nt, np < 2 or too large */
+/* samples per patch, (2 nt (np - 1))^2 (every pair of nt thetas times 2 (np - 1) azimuths);
+   0 for nt or np below 2 or above PF_MAX_SIDE, or a count above PF_MAX_REALS */
 PF_CPU_DEF long long pf_vmf_scale_sample_count(int nt, int np)
 {
     long long d;
-    if (nt < 2 || np < 2) return 0;
+    if (nt < 2 || np < 2 || !pf_size_side_ok(nt) || !pf_size_side_ok(np)) return 0;
     d = pf_size_mul3(2, nt, np - 1);
     d = d < 0 ? -1 : pf_size_mul(d, d);
     return d < 0 ? 0 : d;
 }
 
-/* nodes (cells) of S: nt nt np (0 for nt or np below 2 or too large) */
+/* nodes (cells) of S: nt nt np (0 for nt or np below 2 or above PF_MAX_SIDE, or nt nt np
+   above PF_MAX_REALS) */
 PF_CPU_DEF long long pf_vmf_scale_cell_count(int nt, int np)
 {
-    long long c = (nt < 2 || np < 2) ? -1 : pf_size_mul3(nt, nt, np);
+    long long c = (nt < 2 || np < 2 || !pf_size_side_ok(nt) || !pf_size_side_ok(np)) ? -1 : pf_size_mul3(nt, nt, np);
     return c < 0 ? 0 : c;
 }
 
 /* visibility bytes of one n x n patch: 2 nt (np - 1) n^2 (a map per direction); 0 for bad sizes */
 PF_CPU_DEF long long pf_vmf_scale_vis_bytes(int nt, int np, int n)
 {
-    long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pf_size_mul3(2, nt, np - 1);
+    long long d = (nt < 2 || np < 2 || n < 1 || !pf_size_side_ok(nt) || !pf_size_side_ok(np) || !pf_size_side_ok(n))
+                      ? -1
+                      : pf_size_mul3(2, nt, np - 1);
     d = d < 0 ? -1 : pf_size_mul3(d, n, n);
     return d < 0 ? 0 : d;
 }
@@ -515,14 +526,39 @@ PF_CPU_DEF int pfi_vmf_scale_patch(const pf_real *heights, int w, int h, pf_real
     return PF_OK;
 }
 
-/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np)) from the samples of `patches`
-   patches (patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares
-   fit in BRDF units, `iterations` (>= 1) alternating rounds, T scaled to mean 1, each value
-   pulled toward 1 by a prior `shrink` (>= 0) times the mean energy of a patch (T) or cell (S):
-   T(x) = (sum e l S + p) / (sum (l S)^2 + p). prior_out (NULL or 1): p for pfi_vmf_scale_t on
-   other patches of the level. scratch: 2 patches cells pf_reals. err (NULL or 3): the relative
-   L2 error of T S f_lobes against f_eff, of f_lobes alone, and of T S against R = f_eff /
-   f_lobes where f_lobes exceeds 1% of its RMS. Non-finite or negative samples count as 0.
+/* a power of two c with max(e, l) c in [0.5, 2) over the finite positive samples of f_eff and
+   f_lobes (n of each; 1 when there are none): the fits below run on c e and c l, which leaves
+   T, S and every ratio unchanged (exact scaling) while no product e l or l^2 of a set near
+   PF_REAL_MAX overflows or of a set near PF_REAL_MIN underflows; c stays finite (below 2^102
+   in float, 2^969 in double), so a subnormal set is only scaled toward 1 */
+PF_CPU_DEF pf_real pfi_vmf_sample_scale(const pf_real *f_eff, const pf_real *f_lobes, long long n)
+{
+    pf_real m = PF_R(0.0), c = PF_R(1.0);
+    long long s;
+    for (s = 0; s < n; ++s) {
+        pf_real e = f_eff[s], l = f_lobes[s];
+        if (e > PF_R(0.0) && e <= PF_REAL_MAX) m = pf_max(m, e);
+        if (l > PF_R(0.0) && l <= PF_REAL_MAX) m = pf_max(m, l);
+    }
+    if (!(m > PF_R(0.0))) return c;
+    while (m * c >= PF_R(2.0)) c *= PF_R(0.5);
+    while (m * c < PF_R(0.5) && c < PF_R(0.125) * PF_REAL_MAX * PF_REAL_EPSILON) c *= PF_R(2.0);
+    return c;
+}
+
+/* T (patches values) and S (pf_vmf_scale_cell_count(nt, np) values) from the samples of
+   `patches` patches (f_eff and f_lobes: patches * pf_vmf_scale_sample_count(nt, np) pf_reals,
+   patch after patch, as pfi_vmf_scale_patch writes them): the rank-1 least-squares fit in BRDF
+   units by `iterations` (>= 1) alternating rounds, T scaled to mean 1 (block comment), each
+   value pulled toward 1 by a prior of weight `shrink` (>= 0; 0: plain least squares) times
+   the mean energy of a patch (T) resp. a cell (S): T(x) = (sum e l S + p) / (sum (l S)^2 + p)
+   (REGULARIZATION in the block comment). prior_out (NULL or 1 pf_real): the prior p to pass to
+   pfi_vmf_scale_t for other patches of the same level (shrink times the mean patch energy under
+   the final S). scratch: 2 * patches * cells pf_reals. err (NULL or 3 pf_reals): [0] the relative L2 error
+   of T S f_lobes against f_eff over all samples (what the factorization leaves), [1] the same
+   for f_lobes alone (T = S = 1: the unscaled multi-lobe BRDF), [2] the relative L2 error of
+   T S against R = f_eff / f_lobes over the samples where f_lobes exceeds 1% of its RMS (R is
+   not defined where f_lobes vanishes). Non-finite or negative samples count as 0.
    Errors: PF_ERR_ARG for a NULL buffer, patches < 1, nt or np < 2, iterations < 1, shrink
    outside [0, 1e6] or NaN; PF_ERR_SIZE when a size exceeds PF_MAX_REALS. */
 PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes, int patches, int nt, int np,
@@ -530,7 +566,7 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
                                    pf_real *prior_out, pf_real *err)
 {
     long long cells, count, x, b, s;
-    pf_real *num, *den, mean;
+    pf_real *num, *den, mean, cs;
     int it;
     if (!f_eff || !f_lobes || !t_out || !s_out || !scratch || patches < 1 || nt < 2 || np < 2 || iterations < 1 ||
         !(shrink >= PF_R(0.0)) || !(shrink <= PF_R(1.0e6)))
@@ -542,13 +578,16 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
     num = scratch;
     den = scratch + cells * patches;
     for (b = 0; b < cells * patches; ++b) num[b] = den[b] = PF_R(0.0);
+    /* every sum below runs on the samples times one power of two cs (exact; T and S do not
+       change): sample sets near PF_REAL_MAX or PF_REAL_MIN are fitted, not overflowed */
+    cs = pfi_vmf_sample_scale(f_eff, f_lobes, count * patches);
     /* per (patch, cell): sum f_eff f_lobes and sum f_lobes^2 (the normal equations) */
     for (x = 0; x < patches; ++x)
         for (s = 0; s < count; ++s) {
             pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
             long long c = x * cells + pfi_vmf_scale_cell(s, nt, np);
-            e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-            l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
+            e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+            l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
             num[c] += e * l;
             den[c] += l * l;
         }
@@ -590,11 +629,13 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
         }
     }
     mean = PF_R(0.0);
-    for (x = 0; x < patches; ++x) mean += t_out[x];
-    mean /= (pf_real)patches;
-    if (mean > PF_R(0.0)) {
+    for (x = 0; x < patches; ++x) mean += t_out[x] / (pf_real)patches; /* each <= PF_REAL_MAX: no overflow */
+    if (mean > PF_R(0.0) && mean <= PF_REAL_MAX) {
         for (x = 0; x < patches; ++x) t_out[x] /= mean;
-        for (b = 0; b < cells; ++b) s_out[b] *= mean;
+        for (b = 0; b < cells; ++b) {
+            pf_real v = s_out[b] * mean;
+            s_out[b] = v <= PF_REAL_MAX ? v : PF_REAL_MAX;
+        }
     }
     /* the prior for pfi_vmf_scale_t on other patches of the same level: shrink times the mean
        patch energy sum_s (S f_lobes)^2 under the final S */
@@ -602,35 +643,68 @@ PF_CPU_DEF int pfi_vmf_scale_factor(const pf_real *f_eff, const pf_real *f_lobes
         pf_real e_sum = PF_R(0.0);
         for (x = 0; x < patches; ++x)
             for (b = 0; b < cells; ++b) e_sum += den[x * cells + b] * s_out[b] * s_out[b];
-        e_sum = shrink * e_sum / (pf_real)patches;
+        /* back to the samples' own units: divided by cs^2 (one cs at a time) */
+        e_sum = shrink * e_sum / (pf_real)patches / cs / cs;
         *prior_out = e_sum < PF_REAL_MAX ? e_sum : PF_R(0.0);
     }
     if (err) {
+        /* every term on the scaled samples (cs e, cs l) and the ratios R and T S divided by
+           their largest value rm first: each squared term is at most 4, so no sum overflows
+           and no error is inf / inf (NaN); a product T S l beyond PF_REAL_MAX is read as
+           PF_REAL_MAX */
         pf_real e0 = PF_R(0.0), e1 = PF_R(0.0), ref = PF_R(0.0), l2 = PF_R(0.0), r0 = PF_R(0.0), rr = PF_R(0.0), floor_l;
+        pf_real em = PF_R(0.0), rm = PF_R(0.0);
         for (x = 0; x < patches; ++x)
             for (s = 0; s < count; ++s) {
                 pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
-                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
-                e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-                l = l > PF_R(0.0) && l < PF_REAL_MAX ? l : PF_R(0.0);
-                e0 += (e - ts * l) * (e - ts * l);
-                e1 += (e - l) * (e - l);
-                ref += e * e;
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)], tl;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                tl = ts * l;
+                em = pf_max(em, pf_max(pf_max(e, l), tl <= PF_REAL_MAX ? tl : PF_REAL_MAX));
                 l2 += l * l;
             }
+        em = em > PF_R(0.0) ? em : PF_R(1.0);
         floor_l = PF_R(0.01) * PF_SQRT(l2 / (pf_real)(count * patches));
+        for (x = 0; x < patches; ++x)
+            for (s = 0; s < count; ++s) {
+                pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s];
+                pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)], tl;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                tl = ts * l;
+                tl = (tl <= PF_REAL_MAX ? tl : PF_REAL_MAX) / em;
+                e /= em;
+                l /= em;
+                e0 += (e - tl) * (e - tl);
+                e1 += (e - l) * (e - l);
+                ref += e * e;
+                if (l * em > floor_l) {
+                    pf_real R = e / l;
+                    R = R <= PF_REAL_MAX ? R : PF_REAL_MAX;
+                    rm = pf_max(rm, pf_max(R, ts <= PF_REAL_MAX ? ts : PF_REAL_MAX));
+                }
+            }
+        rm = rm > PF_R(0.0) ? rm : PF_R(1.0);
         for (x = 0; x < patches; ++x)
             for (s = 0; s < count; ++s) {
                 pf_real e = f_eff[x * count + s], l = f_lobes[x * count + s], R;
                 pf_real ts = t_out[x] * s_out[pfi_vmf_scale_cell(s, nt, np)];
-                if (!(l > floor_l) || !(l < PF_REAL_MAX)) continue;
-                R = (e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0)) / l;
+                e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+                l = l > PF_R(0.0) && l <= PF_REAL_MAX ? l * cs : PF_R(0.0);
+                if (!(l > floor_l)) continue;
+                R = e / l;
+                R = (R <= PF_REAL_MAX ? R : PF_REAL_MAX) / rm;
+                ts = (ts <= PF_REAL_MAX ? ts : PF_REAL_MAX) / rm;
                 r0 += (R - ts) * (R - ts);
                 rr += R * R;
             }
         err[0] = ref > PF_R(0.0) ? PF_SQRT(e0 / ref) : PF_R(0.0);
         err[1] = ref > PF_R(0.0) ? PF_SQRT(e1 / ref) : PF_R(0.0);
         err[2] = rr > PF_R(0.0) ? PF_SQRT(r0 / rr) : PF_R(0.0);
+        /* a ratio of two sums that underflowed to subnormals is still finite; anything else
+           (only possible under -ffast-math) reads as 0 */
+        for (b = 0; b < 3; ++b) err[b] = err[b] >= PF_R(0.0) && err[b] <= PF_REAL_MAX ? err[b] : PF_R(0.0);
     }
     return PF_OK;
 }
@@ -643,16 +717,19 @@ PF_CPU_DEF pf_real pfi_vmf_scale_t(const pf_real *f_eff, const pf_real *f_lobes,
                                   pf_real prior)
 {
     long long count = pf_vmf_scale_sample_count(nt, np), s;
-    pf_real a = PF_R(0.0), q = PF_R(0.0);
+    pf_real a = PF_R(0.0), q = PF_R(0.0), cs;
     if (!f_eff || !f_lobes || !s_table || count == 0 || pf_vmf_scale_cell_count(nt, np) == 0 || !(prior >= PF_R(0.0)))
         return PF_R(1.0);
+    /* the samples times a power of two (pfi_vmf_sample_scale), the prior times its square */
+    cs = pfi_vmf_sample_scale(f_eff, f_lobes, count);
     for (s = 0; s < count; ++s) {
         pf_real e = f_eff[s], l = f_lobes[s];
-        e = e > PF_R(0.0) && e < PF_REAL_MAX ? e : PF_R(0.0);
-        l = l > PF_R(0.0) && l < PF_REAL_MAX ? l * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
+        e = e > PF_R(0.0) && e <= PF_REAL_MAX ? e * cs : PF_R(0.0);
+        l = l > PF_R(0.0) && l <= PF_REAL_MAX ? (l * cs) * s_table[pfi_vmf_scale_cell(s, nt, np)] : PF_R(0.0);
         a += e * l;
         q += l * l;
     }
+    prior = (prior * cs) * cs;
     a = (a + prior) / (q + prior);
     return a < PF_REAL_MAX ? a : PF_R(1.0); /* NaN (no energy, no prior) and overflow too */
 }
@@ -669,13 +746,15 @@ PF_CPU_DEF pf_real pf_vmf_scale_lookup(const pf_real *table, int nt, int np, pf_
     p0 = pf_vmf_scale_texel_pos(c.x, nt);
     p1 = pf_vmf_scale_texel_pos(c.y, nt);
     p2 = pf_vmf_scale_texel_pos(c.z, np);
-    a0 = (long long)p0;
-    b0 = (long long)p1;
-    c0 = (long long)p2;
+    /* node indices clamped in pf_real before the conversion: a position that rounds past the
+       last node (or any NaN) cannot address outside the nt nt np table */
+    a0 = pf_floor_index(p0, 0, nt - 1);
+    b0 = pf_floor_index(p1, 0, nt - 1);
+    c0 = pf_floor_index(p2, 0, np - 1);
     a1 = a0 + 1 < nt ? a0 + 1 : a0;
     b1 = b0 + 1 < nt ? b0 + 1 : b0;
     c1 = c0 + 1 < np ? c0 + 1 : c0;
-    f = pf_vec3_make(p0 - (pf_real)a0, p1 - (pf_real)b0, p2 - (pf_real)c0);
+    f = pf_vec3_make(pfi_vmf_unit(p0 - (pf_real)a0), pfi_vmf_unit(p1 - (pf_real)b0), pfi_vmf_unit(p2 - (pf_real)c0));
 #define PFI_VMF_S(a, b, c) table[((a) * nt + (b)) * np + (c)]
     return pf_vmf_scale_trilinear(PFI_VMF_S(a0, b0, c0), PFI_VMF_S(a1, b0, c0), PFI_VMF_S(a0, b1, c0),
                                   PFI_VMF_S(a1, b1, c0), PFI_VMF_S(a0, b0, c1), PFI_VMF_S(a1, b0, c1),
@@ -717,11 +796,12 @@ PF_CPU_DEF long long pf_vmf_pyramid_level_offset(int w, int h, int level)
     return pf_mip_level_offset(w, h, level);
 }
 
-/* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes */
+/* texels of all levels together (4 * lobes pf_reals each); 0 for bad sizes and for a count
+   above PF_MAX_REALS (2^24 x 2^24 on every host) */
 PF_CPU_DEF long long pf_vmf_pyramid_texel_count(int w, int h)
 {
     long long t = pf_vmf_pyramid_level_offset(w, h, 64);
-    return t < 0 ? 0 : t;
+    return t < 0 || t > PF_MAX_REALS ? 0 : t;
 }
 
 PF_CPU_DEF void pfi_vmf_store(pf_real *dst, pf_vmf_mixture m, int lobes)
@@ -746,7 +826,8 @@ PF_CPU_DEF int pf_vmf_pyramid_from_normals(const pf_real *normals, const pf_real
     if (!pf_size_side_ok(w) || !pf_size_side_ok(h)) return PF_ERR_SIZE;
     levels = pf_vmf_pyramid_level_count(w, h);
     if (levels == 0) return PF_ERR_ARG; /* not powers of two */
-    if (pf_size_mul3(pf_vmf_pyramid_texel_count(w, h), 4, lobes) < 0 || pf_size_mul3(w, h, 3) < 0)
+    if (pf_vmf_pyramid_texel_count(w, h) == 0 || pf_size_mul3(pf_vmf_pyramid_texel_count(w, h), 4, lobes) < 0 ||
+        pf_size_mul3(w, h, 3) < 0)
         return PF_ERR_SIZE;
     for (l = 0; l < levels; ++l) {
         long long lw = (w >> l) > 0 ? (w >> l) : 1, lh = (h >> l) > 0 ? (h >> l) : 1;

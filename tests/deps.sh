@@ -38,6 +38,8 @@ libnewlib-arm-none-eabi|portability|file /usr/lib/arm-none-eabi/newlib/nano.spec
 gcc-arm-linux-gnueabihf|portability|cmd arm-linux-gnueabihf-gcc|ARM hard-float build of the float test suite
 libc6-dev-armhf-cross|portability|file /usr/arm-linux-gnueabihf/lib/libc.a|its static C library
 qemu-user|portability|cmd qemu-arm|runs the ARM test binaries
+gcc-multilib|portability|probe m32|32-bit x86 build (gcc/clang -m32) of the test suite: sizes and guarded buffers against PF_MAX_REALS = 2^28, ASan+UBSan included (x86-64 hosts)
+libc6-dev-i386|portability|probe m32|its 32-bit C library (both only on x86-64 hosts)
 cmake|portability|cmd cmake|consumer projects: CMake find_package and add_subdirectory
 pkgconf|portability|cmd pkg-config|consumer project through pkg-config
 EOF
@@ -56,6 +58,16 @@ sanitizer_ok() {
     echo 'int main(void) { return 0; }' > "$d/m.c"
     "$CLANG" -fsanitize=address,undefined "$d/m.c" -o "$d/m" >/dev/null 2>&1 &&
         "$CLANG" -fsanitize=fuzzer,address,undefined "$d/f.c" -o "$d/f" >/dev/null 2>&1
+    r=$?
+    rm -rf "$d"
+    return $r
+}
+# gcc -m32 links a C program with libm (gcc-multilib and libc6-dev-i386 are there)
+m32_ok() {
+    command -v gcc >/dev/null 2>&1 || return 1
+    d=$(mktemp -d 2>/dev/null || echo "/tmp/pf_deps_m32.$$") && mkdir -p "$d" || return 1
+    printf '%s\n' '#include <math.h>' 'int main(int c, char **v) { (void)v; return (int)sqrt((double)c) - 1; }' > "$d/m.c"
+    gcc -m32 "$d/m.c" -o "$d/m" -lm >/dev/null 2>&1
     r=$?
     rm -rf "$d"
     return $r
@@ -81,9 +93,12 @@ scan() {
         cmd) command -v "$2" >/dev/null 2>&1 && continue ;;
         file) [ -e "$2" ] && continue ;;
         probe)
+            if [ "$2" = m32 ]; then
+                # 32-bit x86 builds: only where the host is x86-64
+                case $(uname -m) in x86_64|amd64) m32_ok && continue ;; *) continue ;; esac
             # without clang the runtime cannot be probed yet: clang's own line installs it;
             # the probe runs again after the install
-            if ! command -v "$CLANG" >/dev/null 2>&1; then pkg=libclang-rt-dev
+            elif ! command -v "$CLANG" >/dev/null 2>&1; then pkg=libclang-rt-dev
             elif sanitizer_ok; then continue
             else pkg=$(sanitizer_package); fi ;;
         esac

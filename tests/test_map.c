@@ -494,6 +494,74 @@ static void test_downsample_desc(void)
     PF_CHECK(pf_map_downsample_slopes(NULL, a, scr, 6 * W * H, &ia, &ra) == PF_ERR_ARG && a[0] == PF_R(-7.0), "NULL desc");
 }
 
+
+/* ================================================================== SAFETY: the downsampler's solver
+   Reproducers of a solve that returned PF_OK with garbage (1e8 in float, 1e104 in double) and
+   of one that did not stop, checked against the contract: finite, bounded iterations. */
+/* pf_map_downsample_slopes on an 8 x 8 map of heights i % 3, factor 2, WRAP, reg 0 (and a
+   tiny reg), tol 0: before, PF_OK with max |coarse| = 1.1e8 (float) / 4.0e104 (double) after
+   100 iterations, and a solve with max_iter = INT_MAX that ran for minutes. The least-squares
+   answer's largest magnitude is 1.3125; the iterations are bounded by 4 n + 256 (n = 16) */
+static void edge_safety_downsample_solver(void)
+{
+    pf_real fine[64], coarse[16], scr[96], res = PF_R(-1.0), mx;
+#ifdef PF_DOUBLE
+    const pf_real tiny = PF_R(1.0e-260);
+#else
+    const pf_real tiny = PF_R(1.0e-30);
+#endif
+    const pf_real regs[3] = { PF_R(0.0), tiny, PF_R(0.0) };
+    const int iters[3] = { 100, 100, 0x7fffffff };
+    int k, i, it = -1, rc;
+    for (k = 0; k < 3; ++k) {
+        for (i = 0; i < 64; ++i) fine[i] = (pf_real)(i % 3);
+        rc = pfi_map_downsample_slopes(fine, 8, 8, 2, PF_BORDER_WRAP, regs[k], iters[k], PF_R(0.0), coarse, scr, 96, &it, &res);
+        mx = PF_R(0.0);
+        for (i = 0; i < 16; ++i) mx = pf_test_bits_finite(coarse[i]) ? pf_max(mx, PF_FABS(coarse[i])) : PF_REAL_MAX;
+        pf_test_note("reg %g max_iter %d: max |coarse| %.6g, %d it, residual %.2g", (double)regs[k], iters[k], (double)mx, it, (double)res);
+        PF_CHECK(rc == PF_OK && PF_FABS(mx - PF_R(1.3125)) <= PF_R(1e-4) && it >= 0 && it <= 4 * 16 + 256 &&
+                     pf_test_bits_finite(res) && res <= PF_R(1e-3),
+                 "reg %g: rc %d max |coarse| %g (want 1.3125), %d iterations, residual %g", (double)regs[k], rc, (double)mx, it,
+                 (double)res);
+    }
+    /* a NaN or infinite height is PF_ERR_ARG under -ffast-math too (tested on the bits), and
+       nothing is written */
+    for (i = 0; i < 16; ++i) coarse[i] = PF_R(-7.0);
+    for (k = 0; k < 2; ++k) {
+        volatile pf_real zero = PF_R(0.0);
+        fine[13] = k == 0 ? zero / zero : PF_R(1.0) / zero;
+        rc = pfi_map_downsample_slopes(fine, 8, 8, 2, PF_BORDER_WRAP, PF_R(0.01), 10, PF_R(0.0), coarse, scr, 96, &it, &res);
+        PF_CHECK(rc == PF_ERR_ARG, "%s height: rc %d", k == 0 ? "NaN" : "inf", rc);
+    }
+    for (i = 0; i < 16; ++i) PF_CHECK(coarse[i] == PF_R(-7.0), "texel %d written on an error", i);
+}
+
+/* the same bound on a larger random map, every border and a range of reg, tol 0 and
+   max_iter = INT_MAX: the solve ends within 4 n + 256 iterations, finite, with a true
+   residual no larger than the box map's (it returns the box map otherwise) */
+static void edge_safety_downsample_bounded(void)
+{
+    enum { W = 32, H = 32, F = 2, N = (W / F) * (H / F) };
+    static pf_real fine[W * H], coarse[N], scr[6 * N];
+    const pf_real regs[4] = { PF_R(0.0), PF_R(1e-30), PF_R(0.01), PF_R(1e6) };
+    int b, k, i, it, rc, worst_it = 0, bad = 0;
+    pf_real res;
+    ds_bumpy(fine, W, H, 11u, 3.0);
+    for (i = 0; i < W * H; i += 7) fine[i] += (pf_real)((i * 37) % 5); /* spikes */
+    for (b = 0; b < 2; ++b)
+        for (k = 0; k < 4; ++k) {
+            rc = pfi_map_downsample_slopes(fine, W, H, F, b == 0 ? PF_BORDER_WRAP : PF_BORDER_CLAMP, regs[k], 0x7fffffff,
+                                          PF_R(0.0), coarse, scr, 6 * N, &it, &res);
+            bad += rc != PF_OK || it < 0 || it > 4 * N + 256 || !pf_test_bits_finite(res);
+            for (i = 0; i < N; ++i) bad += !pf_test_bits_finite(coarse[i]);
+            worst_it = it > worst_it ? it : worst_it;
+        }
+    pf_test_note("tol 0, max_iter INT_MAX: at most %d iterations (bound %d)", worst_it, 4 * N + 256);
+    PF_CHECK(bad == 0, "%d bad results", bad);
+}
+
+/* ================================================================== end of SAFETY */
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -505,5 +573,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_downsample_bad_input);
     PF_TEST_RUN(edge_downsample_finite);
     PF_TEST_RUN(test_scale_visibility_wall);
+    PF_TEST_RUN(edge_safety_downsample_solver);
+    PF_TEST_RUN(edge_safety_downsample_bounded);
     return PF_TEST_END();
 }

@@ -503,6 +503,13 @@ static void test_bad_input(void)
         static const int ns[4] = {1, 33, 96, 128}, nts[3] = {1, 3, 32}, nvs[3] = {2, 5, 33};
         int a, b, c, written = 1, faults_possible = 0;
         pf_masks_samples(PF_MASKS_DISK, 128, 3, xy);
+        /* a table above PF_MAX_REALS words (2^28 on 32-bit hosts: 32768 x 4096 x 4 = 2^29 words)
+           is refused, never written: the build accepts exactly the sizes pf_masks_table_words
+           counts. On 64-bit hosts the count is 2^29 and the size is served (not built here). */
+        if (pf_masks_table_words(128, 32768, 4096) == 0)
+            written &= pf_masks_table_build(PF_MASKS_DISK, 32768, 4096, xy, 128, table) == PF_ERR_SIZE;
+        else
+            written &= pf_masks_table_words(128, 32768, 4096) == (1LL << 29) && PF_MAX_REALS >= (1LL << 29);
         for (a = 0; a < 4; ++a)
             for (b = 0; b < 3; ++b)
                 for (c = 0; c < 3; ++c) {

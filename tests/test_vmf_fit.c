@@ -157,8 +157,9 @@ static void test_fit_degenerate(void)
     }
     rc = pf_vmf_fit_normals(nr, NULL, 16, 8, 20, &m);
     PF_CHECK(rc == PF_OK && m.count == 1 && m.lobe[0].kappa == PF_VMF_KAPPA_MAX, "equal normals: rc %d, %d lobes", rc, m.count);
+    m.count = 99;
     rc = pf_vmf_fit_normals(nr, wz, 16, 4, 20, &m);
-    PF_CHECK(rc == PF_ERR_ARG && m.count == 1 && m.lobe[0].mu.z == PF_R(1.0), "zero weights: rc %d", rc);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 99, "zero weights: rc %d, *out written on the error", rc);
     nr[0] = (pf_real)NAN;
     nr[4] = (pf_real)INFINITY;
     wz[5] = (pf_real)NAN;
@@ -169,8 +170,9 @@ static void test_fit_degenerate(void)
     for (i = 0; i < m.count; ++i)
         PF_CHECK(isfinite((double)m.lobe[i].amp) && isfinite((double)m.lobe[i].kappa) && isfinite((double)m.lobe[i].mu.z), "lobe %d not finite", i);
     for (i = 0; i < 16 * 3; ++i) nr[i] = (pf_real)NAN;
+    m.count = 99;
     rc = pf_vmf_fit_normals(nr, NULL, 16, 4, 20, &m);
-    PF_CHECK(rc == PF_ERR_ARG && m.count == 1, "all NaN: rc %d", rc);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 99, "all NaN: rc %d, *out written on the error", rc);
     PF_CHECK(pf_vmf_fit_normals(NULL, NULL, 16, 4, 20, &m) == PF_ERR_ARG, "NULL normals");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, 0, 20, &m) == PF_ERR_ARG, "0 lobes");
     PF_CHECK(pf_vmf_fit_normals(nr, NULL, 16, PF_VMF_MAX_LOBES + 1, 20, &m) == PF_ERR_ARG, "17 lobes");
@@ -706,6 +708,203 @@ done:
     pfm_surface_free(&s);
 }
 
+
+/* ================================================================== SAFETY: sizes, scaling, contracts
+   Reproducers of the defects found by probing the CPU functions as a new user would (guard
+   pages, the whole int range, tiny and huge data): each test names the call that failed and
+   checks the contract instead. edge_ ones also run under -ffast-math. */
+/* pf_vmf_scale_lookup / pf_vmf_scale_cell_count with np beyond PF_MAX_SIDE (np = 2^24 + 4,
+   INT_MAX): the table of 16 reals sits against a guard page; before, the float node position
+   rounded past the last node and the lookup read past the table (ASan SEGV) */
+static void edge_safety_scale_sizes(void)
+{
+    pf_vec3 wo = pf_vec3_make(PF_R(0.7071), PF_R(0.0), PF_R(0.7071)), wi = pf_vec3_make(-PF_R(0.7071), PF_R(0.0), PF_R(0.7071));
+    size_t tb = 16 * sizeof(pf_real);
+    pf_real *tab = (pf_real *)pf_test_guarded_alloc(tb), got;
+    static const int bad[4] = { (1 << 24) + 1, (1 << 24) + 4, 0x7fffffff, -5 };
+    int k, a, b, c, outside = 0;
+    for (k = 0; k < 4; ++k) {
+        PF_CHECK(pf_vmf_scale_cell_count(2, bad[k]) == 0 && pf_vmf_scale_cell_count(bad[k], 2) == 0 &&
+                     pf_vmf_scale_sample_count(2, bad[k]) == 0 && pf_vmf_scale_sample_count(bad[k], 2) == 0 &&
+                     pf_vmf_scale_vis_bytes(2, bad[k], 1) == 0 && pf_vmf_scale_vis_bytes(2, 2, bad[k]) == 0,
+                 "np = %d accepted: %lld cells", bad[k], pf_vmf_scale_cell_count(2, bad[k]));
+    }
+    PF_CHECK(pf_vmf_scale_cell_count(2, 1 << 24) == (1LL << 26), "np = 2^24: %lld", pf_vmf_scale_cell_count(2, 1 << 24));
+    if (!tab) {
+        pf_test_note("skipped the lookups: no guarded mappings here");
+        return;
+    }
+    for (k = 0; k < 16; ++k) tab[k] = PF_R(2.0);
+    got = pf_vmf_scale_lookup(tab, 2, (1 << 24) + 4, PF_R(0.1), wo, wi);
+    PF_CHECK(got == PF_R(1.0), "np = 2^24 + 4: %g (want 1, no read)", (double)got);
+    got = pf_vmf_scale_lookup(tab, 2, 0x7fffffff, PF_R(0.1), wo, wi);
+    PF_CHECK(got == PF_R(1.0), "np = INT_MAX: %g", (double)got);
+    /* a table of exactly nt nt np = 2 x 2 x 4 reals: every direction (grazing, beyond
+       theta_max, below the horizon, NaN) reads inside it and returns a table value */
+    for (a = -2; a <= 12; ++a)
+        for (b = -2; b <= 12; ++b)
+            for (c = 0; c < 8; ++c) {
+                pf_real to = PF_R(0.16) * (pf_real)a, ti = PF_R(0.16) * (pf_real)b, ph = PF_R(0.8) * (pf_real)c;
+                pf_vec3 o = pf_vec3_make(PF_SIN(to), PF_R(0.0), PF_COS(to));
+                pf_vec3 i = pf_vec3_make(PF_SIN(ti) * PF_COS(ph), PF_SIN(ti) * PF_SIN(ph), PF_COS(ti));
+                if (c == 7) i.x = (pf_real)NAN;
+                got = pf_vmf_scale_lookup(tab, 2, 4, PF_R(0.1) + PF_R(0.1) * (pf_real)c, o, i);
+                outside += !(got == PF_R(2.0));
+            }
+    PF_CHECK(outside == 0, "%d lookups not the table's value 2", outside);
+    pf_test_guarded_free(tab, tb);
+}
+
+/* pf_vmf_fit_normals on weights 1e-40 (float) / 1e-310 (double), PF_REAL_MAX, and normals
+   scaled by 1e19 / 1e-16 (double 1e100 / 1e-100): before, PF_ERR_ARG and the flat lobe (the
+   pyramid: flat lobes and PF_OK). Every scaling now gives the unscaled fit. (Not under
+   -ffast-math: it flushes subnormal weights to 0.) */
+static void test_safety_fit_scaled_inputs(void)
+{
+    pf_real nr[3 * 16], n2[3 * 16], wt[16], pyr_ref[21 * 8], pyr[21 * 8];
+    pf_vmf_mixture ref, m;
+#ifdef PF_DOUBLE
+    const pf_real tiny_w = (pf_real)1e-310, big_n = PF_R(1e100), small_n = PF_R(1e-100);
+#else
+    const pf_real tiny_w = (pf_real)1e-40, big_n = PF_R(1e19), small_n = PF_R(1e-16);
+#endif
+    const pf_real ws[3] = { tiny_w, PF_REAL_MAX, PF_R(1.0) }, ns[3] = { PF_R(1.0), big_n, small_n };
+    int i, k, q, rc;
+    long double worst = 0;
+    for (i = 0; i < 16; ++i) {
+        nr[3 * i] = PF_R(0.3) * (pf_real)(i % 4) / PF_R(3.0);
+        nr[3 * i + 1] = PF_R(0.2) * (pf_real)(i / 4) / PF_R(3.0) - PF_R(0.1);
+        nr[3 * i + 2] = PF_R(0.9);
+    }
+    rc = pf_vmf_fit_normals(nr, NULL, 16, 2, 20, &ref);
+    PF_CHECK(rc == PF_OK && ref.count == 2, "reference fit rc %d, %d lobes", rc, ref.count);
+    for (k = 0; k < 3; ++k)
+        for (q = 0; q < 3; ++q) {
+            for (i = 0; i < 16; ++i) wt[i] = ws[k];
+            for (i = 0; i < 48; ++i) n2[i] = nr[i] * ns[q];
+            rc = pf_vmf_fit_normals(n2, wt, 16, 2, 20, &m);
+            PF_CHECK(rc == PF_OK && m.count == ref.count, "weights %g, normals x %g: rc %d, %d lobes", (double)ws[k], (double)ns[q], rc,
+                     m.count);
+            if (rc != PF_OK || m.count != ref.count) continue;
+            for (i = 0; i < m.count; ++i) {
+                worst = fmaxl(worst, fabsl((long double)m.lobe[i].kappa / (long double)ref.lobe[i].kappa - 1.0L));
+                worst = fmaxl(worst, fabsl((long double)m.lobe[i].amp - (long double)ref.lobe[i].amp));
+                worst = fmaxl(worst, fabsl((long double)m.lobe[i].mu.x - (long double)ref.lobe[i].mu.x));
+                worst = fmaxl(worst, fabsl((long double)m.lobe[i].mu.y - (long double)ref.lobe[i].mu.y));
+            }
+        }
+    /* the scaled inputs round differently (a few eps per normal), which the EM's stopping
+       rule (log-likelihood change below 1e-6) can carry into the lobes: 1e-5, against the
+       flat lobe (kappa 1e5 for 197) the fit returned before */
+    pf_test_note("tiny/huge weights and normals: worst lobe difference %.2Le", worst);
+    PF_CHECK(worst <= 1e-5L, "worst %.3Le", worst);
+    /* the pyramid: a 4 x 4 map of those normals with tiny weights equals the unweighted one */
+    for (i = 0; i < 16; ++i) wt[i] = tiny_w;
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 4, 4, 2, 20, pyr_ref) == PF_OK, "pyramid ref");
+    for (i = 0; i < 48; ++i) n2[i] = nr[i] * big_n;
+    PF_CHECK(pf_vmf_pyramid_from_normals(n2, wt, 4, 4, 2, 20, pyr) == PF_OK, "pyramid");
+    worst = 0;
+    for (i = 0; i < 21 * 8; ++i)
+        worst = fmaxl(worst, fabsl((long double)pyr[i] - (long double)pyr_ref[i]) / (1.0L + fabsl((long double)pyr_ref[i])));
+    pf_test_note("pyramid %.2Le", worst);
+    PF_CHECK(worst <= 1e-5L, "pyramid of scaled input differs by %.3Le", worst);
+}
+
+/* pf_vmf_scale_factor on a dark sample set (f_eff[0] = 1e-10, f_lobes[0] = 1e-30, rest 0):
+   before, err[2] = NaN (float); and a separable set scaled by 1e20: before, T = 1, 1, 1 and
+   err[0..1] = NaN (float). T, S and the errors are finite, the separable T recovered. */
+static void edge_safety_scale_factor_extremes(void)
+{
+    enum { NT = 2, NP = 2, P = 3 };
+    long long cnt = pf_vmf_scale_sample_count(NT, NP), cells = pf_vmf_scale_cell_count(NT, NP), s;
+    pf_real fe[P * 16], fl[P * 16], scr[2 * 8 * P], T[P], S[8], err[3], prior = PF_R(-1.0);
+    const pf_real t0[P] = { PF_R(0.5), PF_R(1.0), PF_R(2.5) };
+    const pf_real scales[3] = { PF_R(1e20), PF_R(1e-20), PF_R(1.0) };
+    int x, k, rc, bad = 0;
+    PF_CHECK(cnt == 16 && cells == 8, "counts %lld %lld", cnt, cells);
+    if (cnt != 16 || cells != 8) return;
+    for (s = 0; s < P * 16; ++s) fe[s] = fl[s] = PF_R(0.0);
+    fe[0] = PF_R(1e-10);
+    fl[0] = PF_R(1e-30);
+    rc = pfi_vmf_scale_factor(fe, fl, 1, NT, NP, 10, PF_R(0.0), T, S, scr, &prior, err);
+    for (k = 0; k < 3; ++k) bad += !(pf_test_bits_finite(err[k]) && err[k] >= PF_R(0.0) && err[k] <= PF_R(2.0));
+    bad += !pf_test_bits_finite(T[0]) || !pf_test_bits_finite(prior);
+    for (s = 0; s < cells; ++s) bad += !pf_test_bits_finite(S[s]);
+    PF_CHECK(rc == PF_OK && bad == 0, "dark set: rc %d, err %g %g %g, T %g", rc, (double)err[0], (double)err[1], (double)err[2],
+             (double)T[0]);
+    for (k = 0; k < 3; ++k) {
+        long double worst = 0;
+        for (x = 0; x < P; ++x)
+            for (s = 0; s < cnt; ++s) {
+                fl[x * cnt + s] = scales[k] * (pf_real)(1 + s % 5);
+                fe[x * cnt + s] = t0[x] * fl[x * cnt + s] * (pf_real)(1 + pfi_vmf_scale_cell(s, NT, NP) % 3);
+            }
+        rc = pfi_vmf_scale_factor(fe, fl, P, NT, NP, 30, PF_R(0.0), T, S, scr, NULL, err);
+        /* T has mean 1: t0 / mean(t0) = 0.375, 0.75, 1.875 */
+        for (x = 0; x < P; ++x) worst = fmaxl(worst, fabsl((long double)T[x] - (long double)t0[x] / (4.0L / 3.0L)));
+        PF_CHECK(rc == PF_OK && worst <= 1e-4L && err[0] <= PF_R(1e-4) && err[2] <= PF_R(1e-4) && pf_test_bits_finite(err[1]),
+                 "separable x %g: T %g %g %g (want 0.375 0.75 1.875), err %g %g %g", (double)scales[k], (double)T[0], (double)T[1],
+                 (double)T[2], (double)err[0], (double)err[1], (double)err[2]);
+        PF_CHECK(pf_test_bits_finite(pfi_vmf_scale_t(fe, fl, NT, NP, S, PF_R(0.0))), "scale_t x %g", (double)scales[k]);
+    }
+}
+
+/* pf_vmf_effective_brdf on a periodic 32 x 32 map with n = 32 (a spike of 100 and of 10000
+   texels, view and light 1 degree above the horizon): before, each march ran up to 65,536
+   cells (0.27-1.4 s against 0.0004 s in a 33-wide map), and the 10000 spike called the rays
+   occluded at the cell cap (0.0017 against 1.64). The march now covers one period: the
+   answer equals the 33-wide map's (whose box ends the rays at the patch's edge). */
+static void test_safety_effective_periodic(void)
+{
+    static pf_real hm[33 * 32];
+    const pf_real spikes[2] = { PF_R(100.0), PF_R(10000.0) };
+    pf_real el = PF_R(1.0) * PF_PI / PF_R(180.0), out[2];
+    pf_vec3 wo = pf_vec3_make(PF_COS(el), PF_R(0.0), PF_SIN(el)), wi = pf_vec3_make(-PF_COS(el), PF_R(0.0), PF_SIN(el));
+    int k, W, i, rc;
+    for (k = 0; k < 2; ++k) {
+        for (W = 32; W <= 33; ++W) {
+            for (i = 0; i < 33 * 32; ++i) hm[i] = PF_R(0.0);
+            hm[16 * W + 16] = spikes[k];
+            rc = pfi_vmf_effective_brdf(hm, W, 32, PF_R(1.0), 0, 0, 32, wo, wi, PF_R(0.3), PF_R(0.04), &out[W - 32]);
+            PF_CHECK(rc == PF_OK && pf_test_bits_finite(out[W - 32]), "W %d rc %d", W, rc);
+        }
+        pf_test_note("spike %g: periodic %.6g, 33-wide %.6g", (double)spikes[k], (double)out[0], (double)out[1]);
+        PF_CHECK(PF_FABS(out[0] - out[1]) <= PF_R(1e-4) * out[1], "spike %g: periodic %g, 33-wide %g", (double)spikes[k],
+                 (double)out[0], (double)out[1]);
+    }
+}
+
+/* contracts: pf_vmf_pyramid_texel_count(2^24, 2^24) was 375299968947541 (> PF_MAX_REALS), now
+   0 and the pyramid refuses the size; pf_vmf_fit_normals wrote the flat lobe to *out on every
+   error, now nothing; heights at the documented limit (|h| < PF_REAL_MAX / 4) are accepted
+   with a finite answer, beyond it PF_ERR_ARG as documented */
+static void edge_safety_contracts(void)
+{
+    pf_real nr[12] = { 0 }, hm[16], out = PF_R(-1.0), one = PF_R(1.0);
+    pf_vmf_mixture m;
+    int i, rc;
+    PF_CHECK(pf_vmf_pyramid_texel_count(1 << 24, 1 << 24) == 0, "texel count %lld", pf_vmf_pyramid_texel_count(1 << 24, 1 << 24));
+    PF_CHECK(pf_vmf_pyramid_from_normals(nr, NULL, 1 << 24, 1 << 24, 1, 1, nr) == PF_ERR_SIZE, "2^24 pyramid accepted");
+    m.count = 77;
+    m.lobe[0].kappa = PF_R(-3.0);
+    rc = pf_vmf_fit_normals(NULL, NULL, 4, 2, 3, &m);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 77 && m.lobe[0].kappa == PF_R(-3.0), "NULL normals: rc %d, *out written", rc);
+    rc = pf_vmf_fit_normals(nr, NULL, 4, 2, 3, &m); /* zero normals: none usable */
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 77 && m.lobe[0].kappa == PF_R(-3.0), "zero normals: rc %d, *out written", rc);
+    rc = pf_vmf_fit_normals(nr, NULL, 4, 0, 3, &m);
+    PF_CHECK(rc == PF_ERR_ARG && m.count == 77, "0 lobes: rc %d, *out written", rc);
+    for (i = 0; i < 16; ++i) hm[i] = (i & 1 ? one : -one) * PF_R(0.2) * PF_REAL_MAX;
+    rc = pfi_vmf_effective_brdf(hm, 4, 4, PF_R(1.0), 0, 0, 2, pf_vec3_make(PF_R(0.6), PF_R(0.0), PF_R(0.8)),
+                               pf_vec3_make(PF_R(0.0), PF_R(0.6), PF_R(0.8)), PF_R(0.3), PF_R(0.04), &out);
+    PF_CHECK(rc == PF_OK && pf_test_bits_finite(out) && out >= PF_R(0.0), "0.2 PF_REAL_MAX heights: rc %d out %g", rc, (double)out);
+    for (i = 0; i < 16; ++i) hm[i] = (i & 1 ? one : -one) * PF_R(0.3) * PF_REAL_MAX;
+    rc = pfi_vmf_effective_brdf(hm, 4, 4, PF_R(1.0), 0, 0, 2, pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0)),
+                               pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0)), PF_R(0.3), PF_R(0.04), &out);
+    PF_CHECK(rc == PF_ERR_ARG && out == PF_R(0.0), "0.3 PF_REAL_MAX heights: rc %d (documented PF_ERR_ARG)", rc);
+}
+
+/* ================================================================== end of SAFETY */
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -721,5 +920,11 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_scale_lookup);
     PF_TEST_RUN(test_scale_bad_input_guarded);
     PF_TEST_RUN(test_scale_level_calls);
+
+    PF_TEST_RUN(edge_safety_scale_sizes);
+    PF_TEST_RUN(test_safety_fit_scaled_inputs);
+    PF_TEST_RUN(edge_safety_scale_factor_extremes);
+    PF_TEST_RUN(test_safety_effective_periodic);
+    PF_TEST_RUN(edge_safety_contracts);
     return PF_TEST_END();
 }

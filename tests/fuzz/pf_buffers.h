@@ -1528,6 +1528,9 @@ static void pfb_d_masks(pfc_ctx *c, int which)
         if (!shape_ok || null) ex.arg = 1;
         if (!n_ok || nt < 1 || nv < 2) ex.small = 1;
         if (nt > 32768 || nv > 32768) ex.size = 1;
+        /* the table's words in the driver's own checked arithmetic: above PFB_MAX_REALS (2^28
+           on 32-bit hosts, e.g. 32768 x 4096 x 4 words) the size is refused */
+        if (!ex.small && !ex.size && n_ok && pfb_mul(pfb_mul(nt, nv), (n + 31) / 32) < 0) ex.size = 1;
         pfb_setcall("pf_masks_table_build(%d, %d, %d, %s, %d, %s)", shape, nt, nv, null == 1 ? "NULL" : "xy", n,
                     null == 2 ? "NULL" : "table");
         if (pfb_allowed(ex) != PFB_A_OK) {
@@ -1826,7 +1829,7 @@ static void pfb_d_vmf(pfc_ctx *c, int which)
         long long lc = ok ? pfb_levels(w, h) : 0, off = ok && level >= 0 ? pfb_offset(w, h, level) : -1;
         pfb_setcall("pf_vmf_pyramid_level_count/offset/texel_count(%d, %d, %d)", w, h, level);
         if (pf_vmf_pyramid_level_count(w, h) != lc || pf_vmf_pyramid_level_offset(w, h, level) != off ||
-            pf_vmf_pyramid_texel_count(w, h) != (ok ? pfb_offset(w, h, 64) : 0))
+            pf_vmf_pyramid_texel_count(w, h) != (ok && pfb_offset(w, h, 64) <= PFB_MAX_REALS ? pfb_offset(w, h, 64) : 0))
             pfb_fail(PFB_VALUE, "layout: count %d (want %lld), offset %lld (want %lld)", pf_vmf_pyramid_level_count(w, h), lc,
                      pf_vmf_pyramid_level_offset(w, h, level), off);
         return;
@@ -1873,9 +1876,11 @@ static void pfb_d_vmf(pfc_ctx *c, int which)
         pfb_fill(c, nr, nn, 2);
         if (use_w) pfb_fill_weights(c, wt, n);
         if (pfb_t) pfb_t->run += 1;
+        m.count = -77;
         rc = pf_vmf_fit_normals(nr, wt, n, lobes, iters, &m);
         if (!pfb_rc_check(rc, PFB_A_OK | PFB_A_ARG, fn)) return;
-        pfb_vmf_check_mixture(&m, rc == PF_OK ? lobes : 1, fn);
+        if (rc == PF_OK) pfb_vmf_check_mixture(&m, lobes, fn);
+        else if (m.count != -77) pfb_fail(PFB_WROTE, "%s: *out written on an error", fn); /* no usable normal */
         if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
         return;
     } else {
@@ -1928,7 +1933,8 @@ static void pfb_d_vmf(pfc_ctx *c, int which)
 }
 
 /* pf_map_downsample_slopes (which 0), pf_map_downsample_scratch_size (1). Accepted solves run
-   on at most pfb_work_cap reals with at most 40 iterations; heights over every regime of
+   on at most pfb_work_cap reals with at most 40 iterations, or any max_iter up to INT_MAX on
+   maps of at most 4096 texels (the solver bounds itself by 4 n + 256 iterations, checked); heights over every regime of
    pfb_fill (constant, zero, up to 2^20), one of them NaN or infinite in 1 draw of 8 (then
    PF_ERR_ARG and nothing written); scratch mapped at exactly the documented size (the
    scratch_len passed may be larger), so a touch past it faults. Outputs: every coarse texel
@@ -1968,7 +1974,10 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
     pfb_side(&ex, w, 1);
     pfb_side(&ex, h, 1);
     if (f < 1) ex.small = 1;
-    if (!pfb_border_ok(border) || !(reg >= 0 && reg <= PF_R(1.0e6)) || max_iter < 0 || !(tol >= 0 && tol <= PF_REAL_MAX))
+    /* finiteness on the bits: under -ffast-math the comparisons alone are folded (a NaN reg
+       would read as accepted here while the library, testing the bits, rejects it) */
+    if (!pfb_border_ok(border) || !pfb_finite(reg) || !(reg >= 0 && reg <= PF_R(1.0e6)) || max_iter < 0 ||
+        !pfb_finite(tol) || !(tol >= 0 && tol <= PF_REAL_MAX))
         ex.arg = 1;
     if (!ex.small && !ex.size) {
         nf = pfb_mul(w, h);
@@ -1992,7 +2001,7 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
         if (it != -7 || res != PF_R(-7.0)) pfb_fail(PFB_WROTE, "iters/residual written on error");
         return;
     }
-    if (nf > pfb_work_cap || need > pfb_work_cap || max_iter > 40) return;
+    if (nf > pfb_work_cap || need > pfb_work_cap || (max_iter > 40 && nf > 4096)) return;
     hm = pfb_map(nf, at_start);
     out = pfb_map(nc, !at_start);
     scr = pfb_map(need, at_start);
@@ -2025,7 +2034,9 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
         }
         for (i = 0; i < nc; ++i) mc += out[i];
         if (fabsl(mc / nc - mf / nf) > 1e-3L * mx) pfb_fail(PFB_VALUE, "mean %Lg, fine mean %Lg", mc / nc, mf / nf);
-        if (it < 0 || it > max_iter || !pfb_finite(res) || res < 0) pfb_fail(PFB_VALUE, "%d iterations, residual %a", it, (double)res);
+        if (it < 0 || it > max_iter || it > 4 * nc + 256 || !pfb_finite(res) || res < 0)
+            pfb_fail(PFB_VALUE, "%d iterations (bound min(max_iter, 4 n + 256) = %lld), residual %a", it,
+                     max_iter < 4 * nc + 256 ? (long long)max_iter : 4 * nc + 256, (double)res);
     }
     if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
 }
@@ -2039,19 +2050,21 @@ static void pfb_d_vmf_downsample(pfc_ctx *c, int which)
 static long long pfb_scale_count(long long nt, long long np)
 {
     long long d;
-    if (nt < 2 || np < 2) return 0;
+    if (nt < 2 || np < 2 || nt > PFB_MAX_SIDE || np > PFB_MAX_SIDE) return 0;
     d = pfb_mul(pfb_mul(2, nt), np - 1);
     d = d < 0 ? -1 : pfb_mul(d, d);
     return d < 0 ? 0 : d;
 }
 static long long pfb_scale_cells(long long nt, long long np)
 {
-    long long c = (nt < 2 || np < 2) ? -1 : pfb_mul(pfb_mul(nt, nt), np);
+    long long c = (nt < 2 || np < 2 || nt > PFB_MAX_SIDE || np > PFB_MAX_SIDE) ? -1 : pfb_mul(pfb_mul(nt, nt), np);
     return c < 0 ? 0 : c;
 }
 static long long pfb_scale_vis(long long nt, long long np, long long n)
 {
-    long long d = (nt < 2 || np < 2 || n < 1) ? -1 : pfb_mul(pfb_mul(2, nt), np - 1);
+    long long d = (nt < 2 || np < 2 || n < 1 || nt > PFB_MAX_SIDE || np > PFB_MAX_SIDE || n > PFB_MAX_SIDE)
+                      ? -1
+                      : pfb_mul(pfb_mul(2, nt), np - 1);
     d = d < 0 ? -1 : pfb_mul(pfb_mul(d, n), n);
     return d < 0 ? 0 : d;
 }
@@ -2098,7 +2111,14 @@ static void pfb_d_vmf_scale(pfc_ctx *c, int which)
                 if (tab[i] > hi) hi = tab[i];
             }
         }
+        if (!null && cells == 0) {
+            /* nt or np the layout refuses (below 2, above PF_MAX_SIDE, whole int range): a
+               small table against a guard page, which the lookup must not read */
+            tab = pfb_small();
+            if (!tab) return;
+        }
         got = pf_vmf_scale_lookup(tab, nt, np, tm, wo, wi);
+        if (cells == 0 && got != PF_R(1.0)) pfb_fail(PFB_VALUE, "lookup %a for a refused size, want 1", (double)got);
         if (!pfb_finite(got) || got < lo - 1e-5L * (fabsl(lo) + fabsl(hi) + 1) || got > hi + 1e-5L * (fabsl(lo) + fabsl(hi) + 1))
             pfb_fail(PFB_VALUE, "lookup %a outside the table's range [%Lg, %Lg]", (double)got, lo, hi);
         if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");

@@ -538,11 +538,31 @@ cell_list() {
     echo "mx-clang-c11-O2-fastmath-dbl edge - - clang -std=c11 $WC99 -O2 -ffast-math -DPF_DOUBLE"
     echo "mx-clang++-c++20-O0 edge - - clang++ -x c++ -std=c++20 $WCXX -O0"
     echo "mx-tcc compile - - tcc -std=c99 -Wall -Werror"
+    # 32-bit x86 (gcc/clang -m32, Debian gcc-multilib + libc6-dev-i386): 32-bit pointers,
+    # long and size_t, PF_MAX_REALS = 2^28, so every size check of pf_core.h's policy and every
+    # guarded-buffer test meets the narrow limits; the sanitizer cells run the whole suite under
+    # ASan+UBSan there (a size accepted past PF_MAX_REALS writes out of bounds only on 32-bit
+    # hosts). SSE arithmetic (-msse2 -mfpmath=sse), as x86-64 has: the cells test the sizes,
+    # not the x87's excess precision.
+    if [ "$PF_HAVE_M32" = 1 ]; then
+        M32="-m32 -msse2 -mfpmath=sse"
+        # clang's -Warray-bounds sees the constant indices of test_height's far-corner table
+        # test exceed the 32-bit address space (the test skips itself at run time there): kept
+        # a warning in the clang cells
+        SAN32="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-error=array-bounds"
+        echo "x86-32-gcc-float full - - gcc $M32 -std=c99 $WC99 -O2"
+        echo "x86-32-gcc-double full - - gcc $M32 -std=c99 $WC99 -O2 -DPF_DOUBLE"
+        echo "x86-32-clang-san-float full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32"
+        echo "x86-32-clang-san-double full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32 -DPF_DOUBLE"
+    fi
 }
 check_cells() {
     d=$OUT/cells; mkdir -p "$d"
     PF_HAVE_FMA=0
     grep -qw fma /proc/cpuinfo 2>/dev/null && PF_HAVE_FMA=1
+    # the 32-bit x86 cells on x86-64 hosts (tests/deps.sh installs gcc-multilib there)
+    PF_HAVE_M32=0
+    case $(uname -m) in x86_64|amd64) PF_HAVE_M32=1 ;; esac
     cell_list | while read -r cname rest; do
         selected "$cname" || continue
         tool=$(echo "$rest" | awk '{print $4}')
