@@ -74,8 +74,8 @@
                16 lobes (issue 15's gaussian target). vmf_m4_scaled, vmf_m8_scaled = vmf_m4,
                vmf_m8 times the scaling function T(x) S(wi, wo) of Wu et al. 2019 (eqs. 12-14,
                sec. 6) at 4096-texel footprints (the unscaled lobes below), S per kind fitted
-               to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_patch, pf_vmf_scale_factor with
-               a prior toward 1), T per pyramid texel (pf_vmf_scale_t; see "scaling function"
+               to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_fit_level, a prior toward 1),
+               T per pyramid texel (pf_vmf_scale_texel_t; see "scaling function"
                below); vmf_m8_scaled_s = S alone (T = 1).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
@@ -294,8 +294,8 @@ static const int vmf_lobes[NVMF] = { 1, 2, 4, 8, 16 };
    per map and level; at other levels these methods return the unscaled lobes:
      S per level and m (a 6 x 6 x 5 node table fitted over 16 patches of the level, with a
        prior toward 1) and T per pyramid texel (the patch's own samples given S), as
-       bench/vmf_scaling.h says (its vs_fit_level and vs_texel_t, with the patches sampled in
-       parallel here: scale_patches); the training patches' T when S is built, every other
+       bench/vmf_scaling.h's settings say (pf_vmf_scale_fit_level per level, then
+       pf_vmf_scale_texel_t per texel on every core); the training patches' T when S is built, every other
        texel's before the footprints that read it are shaded (scale_T_fill: the error run's
        footprints, then the cost section's, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
@@ -348,10 +348,9 @@ static void fatal(const char *what)
     fprintf(stderr, "microsurface: %s\n", what);
     exit(1);
 }
-/* MICROSURFACE_CHECK=1: the shortcuts of this file (the scaling function's patches sampled in
-   parallel, the n = 16 horizon pyramid taken from the n = 32 one) are compared bit for bit with
-   the serial calls they replace (vs_fit_level, vs_texel_t, pf_horizon_pyramid), which costs
-   their time again; a difference stops the run */
+/* MICROSURFACE_CHECK=1: the shortcut of this file (the n = 16 horizon pyramid taken from the
+   n = 32 one) is compared bit for bit with the serial call it replaces (pf_horizon_pyramid),
+   which costs its time again; a difference stops the run */
 static int check_on(void)
 {
     const char *e = getenv("MICROSURFACE_CHECK");
@@ -367,124 +366,73 @@ static void check_same(const void *a, const void *b, size_t bytes, const char *w
 }
 
 /* ---- the scaling function (see above; bench/vmf_scaling.h) */
-/* The samples of patches (texels of `level`), as vs_patch_samples computes them: f_eff by
-   pf_vmf_scale_patch (the in-footprint effective BRDF at every pair of node directions) and,
-   per scaled lobe count, the texel's own lobes at the same pairs (vs_texel_spec); each work
-   item with its own scratch (vs_patch_samples' is static, so it cannot run on two threads). */
+/* the library's description of the kind's scaling function (bench/vmf_scaling.h's settings):
+   the centred heights and the NSCALE lobe pyramids of scale_pyr */
+static pf_vmf_scale_desc scale_desc(const lib_maps *L)
+{
+    const pf_real *pyrs[NSCALE];
+    int ms[NSCALE], j;
+    for (j = 0; j < NSCALE; ++j) {
+        pyrs[j] = L->vmf[scale_pyr[j]];
+        ms[j] = vmf_lobes[scale_pyr[j]];
+    }
+    return vs_desc(L->heights, L->w, L->h, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms);
+}
+
+/* T of texels of `level` (given the level's S and prior) on every core: one
+   pf_vmf_scale_texel_t per texel, each work item with its own scratch */
 typedef struct scale_job {
     const lib_maps *L;
+    pf_vmf_scale_desc d;
     int level;
-    const long long *texels;  /* item i: texel texels[i] of the level (row-major) */
-    pf_real *f_eff;           /* item i: VS_SAMPLES values at i VS_SAMPLES */
-    pf_real *f_l[NSCALE];     /* the same per scaled lobe count */
-    pf_real *t_out;           /* NULL, or T per item and lobe count: t_out[i NSCALE + j] (S given) */
+    long long scratch_len;
+    const long long *texels; /* item i: texel texels[i] of the level (row-major) */
+    pf_real *t_out;          /* T per item and lobe count: t_out[i NSCALE + j] */
 } scale_job;
 
-static void scale_patch_item(void *ctx, long long i)
+static void scale_texel_item(void *ctx, long long i)
 {
     const scale_job *J = (const scale_job *)ctx;
     const lib_maps *L = J->L;
-    const int n = 1 << J->level, gw = L->w >> J->level;
-    const long long tx = J->texels[i] % gw, ty = J->texels[i] / gw;
-    const pf_real base_sigma = PF_R(BASE_SIGMA), f0 = PF_R(F0);
-    pf_real *nrm = (pf_real *)pfb_xcalloc((size_t)3 * n * n, sizeof(pf_real));
-    unsigned char *vis = (unsigned char *)pfb_xcalloc((size_t)pf_vmf_scale_vis_bytes(VS_NT, VS_NP, n), 1);
-    pf_real *junk = (pf_real *)pfb_xcalloc(VS_SAMPLES, sizeof(pf_real));
-    pf_real *fe = J->f_eff + i * VS_SAMPLES;
-    long s;
+    const long long gw = L->w >> J->level;
+    const pf_real *s_tab[NSCALE];
+    pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)J->scratch_len, sizeof(pf_real));
     int j;
-    if (pf_vmf_scale_patch(L->heights, L->w, L->h, PF_R(1.0), (int)(tx * n), (int)(ty * n), n, 1, 0, base_sigma, f0,
-                           PF_VMF_SCALE_G_GAUSSIAN, VS_NT, VS_NP, (pf_real)VS_THETA_MAX, nrm, vis, fe, junk) != PF_OK)
-        fatal("the scaling function's patch samples failed");
-    for (s = 0; s < VS_SAMPLES; ++s) {
-        pf_vec3 wo, wi;
-        vs_sample_dirs(s, &wo, &wi);
-        for (j = 0; j < NSCALE; ++j)
-            J->f_l[j][i * VS_SAMPLES + s] = vs_texel_spec(L->vmf[scale_pyr[j]], L->w, L->h, vmf_lobes[scale_pyr[j]],
-                                                         J->level, tx, ty, wo, wi, base_sigma * base_sigma, f0);
-    }
-    if (J->t_out) /* both lobe counts from the same f_eff */
-        for (j = 0; j < NSCALE; ++j)
-            J->t_out[i * NSCALE + j] = pf_vmf_scale_t(fe, J->f_l[j] + i * VS_SAMPLES, VS_NT, VS_NP,
-                                                      L->sc_S[J->level][j], L->sc_prior[J->level][j]);
-    free(nrm);
-    free(vis);
-    free(junk);
+    for (j = 0; j < NSCALE; ++j) s_tab[j] = L->sc_S[J->level][j];
+    if (pf_vmf_scale_texel_t(&J->d, J->level, J->texels[i] % gw, J->texels[i] / gw, s_tab, L->sc_prior[J->level],
+                             J->t_out + i * NSCALE, scratch, J->scratch_len) != PF_OK)
+        fatal("the scaling function's T failed");
+    free(scratch);
 }
 
-/* the samples of `count` texels of `level` in parallel (t_out: also their T, S given) */
-static void scale_patches(const lib_maps *L, int level, const long long *texels, long long count, pf_real *f_eff,
-                          pf_real **f_l, pf_real *t_out, const char *label)
-{
-    scale_job J;
-    int j;
-    J.L = L;
-    J.level = level;
-    J.texels = texels;
-    J.f_eff = f_eff;
-    for (j = 0; j < NSCALE; ++j) J.f_l[j] = f_l[j];
-    J.t_out = t_out;
-    pfb_parallel_for(count, scale_patch_item, &J, label);
-}
-
-/* S and the prior per lobe count at the scaled levels, from VS_TRAIN evenly spaced patches of
-   the level, and the training patches' T (vs_fit_level's fit, on samples from scale_patches);
-   every other texel's T NaN (scale_T_fill computes them) */
+/* S and the prior per lobe count at the scaled levels (pf_vmf_scale_fit_level: VS_TRAIN evenly
+   spaced training patches of the level), and the training patches' T; every other texel's T
+   NaN (scale_T_fill computes them) */
 static void scale_build(lib_maps *L, const char *kind_name)
 {
+    const pf_vmf_scale_desc d = scale_desc(L);
     long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
-    int si, j, p, np;
+    int si, j;
     double t0 = pfb_now_ns();
-    char label[160];
+    (void)kind_name;
     for (j = 0; j < NSCALE; ++j) {
         L->sc_T[j] = (pf_real *)pfb_xcalloc((size_t)tc, sizeof(pf_real));
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
     }
     L->sc_patches = 0;
     for (si = sc_min_level; si <= sc_max_level; ++si) {
-        const int gw = L->w >> si, gh = L->h >> si;
-        long long texels[VS_TRAIN];
-        pf_real *f_eff = (pf_real *)pfb_xcalloc((size_t)VS_TRAIN * VS_SAMPLES, sizeof(pf_real)), *f_l[NSCALE];
-        pf_real scratch[2 * VS_TRAIN * VS_CELLS], t[VS_TRAIN];
-        if (gw < 1 || gh < 1) fatal("the scaling function's fit failed");
-        np = gw * gh < VS_TRAIN ? gw * gh : VS_TRAIN;
-        for (p = 0; p < np; ++p) texels[p] = ((long long)p * gw * gh) / np;
-        for (j = 0; j < NSCALE; ++j) f_l[j] = (pf_real *)pfb_xcalloc((size_t)VS_TRAIN * VS_SAMPLES, sizeof(pf_real));
-        snprintf(label, sizeof label, "microsurface: %s: scaling function, %d training patches", kind_name, np);
-        scale_patches(L, si, texels, np, f_eff, f_l, NULL, label);
+        const long long gp = (long long)(L->w >> si) * (L->h >> si), len = pf_vmf_scale_scratch_size(&d, si);
+        pf_real *scratch, *s_out[NSCALE], *t_level[NSCALE];
+        if (len <= 0) fatal("the scaling function's fit failed");
+        scratch = (pf_real *)pfb_xcalloc((size_t)len, sizeof(pf_real));
         for (j = 0; j < NSCALE; ++j) {
-            pf_real *tl = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
-            if (pf_vmf_scale_factor(f_eff, f_l[j], np, VS_NT, VS_NP, VS_ALS, VS_SHRINK, t, L->sc_S[si][j], scratch,
-                                    &L->sc_prior[si][j], NULL) != PF_OK)
-                fatal("the scaling function's fit failed");
-            for (p = 0; p < np; ++p)
-                tl[texels[p]] = pf_vmf_scale_t(f_eff + (size_t)p * VS_SAMPLES, f_l[j] + (size_t)p * VS_SAMPLES, VS_NT, VS_NP,
-                                               L->sc_S[si][j], L->sc_prior[si][j]);
-            free(f_l[j]);
+            s_out[j] = L->sc_S[si][j];
+            t_level[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
         }
-        free(f_eff);
-        L->sc_patches += np;
-        if (check_on()) { /* vs_fit_level: the same fit, the patches sampled serially */
-            const pf_real *pyrs[NSCALE];
-            pf_real s2[NSCALE][VS_CELLS], prior2[NSCALE], *tl2[NSCALE];
-            int ms[NSCALE];
-            for (j = 0; j < NSCALE; ++j) {
-                pyrs[j] = L->vmf[scale_pyr[j]];
-                ms[j] = vmf_lobes[scale_pyr[j]];
-                tl2[j] = (pf_real *)pfb_xcalloc((size_t)gw * gh, sizeof(pf_real));
-            }
-            if (vs_fit_level(L->heights, L->w, L->h, si, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs, ms, s2, prior2, tl2) != np)
-                fatal("MICROSURFACE_CHECK: vs_fit_level failed");
-            check_same(s2, L->sc_S[si], sizeof s2, "the scaling function S");
-            check_same(prior2, L->sc_prior[si], sizeof prior2, "the scaling function's prior");
-            for (j = 0; j < NSCALE; ++j) {
-                pf_real *mine = (pf_real *)pfb_xcalloc((size_t)gw * gh, sizeof(pf_real));
-                for (p = 0; p < np; ++p) mine[texels[p]] = L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[p]];
-                check_same(tl2[j], mine, (size_t)gw * gh * sizeof(pf_real), "the training patches' T");
-                free(mine);
-                free(tl2[j]);
-            }
-        }
+        if (pf_vmf_scale_fit_level(&d, si, s_out, L->sc_prior[si], t_level, scratch, len) != PF_OK)
+            fatal("the scaling function's fit failed");
+        free(scratch);
+        L->sc_patches += gp < VS_TRAIN ? (int)gp : VS_TRAIN;
     }
     L->sc_seconds = (pfb_now_ns() - t0) * 1e-9;
     fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
@@ -504,7 +452,7 @@ static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long 
     const int si = ilog2(n), gw = L->w / n;
     long long i, m = 0, k;
     long long *texels;
-    pf_real *f_eff, *f_l[NSCALE], *t;
+    pf_real *t;
     char *seen;
     int j;
     double t0 = pfb_now_ns();
@@ -519,28 +467,19 @@ static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long 
         texels[m++] = c;
     }
     if (m > 0) {
-        f_eff = (pf_real *)pfb_xcalloc((size_t)m * VS_SAMPLES, sizeof(pf_real));
-        for (j = 0; j < NSCALE; ++j) f_l[j] = (pf_real *)pfb_xcalloc((size_t)m * VS_SAMPLES, sizeof(pf_real));
+        scale_job J;
+        J.L = L;
+        J.d = scale_desc(L);
+        J.level = si;
+        J.scratch_len = pf_vmf_scale_scratch_size(&J.d, si);
+        if (J.scratch_len <= 0) fatal("the scaling function's T failed");
+        J.texels = texels;
         t = (pf_real *)pfb_xcalloc((size_t)m * NSCALE, sizeof(pf_real));
-        scale_patches(L, si, texels, m, f_eff, f_l, t, label);
+        J.t_out = t;
+        pfb_parallel_for(m, scale_texel_item, &J, label);
         for (k = 0; k < m; ++k)
             for (j = 0; j < NSCALE; ++j)
                 L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[k]] = t[k * NSCALE + j];
-        if (check_on()) { /* vs_texel_t on the first texel of the list */
-            const pf_real *pyrs[NSCALE];
-            pf_real t2[NSCALE];
-            int ms[NSCALE];
-            for (j = 0; j < NSCALE; ++j) {
-                pyrs[j] = L->vmf[scale_pyr[j]];
-                ms[j] = vmf_lobes[scale_pyr[j]];
-            }
-            if (vs_texel_t(L->heights, L->w, L->h, si, texels[0] % gw, texels[0] / gw, PF_R(BASE_SIGMA), PF_R(F0), NSCALE, pyrs,
-                           ms, L->sc_S[si], L->sc_prior[si], t2) != 0)
-                fatal("MICROSURFACE_CHECK: vs_texel_t failed");
-            check_same(t2, t, sizeof t2, "a texel's T");
-        }
-        free(f_eff);
-        for (j = 0; j < NSCALE; ++j) free(f_l[j]);
         free(t);
         L->sc_patches += m;
         L->sc_seconds += (pfb_now_ns() - t0) * 1e-9;

@@ -49,7 +49,7 @@ static inline pf_real vs_texel_spec(const pf_real *pyr, int w, int h, int m, int
 
 /* the library's description of the bench's scaling function (pf_vmf_fit.h): the centred
    height map at 1 world unit per texel, the npyr lobe pyramids, VS_* nodes and fit settings */
-static pf_vmf_scale_desc vs_desc(const pf_real *heights, int w, int h, pf_real base_sigma, pf_real f0, int npyr,
+static inline pf_vmf_scale_desc vs_desc(const pf_real *heights, int w, int h, pf_real base_sigma, pf_real f0, int npyr,
                                  const pf_real *const *pyrs, const int *ms)
 {
     pf_vmf_scale_desc d;
@@ -85,7 +85,7 @@ static pf_real vs_scratch[VS_TRAIN * VS_SAMPLES * (1 + VS_MAX_PYR) + 2 * VS_TRAI
    (pf_vmf_scale_fit_level); the training patches' T written into t_level[k] (one pf_real per
    texel of the level, row-major), the others left as they are. Returns the number of patches
    sampled, -1 on failure. */
-static int vs_fit_level(const pf_real *heights, int w, int h, int level, pf_real base_sigma, pf_real f0, int npyr,
+static inline int vs_fit_level(const pf_real *heights, int w, int h, int level, pf_real base_sigma, pf_real f0, int npyr,
                         const pf_real *const *pyrs, const int *ms, pf_real s_out[][VS_CELLS], pf_real *prior,
                         pf_real *const *t_level)
 {
@@ -101,7 +101,7 @@ static int vs_fit_level(const pf_real *heights, int w, int h, int level, pf_real
 
 /* T of texel (tx, ty) of `level` for each pyramid, given the level's S and prior (vs_fit_level):
    written to t_out[k] (pf_vmf_scale_texel_t); 0 on success */
-static int vs_texel_t(const pf_real *heights, int w, int h, int level, long long tx, long long ty, pf_real base_sigma,
+static inline int vs_texel_t(const pf_real *heights, int w, int h, int level, long long tx, long long ty, pf_real base_sigma,
                       pf_real f0, int npyr, const pf_real *const *pyrs, const int *ms, pf_real s_tab[][VS_CELLS],
                       const pf_real *prior, pf_real *t_out)
 {

@@ -52,7 +52,8 @@
 #include <string.h>
 #include <time.h>
 
-#include "pf_moments.h"
+#include "pf_map.h"
+#include "pf_vmf_fit.h"
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
 #include "pf_vmf.h"
