@@ -4489,7 +4489,7 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    period: n - 1/2 texels from the texel's node, past which the ray is over the same nodes
    again) or rises above the highest node it can meet, so a march visits at most 2 n + 1
    cells, periodic maps included; a texel with
-   m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
+   m.w <= 0 is not visible. This is the in-footprint reference of tests/reference/pf_microsurface.h
    (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
    its own double-precision march as the independent oracle (it must not call include/), and
    tests/test_map.c checks the two agree.
@@ -5193,7 +5193,7 @@ PF_CPU_DEF int pf_map_downsample_slopes(const pf_map_downsample_desc *desc, pf_r
    On an error nothing is written.
 
    ACCURACY AND COST (measured; docs/horizon.md has the tables and the commands)
-     Masking G1 against the brute-force microsurface reference (tests/pf_microsurface.h, seven
+     Masking G1 against the brute-force microsurface reference (tests/reference/pf_microsurface.h, seven
      kinds, views 0-75 deg pooled, relative L2), 16-texel footprints: pf_horizon_masking 0.012-
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better

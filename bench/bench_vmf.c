@@ -19,14 +19,14 @@
                         vmf_m1 (one lobe), against pf_leadr_specular (BASELINE, the footprint's
                         one Gaussian, no lobes). Reference for vmf_m4: its formula (slope form,
                         one-Gaussian Smith) re-evaluated in long double with the oracle's
-                        Lambda (tests/pf_oracle.h): the row's error is the rounding of the
+                        Lambda (tests/reference/pf_oracle.h): the row's error is the rounding of the
                         float/double evaluation; the others are timed against it and their
                         error says how far the other models are from vmf_m4.
 
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_vmf_fit.h"
-#include "../tests/pf_oracle.h"
+#include "pf_oracle.h"
 
 /* ------------------------------------------------------------------ normalization */
 PFB_METHOD(norm, pf_vmf_normalization(x))
@@ -243,7 +243,7 @@ static const pfb_family families[] = {
 /* ------------------------------------------------------------------ scaling function (helper J)
    `bench_vmf-float --scaling [size] [lobes] [masking] [nt] [np] [kind]` (defaults 256 4 1 6 5,
    every kind): on
-   tests/pf_microsurface.h maps of `size`^2 texels cut into 64 x 64 patches (4096-texel
+   tests/reference/pf_microsurface.h maps of `size`^2 texels cut into 64 x 64 patches (4096-texel
    footprints), builds the scaling function of Wu et al. 2019 (pfi_vmf_scale_patch on every
    patch, pfi_vmf_scale_factor: T per patch, S over nt x nt x np cells, theta_max 75 deg,
    masking PF_VMF_SCALE_*: 1 G_GAUSSIAN, 2 G_MIXTURE, 3 UNMASKED) and prints per kind: the factorization's error on its own samples
@@ -253,7 +253,7 @@ static const pfb_family families[] = {
    tested equal to pfm_reference_shade with pfm_visibility_map_box) of f_lobes alone, S f_lobes
    (T = 1) and T S f_lobes (S read by pf_vmf_scale_lookup), relative L2 pooled. Base lobe:
    slope deviation 0.1, f0 = 0.04 (the bench's microsurface base BRDF). */
-#include "../tests/pf_microsurface.h"
+#include "pf_microsurface.h"
 #include <stdio.h>
 #include <time.h>
 
@@ -366,7 +366,7 @@ static int scaling_main(int argc, char **argv)
 /* ------------------------------------------------------------------ downsampling (helper I)
    `bench_vmf-float --downsample` (not part of the method tables): the slope-preserving
    downsampling of pf_map_downsample_slopes (Wu et al. 2019 eqs. 9-10) on the corpus's
-   512 x 512 height maps (tests/pf_microsurface.h, wrapped), factors 2 (to 256 x 256) and 8:
+   512 x 512 height maps (tests/reference/pf_microsurface.h, wrapped), factors 2 (to 256 x 256) and 8:
    wall time of one solve (best of 3), CG iterations, and the RMS error of the coarse map's
    slopes against the fine footprints' mean slopes (long double, computed here from the
    definitions) for the solve and for the plain box average of the heights. */

@@ -2,7 +2,7 @@
 
    The library's filtered answers, computed from mip pyramids of moments exactly as a renderer
    would fetch them, against a brute-force reference that shades the same pixel footprint
-   texel by texel on an actual height field (tests/pf_microsurface.h: micro-normals from the
+   texel by texel on an actual height field (tests/reference/pf_microsurface.h: micro-normals from the
    heights, masking and shadowing by marching the height field, a narrow Beckmann base lobe
    or a Lambertian one, the projected-area normalization of LEADR eqs. 1-3).
 
@@ -20,7 +20,7 @@
    kurtosis ~5, the photographed-texture regime), ridges, craters, tiles; 512 x 512 texels of
    size 1, periodic.
    THE USER'S MAP (--map PATH, what `make bench MAP=...` runs): the corpus is replaced by one
-   height or normal map loaded by tests/pf_maps.h (its header has the formats, the crop, the
+   height or normal map loaded by tests/reference/pf_maps.h (its header has the formats, the crop, the
    borders, the scale and the integration of normal maps), the kind "map" in the CSV; the same
    footprints, views, lights, tasks, methods and error measures; the cost section on that map;
    the fragment (microsurface.md) describes the map and its slope statistics (RMS, skewness,
@@ -2048,7 +2048,7 @@ static void write_cost_section(FILE *f, const settings *S)
                "inside the footprint), then sums the reference shading (specular, diffuse, masking "
                "together). Brute force (shade only): the same sum with the visibility maps already "
                "computed (cached maps, as in the error runs); these are the long double reference of "
-               "`tests/pf_microsurface.h`. Brute force (float shade): the same sum in the library's own "
+               "`tests/reference/pf_microsurface.h`. Brute force (float shade): the same sum in the library's own "
                "arithmetic (pf_real), every texel's base lobe by `pf_leadr_specular` of a one-slope "
                "footprint, slopes read from level 0 of the pyramid, cached visibility: what a "
                "supersampling shader would pay, without the march.\n\n",
@@ -2092,7 +2092,7 @@ static void write_md(const settings *S, double total_s)
                "`microsurface_cost.csv`.\n\n",
             S->quick ? "QUICK (smoke run: do not publish)" : "full", total_s);
     fprintf(f, "**Reference.** A brute-force shading of the pixel footprint texel by texel on an actual "
-               "height field (`tests/pf_microsurface.h`): micro-normals from central differences of the "
+               "height field (`tests/reference/pf_microsurface.h`): micro-normals from central differences of the "
                "heights, masking toward the view and shadowing toward the light by marching the "
                "(bilinear, periodic) height field, a narrow Beckmann base lobe of slope deviation %.2g "
                "with its own Smith G2 (specular, f0 = 1: no Fresnel) or a Lambertian one of albedo 1 "
@@ -2398,7 +2398,7 @@ static void write_md_map(const settings *S, double total_s)
                    "normal map was integrated: least squares over the whole (periodic%s) map with the "
                    "reference's own central differences (Frankot and Chellappa 1988), solved by FFT: "
                    "H(k) = -i (sin kx P(k) + sin ky Q(k)) / (sin^2 kx + sin^2 ky), P, Q the transforms of the map's "
-                   "slopes -n.x/n.z and -n.y/n.z (`tests/pf_maps.h`). **Residual %.3g**: the RMS of |D h - (p, q)| "
+                   "slopes -n.x/n.z and -n.y/n.z (`tests/reference/pf_maps.h`). **Residual %.3g**: the RMS of |D h - (p, q)| "
                    "over the RMS slope (largest %.3g slope units): that share of the map is not the gradient of "
                    "any height field (its curl), and the reference shades the nearest height field instead. ",
                 map_opt.border == PFMAP_MIRROR ? ", mirrored" : "", map_info.residual, map_info.residual_max);

@@ -2,7 +2,7 @@
    (issue 9, item 6). CPU-only bench program, not part of the library.
 
    WHAT IT DRAWS. Two scenes, each rendered four ways from the same per-pixel geometry:
-     reference   the brute force of tests/pf_microsurface.h: every texel of the pixel's
+     reference   the brute force of tests/reference/pf_microsurface.h: every texel of the pixel's
                  footprint shaded on its own (its micro-normal from the height field, a narrow
                  Beckmann base lobe of deviation BASE_SIGMA with its Smith G2, masking toward the
                  viewer and shadowing toward the light found by marching the height field with
@@ -97,7 +97,7 @@
    OUTPUT. Usage: pictures [OUT_DIR] [--gp SCRIPT] [--map PATH --map-kind K --map-scale S
    --map-rms-slope R --map-border B --map-raw-size WxH] (defaults bench/out, bench/pictures.gp;
    run from the repository root). With --map (`make bench MAP=...`, bench/map.sh) both scenes
-   tile the user's height or normal map, loaded by tests/pf_maps.h before anything is written
+   tile the user's height or normal map, loaded by tests/reference/pf_maps.h before anything is written
    (a bad map: one message, exit 1, no output); the flat self-check keeps the Gaussian map. pic_plane.png, pic_sphere.png: 4 x 2 panels, reference | LEADR |
    vMF m = 8 | naive (radiance), footprint side | LEADR error | vMF m = 8 error | naive error, every panel titled (with its
    time per pixel or its mean and 95th-percentile error from this run) and with its own
@@ -154,7 +154,7 @@ static const int vmf_pic_lobes[NVMF_PIC] = {4, 8};
 
 static const double pic_pi = 3.14159265358979323846;
 
-/* The user's map (--map PATH, `make bench MAP=...`; tests/pf_maps.h): when set, both scenes
+/* The user's map (--map PATH, `make bench MAP=...`; tests/reference/pf_maps.h): when set, both scenes
    tile it instead of the Gaussian corpus map (the flat self-check still uses the Gaussian
    map: it checks the plumbing, not the surface). map_label names it in titles and text. */
 static pfm_surface *user_map = NULL;
@@ -1796,7 +1796,7 @@ int main(int argc, char **argv)
     fprintf(md, "## Pictures: brute force against the filtered formulas\n\n"
                 "Each picture: the brute-force reference (every texel of the pixel's footprint "
                 "shaded with its own micro-normal, a narrow Beckmann base lobe, and masking and "
-                "shadowing marched through the height field: `tests/pf_microsurface.h`), LEADR "
+                "shadowing marched through the height field: `tests/reference/pf_microsurface.h`), LEADR "
                 "from the trilinearly sampled moment pyramid (`pf_slope_moments_sample`, "
                 "`pf_leadr_specular`), and the naive mip-mapped normal (average normals, "
                 "renormalized, base lobe only), with their relative-error maps. "

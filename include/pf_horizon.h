@@ -141,7 +141,7 @@
    On an error nothing is written.
 
    ACCURACY AND COST (measured; docs/horizon.md has the tables and the commands)
-     Masking G1 against the brute-force microsurface reference (tests/pf_microsurface.h, seven
+     Masking G1 against the brute-force microsurface reference (tests/reference/pf_microsurface.h, seven
      kinds, views 0-75 deg pooled, relative L2), 16-texel footprints: pf_horizon_masking 0.012-
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better

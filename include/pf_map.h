@@ -535,7 +535,7 @@ PF_CPU_DEF void pf_map_node_slope(const pf_real *hm, int w, int h, pf_real texel
    period: n - 1/2 texels from the texel's node, past which the ray is over the same nodes
    again) or rises above the highest node it can meet, so a march visits at most 2 n + 1
    cells, periodic maps included; a texel with
-   m.w <= 0 is not visible. This is the in-footprint reference of tests/pf_microsurface.h
+   m.w <= 0 is not visible. This is the in-footprint reference of tests/reference/pf_microsurface.h
    (pfm_visible_box), reimplemented here in pf_real on caller buffers: the test header keeps
    its own double-precision march as the independent oracle (it must not call include/), and
    tests/test_map.c checks the two agree.

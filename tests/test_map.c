@@ -2,7 +2,7 @@
 
    The truth is never the module's own formula:
    - the wrapped index against the slow definition near the ends of the long long range;
-   - the height-field march (pf_map_visible) against tests/pf_microsurface.h's independent
+   - the height-field march (pf_map_visible) against tests/reference/pf_microsurface.h's independent
      double-precision march on a wall;
    - slope-preserving downsampling (Wu et al. 2019 eqs. 9-10): against a dense least-squares
      solve of the same objective built here from its definition (long double normal equations

@@ -2,7 +2,7 @@
 
    The truth is never the module's own formula:
    - lobe normalization, mean cosine and tangent variance: long double quadrature over the
-     polar angle (tests/pf_oracle.h);
+     polar angle (tests/reference/pf_oracle.h);
    - the one-lobe convolution rule kappa' = kappa kappa_b / (kappa + kappa_b): against the exact
      spherical convolution of two vMF lobes, C1 C2 e^(-k1-k2) 4 pi sinh|k1 mu + k2 w| /
      |k1 mu + k2 w| (the integral of a product of two exponentials of w.mu over the sphere, in
@@ -15,7 +15,7 @@
    - the multi-lobe BRDF of eq. 5 (slope form): a single sharp lobe is LEADR's one-slope
      footprint (pf_leadr_specular, itself tested against quadrature); its masking on real
      microsurfaces (lobes fitted by pf_vmf_fit.h) against the brute-force march of
-     tests/pf_microsurface.h.
+     tests/reference/pf_microsurface.h.
    The fit, the lobe pyramid and the scaling function are tested in tests/test_vmf_fit.c.
    Same bodies in float and double; edge_* tests also run under -ffast-math. */
 /* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */

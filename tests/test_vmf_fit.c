@@ -7,7 +7,7 @@
      canaries after every buffer;
    - the scaling function (Wu et al. 2019 eqs. 6-8, 12-14, 21-24): a flat patch's effective
      BRDF is the base lobe's, Helmholtz reciprocity, the in-footprint reference of
-     tests/pf_microsurface.h, the rank-1 factorization of a separable ratio recovered exactly,
+     tests/reference/pf_microsurface.h, the rank-1 factorization of a separable ratio recovered exactly,
      the prior's effect, the table lookup against its trilinear definition, bad input through
      guarded buffers.
    Same bodies in float and double; edge_* tests also run under -ffast-math. */
@@ -226,7 +226,7 @@ static void test_pyramid_levels(void)
 }
 
 /* ================================================================== scaling function (helper J)
-   Oracles: the base lobe of tests/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
+   Oracles: the base lobe of tests/reference/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
    the exchange of wo and wi (reciprocity, exact for a whole periodic map); a wall's shadow in
    closed form; the test header's own march and reference (pfm_visibility_map_box,
    pfm_reference_shade: an independent implementation in double); a separable R built by hand. */
@@ -296,7 +296,7 @@ static void test_scale_reciprocity(void)
     pfm_surface_free(&s);
 }
 
-/* the effective BRDF against tests/pf_microsurface.h's own in-footprint march and reference */
+/* the effective BRDF against tests/reference/pf_microsurface.h's own in-footprint march and reference */
 static void test_scale_vs_microsurface_reference(void)
 {
     static const int kinds[3] = { PFM_RIDGES, PFM_TILES, PFM_GAUSSIAN_FINE };

@@ -8,7 +8,7 @@
    mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT) and sampler
    (trilinear, maxAnisotropy 1 and 16), over the lit pixels of bench/pictures.c's rule:
      error     |GPU - reference| / max(reference, floor), the reference being pictures.c's brute
-               force for the same rays (tests/pf_microsurface.h: every texel of the pixel's
+               force for the same rays (tests/reference/pf_microsurface.h: every texel of the pixel's
                round(side)^2 box shaded with its own micro-normal, base lobe, masking and
                shadowing marched through the height field; the side is the isotropic ray-
                differential footprint) and floor = LIT_FRACTION times its 99th percentile;
