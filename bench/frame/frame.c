@@ -56,6 +56,8 @@
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
 #include "pf_vmf.h"
+#include "pf_vmf_fit.h"
+#include "pf_map.h"
 #include "pf_microsurface.h"
 #include "vk_common.h"
 
