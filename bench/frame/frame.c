@@ -43,9 +43,8 @@
    check fails: no surface pixel, unreadable files, or the plumbing check (end of main: the CPU
    path at the driver's own lod must reproduce the GPU's LEADR frame to PLUMBING_BOUND). The
    issue's targets are reported, met or not, never turned into a failure (they are measurements). */
-#ifndef _POSIX_C_SOURCE
-#  define _POSIX_C_SOURCE 199309L
-#endif
+#include "pf_bench_base.h" /* first: _POSIX_C_SOURCE; the clock and checked allocation */
+#include "pf_parallel.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -930,6 +929,150 @@ static double quantile(double *v, int n, double q) /* sorts v */
 }
 static double rel(double v, double ref, double fl) { return fabs(v - ref) / (ref > fl ? ref : fl); }
 
+/* ---------------------------------------------------------------- the CPU work on every core
+   (bench/pf_parallel.h): items are image rows (or the two lobe pyramids); each writes only its
+   own pixels' slots, and every sum over pixels is taken afterwards in pixel order, so the
+   outputs are the same for any PFB_THREADS. */
+typedef struct {
+    const pfm_surface *surf;
+    const unsigned char *vis_light;
+    const fr_pixel *px;
+    int w, ref_max, spt; /* spt 0: pictures.c's box; else the pixel's footprint, spt samples per texel */
+    double *ref;          /* out: per pixel (pixels off the surface untouched) */
+    unsigned char *hit;   /* out, optional: per pixel, the pixel sees the surface */
+} fr_ref_job;
+
+static void ref_row(void *ctx, long long row)
+{
+    const fr_ref_job *jb = (const fr_ref_job *)ctx;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const fr_pixel *p = &jb->px[i];
+        if (jb->hit) jb->hit[i] = (unsigned char)p->hit;
+        if (!p->hit) continue;
+        jb->ref[i] = jb->spt ? shade_reference_pixel(jb->surf, jb->vis_light, p, jb->ref_max, jb->spt)
+                             : shade_reference(jb->surf, jb->vis_light, p, jb->ref_max);
+    }
+}
+
+/* the references of one frame into ref (and hit), rows in parallel */
+static void references(const pfm_surface *surf, const unsigned char *vis_light, const fr_scene *sc, int ref_max, int spt,
+                       double *ref, unsigned char *hit, const char *label)
+{
+    fr_ref_job jb;
+    jb.surf = surf, jb.vis_light = vis_light, jb.px = sc->px, jb.w = sc->w, jb.ref_max = ref_max, jb.spt = spt;
+    jb.ref = ref, jb.hit = hit;
+    pfb_parallel_for(sc->h, ref_row, &jb, label);
+}
+
+/* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials), lit pixels */
+typedef struct {
+    const fr_maps *maps;
+    const fr_pixel *px;
+    const unsigned char *lit;
+    int w, method;
+    double *out;
+} fr_pic_job;
+
+static void pic_path_row(void *ctx, long long row)
+{
+    const fr_pic_job *jb = (const fr_pic_job *)ctx;
+    const fr_maps *mp = jb->maps;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const fr_pixel *p = &jb->px[i];
+        float a[4], b[4];
+        double lod = p->fp > 1.0 ? log2(p->fp) : 0.0;
+        jb->out[i] = 0.0;
+        if (!jb->lit[i]) continue;
+        if (jb->method >= MT_VMF4) {
+            jb->out[i] = (double)shade_vmf_cpu(mp, jb->method - MT_VMF4, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
+            continue;
+        }
+        fetch(mp, p->tx / mp->W, p->ty / mp->H, lod, a, b);
+        jb->out[i] = (double)shade_method(jb->method, a, b, p->wo, p->wi);
+    }
+}
+
+/* the CPU float path at the GPU's texel coordinates and derivatives (gpu: the two read-back
+   attachments), through the specification's sampler (vc) and, isotropic, at the driver's lod
+   (vd; lodd: |driver's lod - log2(rho_max)| for the lit pixels of the box reference, else -1) */
+typedef struct {
+    const fr_maps *maps;
+    const fr_pixel *px;
+    const unsigned char *lit0, *lit1;
+    const float *gpu;
+    int w, npx, method, levels, driver_lod; /* driver_lod: also vd and lodd (isotropic rows) */
+    double aniso;
+    double *vc, *vd, *lodd;
+} fr_gpu_job;
+
+static void gpu_path_row(void *ctx, long long row)
+{
+    const fr_gpu_job *jb = (const fr_gpu_job *)ctx;
+    const fr_maps *mp = jb->maps;
+    const int m = jb->method, W = mp->W, H = mp->H;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const float *o0 = jb->gpu + 4 * i, *o1 = jb->gpu + 4 * ((size_t)jb->npx + i);
+        const fr_pixel *p = &jb->px[i];
+        float a[4], b[4];
+        double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
+        double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
+        jb->vc[i] = jb->vd[i] = 0.0;
+        jb->lodd[i] = -1.0;
+        if (!p->hit || !(o0[3] > 0.5f) || !(jb->lit0[i] || jb->lit1[i])) continue;
+        /* the CPU float path: the specification's sampler at the GPU's coordinates and
+           derivatives; isotropic also at the lod the driver reports */
+        if (m >= MT_VMF4) {
+            double ls = rho > 0.0 ? log2(rho) : 0.0;
+            jb->vc[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
+        } else {
+            fetch_sampler(mp, (double)o0[1], (double)o0[2], o1, jb->aniso, a, b);
+            jb->vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+        }
+        if (jb->driver_lod) {
+            double lod_drv = (double)o0[3] - 1.0;
+            if (m >= MT_VMF4)
+                jb->vd[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
+            else {
+                fetch(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
+                jb->vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+            }
+            if (jb->lit0[i]) {
+                double ls = rho > 0.0 ? log2(rho) : 0.0;
+                if (ls < 0.0) ls = 0.0;
+                if (ls > jb->levels - 1) ls = jb->levels - 1;
+                jb->lodd[i] = fabs(lod_drv - ls);
+            }
+        }
+    }
+}
+
+/* the lobe pyramids, one item per lobe count (EM per texel) */
+typedef struct {
+    const pf_real *nrm;
+    int W, H, fail;
+    fr_maps *maps;
+    double cpu_s[2]; /* CPU seconds of each build, its own thread's */
+} fr_vmf_job;
+
+static double thread_cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void vmf_item(void *ctx, long long k)
+{
+    fr_vmf_job *jb = (fr_vmf_job *)ctx;
+    double t1 = thread_cpu_seconds();
+    if (pf_vmf_pyramid_from_normals(jb->nrm, NULL, jb->W, jb->H, vmf_lobes[k], VMF_ITER, jb->maps->vmf_pyr[k]) != PF_OK)
+        jb->fail = 1; /* only ever set to 1: a benign race */
+    jb->cpu_s[k] = thread_cpu_seconds() - t1;
+}
+
 /* ---------------------------------------------------------------- main */
 #define NSTORE 2
 #define NANISO 2
@@ -1039,12 +1182,14 @@ int main(int argc, char **argv)
         if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr) != PF_OK ||
             pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr) != PF_OK)
             return 1;
-        for (k = 0; k < 2; ++k) { /* the lobe pyramids (EM per texel), as bench/pictures.c */
-            double t1 = now_seconds();
-            maps.vmf_pyr[k] = (pf_real *)malloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
-            if (!maps.vmf_pyr[k] || pf_vmf_pyramid_from_normals(nrm, NULL, W, H, vmf_lobes[k], VMF_ITER, maps.vmf_pyr[k]) != PF_OK)
-                return 1;
-            t_vmf[k] = now_seconds() - t1;
+        { /* the lobe pyramids (EM per texel), as bench/pictures.c, both at once */
+            fr_vmf_job vj;
+            vj.nrm = nrm, vj.W = W, vj.H = H, vj.fail = 0, vj.maps = &maps;
+            for (k = 0; k < 2; ++k)
+                maps.vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
+            pfb_parallel_for(2, vmf_item, &vj, "frame: vMF lobe pyramids");
+            if (vj.fail) return 1;
+            t_vmf[0] = vj.cpu_s[0], t_vmf[1] = vj.cpu_s[1];
         }
         free(hts);
         free(nrm);
@@ -1122,7 +1267,7 @@ int main(int argc, char **argv)
         fr_push pc;
         double *ref[2], *scratch = (double *)malloc(sizeof(double) * (size_t)npx), t0;
         double *vg = (double *)malloc(sizeof(double) * (size_t)npx), *vc = (double *)malloc(sizeof(double) * (size_t)npx);
-        double *vd = (double *)malloc(sizeof(double) * (size_t)npx);
+        double *vd = (double *)malloc(sizeof(double) * (size_t)npx), *lodd = (double *)pfb_xmalloc(sizeof(double) * (size_t)npx);
         unsigned char *lit[2], *vis_light = NULL;
         float *gpu = (float *)malloc(sizeof(float) * 8 * (size_t)npx), *leadr_f32 = (float *)calloc((size_t)npx, sizeof(float));
         for (r = 0; r < 2; ++r) {
@@ -1139,14 +1284,13 @@ int main(int argc, char **argv)
         /* the brute force: pictures.c's box, and the pixel's own footprint */
         for (r = 0; r < 2; ++r) {
             int nl = 0;
+            char label[64];
             t0 = now_seconds();
-            for (i = 0, nsurf = 0; i < npx; ++i)
-                if (sc.px[i].hit) {
-                    ref[r][i] = r ? shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, 1)
-                                  : shade_reference(&surf, vis_light, &sc.px[i], ref_max);
-                    scratch[nsurf++] = ref[r][i];
-                }
+            snprintf(label, sizeof label, "frame: %s, %s reference", scene_key[s], r ? "pixel-footprint" : "box");
+            references(&surf, vis_light, &sc, ref_max, r ? 1 : 0, ref[r], NULL, label);
             t_ref[s][r] = now_seconds() - t0;
+            for (i = 0, nsurf = 0; i < npx; ++i)
+                if (sc.px[i].hit) scratch[nsurf++] = ref[r][i];
             if (nsurf == 0) {
                 fprintf(stderr, "frame: %s: no surface pixel\n", scene_key[s]);
                 return 1;
@@ -1165,18 +1309,9 @@ int main(int argc, char **argv)
         /* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials) */
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
             double p95;
-            for (i = 0; i < npx; ++i) {
-                const fr_pixel *p = &sc.px[i];
-                float a[4], b[4];
-                vc[i] = 0.0;
-                if (!lit[0][i]) continue;
-                if (m >= MT_VMF4) {
-                    vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, p->wo, p->wi);
-                    continue;
-                }
-                fetch(&maps, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, a, b);
-                vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-            }
+            fr_pic_job pj;
+            pj.maps = &maps, pj.px = sc.px, pj.lit = lit[0], pj.w = w, pj.method = m, pj.out = vc;
+            pfb_parallel_for(h, pic_path_row, &pj, NULL);
             rel_stats(vc, ref[0], lit[0], floor_[s][0], npx, scratch, &cpu_pic_err[s][m], &p95);
         }
         /* the GPU frames */
@@ -1212,45 +1347,23 @@ int main(int argc, char **argv)
                         rw->ms = quantile(times, 5, 0.5);
                     } else rw->ms = -1.0;
                     for (i = 0; i < npx; ++i) {
-                        const float *o0 = gpu + 4 * (size_t)i, *o1 = gpu + 4 * ((size_t)npx + (size_t)i);
-                        const fr_pixel *p = &sc.px[i];
-                        float a[4], b[4];
-                        double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
-                        double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
+                        const float *o0 = gpu + 4 * (size_t)i;
                         vg[i] = (double)o0[0];
-                        vc[i] = vd[i] = 0.0;
                         if (!(fabs(vg[i]) <= 3.4e38)) rw->nonfinite++;
                         if (m == MT_LEADR && st == 0 && an == 0) {
                             leadr_f32[i] = o0[0];
-                            if ((o0[3] > 0.5f) != (p->hit != 0)) n_mism[s]++;
-                        }
-                        if (!p->hit || !(o0[3] > 0.5f) || !(lit[0][i] || lit[1][i])) continue;
-                        /* the CPU float path: the specification's sampler at the GPU's coordinates and
-                           derivatives; isotropic also at the lod the driver reports */
-                        if (m >= MT_VMF4) {
-                            double ls = rho > 0.0 ? log2(rho) : 0.0;
-                            vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
-                        } else {
-                            fetch_sampler(&maps, (double)o0[1], (double)o0[2], o1, aniso_used[an], a, b);
-                            vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-                        }
-                        if (an == 0) {
-                            double lod_drv = (double)o0[3] - 1.0;
-                            if (m >= MT_VMF4)
-                                vd[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
-                            else {
-                                fetch(&maps, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
-                                vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-                            }
-                            if (lit[0][i]) {
-                                double ls = rho > 0.0 ? log2(rho) : 0.0;
-                                if (ls < 0.0) ls = 0.0;
-                                if (ls > levels - 1) ls = levels - 1;
-                                lod_sum += fabs(lod_drv - ls);
-                                nl++;
-                            }
+                            if ((o0[3] > 0.5f) != (sc.px[i].hit != 0)) n_mism[s]++;
                         }
                     }
+                    {
+                        fr_gpu_job gj;
+                        gj.maps = &maps, gj.px = sc.px, gj.lit0 = lit[0], gj.lit1 = lit[1], gj.gpu = gpu, gj.w = w, gj.npx = npx;
+                        gj.method = m, gj.levels = levels, gj.aniso = aniso_used[an], gj.driver_lod = an == 0;
+                        gj.vc = vc, gj.vd = vd, gj.lodd = lodd;
+                        pfb_parallel_for(h, gpu_path_row, &gj, NULL);
+                    }
+                    for (i = 0; i < npx; ++i)
+                        if (lodd[i] >= 0.0) lod_sum += lodd[i], nl++;
                     for (r = 0; r < 2; ++r) {
                         rel_stats(vg, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->err[r], &rw->err_p95[r]);
                         rel_stats(vc, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->cpu_err[r], &dummy);
@@ -1313,7 +1426,7 @@ int main(int argc, char **argv)
         vkDestroyBuffer(vk.dev, tg.rb, NULL);
         vkFreeMemory(vk.dev, tg.rb_mem, NULL);
         for (r = 0; r < 2; ++r) free(ref[r]), free(lit[r]);
-        free(scratch), free(vg), free(vc), free(vd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
+        free(scratch), free(vg), free(vc), free(vd), free(lodd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
     }
 
     /* ---------------------------------------------------------------- motion: MOTION_FRAMES frames per
@@ -1344,16 +1457,16 @@ int main(int argc, char **argv)
         for (f = 0; f < MOTION_FRAMES; ++f) {
             fr_scene sc;
             int ns = 0;
+            char label[64];
             scene_make(&sc, s, w, h, &surf, f * motion_step[s]);
             if (s == 0 && !vis_light) {
                 vis_light = (unsigned char *)malloc((size_t)W * H);
                 pfm_visibility_map(&surf, sc.light, vis_light);
             }
+            snprintf(label, sizeof label, "frame: motion %s, reference of frame %d/%d", scene_key[s], f + 1, MOTION_FRAMES);
+            references(&surf, vis_light, &sc, ref_max, MOTION_SPT, mref + (size_t)f * npx, mhit + (size_t)f * npx, label);
             for (i = 0; i < npx; ++i)
-                if ((mhit[(size_t)f * npx + i] = (unsigned char)sc.px[i].hit) != 0) {
-                    mref[(size_t)f * npx + i] = shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, MOTION_SPT);
-                    scratch[ns++] = mref[(size_t)f * npx + i];
-                }
+                if (mhit[(size_t)f * npx + i]) scratch[ns++] = mref[(size_t)f * npx + i];
             mfloor[f] = LIT_FRACTION * quantile(scratch, ns, 0.99);
             for (k = 0; k < 3; ++k) {
                 pc.pos[k] = (float)sc.cam.pos[k], pc.right[k] = (float)sc.cam.right[k];
@@ -1470,7 +1583,7 @@ int main(int argc, char **argv)
                 "fetches, is the baseline of the others).\n\n"
                 "The vMF rows (`pf_vmf_sum_add`, `pf_vmf_sum_specular`: Wu et al. 2019 eqs. 4-5, slope form) read lobe "
                 "pyramids fitted by EM (`pf_vmf_pyramid_from_normals`, %d iterations at most; %.1f s for m = 4, %.1f s for m = 8 "
-                "on the CPU, one-offs) and uploaded as R32G32B32A32_SFLOAT 2D array images (layer j = lobe j, whole mip chains); a "
+                "of CPU time, one-offs) and uploaded as R32G32B32A32_SFLOAT 2D array images (layer j = lobe j, whole mip chains); a "
                 "mixture is not filtered by averaging its parameters, so the shader reads the 8 texels of a trilinear fetch at "
                 "the driver's lod with `texelFetch` and sums their lobes with the trilinear weights (bench/pictures.c's "
                 "shade_vmf). Hence f32 and isotropic only (kappa reaches 1e5, past f16's range; no anisotropic variant); their "
@@ -1479,11 +1592,11 @@ int main(int argc, char **argv)
     for (s = 0; s < 2; ++s) {
         int br, ops0 = ops_of(ops_file, s, MT_NONE, &br);
         fprintf(md, "**%s**: %d surface pixels, lit %d (box reference) and %d (pixel reference), median footprint side %.1f "
-                    "texels; references %.1f s and %.1f s on one CPU core; %d pixels sit in quads at the surface's edge (the "
+                    "texels; references %.1f s and %.1f s (wall time, %d threads); %d pixels sit in quads at the surface's edge (the "
                     "shader's ray-differential fallback); pixels where the GPU's and the CPU's rays disagree on hitting: %d. "
                     "The CPU float path at pictures.c's own footprint (lod from the analytic ray differentials) against the box "
                     "reference: LEADR %.1f%%, naive %.1f%%, Toksvig %.1f%%, vMF m = 4 %.1f%%, m = 8 %.1f%%.\n\n",
-                scene_key[s], n_surf[s], n_lit[s][0], n_lit[s][1], fp_med[s], t_ref[s][0], t_ref[s][1], n_edge[s], n_mism[s],
+                scene_key[s], n_surf[s], n_lit[s][0], n_lit[s][1], fp_med[s], t_ref[s][0], t_ref[s][1], pfb_thread_count(), n_edge[s], n_mism[s],
                 100.0 * cpu_pic_err[s][MT_LEADR], 100.0 * cpu_pic_err[s][MT_NAIVE], 100.0 * cpu_pic_err[s][MT_TOKSVIG],
                 100.0 * cpu_pic_err[s][MT_VMF4], 100.0 * cpu_pic_err[s][MT_VMF8]);
         fprintf(md, "| %s: method | storage | aniso | error, box ref. (mean, p95) | error, pixel ref. (mean, p95) | CPU path: box, "
