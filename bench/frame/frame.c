@@ -58,24 +58,10 @@
 #include "pf_vmf_fit.h"
 #include "pf_map.h"
 #include "pf_microsurface.h"
+#include "pic_scenes.h" /* bench/pictures.c's scenes, settings and brute-force reference */
 #include "vk_common.h"
 
-/* ---------------------------------------------------------------- bench/pictures.c's settings
-   (copied: pictures.c has no header to share them; keep in step) */
-#define MAP_SIZE         256
-#define BASE_SIGMA       0.1
-#define F0               1.0
-#define LIT_FRACTION     0.05
-#define LOBE_CUTOFF      30.0
-#define PLANE_CAM_HEIGHT 90.0
-#define PLANE_PITCH_DEG  14.0
-#define PLANE_FOV_DEG    40.0
-#define PLANE_LIGHT_ELEV 20.0
-#define PLANE_LIGHT_AZIM 10.0
-#define SPHERE_RADIUS    100.0
-#define SPHERE_CAM_DIST  330.0
-#define SPHERE_FOV_DEG   40.0
-#define SPHERE_TILES     128
+/* ---------------------------------------------------------------- settings (the scenes': bench/pic_scenes.h) */
 #define MAX_ANISO        16.0
 #define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
 #define MOTION_FRAMES    16
@@ -84,9 +70,7 @@
 #define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
 #define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator,
                                                   a quarter of the median footprint */
-static const double fr_pi = 3.14159265358979323846;
 
-#define VMF_ITER         24 /* EM iterations per lobe-pyramid texel, as bench/pictures.c */
 enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_COUNT };
 static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4",
                                                   "vMF m = 8"};
@@ -101,174 +85,44 @@ static double now_seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* ---------------------------------------------------------------- vectors, camera (pictures.c) */
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void norm3(double a[3])
-{
-    double l = sqrt(dot3(a, a));
-    a[0] /= l, a[1] /= l, a[2] /= l;
-}
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
-typedef struct {
-    double pos[3], right[3], up[3], fwd[3], tan_half;
-    int w, h;
-} fr_camera;
-
-static void camera_look(fr_camera *c, const double pos[3], const double fwd[3], double fov_deg, int w, int h)
-{
-    double world_up[3] = {0.0, 0.0, 1.0};
-    memcpy(c->pos, pos, sizeof c->pos);
-    memcpy(c->fwd, fwd, sizeof c->fwd);
-    norm3(c->fwd);
-    cross3(c->fwd, world_up, c->right);
-    norm3(c->right);
-    cross3(c->right, c->fwd, c->up);
-    c->tan_half = tan(0.5 * fov_deg * fr_pi / 180.0);
-    c->w = w;
-    c->h = h;
-}
-
-static void camera_ray(const fr_camera *c, double px, double py, double d[3])
-{
-    double sx = (2.0 * (px + 0.5) / c->w - 1.0) * c->tan_half * c->w / c->h;
-    double sy = (1.0 - 2.0 * (py + 0.5) / c->h) * c->tan_half;
-    int k;
-    for (k = 0; k < 3; ++k) d[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
-    norm3(d);
-}
-
-/* the footprint side (pictures.c's footprint_texels): neighbour rays on the tangent plane; off
-   (optional) receives the two offsets in texels, (x+1: off[0], off[1]; y+1: off[2], off[3]),
-   each shortened to the cap */
-static double footprint_texels(const fr_camera *c, int i, int j, const double hit[3], const double n[3],
-                               const double tu[3], const double tv[3], double tpx, double tpy, double cap, double off4[4])
-{
-    double best = 0.0;
-    int e, k;
-    if (off4) off4[0] = cap, off4[1] = 0.0, off4[2] = 0.0, off4[3] = cap;
-    for (e = 0; e < 2; ++e) {
-        double d[3], off[3], dn, t, a, b, l;
-        camera_ray(c, i + (e == 0 ? 1.0 : 0.0), j + (e == 1 ? 1.0 : 0.0), d);
-        dn = dot3(d, n);
-        if (fabs(dn) < 1e-12) return cap;
-        for (k = 0; k < 3; ++k) off[k] = hit[k] - c->pos[k];
-        t = dot3(off, n) / dn;
-        if (!(t > 0.0)) return cap;
-        for (k = 0; k < 3; ++k) off[k] = c->pos[k] + t * d[k] - hit[k];
-        a = dot3(off, tu) * tpx;
-        b = dot3(off, tv) * tpy;
-        l = sqrt(a * a + b * b);
-        if (l > best) best = l;
-        if (off4) {
-            double sc = l > cap ? cap / l : 1.0;
-            off4[2 * e] = a * sc, off4[2 * e + 1] = b * sc;
-        }
-    }
-    return best < cap ? best : cap;
-}
-
-typedef struct {
-    int hit;
-    double tx, ty, fp, wo[3], wi[3];
-    double off[4]; /* the pixel's footprint: texel offsets of its x + 1 and y + 1 neighbours */
-} fr_pixel;
 
 typedef struct {
     int which, w, h;
-    fr_camera cam;
+    pic_camera cam;
     double light[3];
     int ref_max;
-    fr_pixel *px;
+    pic_sample *px;
 } fr_scene;
 
 /* motion: the plane's camera moved forward (+y) by that many texels (a dolly); the sphere turned
    about its pole by that many radians (the texture moves under a fixed camera and light) */
 static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface *s, double motion)
 {
-    double W = s->w, H = s->h;
-    int i, j, k;
+    int i, j;
     memset(sc, 0, sizeof *sc);
     sc->which = which;
     sc->w = w;
     sc->h = h;
-    sc->px = (fr_pixel *)calloc((size_t)w * (size_t)h, sizeof(fr_pixel));
-    if (which == 0) {
-        double pos[3] = {0.0, motion, PLANE_CAM_HEIGHT}, pitch = PLANE_PITCH_DEG * fr_pi / 180.0, fwd[3];
-        double el = PLANE_LIGHT_ELEV * fr_pi / 180.0, az = PLANE_LIGHT_AZIM * fr_pi / 180.0;
-        double nz[3] = {0, 0, 1}, ax[3] = {1, 0, 0}, ay[3] = {0, 1, 0};
-        fwd[0] = 0.0, fwd[1] = cos(pitch), fwd[2] = -sin(pitch);
-        camera_look(&sc->cam, pos, fwd, PLANE_FOV_DEG, w, h);
-        sc->light[0] = sin(az) * cos(el), sc->light[1] = cos(az) * cos(el), sc->light[2] = sin(el);
-        for (j = 0; j < h; ++j)
-            for (i = 0; i < w; ++i) {
-                fr_pixel *p = &sc->px[(size_t)j * w + i];
-                double d[3], t, hit[3];
-                camera_ray(&sc->cam, i, j, d);
-                if (d[2] > -1e-3) continue;
-                t = -pos[2] / d[2];
-                for (k = 0; k < 3; ++k) hit[k] = pos[k] + t * d[k];
-                p->hit = 1;
-                p->tx = hit[0];
-                p->ty = hit[1];
-                for (k = 0; k < 3; ++k) p->wo[k] = -d[k], p->wi[k] = sc->light[k];
-                p->fp = footprint_texels(&sc->cam, i, j, hit, nz, ax, ay, 1.0, 1.0, W, p->off);
-            }
-    } else {
-        double pos[3] = {0.0, -SPHERE_CAM_DIST, 0.25 * SPHERE_RADIUS}, fwd[3];
-        for (k = 0; k < 3; ++k) fwd[k] = -pos[k];
-        camera_look(&sc->cam, pos, fwd, SPHERE_FOV_DEG, w, h);
-        sc->light[0] = 0.5, sc->light[1] = -0.6, sc->light[2] = 0.6;
-        norm3(sc->light);
-        for (j = 0; j < h; ++j)
-            for (i = 0; i < w; ++i) {
-                fr_pixel *p = &sc->px[(size_t)j * w + i];
-                double d[3], b, c, disc, t, hit[3], n[3], tu[3], tv[3], phi, theta, st;
-                camera_ray(&sc->cam, i, j, d);
-                b = dot3(pos, d);
-                c = dot3(pos, pos) - SPHERE_RADIUS * SPHERE_RADIUS;
-                disc = b * b - c;
-                if (disc <= 0.0) continue;
-                t = -b - sqrt(disc);
-                if (t <= 0.0) continue;
-                for (k = 0; k < 3; ++k) hit[k] = pos[k] + t * d[k], n[k] = hit[k] / SPHERE_RADIUS;
-                phi = atan2(n[1], n[0]);
-                if (phi < 0.0) phi += 2.0 * fr_pi;
-                theta = acos(n[2] > 1.0 ? 1.0 : (n[2] < -1.0 ? -1.0 : n[2]));
-                st = sin(theta);
-                if (st < 1e-6) continue;
-                tu[0] = -sin(phi), tu[1] = cos(phi), tu[2] = 0.0;
-                cross3(n, tu, tv);
-                p->hit = 1;
-                p->tx = (phi - motion) / (2.0 * fr_pi) * SPHERE_TILES * W;
-                p->ty = (1.0 - theta / fr_pi) * 0.5 * SPHERE_TILES * H;
-                p->fp = footprint_texels(&sc->cam, i, j, hit, n, tu, tv, SPHERE_TILES * W / (2.0 * fr_pi * SPHERE_RADIUS * st),
-                                         SPHERE_TILES * H / (2.0 * fr_pi * SPHERE_RADIUS), W, p->off);
-                p->wo[0] = -dot3(d, tu), p->wo[1] = -dot3(d, tv), p->wo[2] = -dot3(d, n);
-                p->wi[0] = dot3(sc->light, tu), p->wi[1] = dot3(sc->light, tv), p->wi[2] = dot3(sc->light, n);
-                if (p->wo[2] <= 1e-6) p->wo[2] = 1e-6;
-                norm3(p->wo);
-            }
-    }
+    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
+    pic_scene_view(which, w, h, motion, &sc->cam, sc->light);
+    for (j = 0; j < h; ++j)
+        for (i = 0; i < w; ++i)
+            pic_scene_pixel(which, &sc->cam, sc->light, (double)s->w, (double)s->h, motion, i, j, &sc->px[(size_t)j * w + i]);
 }
 
-/* ---------------------------------------------------------------- the brute force (pictures.c's
-   shade_reference, the full reference only) */
+/* ---------------------------------------------------------------- the brute force over the pixel's
+   footprint (pictures.c's box reference, shade_reference, is bench/pic_scenes.h's) */
 typedef struct {
     const pfm_surface *s;
     const unsigned char *vis_light; /* the light's visibility map (plane), or NULL */
-    const fr_pixel *p;
+    const pic_sample *p;
     double shx, shy; /* the half vector's slope */
     int lit;
     double num, area;
 } fr_ref_acc;
 
-static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p)
+static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p)
 {
     double hz = p->wo[2] + p->wi[2];
     memset(r, 0, sizeof *r);
@@ -280,10 +134,10 @@ static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *
 }
 
 /* one texel: its projected area, and its shaded term when visible both ways (texels whose base
-   lobe at h is below exp(-LOBE_CUTOFF) of its peak are not marched, as in pictures.c) */
-static void ref_texel(fr_ref_acc *r, int x, int y)
+   lobe at h is below exp(-LOBE_CUTOFF) of its peak are not marched, as in shade_reference) */
+static void ref_acc_texel(fr_ref_acc *r, int x, int y)
 {
-    const fr_pixel *p = r->p;
+    const pic_sample *p = r->p;
     double sx, sy, at;
     x = pfmi_wrap(x, r->s->w);
     y = pfmi_wrap(y, r->s->h);
@@ -298,30 +152,13 @@ static void ref_texel(fr_ref_acc *r, int x, int y)
     r->num += pfm_reference_shade(r->s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0).spec * at;
 }
 
-/* pictures.c's reference: the round(side)^2 texel box around the hit (side = the isotropic
-   footprint), an evenly spaced ref_max^2 subset beyond ref_max texels on a side */
-static double shade_reference(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max)
-{
-    fr_ref_acc r;
-    int n = (int)floor(p->fp + 0.5), ns, a, b, x0, y0;
-    if (n < 1) n = 1;
-    ns = n < ref_max ? n : ref_max;
-    x0 = (int)floor(p->tx - 0.5 * n + 0.5);
-    y0 = (int)floor(p->ty - 0.5 * n + 0.5);
-    ref_begin(&r, s, vis_light, p);
-    for (b = 0; b < ns; ++b)
-        for (a = 0; a < ns; ++a)
-            ref_texel(&r, x0 + (int)(((double)a + 0.5) * n / ns), y0 + (int)(((double)b + 0.5) * n / ns));
-    return r.area > 0.0 ? r.num / r.area : 0.0;
-}
-
 /* The same brute force over the pixel's own footprint: the parallelogram spanned by the texel
    offsets of its two neighbour rays, centred on the hit (the image of the pixel's box filter
    on the tangent plane), sampled on an na x nb grid, na = round(spt |off_x|) (spt samples per
    texel; at least 1, at most ref_max), nb likewise; each grid point shades the texel it falls
    in: a supersampled pixel, whose samples move continuously with the camera. This is the
-   footprint anisotropic filtering approximates; the square box above is the isotropic one. */
-static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max, int spt)
+   footprint anisotropic filtering approximates; shade_reference's square box is the isotropic one. */
+static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p, int ref_max, int spt)
 {
     fr_ref_acc r;
     double lx = sqrt(p->off[0] * p->off[0] + p->off[1] * p->off[1]), ly = sqrt(p->off[2] * p->off[2] + p->off[3] * p->off[3]);
@@ -334,7 +171,7 @@ static double shade_reference_pixel(const pfm_surface *s, const unsigned char *v
     for (b = 0; b < nb; ++b)
         for (a = 0; a < na; ++a) {
             double fa = ((double)a + 0.5) / na - 0.5, fb = ((double)b + 0.5) / nb - 0.5;
-            ref_texel(&r, (int)floor(p->tx + fa * p->off[0] + fb * p->off[2]), (int)floor(p->ty + fa * p->off[1] + fb * p->off[3]));
+            ref_acc_texel(&r, (int)floor(p->tx + fa * p->off[0] + fb * p->off[2]), (int)floor(p->ty + fa * p->off[1] + fb * p->off[3]));
         }
     return r.area > 0.0 ? r.num / r.area : 0.0;
 }
@@ -914,19 +751,6 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
 }
 
 /* ---------------------------------------------------------------- statistics */
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-static double quantile(double *v, int n, double q) /* sorts v */
-{
-    int i;
-    if (n <= 0) return 0.0;
-    qsort(v, (size_t)n, sizeof(double), cmp_double);
-    i = (int)ceil(q * n) - 1;
-    return v[i < 0 ? 0 : (i >= n ? n - 1 : i)];
-}
 static double rel(double v, double ref, double fl) { return fabs(v - ref) / (ref > fl ? ref : fl); }
 
 /* ---------------------------------------------------------------- the CPU work on every core
@@ -936,7 +760,7 @@ static double rel(double v, double ref, double fl) { return fabs(v - ref) / (ref
 typedef struct {
     const pfm_surface *surf;
     const unsigned char *vis_light;
-    const fr_pixel *px;
+    const pic_sample *px;
     int w, ref_max, spt; /* spt 0: pictures.c's box; else the pixel's footprint, spt samples per texel */
     double *ref;          /* out: per pixel (pixels off the surface untouched) */
     unsigned char *hit;   /* out, optional: per pixel, the pixel sees the surface */
@@ -946,13 +770,15 @@ static void ref_row(void *ctx, long long row)
 {
     const fr_ref_job *jb = (const fr_ref_job *)ctx;
     size_t i0 = (size_t)row * (size_t)jb->w, i;
+    ref_texel *scratch = jb->spt ? NULL : (ref_texel *)pfb_xmalloc(sizeof(ref_texel) * (size_t)jb->ref_max * (size_t)jb->ref_max);
     for (i = i0; i < i0 + (size_t)jb->w; ++i) {
-        const fr_pixel *p = &jb->px[i];
+        const pic_sample *p = &jb->px[i];
         if (jb->hit) jb->hit[i] = (unsigned char)p->hit;
         if (!p->hit) continue;
         jb->ref[i] = jb->spt ? shade_reference_pixel(jb->surf, jb->vis_light, p, jb->ref_max, jb->spt)
-                             : shade_reference(jb->surf, jb->vis_light, p, jb->ref_max);
+                             : shade_reference(jb->surf, jb->vis_light, p, jb->ref_max, 1, scratch).full;
     }
+    free(scratch);
 }
 
 /* the references of one frame into ref (and hit), rows in parallel */
@@ -968,19 +794,19 @@ static void references(const pfm_surface *surf, const unsigned char *vis_light, 
 /* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials), lit pixels */
 typedef struct {
     const fr_maps *maps;
-    const fr_pixel *px;
+    const pic_sample *px;
     const unsigned char *lit;
     int w, method;
     double *out;
-} fr_pic_job;
+} pic_pic_job;
 
 static void pic_path_row(void *ctx, long long row)
 {
-    const fr_pic_job *jb = (const fr_pic_job *)ctx;
+    const pic_pic_job *jb = (const pic_pic_job *)ctx;
     const fr_maps *mp = jb->maps;
     size_t i0 = (size_t)row * (size_t)jb->w, i;
     for (i = i0; i < i0 + (size_t)jb->w; ++i) {
-        const fr_pixel *p = &jb->px[i];
+        const pic_sample *p = &jb->px[i];
         float a[4], b[4];
         double lod = p->fp > 1.0 ? log2(p->fp) : 0.0;
         jb->out[i] = 0.0;
@@ -999,7 +825,7 @@ static void pic_path_row(void *ctx, long long row)
    (vd; lodd: |driver's lod - log2(rho_max)| for the lit pixels of the box reference, else -1) */
 typedef struct {
     const fr_maps *maps;
-    const fr_pixel *px;
+    const pic_sample *px;
     const unsigned char *lit0, *lit1;
     const float *gpu;
     int w, npx, method, levels, driver_lod; /* driver_lod: also vd and lodd (isotropic rows) */
@@ -1015,7 +841,7 @@ static void gpu_path_row(void *ctx, long long row)
     size_t i0 = (size_t)row * (size_t)jb->w, i;
     for (i = i0; i < i0 + (size_t)jb->w; ++i) {
         const float *o0 = jb->gpu + 4 * i, *o1 = jb->gpu + 4 * ((size_t)jb->npx + i);
-        const fr_pixel *p = &jb->px[i];
+        const pic_sample *p = &jb->px[i];
         float a[4], b[4];
         double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
         double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
@@ -1309,7 +1135,7 @@ int main(int argc, char **argv)
         /* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials) */
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
             double p95;
-            fr_pic_job pj;
+            pic_pic_job pj;
             pj.maps = &maps, pj.px = sc.px, pj.lit = lit[0], pj.w = w, pj.method = m, pj.out = vc;
             pfb_parallel_for(h, pic_path_row, &pj, NULL);
             rel_stats(vc, ref[0], lit[0], floor_[s][0], npx, scratch, &cpu_pic_err[s][m], &p95);
@@ -1643,7 +1469,7 @@ int main(int argc, char **argv)
                 "methods against each other (the naive mip-mapped normal is the anchor of shimmer).\n\n",
             MOTION_FRAMES, quick ? motion_quick[0][0] : motion_full[0][0], quick ? motion_quick[0][1] : motion_full[0][1],
             quick ? motion_quick[1][0] : motion_full[1][0], quick ? motion_quick[1][1] : motion_full[1][1], PLANE_DOLLY_STEP,
-            SPHERE_TURN_STEP * 180.0 / fr_pi, SPHERE_TURN_STEP / (2.0 * fr_pi) * SPHERE_TILES * W, MOTION_SPT, ref_max, ref_max,
+            SPHERE_TURN_STEP * 180.0 / pic_pi, SPHERE_TURN_STEP / (2.0 * pic_pi) * SPHERE_TILES * W, MOTION_SPT, ref_max, ref_max,
             100.0 * motion_ref_change[0], 100.0 * motion_ref_change[1]);
     fprintf(md, "| method | plane: error (mean over frames) | plane: change per frame | plane: flicker ratio | sphere: error | "
                 "sphere: change per frame | sphere: flicker ratio | non-finite |\n|---|---|--:|--:|---|--:|--:|--:|\n");
