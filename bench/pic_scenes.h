@@ -24,6 +24,8 @@
 
 static const double pic_pi = 3.14159265358979323846;
 
+/* the plane: camera height (texels), pitch below the horizon and vertical field of view
+   (degrees), the light's elevation and azimuth from +y (degrees) */
 #define PLANE_CAM_HEIGHT 90.0
 #define PLANE_PITCH_DEG  14.0
 #define PLANE_FOV_DEG    40.0
@@ -32,6 +34,7 @@ static const double pic_pi = 3.14159265358979323846;
 #endif
 #define PLANE_LIGHT_AZIM 10.0
 
+/* the sphere: radius and camera distance (world units), vertical field of view (degrees) */
 #define SPHERE_RADIUS    100.0
 #define SPHERE_CAM_DIST  330.0
 #define SPHERE_FOV_DEG   40.0

@@ -34,6 +34,11 @@
    ratio (its change / the reference's own change); frame.md says why the ratio is not yet a
    fair test (the reference's own change is mostly its sampling noise).
 
+   SCENES. Cameras, lights, pixel rays, footprints and the box brute force are bench/pictures.c's,
+   from their one home bench/pic_scenes.h. CPU WORK (references, the CPU float path, the sampler
+   emulation, the lobe pyramids) runs on every core (bench/pf_parallel.h, PFB_THREADS), rows as
+   items, sums taken afterwards in pixel order: the CSVs are the same for any thread count.
+
    TIMES. On a CPU device (lavapipe) no time is reported: it is not GPU time. On a real GPU
    (PF_VK_DEVICE, vk_common.h) the render pass is timed with timestamp queries (median of 5).
 
