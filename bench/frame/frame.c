@@ -796,6 +796,18 @@ static void references(const pfm_surface *surf, const unsigned char *vis_light, 
     pfb_parallel_for(sc->h, ref_row, &jb, label);
 }
 
+/* the motion frames' references: item = frame x h + row */
+typedef struct {
+    fr_ref_job frame[MOTION_FRAMES];
+    int h;
+} fr_motion_job;
+
+static void motion_ref_item(void *ctx, long long item)
+{
+    fr_motion_job *jb = (fr_motion_job *)ctx;
+    ref_row(&jb->frame[item / jb->h], item % jb->h);
+}
+
 /* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials), lit pixels */
 typedef struct {
     const fr_maps *maps;
@@ -1277,6 +1289,7 @@ int main(int argc, char **argv)
         int npx = w * h, f, i, mr;
         fr_target tg;
         fr_push pc;
+        fr_scene msc[MOTION_FRAMES];
         VkPipeline pipes[MT_COUNT];
         unsigned char *vis_light = NULL;
         double *mref = (double *)calloc((size_t)MOTION_FRAMES * npx, sizeof(double)), *scratch = (double *)malloc(sizeof(double) * (size_t)npx);
@@ -1290,17 +1303,26 @@ int main(int argc, char **argv)
             pipes[m] = make_pipeline(&tg, w, h, vert, path);
         }
         memset(motion_nonfinite[s], 0, sizeof motion_nonfinite[s]);
-        for (f = 0; f < MOTION_FRAMES; ++f) {
-            fr_scene sc;
-            int ns = 0;
+        { /* every frame's reference in one parallel step (items: frame x row) */
+            fr_motion_job mj;
             char label[64];
-            scene_make(&sc, s, w, h, &surf, f * motion_step[s]);
-            if (s == 0 && !vis_light) {
-                vis_light = (unsigned char *)malloc((size_t)W * H);
-                pfm_visibility_map(&surf, sc.light, vis_light);
+            for (f = 0; f < MOTION_FRAMES; ++f) {
+                scene_make(&msc[f], s, w, h, &surf, f * motion_step[s]);
+                if (s == 0 && !vis_light) { /* the light does not move: one visibility map */
+                    vis_light = (unsigned char *)pfb_xmalloc((size_t)W * H);
+                    pfm_visibility_map(&surf, msc[f].light, vis_light);
+                }
+                mj.frame[f].surf = &surf, mj.frame[f].vis_light = vis_light, mj.frame[f].px = msc[f].px, mj.frame[f].w = w;
+                mj.frame[f].ref_max = ref_max, mj.frame[f].spt = MOTION_SPT;
+                mj.frame[f].ref = mref + (size_t)f * npx, mj.frame[f].hit = mhit + (size_t)f * npx;
             }
-            snprintf(label, sizeof label, "frame: motion %s, reference of frame %d/%d", scene_key[s], f + 1, MOTION_FRAMES);
-            references(&surf, vis_light, &sc, ref_max, MOTION_SPT, mref + (size_t)f * npx, mhit + (size_t)f * npx, label);
+            mj.h = h;
+            snprintf(label, sizeof label, "frame: motion %s, %d references", scene_key[s], MOTION_FRAMES);
+            pfb_parallel_for((long long)MOTION_FRAMES * h, motion_ref_item, &mj, label);
+        }
+        for (f = 0; f < MOTION_FRAMES; ++f) {
+            fr_scene sc = msc[f];
+            int ns = 0;
             for (i = 0; i < npx; ++i)
                 if (mhit[(size_t)f * npx + i]) scratch[ns++] = mref[(size_t)f * npx + i];
             mfloor[f] = LIT_FRACTION * quantile(scratch, ns, 0.99);
