@@ -122,15 +122,11 @@
 #include "pf_vmf.h"
 #include "pf_microsurface.h"
 #include "pf_maps.h"
+#include "pic_scenes.h" /* the scenes, their settings and the brute-force reference (shared with bench/frame/) */
 #include "vmf_scaling.h"
 
 /* ---------------------------------------------------------------- settings */
-#define MAP_SIZE        256     /* the height map: MAP_SIZE^2 texels, texel = 1 world unit */
-#define BASE_SIGMA      0.1     /* slope deviation of the narrow Beckmann base lobe */
-#define F0              1.0     /* Schlick f0: 1 = no Fresnel (a constant factor in both) */
 #define REF_MAX_SAMPLES 64      /* reference texels per footprint side, at most */
-#define LIT_FRACTION    0.05    /* lit = reference >= this times its 99th percentile */
-#define SPHERE_TILES    128     /* map repetitions around the sphere's equator */
 #define SPHERE_REF_MAX  128     /* sphere: the same (BENCH_QUICK: REF_MAX_SAMPLES) */
 #define REF_SCRATCH     (REF_MAX_SAMPLES > SPHERE_REF_MAX ? REF_MAX_SAMPLES : SPHERE_REF_MAX)
 #define ERR_LOG_MIN     (-1.5)  /* error maps: log10 of the error at the bottom of the colour
@@ -139,10 +135,7 @@
 #define FP_SHOWN_MIN    0.25    /* footprint map: colour scale from 1/4 texel to the map size */
 #define WHITE_EXPOSURE  5.0     /* shaded panels: the colour bar ends at L = this / exposure,
                                    where the display curve 1 - exp(-exposure L) reaches 0.993 */
-#define LOBE_CUTOFF     30.0    /* reference: texels whose base lobe at h is below exp(-30) of
-                                   its peak (1e-13) are not marched (their term is taken as 0) */
 #define FLAT_RMS_SLOPE  1e-9    /* self-check: the map flattened to this RMS slope */
-#define VMF_ITER        24      /* EM iterations at most per lobe-pyramid texel (as bench/microsurface.c) */
 #define SC_LEVEL        6       /* the scaling function's level: 64 x 64-texel footprints, the only
                                    level bench/microsurface.c scales (docs/vmf.md) */
 #define VMF_CHECK_BOUND 2e-2    /* self-check bound of the vMF methods on the flat map: its fitted
@@ -152,7 +145,6 @@
 #define NVMF_PIC        2       /* lobe pyramids: m = vmf_pic_lobes[i] */
 static const int vmf_pic_lobes[NVMF_PIC] = {4, 8};
 
-static const double pic_pi = 3.14159265358979323846;
 
 /* The user's map (--map PATH, `make bench MAP=...`; tests/reference/pf_maps.h): when set, both scenes
    tile it instead of the Gaussian corpus map (the flat self-check still uses the Gaussian
@@ -163,24 +155,6 @@ static char map_title[256] = ""; /* for gnuplot titles: no backquote, quote or b
 static double map_rms = 0.0, map_corr = 0.0;
 /* the side of the map the scenes use (footprints are capped at it) */
 static int map_side(void) { return user_map ? user_map->w : MAP_SIZE; }
-/* ---------------------------------------------------------------- small vector helpers */
-static double v3_dot(const double a[3], const double b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-static void v3_normalize(double a[3])
-{
-    double l = sqrt(v3_dot(a, a));
-    a[0] /= l;
-    a[1] /= l;
-    a[2] /= l;
-}
-static void v3_set(double a[3], double x, double y, double z)
-{
-    a[0] = x;
-    a[1] = y;
-    a[2] = z;
-}
 
 /* CPU seconds of the calling thread: the one-off builds that run inside a parallel step are
    timed by their own thread's CPU time (not the wall clock, which other threads share). */
@@ -191,24 +165,7 @@ static double thread_cpu_seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static int wrap_index(int i, int n) { return ((i % n) + n) % n; }
 
-/* ---------------------------------------------------------------- the shared inputs */
-typedef struct {
-    int hit;           /* 1 if the pixel sees the surface */
-    double tx, ty;     /* hit point in texel coordinates (texel i spans [i, i + 1)) */
-    double fp;         /* footprint side in texels (isotropic, capped at the map size) */
-    double wo[3], wi[3]; /* view and light in the pixel's tangent frame, unit */
-} pic_sample;
-
-/* One texel of a reference footprint, kept between the two passes of shade_reference. */
-typedef struct {
-    int x, y;          /* unwrapped texel coordinates */
-    double at;         /* projected area (m.wo)/(m.z) */
-    double term;       /* its specular term times at, when visible both ways in the full march */
-    signed char vo, vi; /* full-march visibility toward wo, wi (-1: not marched) */
-    signed char cut;    /* 1: below the lobe cutoff, not marched (its term is taken as 0) */
-} ref_texel;
 
 /* The maps of one height map, built once and shared by both scenes (and the self-check's flat
    map by both of its scenes): pyramids, lobe pyramids, the scaling function, a summed-area table. */
@@ -380,152 +337,6 @@ static void sat_periodic(const pic_maps *m, long x, long y, double out[5])
 }
 
 /* ---------------------------------------------------------------- the three shaders */
-static int footprint_side(double fp)
-{
-    int n = (int)floor(fp + 0.5);
-    return n < 1 ? 1 : n;
-}
-
-static int footprint_start(double t, int n) { return (int)floor(t - 0.5 * n + 0.5); }
-
-typedef struct {
-    double full;    /* the reference: occluders anywhere on the (periodic) surface */
-    double inbox;   /* occluders inside the footprint box only */
-    double noise;   /* subsampled footprints: half the difference of the two checkerboard
-                       halves of the samples (~ the sampling deviation); 0 otherwise */
-    double t_full, t_inbox; /* seconds spent on each */
-    /* slopes only, no visibility: the NDF at the half vector's slope of the shaded texels
-       (the mean of their base lobes) and of the Gaussian with the same texels' moments plus
-       the base variance (what LEADR assumes, eqs. 8-10) */
-    double ndf_texels, ndf_gauss;
-} ref_result;
-
-/* Brute force: the n x n box (or an evenly spaced ref_max^2 subset), one texel at a time
-   through pfm_reference_shade (n = 1, visibility handled here), recombined with the texels'
-   projected areas a_t = (m_t . wo)/(m_t . z) = wo.z - sx wo.x - sy wo.y (LEADR eq. 1): the
-   footprint's value is sum_t V_o V_i spec_t a_t / sum_t a_t, which is pfm_reference_shade over
-   the whole box when the box is shaded completely. A texel hidden in one direction contributes
-   0 to the numerator and its a_t to the denominator, so the other direction is marched only
-   when the first sees: the light first when its visibility is the map vis_light (the plane:
-   one light direction in every pixel's frame; a lookup) or when it is the flatter direction
-   (more often occluded, and an occluded march stops early), else the view first. Second pass
-   (the in-box variant): the texels occluded in the full march are marched again with only the
-   box's own height field as occluder (pfm_visible_box; a texel free in the full march is free
-   in the box). scratch: REF_SCRATCH^2 texels, the caller's (one per parallel item). */
-static ref_result shade_reference(const pic_maps *m, const unsigned char *vis_light, const pic_sample *p,
-                                  int ref_max, ref_texel *scratch)
-{
-    const pfm_surface *s = &m->surf;
-    int n = footprint_side(p->fp), ns = n < ref_max ? n : ref_max, a, b, k = 0, q;
-    int x0 = footprint_start(p->tx, n), y0 = footprint_start(p->ty, n);
-    double num = 0.0, area = 0.0, half_num[2] = {0.0, 0.0}, half_area[2] = {0.0, 0.0};
-    double num_box = 0.0, t0 = pfb_now_s(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
-    /* slope of the half vector: the texel's lobe at h is exp(-q) of its peak, q = |s_t -
-       s_h|^2 / (2 sigma^2) (eq. 10) */
-    double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
-    int lit = p->wi[2] > 0.0 && hz > 0.0;
-    /* march toward the light first when its visibility is a map lookup, or when it is the
-       flatter direction (more often occluded, and an occluded march stops early) */
-    int light_first = vis_light != NULL ||
-                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
-                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
-    ref_result r;
-    memset(&r, 0, sizeof r);
-    if (lit) {
-        shx = -(p->wo[0] + p->wi[0]) / hz;
-        shy = -(p->wo[1] + p->wi[1]) / hz;
-    }
-    for (b = 0; b < ns; ++b) {
-        int yu = y0 + (int)(((double)b + 0.5) * n / ns), y = wrap_index(yu, s->h);
-        for (a = 0; a < ns; ++a, ++k) {
-            int xu = x0 + (int)(((double)a + 0.5) * n / ns), x = wrap_index(xu, s->w);
-            ref_texel *e = &scratch[k];
-            double sx, sy;
-            pfm_slope(s, x, y, &sx, &sy);
-            e->x = xu;
-            e->y = yu;
-            e->at = p->wo[2] - sx * p->wo[0] - sy * p->wo[1];
-            e->term = 0.0;
-            e->vo = e->vi = -1;
-            e->cut = 1;
-            area += e->at;
-            half_area[(a + b) & 1] += e->at;
-            mom[0] += sx;
-            mom[1] += sy;
-            mom[2] += sx * sx;
-            mom[3] += sy * sy;
-            mom[4] += sx * sy;
-            if (lit) {
-                double qq = ((sx - shx) * (sx - shx) + (sy - shy) * (sy - shy)) /
-                            (2.0 * BASE_SIGMA * BASE_SIGMA);
-                ndf += exp(-qq);
-            }
-            /* a texel whose lobe is below exp(-LOBE_CUTOFF) of its peak at h adds nothing
-               measurable whatever its visibility: not marched (vo stays -1) */
-            if (!lit || !(e->at > 0.0) ||
-                ((sx - shx) * (sx - shx) + (sy - shy) * (sy - shy)) /
-                        (2.0 * BASE_SIGMA * BASE_SIGMA) >
-                    LOBE_CUTOFF)
-                continue;
-            e->cut = 0;
-            /* the term needs both directions visible: the second march only when the first
-               sees (light_first: the light's map, or the flatter direction, first) */
-            if (light_first) {
-                e->vi = (signed char)(vis_light ? vis_light[(size_t)y * s->w + x] : pfm_visible(s, x, y, p->wi));
-                if (!e->vi) continue;
-                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
-                if (!e->vo) continue;
-            } else {
-                e->vo = (signed char)pfm_visible(s, x, y, p->wo);
-                if (!e->vo) continue;
-                e->vi = (signed char)pfm_visible(s, x, y, p->wi);
-                if (!e->vi) continue;
-            }
-            e->term = pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
-                          .spec * e->at;
-            num += e->term;
-            half_num[(a + b) & 1] += e->term;
-        }
-    }
-    t1 = pfb_now_s();
-    r.t_full = t1 - t0;
-    r.full = area > 0.0 ? num / area : 0.0;
-    if (ns < n && half_area[0] > 0.0 && half_area[1] > 0.0)
-        r.noise = 0.5 * fabs(half_num[0] / half_area[0] - half_num[1] / half_area[1]);
-    if (lit) { /* P22 at s_h: the texels' lobes, and the Gaussian of their moments */
-        double var = BASE_SIGMA * BASE_SIGMA, mx = mom[0] / k, my = mom[1] / k;
-        double cxx = mom[2] / k - mx * mx + var, cyy = mom[3] / k - my * my + var;
-        double cxy = mom[4] / k - mx * my, det = cxx * cyy - cxy * cxy;
-        double dx = shx - mx, dy = shy - my;
-        r.ndf_texels = ndf / k / (2.0 * pic_pi * var);
-        r.ndf_gauss = exp(-0.5 * (cyy * dx * dx - 2.0 * cxy * dx * dy + cxx * dy * dy) / det) /
-                      (2.0 * pic_pi * sqrt(det));
-    }
-    for (q = 0; q < k; ++q) {
-        const ref_texel *e = &scratch[q];
-        int x = wrap_index(e->x, s->w), y = wrap_index(e->y, s->h);
-        int bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h);
-        if (e->cut) continue; /* not marched: negligible */
-        if (e->vo == 1 && e->vi == 1) {
-            num_box += e->term;
-            continue;
-        }
-        /* visible in the box where visible in full (the box only removes occluders); else
-           marched in the box, in the order of the full march */
-        if (light_first) {
-            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
-            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
-        } else {
-            if (e->vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, n)) continue;
-            if (e->vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, n)) continue;
-        }
-        num_box += pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0)
-                       .spec * e->at;
-    }
-    r.inbox = area > 0.0 ? num_box / area : 0.0;
-    r.t_inbox = pfb_now_s() - t1;
-    return r;
-}
 
 static pf_vec3 to_pf(const double a[3])
 {
@@ -721,209 +532,50 @@ typedef struct {
                                  pixel's frame (the plane: a map of the whole surface), or NULL */
 } pic_scene;
 
-/* Camera: position, orthonormal right/up/forward, tan of half the vertical field of view. */
-typedef struct {
-    double pos[3], right[3], up[3], fwd[3];
-    double tan_half;
-    int w, h;
-} pic_camera;
 
-static void camera_ray(const pic_camera *c, double px, double py, double d[3])
-{
-    double sx = (2.0 * (px + 0.5) / c->w - 1.0) * c->tan_half * c->w / c->h;
-    double sy = (1.0 - 2.0 * (py + 0.5) / c->h) * c->tan_half;
-    int k;
-    for (k = 0; k < 3; ++k) d[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
-    v3_normalize(d);
-}
-
-/* Intersection of the ray (o, d) with the plane through p with normal n; 0 if parallel. */
-static int ray_plane(const double o[3], const double d[3], const double p[3], const double n[3],
-                     double hit[3])
-{
-    double dn = v3_dot(d, n), op[3], t;
-    int k;
-    if (fabs(dn) < 1e-12) return 0;
-    for (k = 0; k < 3; ++k) op[k] = p[k] - o[k];
-    t = v3_dot(op, n) / dn;
-    if (!(t > 0.0)) return 0;
-    for (k = 0; k < 3; ++k) hit[k] = o[k] + t * d[k];
-    return 1;
-}
-
-/* The footprint in texels from the two neighbour rays, intersected with the tangent plane at
-   the hit; du[k], dv[k]: texel coordinates per unit world length along the tangent axes
-   (tx_axis, ty_axis). Capped at the map size. */
-static double footprint_texels(const pic_camera *c, int i, int j, const double hit[3],
-                               const double n[3], const double tx_axis[3], const double ty_axis[3],
-                               double tex_per_x, double tex_per_y, double cap)
-{
-    double best = 0.0;
-    int k, e;
-    for (e = 0; e < 2; ++e) {
-        double d[3], h2[3], off[3], a, b, l;
-        camera_ray(c, i + (e == 0 ? 1.0 : 0.0), j + (e == 1 ? 1.0 : 0.0), d);
-        if (!ray_plane(c->pos, d, hit, n, h2)) return cap;
-        for (k = 0; k < 3; ++k) off[k] = h2[k] - hit[k];
-        a = v3_dot(off, tx_axis) * tex_per_x;
-        b = v3_dot(off, ty_axis) * tex_per_y;
-        l = sqrt(a * a + b * b);
-        if (l > best) best = l;
-    }
-    return best < cap ? best : cap;
-}
-
-static void camera_look(pic_camera *c, const double pos[3], const double fwd[3], double fov_deg,
-                        int w, int h)
-{
-    double world_up[3] = {0.0, 0.0, 1.0};
-    int k;
-    for (k = 0; k < 3; ++k) c->pos[k] = pos[k];
-    for (k = 0; k < 3; ++k) c->fwd[k] = fwd[k];
-    v3_normalize(c->fwd);
-    /* right = fwd x up, up = right x fwd */
-    v3_set(c->right, c->fwd[1] * world_up[2] - c->fwd[2] * world_up[1],
-           c->fwd[2] * world_up[0] - c->fwd[0] * world_up[2],
-           c->fwd[0] * world_up[1] - c->fwd[1] * world_up[0]);
-    v3_normalize(c->right);
-    v3_set(c->up, c->right[1] * c->fwd[2] - c->right[2] * c->fwd[1],
-           c->right[2] * c->fwd[0] - c->right[0] * c->fwd[2],
-           c->right[0] * c->fwd[1] - c->right[1] * c->fwd[0]);
-    c->tan_half = tan(0.5 * fov_deg * pic_pi / 180.0);
-    c->w = w;
-    c->h = h;
-}
-
-#define PLANE_CAM_HEIGHT 90.0
-#define PLANE_PITCH_DEG  14.0
-#define PLANE_FOV_DEG    40.0
-#ifndef PLANE_LIGHT_ELEV
-#  define PLANE_LIGHT_ELEV 20.0 /* 12 in the first version: mostly shadowed, mostly black */
-#endif
-#define PLANE_LIGHT_AZIM 10.0
 #define PLANE_EXPOSURE   0.35   /* fixed; puts the reference's 99th percentile near 0.9 */
 
-/* Plane z = 0, tangent frame = world frame, texel = 1 world unit. */
-static void scene_plane(pic_scene *sc, const pic_maps *m, int w, int h)
+#define SPHERE_EXPOSURE  2.0
+
+/* The pixels of scene which (bench/pic_scenes.h: cameras, lights, rays, footprints). */
+static void scene_pixels(pic_scene *sc, const pic_maps *m, int which, int w, int h)
 {
     pic_camera cam;
-    double pos[3] = {0.0, 0.0, PLANE_CAM_HEIGHT}, fwd[3], wi[3];
-    double pz[3] = {0.0, 0.0, 0.0}, nz[3] = {0.0, 0.0, 1.0}, ax[3] = {1, 0, 0}, ay[3] = {0, 1, 0};
-    double pitch = PLANE_PITCH_DEG * pic_pi / 180.0;
-    double el = PLANE_LIGHT_ELEV * pic_pi / 180.0, az = PLANE_LIGHT_AZIM * pic_pi / 180.0;
+    double light[3];
     int i, j;
-    v3_set(fwd, 0.0, cos(pitch), -sin(pitch));
-    camera_look(&cam, pos, fwd, PLANE_FOV_DEG, w, h);
-    v3_set(wi, sin(az) * cos(el), cos(az) * cos(el), sin(el));
-    sc->name = "plane";
+    pic_scene_view(which, w, h, 0.0, &cam, light);
     sc->w = w;
     sc->h = h;
+    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
+    sc->vis_light = NULL;
+    if (which == PIC_PLANE) { /* the light is the same direction in every pixel's (world) frame: one visibility map */
+        sc->vis_light = (unsigned char *)pfb_xmalloc((size_t)m->surf.w * (size_t)m->surf.h);
+        pfm_visibility_map(&m->surf, light, sc->vis_light);
+    }
+    for (j = 0; j < h; ++j)
+        for (i = 0; i < w; ++i)
+            pic_scene_pixel(which, &cam, light, (double)m->surf.w, (double)m->surf.h, 0.0, i, j, &sc->px[(size_t)j * w + i]);
+}
+
+static void scene_plane(pic_scene *sc, const pic_maps *m, int w, int h)
+{
+    sc->name = "plane";
     sc->exposure = PLANE_EXPOSURE;
     sc->ref_max = REF_MAX_SAMPLES;
     v3_set(sc->bg, 0.30, 0.42, 0.60);
-    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
-    /* the light is the same direction in every pixel's (world) frame: one visibility map */
-    sc->vis_light = (unsigned char *)pfb_xmalloc((size_t)m->surf.w * (size_t)m->surf.h);
-    pfm_visibility_map(&m->surf, wi, sc->vis_light);
-    for (j = 0; j < h; ++j)
-        for (i = 0; i < w; ++i) {
-            pic_sample *p = &sc->px[(size_t)j * w + i];
-            double d[3], hit[3];
-            camera_ray(&cam, i, j, d);
-            if (d[2] > -1e-3 || !ray_plane(cam.pos, d, pz, nz, hit)) continue;
-            p->hit = 1;
-            p->tx = hit[0];
-            p->ty = hit[1];
-            v3_set(p->wo, -d[0], -d[1], -d[2]);
-            v3_set(p->wi, wi[0], wi[1], wi[2]);
-            p->fp = footprint_texels(&cam, i, j, hit, nz, ax, ay, 1.0, 1.0, (double)m->surf.w);
-        }
+    scene_pixels(sc, m, PIC_PLANE, w, h);
 }
 
-#define SPHERE_RADIUS    100.0
-#define SPHERE_CAM_DIST  330.0
-#define SPHERE_FOV_DEG   40.0
-#define SPHERE_EXPOSURE  2.0
-
-/* Sphere of radius R at the origin, pole along +z; longitude phi, colatitude theta; texture
-   u = phi / (2 pi) * tiles, v = (1 - theta / pi) * tiles / 2 (texels square at the equator). */
 static void scene_sphere(pic_scene *sc, const pic_maps *m, int w, int h)
 {
-    pic_camera cam;
-    double pos[3] = {0.0, -SPHERE_CAM_DIST, 0.25 * SPHERE_RADIUS}, fwd[3], L[3];
-    double W = (double)m->surf.w, H = (double)m->surf.h;
-    int i, j, k;
-    v3_set(fwd, -pos[0], -pos[1], -pos[2]);
-    camera_look(&cam, pos, fwd, SPHERE_FOV_DEG, w, h);
-    v3_set(L, 0.5, -0.6, 0.6); /* toward the light: upper right, in front of the sphere */
-    v3_normalize(L);
     sc->name = "sphere";
-    sc->w = w;
-    sc->h = h;
     sc->exposure = SPHERE_EXPOSURE;
     sc->ref_max = SPHERE_REF_MAX;
     v3_set(sc->bg, 0.08, 0.09, 0.11);
-    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
-    sc->vis_light = NULL;
-    for (j = 0; j < h; ++j)
-        for (i = 0; i < w; ++i) {
-            pic_sample *p = &sc->px[(size_t)j * w + i];
-            double d[3], oc[3], b, c, disc, t, hit[3], n[3], tu[3], tv[3], phi, theta, st;
-            camera_ray(&cam, i, j, d);
-            for (k = 0; k < 3; ++k) oc[k] = cam.pos[k];
-            b = v3_dot(oc, d);
-            c = v3_dot(oc, oc) - SPHERE_RADIUS * SPHERE_RADIUS;
-            disc = b * b - c;
-            if (disc <= 0.0) continue;
-            t = -b - sqrt(disc);
-            if (t <= 0.0) continue;
-            for (k = 0; k < 3; ++k) hit[k] = cam.pos[k] + t * d[k];
-            for (k = 0; k < 3; ++k) n[k] = hit[k] / SPHERE_RADIUS;
-            phi = atan2(n[1], n[0]);
-            if (phi < 0.0) phi += 2.0 * pic_pi;
-            theta = acos(n[2] > 1.0 ? 1.0 : (n[2] < -1.0 ? -1.0 : n[2]));
-            st = sin(theta);
-            if (st < 1e-6) continue;
-            /* tangent x: increasing longitude; tangent y: toward the north pole (n x tu) */
-            v3_set(tu, -sin(phi), cos(phi), 0.0);
-            v3_set(tv, n[1] * tu[2] - n[2] * tu[1], n[2] * tu[0] - n[0] * tu[2],
-                   n[0] * tu[1] - n[1] * tu[0]);
-            p->hit = 1;
-            p->tx = phi / (2.0 * pic_pi) * SPHERE_TILES * W;
-            p->ty = (1.0 - theta / pic_pi) * 0.5 * SPHERE_TILES * H;
-            /* texels per world unit: along tu, 1/(R sin theta) radians of longitude; along tv,
-               1/R radians of latitude */
-            p->fp = footprint_texels(&cam, i, j, hit, n, tu, tv,
-                                     SPHERE_TILES * W / (2.0 * pic_pi * SPHERE_RADIUS * st),
-                                     SPHERE_TILES * H / (2.0 * pic_pi * SPHERE_RADIUS), W);
-            v3_set(p->wo, -v3_dot(d, tu), -v3_dot(d, tv), -v3_dot(d, n));
-            v3_set(p->wi, v3_dot(L, tu), v3_dot(L, tv), v3_dot(L, n));
-            if (p->wo[2] <= 1e-6) p->wo[2] = 1e-6; /* silhouette rounding */
-            v3_normalize(p->wo);
-        }
+    scene_pixels(sc, m, PIC_SPHERE, w, h);
 }
 
 /* ---------------------------------------------------------------- statistics */
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* q-quantile (0..1) of v[0..n-1] (sorted copy, nearest rank). */
-static double quantile(const double *v, int n, double q)
-{
-    double *c, r;
-    int i;
-    if (n <= 0) return 0.0;
-    c = (double *)pfb_xmalloc(sizeof(double) * (size_t)n);
-    memcpy(c, v, sizeof(double) * (size_t)n);
-    qsort(c, (size_t)n, sizeof(double), cmp_double);
-    i = (int)ceil(q * n) - 1;
-    r = c[i < 0 ? 0 : (i >= n ? n - 1 : i)];
-    free(c);
-    return r;
-}
 
 typedef struct { double mean, p95; } pic_err;
 
@@ -1016,7 +668,7 @@ static void bf_row(const pic_maps *m, const pic_scene *sc, pic_result *r, int j)
         ref_result q;
         r->val[M_REF][i] = r->inbox[i] = r->noise[i] = r->ndf_t[i] = r->ndf_g[i] = 0.0;
         if (!sc->px[i].hit) continue;
-        q = shade_reference(m, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
+        q = shade_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, 0, scratch);
         r->val[M_REF][i] = q.full;
         r->inbox[i] = q.inbox;
         r->noise[i] = q.noise;
@@ -1100,7 +752,7 @@ static void time_scene(const pic_maps *m, const pic_scene *sc, pic_result *r)
     if (stride < 1) stride = 1;
     for (i = 0, k = 0; i < n; ++i)
         if (sc->px[i].hit && k++ % stride_ref == 0) {
-            ref_result q = shade_reference(m, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
+            ref_result q = shade_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, 0, scratch);
             t_full += q.t_full;
             t_inbox += q.t_inbox;
             ++nt;

@@ -4,6 +4,7 @@
 #   summary.md, <module>.csv, <module>_<family>.svg   bench/run.sh (per-module families)
 #   microsurface.md (+ csv, svg)                       bench/microsurface.c (ground truth)
 #   pictures.md (+ png)                                bench/pictures.c
+#   frame.md (+ csv, png)                              bench/frame/ (the scenes on a Vulkan driver)
 #   stability.md (+ csv)                               bench/stability.c
 #   gpu_cost.md (+ csv, svg)                           bench/gpu/cost.sh (GPU instruction counts)
 #   choosing.md                                        bench/choosing.sh (the method guide)
@@ -158,6 +159,15 @@ summary_page() {
         echo "**Stability** ([detail](#stability-non-finite-and-out-of-range-outputs)): $(sed -n 's/^Totals per build (non-finite in the domain \/ out of range \/ non-finite from an arbitrary finite input): //p' "$stab" | head -n 1)"
         echo
     fi
+    if [ -f "$out/frame.csv" ]; then
+        # frame.csv: scene, method, storage, max_anisotropy, lit, err_box ($6), ..., vs_cpu ($12), ..., nonfinite ($17)
+        echo "**GPU frame** ([detail](#the-frame-on-a-vulkan-driver)): the pictures' scenes through a Vulkan driver, LEADR from f32 textures, mean error per lit pixel against the brute force (box reference) at max anisotropy 1 / 16, and the GPU against the library's CPU float path for the same pixels: $(awk -F, '
+            NR > 1 && $2 == "leadr" && $3 == "f32" { e[$1, $4] = $6; if ($4 == 1) v[$1] = $12; if (!($1 in seen)) { seen[$1] = 1; sc[++n] = $1 } }
+            NR > 1 { nf += $17 }
+            END { for (i = 1; i <= n; i++) printf "%s%s %.1f%% / %.1f%% (GPU vs CPU %.2f%%)", (i > 1 ? "; " : ""), sc[i], 100 * e[sc[i], 1], 100 * e[sc[i], 16], 100 * v[sc[i]]
+                  printf "; non-finite pixels over all still frames (every method, storage and sampler): %d.", nf }' "$out/frame.csv")"
+        echo
+    fi
     if [ -f "$out/gpu_cost.md" ]; then
         echo "**GPU cost** ([detail](#gpu-cost)): SPIR-V ops of every public evaluator and of the textbook formulas in \`gpu_cost.csv\`."
         echo
@@ -251,6 +261,7 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     done
     fragment microsurface.md "Ground truth on synthetic microsurfaces"
     fragment pictures.md "Pictures"
+    fragment frame.md "The frame on a Vulkan driver"
     fragment stability.md "Stability"
     fragment gpu_cost.md "GPU cost"
     fragment choosing.md "Choosing a method"

@@ -34,6 +34,11 @@
    ratio (its change / the reference's own change); frame.md says why the ratio is not yet a
    fair test (the reference's own change is mostly its sampling noise).
 
+   SCENES. Cameras, lights, pixel rays, footprints and the box brute force are bench/pictures.c's,
+   from their one home bench/pic_scenes.h. CPU WORK (references, the CPU float path, the sampler
+   emulation, the lobe pyramids) runs on every core (bench/pf_parallel.h, PFB_THREADS), rows as
+   items, sums taken afterwards in pixel order: the CSVs are the same for any thread count.
+
    TIMES. On a CPU device (lavapipe) no time is reported: it is not GPU time. On a real GPU
    (PF_VK_DEVICE, vk_common.h) the render pass is timed with timestamp queries (median of 5).
 
@@ -43,9 +48,8 @@
    check fails: no surface pixel, unreadable files, or the plumbing check (end of main: the CPU
    path at the driver's own lod must reproduce the GPU's LEADR frame to PLUMBING_BOUND). The
    issue's targets are reported, met or not, never turned into a failure (they are measurements). */
-#ifndef _POSIX_C_SOURCE
-#  define _POSIX_C_SOURCE 199309L
-#endif
+#include "pf_bench_base.h" /* first: _POSIX_C_SOURCE; the clock and checked allocation */
+#include "pf_parallel.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -57,25 +61,13 @@
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
 #include "pf_vmf.h"
+#include "pf_vmf_fit.h"
+#include "pf_map.h"
 #include "pf_microsurface.h"
+#include "pic_scenes.h" /* bench/pictures.c's scenes, settings and brute-force reference */
 #include "vk_common.h"
 
-/* ---------------------------------------------------------------- bench/pictures.c's settings
-   (copied: pictures.c has no header to share them; keep in step) */
-#define MAP_SIZE         256
-#define BASE_SIGMA       0.1
-#define F0               1.0
-#define LIT_FRACTION     0.05
-#define LOBE_CUTOFF      30.0
-#define PLANE_CAM_HEIGHT 90.0
-#define PLANE_PITCH_DEG  14.0
-#define PLANE_FOV_DEG    40.0
-#define PLANE_LIGHT_ELEV 20.0
-#define PLANE_LIGHT_AZIM 10.0
-#define SPHERE_RADIUS    100.0
-#define SPHERE_CAM_DIST  330.0
-#define SPHERE_FOV_DEG   40.0
-#define SPHERE_TILES     128
+/* ---------------------------------------------------------------- settings (the scenes': bench/pic_scenes.h) */
 #define MAX_ANISO        16.0
 #define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
 #define MOTION_FRAMES    16
@@ -84,9 +76,7 @@
 #define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
 #define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator,
                                                   a quarter of the median footprint */
-static const double fr_pi = 3.14159265358979323846;
 
-#define VMF_ITER         24 /* EM iterations per lobe-pyramid texel, as bench/pictures.c */
 enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_COUNT };
 static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4",
                                                   "vMF m = 8"};
@@ -101,174 +91,44 @@ static double now_seconds(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-/* ---------------------------------------------------------------- vectors, camera (pictures.c) */
-static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void norm3(double a[3])
-{
-    double l = sqrt(dot3(a, a));
-    a[0] /= l, a[1] /= l, a[2] /= l;
-}
-static void cross3(const double a[3], const double b[3], double o[3])
-{
-    o[0] = a[1] * b[2] - a[2] * b[1];
-    o[1] = a[2] * b[0] - a[0] * b[2];
-    o[2] = a[0] * b[1] - a[1] * b[0];
-}
 
-typedef struct {
-    double pos[3], right[3], up[3], fwd[3], tan_half;
-    int w, h;
-} fr_camera;
-
-static void camera_look(fr_camera *c, const double pos[3], const double fwd[3], double fov_deg, int w, int h)
-{
-    double world_up[3] = {0.0, 0.0, 1.0};
-    memcpy(c->pos, pos, sizeof c->pos);
-    memcpy(c->fwd, fwd, sizeof c->fwd);
-    norm3(c->fwd);
-    cross3(c->fwd, world_up, c->right);
-    norm3(c->right);
-    cross3(c->right, c->fwd, c->up);
-    c->tan_half = tan(0.5 * fov_deg * fr_pi / 180.0);
-    c->w = w;
-    c->h = h;
-}
-
-static void camera_ray(const fr_camera *c, double px, double py, double d[3])
-{
-    double sx = (2.0 * (px + 0.5) / c->w - 1.0) * c->tan_half * c->w / c->h;
-    double sy = (1.0 - 2.0 * (py + 0.5) / c->h) * c->tan_half;
-    int k;
-    for (k = 0; k < 3; ++k) d[k] = c->fwd[k] + sx * c->right[k] + sy * c->up[k];
-    norm3(d);
-}
-
-/* the footprint side (pictures.c's footprint_texels): neighbour rays on the tangent plane; off
-   (optional) receives the two offsets in texels, (x+1: off[0], off[1]; y+1: off[2], off[3]),
-   each shortened to the cap */
-static double footprint_texels(const fr_camera *c, int i, int j, const double hit[3], const double n[3],
-                               const double tu[3], const double tv[3], double tpx, double tpy, double cap, double off4[4])
-{
-    double best = 0.0;
-    int e, k;
-    if (off4) off4[0] = cap, off4[1] = 0.0, off4[2] = 0.0, off4[3] = cap;
-    for (e = 0; e < 2; ++e) {
-        double d[3], off[3], dn, t, a, b, l;
-        camera_ray(c, i + (e == 0 ? 1.0 : 0.0), j + (e == 1 ? 1.0 : 0.0), d);
-        dn = dot3(d, n);
-        if (fabs(dn) < 1e-12) return cap;
-        for (k = 0; k < 3; ++k) off[k] = hit[k] - c->pos[k];
-        t = dot3(off, n) / dn;
-        if (!(t > 0.0)) return cap;
-        for (k = 0; k < 3; ++k) off[k] = c->pos[k] + t * d[k] - hit[k];
-        a = dot3(off, tu) * tpx;
-        b = dot3(off, tv) * tpy;
-        l = sqrt(a * a + b * b);
-        if (l > best) best = l;
-        if (off4) {
-            double sc = l > cap ? cap / l : 1.0;
-            off4[2 * e] = a * sc, off4[2 * e + 1] = b * sc;
-        }
-    }
-    return best < cap ? best : cap;
-}
-
-typedef struct {
-    int hit;
-    double tx, ty, fp, wo[3], wi[3];
-    double off[4]; /* the pixel's footprint: texel offsets of its x + 1 and y + 1 neighbours */
-} fr_pixel;
 
 typedef struct {
     int which, w, h;
-    fr_camera cam;
+    pic_camera cam;
     double light[3];
     int ref_max;
-    fr_pixel *px;
+    pic_sample *px;
 } fr_scene;
 
 /* motion: the plane's camera moved forward (+y) by that many texels (a dolly); the sphere turned
    about its pole by that many radians (the texture moves under a fixed camera and light) */
 static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface *s, double motion)
 {
-    double W = s->w, H = s->h;
-    int i, j, k;
+    int i, j;
     memset(sc, 0, sizeof *sc);
     sc->which = which;
     sc->w = w;
     sc->h = h;
-    sc->px = (fr_pixel *)calloc((size_t)w * (size_t)h, sizeof(fr_pixel));
-    if (which == 0) {
-        double pos[3] = {0.0, motion, PLANE_CAM_HEIGHT}, pitch = PLANE_PITCH_DEG * fr_pi / 180.0, fwd[3];
-        double el = PLANE_LIGHT_ELEV * fr_pi / 180.0, az = PLANE_LIGHT_AZIM * fr_pi / 180.0;
-        double nz[3] = {0, 0, 1}, ax[3] = {1, 0, 0}, ay[3] = {0, 1, 0};
-        fwd[0] = 0.0, fwd[1] = cos(pitch), fwd[2] = -sin(pitch);
-        camera_look(&sc->cam, pos, fwd, PLANE_FOV_DEG, w, h);
-        sc->light[0] = sin(az) * cos(el), sc->light[1] = cos(az) * cos(el), sc->light[2] = sin(el);
-        for (j = 0; j < h; ++j)
-            for (i = 0; i < w; ++i) {
-                fr_pixel *p = &sc->px[(size_t)j * w + i];
-                double d[3], t, hit[3];
-                camera_ray(&sc->cam, i, j, d);
-                if (d[2] > -1e-3) continue;
-                t = -pos[2] / d[2];
-                for (k = 0; k < 3; ++k) hit[k] = pos[k] + t * d[k];
-                p->hit = 1;
-                p->tx = hit[0];
-                p->ty = hit[1];
-                for (k = 0; k < 3; ++k) p->wo[k] = -d[k], p->wi[k] = sc->light[k];
-                p->fp = footprint_texels(&sc->cam, i, j, hit, nz, ax, ay, 1.0, 1.0, W, p->off);
-            }
-    } else {
-        double pos[3] = {0.0, -SPHERE_CAM_DIST, 0.25 * SPHERE_RADIUS}, fwd[3];
-        for (k = 0; k < 3; ++k) fwd[k] = -pos[k];
-        camera_look(&sc->cam, pos, fwd, SPHERE_FOV_DEG, w, h);
-        sc->light[0] = 0.5, sc->light[1] = -0.6, sc->light[2] = 0.6;
-        norm3(sc->light);
-        for (j = 0; j < h; ++j)
-            for (i = 0; i < w; ++i) {
-                fr_pixel *p = &sc->px[(size_t)j * w + i];
-                double d[3], b, c, disc, t, hit[3], n[3], tu[3], tv[3], phi, theta, st;
-                camera_ray(&sc->cam, i, j, d);
-                b = dot3(pos, d);
-                c = dot3(pos, pos) - SPHERE_RADIUS * SPHERE_RADIUS;
-                disc = b * b - c;
-                if (disc <= 0.0) continue;
-                t = -b - sqrt(disc);
-                if (t <= 0.0) continue;
-                for (k = 0; k < 3; ++k) hit[k] = pos[k] + t * d[k], n[k] = hit[k] / SPHERE_RADIUS;
-                phi = atan2(n[1], n[0]);
-                if (phi < 0.0) phi += 2.0 * fr_pi;
-                theta = acos(n[2] > 1.0 ? 1.0 : (n[2] < -1.0 ? -1.0 : n[2]));
-                st = sin(theta);
-                if (st < 1e-6) continue;
-                tu[0] = -sin(phi), tu[1] = cos(phi), tu[2] = 0.0;
-                cross3(n, tu, tv);
-                p->hit = 1;
-                p->tx = (phi - motion) / (2.0 * fr_pi) * SPHERE_TILES * W;
-                p->ty = (1.0 - theta / fr_pi) * 0.5 * SPHERE_TILES * H;
-                p->fp = footprint_texels(&sc->cam, i, j, hit, n, tu, tv, SPHERE_TILES * W / (2.0 * fr_pi * SPHERE_RADIUS * st),
-                                         SPHERE_TILES * H / (2.0 * fr_pi * SPHERE_RADIUS), W, p->off);
-                p->wo[0] = -dot3(d, tu), p->wo[1] = -dot3(d, tv), p->wo[2] = -dot3(d, n);
-                p->wi[0] = dot3(sc->light, tu), p->wi[1] = dot3(sc->light, tv), p->wi[2] = dot3(sc->light, n);
-                if (p->wo[2] <= 1e-6) p->wo[2] = 1e-6;
-                norm3(p->wo);
-            }
-    }
+    sc->px = (pic_sample *)pfb_xcalloc((size_t)w * (size_t)h, sizeof(pic_sample));
+    pic_scene_view(which, w, h, motion, &sc->cam, sc->light);
+    for (j = 0; j < h; ++j)
+        for (i = 0; i < w; ++i)
+            pic_scene_pixel(which, &sc->cam, sc->light, (double)s->w, (double)s->h, motion, i, j, &sc->px[(size_t)j * w + i]);
 }
 
-/* ---------------------------------------------------------------- the brute force (pictures.c's
-   shade_reference, the full reference only) */
+/* ---------------------------------------------------------------- the brute force over the pixel's
+   footprint (pictures.c's box reference, shade_reference, is bench/pic_scenes.h's) */
 typedef struct {
     const pfm_surface *s;
     const unsigned char *vis_light; /* the light's visibility map (plane), or NULL */
-    const fr_pixel *p;
+    const pic_sample *p;
     double shx, shy; /* the half vector's slope */
     int lit;
     double num, area;
 } fr_ref_acc;
 
-static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p)
+static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p)
 {
     double hz = p->wo[2] + p->wi[2];
     memset(r, 0, sizeof *r);
@@ -280,10 +140,10 @@ static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *
 }
 
 /* one texel: its projected area, and its shaded term when visible both ways (texels whose base
-   lobe at h is below exp(-LOBE_CUTOFF) of its peak are not marched, as in pictures.c) */
-static void ref_texel(fr_ref_acc *r, int x, int y)
+   lobe at h is below exp(-LOBE_CUTOFF) of its peak are not marched, as in shade_reference) */
+static void ref_acc_texel(fr_ref_acc *r, int x, int y)
 {
-    const fr_pixel *p = r->p;
+    const pic_sample *p = r->p;
     double sx, sy, at;
     x = pfmi_wrap(x, r->s->w);
     y = pfmi_wrap(y, r->s->h);
@@ -298,30 +158,13 @@ static void ref_texel(fr_ref_acc *r, int x, int y)
     r->num += pfm_reference_shade(r->s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0).spec * at;
 }
 
-/* pictures.c's reference: the round(side)^2 texel box around the hit (side = the isotropic
-   footprint), an evenly spaced ref_max^2 subset beyond ref_max texels on a side */
-static double shade_reference(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max)
-{
-    fr_ref_acc r;
-    int n = (int)floor(p->fp + 0.5), ns, a, b, x0, y0;
-    if (n < 1) n = 1;
-    ns = n < ref_max ? n : ref_max;
-    x0 = (int)floor(p->tx - 0.5 * n + 0.5);
-    y0 = (int)floor(p->ty - 0.5 * n + 0.5);
-    ref_begin(&r, s, vis_light, p);
-    for (b = 0; b < ns; ++b)
-        for (a = 0; a < ns; ++a)
-            ref_texel(&r, x0 + (int)(((double)a + 0.5) * n / ns), y0 + (int)(((double)b + 0.5) * n / ns));
-    return r.area > 0.0 ? r.num / r.area : 0.0;
-}
-
 /* The same brute force over the pixel's own footprint: the parallelogram spanned by the texel
    offsets of its two neighbour rays, centred on the hit (the image of the pixel's box filter
    on the tangent plane), sampled on an na x nb grid, na = round(spt |off_x|) (spt samples per
    texel; at least 1, at most ref_max), nb likewise; each grid point shades the texel it falls
    in: a supersampled pixel, whose samples move continuously with the camera. This is the
-   footprint anisotropic filtering approximates; the square box above is the isotropic one. */
-static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const fr_pixel *p, int ref_max, int spt)
+   footprint anisotropic filtering approximates; shade_reference's square box is the isotropic one. */
+static double shade_reference_pixel(const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p, int ref_max, int spt)
 {
     fr_ref_acc r;
     double lx = sqrt(p->off[0] * p->off[0] + p->off[1] * p->off[1]), ly = sqrt(p->off[2] * p->off[2] + p->off[3] * p->off[3]);
@@ -334,7 +177,7 @@ static double shade_reference_pixel(const pfm_surface *s, const unsigned char *v
     for (b = 0; b < nb; ++b)
         for (a = 0; a < na; ++a) {
             double fa = ((double)a + 0.5) / na - 0.5, fb = ((double)b + 0.5) / nb - 0.5;
-            ref_texel(&r, (int)floor(p->tx + fa * p->off[0] + fb * p->off[2]), (int)floor(p->ty + fa * p->off[1] + fb * p->off[3]));
+            ref_acc_texel(&r, (int)floor(p->tx + fa * p->off[0] + fb * p->off[2]), (int)floor(p->ty + fa * p->off[1] + fb * p->off[3]));
         }
     return r.area > 0.0 ? r.num / r.area : 0.0;
 }
@@ -914,20 +757,165 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
 }
 
 /* ---------------------------------------------------------------- statistics */
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-static double quantile(double *v, int n, double q) /* sorts v */
-{
-    int i;
-    if (n <= 0) return 0.0;
-    qsort(v, (size_t)n, sizeof(double), cmp_double);
-    i = (int)ceil(q * n) - 1;
-    return v[i < 0 ? 0 : (i >= n ? n - 1 : i)];
-}
 static double rel(double v, double ref, double fl) { return fabs(v - ref) / (ref > fl ? ref : fl); }
+
+/* ---------------------------------------------------------------- the CPU work on every core
+   (bench/pf_parallel.h): items are image rows (or the two lobe pyramids); each writes only its
+   own pixels' slots, and every sum over pixels is taken afterwards in pixel order, so the
+   outputs are the same for any PFB_THREADS. */
+typedef struct {
+    const pfm_surface *surf;
+    const unsigned char *vis_light;
+    const pic_sample *px;
+    int w, ref_max, spt; /* spt 0: pictures.c's box; else the pixel's footprint, spt samples per texel */
+    double *ref;          /* out: per pixel (pixels off the surface untouched) */
+    unsigned char *hit;   /* out, optional: per pixel, the pixel sees the surface */
+} fr_ref_job;
+
+static void ref_row(void *ctx, long long row)
+{
+    const fr_ref_job *jb = (const fr_ref_job *)ctx;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    ref_texel *scratch = jb->spt ? NULL : (ref_texel *)pfb_xmalloc(sizeof(ref_texel) * (size_t)jb->ref_max * (size_t)jb->ref_max);
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const pic_sample *p = &jb->px[i];
+        if (jb->hit) jb->hit[i] = (unsigned char)p->hit;
+        if (!p->hit) continue;
+        jb->ref[i] = jb->spt ? shade_reference_pixel(jb->surf, jb->vis_light, p, jb->ref_max, jb->spt)
+                             : shade_reference(jb->surf, jb->vis_light, p, jb->ref_max, 1, scratch).full;
+    }
+    free(scratch);
+}
+
+/* the references of one frame into ref (and hit), rows in parallel */
+static void references(const pfm_surface *surf, const unsigned char *vis_light, const fr_scene *sc, int ref_max, int spt,
+                       double *ref, unsigned char *hit, const char *label)
+{
+    fr_ref_job jb;
+    jb.surf = surf, jb.vis_light = vis_light, jb.px = sc->px, jb.w = sc->w, jb.ref_max = ref_max, jb.spt = spt;
+    jb.ref = ref, jb.hit = hit;
+    pfb_parallel_for(sc->h, ref_row, &jb, label);
+}
+
+/* the motion frames' references: item = frame x h + row */
+typedef struct {
+    fr_ref_job frame[MOTION_FRAMES];
+    int h;
+} fr_motion_job;
+
+static void motion_ref_item(void *ctx, long long item)
+{
+    fr_motion_job *jb = (fr_motion_job *)ctx;
+    ref_row(&jb->frame[item / jb->h], item % jb->h);
+}
+
+/* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials), lit pixels */
+typedef struct {
+    const fr_maps *maps;
+    const pic_sample *px;
+    const unsigned char *lit;
+    int w, method;
+    double *out;
+} pic_pic_job;
+
+static void pic_path_row(void *ctx, long long row)
+{
+    const pic_pic_job *jb = (const pic_pic_job *)ctx;
+    const fr_maps *mp = jb->maps;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const pic_sample *p = &jb->px[i];
+        float a[4], b[4];
+        double lod = p->fp > 1.0 ? log2(p->fp) : 0.0;
+        jb->out[i] = 0.0;
+        if (!jb->lit[i]) continue;
+        if (jb->method >= MT_VMF4) {
+            jb->out[i] = (double)shade_vmf_cpu(mp, jb->method - MT_VMF4, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
+            continue;
+        }
+        fetch(mp, p->tx / mp->W, p->ty / mp->H, lod, a, b);
+        jb->out[i] = (double)shade_method(jb->method, a, b, p->wo, p->wi);
+    }
+}
+
+/* the CPU float path at the GPU's texel coordinates and derivatives (gpu: the two read-back
+   attachments), through the specification's sampler (vc) and, isotropic, at the driver's lod
+   (vd; lodd: |driver's lod - log2(rho_max)| for the lit pixels of the box reference, else -1) */
+typedef struct {
+    const fr_maps *maps;
+    const pic_sample *px;
+    const unsigned char *lit0, *lit1;
+    const float *gpu;
+    int w, npx, method, levels, driver_lod; /* driver_lod: also vd and lodd (isotropic rows) */
+    double aniso;
+    double *vc, *vd, *lodd;
+} fr_gpu_job;
+
+static void gpu_path_row(void *ctx, long long row)
+{
+    const fr_gpu_job *jb = (const fr_gpu_job *)ctx;
+    const fr_maps *mp = jb->maps;
+    const int m = jb->method, W = mp->W, H = mp->H;
+    size_t i0 = (size_t)row * (size_t)jb->w, i;
+    for (i = i0; i < i0 + (size_t)jb->w; ++i) {
+        const float *o0 = jb->gpu + 4 * i, *o1 = jb->gpu + 4 * ((size_t)jb->npx + i);
+        const pic_sample *p = &jb->px[i];
+        float a[4], b[4];
+        double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
+        double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
+        jb->vc[i] = jb->vd[i] = 0.0;
+        jb->lodd[i] = -1.0;
+        if (!p->hit || !(o0[3] > 0.5f) || !(jb->lit0[i] || jb->lit1[i])) continue;
+        /* the CPU float path: the specification's sampler at the GPU's coordinates and
+           derivatives; isotropic also at the lod the driver reports */
+        if (m >= MT_VMF4) {
+            double ls = rho > 0.0 ? log2(rho) : 0.0;
+            jb->vc[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
+        } else {
+            fetch_sampler(mp, (double)o0[1], (double)o0[2], o1, jb->aniso, a, b);
+            jb->vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+        }
+        if (jb->driver_lod) {
+            double lod_drv = (double)o0[3] - 1.0;
+            if (m >= MT_VMF4)
+                jb->vd[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
+            else {
+                fetch(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
+                jb->vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+            }
+            if (jb->lit0[i]) {
+                double ls = rho > 0.0 ? log2(rho) : 0.0;
+                if (ls < 0.0) ls = 0.0;
+                if (ls > jb->levels - 1) ls = jb->levels - 1;
+                jb->lodd[i] = fabs(lod_drv - ls);
+            }
+        }
+    }
+}
+
+/* the lobe pyramids, one item per lobe count (EM per texel) */
+typedef struct {
+    const pf_real *nrm;
+    int W, H, fail;
+    fr_maps *maps;
+    double cpu_s[2]; /* CPU seconds of each build, its own thread's */
+} fr_vmf_job;
+
+static double thread_cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void vmf_item(void *ctx, long long k)
+{
+    fr_vmf_job *jb = (fr_vmf_job *)ctx;
+    double t1 = thread_cpu_seconds();
+    if (pf_vmf_pyramid_from_normals(jb->nrm, NULL, jb->W, jb->H, vmf_lobes[k], VMF_ITER, jb->maps->vmf_pyr[k]) != PF_OK)
+        jb->fail = 1; /* only ever set to 1: a benign race */
+    jb->cpu_s[k] = thread_cpu_seconds() - t1;
+}
 
 /* ---------------------------------------------------------------- main */
 #define NSTORE 2
@@ -999,7 +987,12 @@ int main(int argc, char **argv)
     double cpu_pic_err[2][MT_COUNT], fp_med[2], t_ref[2][2], floor_[2][2];
     int n_lit[2][2], n_surf[2], n_edge[2], n_mism[2], fmt_ok[NSTORE];
     double aniso_used[NANISO];
-    static const int motion_full[2][2] = {{200, 125}, {150, 150}}, motion_quick[2][2] = {{64, 40}, {48, 48}};
+    /* motion frames: the sphere's at 100 x 100, not 150 x 150: its reference (2 samples per texel
+       over footprints of ~100 texels, capped at 64 x 64 per pixel, 16 frames) was two thirds of
+       the whole step's CPU time (95 of 144 CPU seconds measured); 100 x 100 keeps every pixel's
+       reference as fine and the 16 frames, at 0.44x the pixels, so the full step fits `make
+       bench`'s budget on 2 cores */
+    static const int motion_full[2][2] = {{200, 125}, {100, 100}}, motion_quick[2][2] = {{64, 40}, {48, 48}};
     static const double motion_step[2] = {PLANE_DOLLY_STEP, SPHERE_TURN_STEP};
     static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR};
     double motion_flicker[2][MOTION_ROWS], motion_err[2][MOTION_ROWS], motion_ref_change[2], motion_seconds[2];
@@ -1038,12 +1031,14 @@ int main(int argc, char **argv)
         if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr) != PF_OK ||
             pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr) != PF_OK)
             return 1;
-        for (k = 0; k < 2; ++k) { /* the lobe pyramids (EM per texel), as bench/pictures.c */
-            double t1 = now_seconds();
-            maps.vmf_pyr[k] = (pf_real *)malloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
-            if (!maps.vmf_pyr[k] || pf_vmf_pyramid_from_normals(nrm, NULL, W, H, vmf_lobes[k], VMF_ITER, maps.vmf_pyr[k]) != PF_OK)
-                return 1;
-            t_vmf[k] = now_seconds() - t1;
+        { /* the lobe pyramids (EM per texel), as bench/pictures.c, both at once */
+            fr_vmf_job vj;
+            vj.nrm = nrm, vj.W = W, vj.H = H, vj.fail = 0, vj.maps = &maps;
+            for (k = 0; k < 2; ++k)
+                maps.vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
+            pfb_parallel_for(2, vmf_item, &vj, "frame: vMF lobe pyramids");
+            if (vj.fail) return 1;
+            t_vmf[0] = vj.cpu_s[0], t_vmf[1] = vj.cpu_s[1];
         }
         free(hts);
         free(nrm);
@@ -1121,7 +1116,7 @@ int main(int argc, char **argv)
         fr_push pc;
         double *ref[2], *scratch = (double *)malloc(sizeof(double) * (size_t)npx), t0;
         double *vg = (double *)malloc(sizeof(double) * (size_t)npx), *vc = (double *)malloc(sizeof(double) * (size_t)npx);
-        double *vd = (double *)malloc(sizeof(double) * (size_t)npx);
+        double *vd = (double *)malloc(sizeof(double) * (size_t)npx), *lodd = (double *)pfb_xmalloc(sizeof(double) * (size_t)npx);
         unsigned char *lit[2], *vis_light = NULL;
         float *gpu = (float *)malloc(sizeof(float) * 8 * (size_t)npx), *leadr_f32 = (float *)calloc((size_t)npx, sizeof(float));
         for (r = 0; r < 2; ++r) {
@@ -1138,14 +1133,13 @@ int main(int argc, char **argv)
         /* the brute force: pictures.c's box, and the pixel's own footprint */
         for (r = 0; r < 2; ++r) {
             int nl = 0;
+            char label[64];
             t0 = now_seconds();
-            for (i = 0, nsurf = 0; i < npx; ++i)
-                if (sc.px[i].hit) {
-                    ref[r][i] = r ? shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, 1)
-                                  : shade_reference(&surf, vis_light, &sc.px[i], ref_max);
-                    scratch[nsurf++] = ref[r][i];
-                }
+            snprintf(label, sizeof label, "frame: %s, %s reference", scene_key[s], r ? "pixel-footprint" : "box");
+            references(&surf, vis_light, &sc, ref_max, r ? 1 : 0, ref[r], NULL, label);
             t_ref[s][r] = now_seconds() - t0;
+            for (i = 0, nsurf = 0; i < npx; ++i)
+                if (sc.px[i].hit) scratch[nsurf++] = ref[r][i];
             if (nsurf == 0) {
                 fprintf(stderr, "frame: %s: no surface pixel\n", scene_key[s]);
                 return 1;
@@ -1159,23 +1153,14 @@ int main(int argc, char **argv)
             if (sc.px[i].hit) scratch[k++] = sc.px[i].fp;
         fp_med[s] = quantile(scratch, nsurf, 0.5);
         printf("frame: %s %dx%d: %d surface pixels, lit %d (box reference) / %d (pixel-footprint reference); references %.1f + "
-               "%.1f s (CPU, at most %d x %d texels per pixel)\n",
-               scene_key[s], w, h, nsurf, n_lit[s][0], n_lit[s][1], t_ref[s][0], t_ref[s][1], ref_max, ref_max);
+               "%.1f s (wall, %d threads; at most %d x %d texels per pixel)\n",
+               scene_key[s], w, h, nsurf, n_lit[s][0], n_lit[s][1], t_ref[s][0], t_ref[s][1], pfb_thread_count(), ref_max, ref_max);
         /* the CPU float path at pictures.c's footprint (isotropic, analytic ray differentials) */
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
             double p95;
-            for (i = 0; i < npx; ++i) {
-                const fr_pixel *p = &sc.px[i];
-                float a[4], b[4];
-                vc[i] = 0.0;
-                if (!lit[0][i]) continue;
-                if (m >= MT_VMF4) {
-                    vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, p->wo, p->wi);
-                    continue;
-                }
-                fetch(&maps, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, a, b);
-                vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-            }
+            pic_pic_job pj;
+            pj.maps = &maps, pj.px = sc.px, pj.lit = lit[0], pj.w = w, pj.method = m, pj.out = vc;
+            pfb_parallel_for(h, pic_path_row, &pj, NULL);
             rel_stats(vc, ref[0], lit[0], floor_[s][0], npx, scratch, &cpu_pic_err[s][m], &p95);
         }
         /* the GPU frames */
@@ -1211,45 +1196,23 @@ int main(int argc, char **argv)
                         rw->ms = quantile(times, 5, 0.5);
                     } else rw->ms = -1.0;
                     for (i = 0; i < npx; ++i) {
-                        const float *o0 = gpu + 4 * (size_t)i, *o1 = gpu + 4 * ((size_t)npx + (size_t)i);
-                        const fr_pixel *p = &sc.px[i];
-                        float a[4], b[4];
-                        double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
-                        double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
+                        const float *o0 = gpu + 4 * (size_t)i;
                         vg[i] = (double)o0[0];
-                        vc[i] = vd[i] = 0.0;
                         if (!(fabs(vg[i]) <= 3.4e38)) rw->nonfinite++;
                         if (m == MT_LEADR && st == 0 && an == 0) {
                             leadr_f32[i] = o0[0];
-                            if ((o0[3] > 0.5f) != (p->hit != 0)) n_mism[s]++;
-                        }
-                        if (!p->hit || !(o0[3] > 0.5f) || !(lit[0][i] || lit[1][i])) continue;
-                        /* the CPU float path: the specification's sampler at the GPU's coordinates and
-                           derivatives; isotropic also at the lod the driver reports */
-                        if (m >= MT_VMF4) {
-                            double ls = rho > 0.0 ? log2(rho) : 0.0;
-                            vc[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
-                        } else {
-                            fetch_sampler(&maps, (double)o0[1], (double)o0[2], o1, aniso_used[an], a, b);
-                            vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-                        }
-                        if (an == 0) {
-                            double lod_drv = (double)o0[3] - 1.0;
-                            if (m >= MT_VMF4)
-                                vd[i] = (double)shade_vmf_cpu(&maps, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
-                            else {
-                                fetch(&maps, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
-                                vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
-                            }
-                            if (lit[0][i]) {
-                                double ls = rho > 0.0 ? log2(rho) : 0.0;
-                                if (ls < 0.0) ls = 0.0;
-                                if (ls > levels - 1) ls = levels - 1;
-                                lod_sum += fabs(lod_drv - ls);
-                                nl++;
-                            }
+                            if ((o0[3] > 0.5f) != (sc.px[i].hit != 0)) n_mism[s]++;
                         }
                     }
+                    {
+                        fr_gpu_job gj;
+                        gj.maps = &maps, gj.px = sc.px, gj.lit0 = lit[0], gj.lit1 = lit[1], gj.gpu = gpu, gj.w = w, gj.npx = npx;
+                        gj.method = m, gj.levels = levels, gj.aniso = aniso_used[an], gj.driver_lod = an == 0;
+                        gj.vc = vc, gj.vd = vd, gj.lodd = lodd;
+                        pfb_parallel_for(h, gpu_path_row, &gj, NULL);
+                    }
+                    for (i = 0; i < npx; ++i)
+                        if (lodd[i] >= 0.0) lod_sum += lodd[i], nl++;
                     for (r = 0; r < 2; ++r) {
                         rel_stats(vg, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->err[r], &rw->err_p95[r]);
                         rel_stats(vc, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->cpu_err[r], &dummy);
@@ -1312,7 +1275,7 @@ int main(int argc, char **argv)
         vkDestroyBuffer(vk.dev, tg.rb, NULL);
         vkFreeMemory(vk.dev, tg.rb_mem, NULL);
         for (r = 0; r < 2; ++r) free(ref[r]), free(lit[r]);
-        free(scratch), free(vg), free(vc), free(vd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
+        free(scratch), free(vg), free(vc), free(vd), free(lodd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
     }
 
     /* ---------------------------------------------------------------- motion: MOTION_FRAMES frames per
@@ -1327,6 +1290,7 @@ int main(int argc, char **argv)
         int npx = w * h, f, i, mr;
         fr_target tg;
         fr_push pc;
+        fr_scene msc[MOTION_FRAMES];
         VkPipeline pipes[MT_COUNT];
         unsigned char *vis_light = NULL;
         double *mref = (double *)calloc((size_t)MOTION_FRAMES * npx, sizeof(double)), *scratch = (double *)malloc(sizeof(double) * (size_t)npx);
@@ -1340,19 +1304,28 @@ int main(int argc, char **argv)
             pipes[m] = make_pipeline(&tg, w, h, vert, path);
         }
         memset(motion_nonfinite[s], 0, sizeof motion_nonfinite[s]);
-        for (f = 0; f < MOTION_FRAMES; ++f) {
-            fr_scene sc;
-            int ns = 0;
-            scene_make(&sc, s, w, h, &surf, f * motion_step[s]);
-            if (s == 0 && !vis_light) {
-                vis_light = (unsigned char *)malloc((size_t)W * H);
-                pfm_visibility_map(&surf, sc.light, vis_light);
-            }
-            for (i = 0; i < npx; ++i)
-                if ((mhit[(size_t)f * npx + i] = (unsigned char)sc.px[i].hit) != 0) {
-                    mref[(size_t)f * npx + i] = shade_reference_pixel(&surf, vis_light, &sc.px[i], ref_max, MOTION_SPT);
-                    scratch[ns++] = mref[(size_t)f * npx + i];
+        { /* every frame's reference in one parallel step (items: frame x row) */
+            fr_motion_job mj;
+            char label[64];
+            for (f = 0; f < MOTION_FRAMES; ++f) {
+                scene_make(&msc[f], s, w, h, &surf, f * motion_step[s]);
+                if (s == 0 && !vis_light) { /* the light does not move: one visibility map */
+                    vis_light = (unsigned char *)pfb_xmalloc((size_t)W * H);
+                    pfm_visibility_map(&surf, msc[f].light, vis_light);
                 }
+                mj.frame[f].surf = &surf, mj.frame[f].vis_light = vis_light, mj.frame[f].px = msc[f].px, mj.frame[f].w = w;
+                mj.frame[f].ref_max = ref_max, mj.frame[f].spt = MOTION_SPT;
+                mj.frame[f].ref = mref + (size_t)f * npx, mj.frame[f].hit = mhit + (size_t)f * npx;
+            }
+            mj.h = h;
+            snprintf(label, sizeof label, "frame: motion %s, %d references", scene_key[s], MOTION_FRAMES);
+            pfb_parallel_for((long long)MOTION_FRAMES * h, motion_ref_item, &mj, label);
+        }
+        for (f = 0; f < MOTION_FRAMES; ++f) {
+            fr_scene sc = msc[f];
+            int ns = 0;
+            for (i = 0; i < npx; ++i)
+                if (mhit[(size_t)f * npx + i]) scratch[ns++] = mref[(size_t)f * npx + i];
             mfloor[f] = LIT_FRACTION * quantile(scratch, ns, 0.99);
             for (k = 0; k < 3; ++k) {
                 pc.pos[k] = (float)sc.cam.pos[k], pc.right[k] = (float)sc.cam.right[k];
@@ -1469,7 +1442,7 @@ int main(int argc, char **argv)
                 "fetches, is the baseline of the others).\n\n"
                 "The vMF rows (`pf_vmf_sum_add`, `pf_vmf_sum_specular`: Wu et al. 2019 eqs. 4-5, slope form) read lobe "
                 "pyramids fitted by EM (`pf_vmf_pyramid_from_normals`, %d iterations at most; %.1f s for m = 4, %.1f s for m = 8 "
-                "on the CPU, one-offs) and uploaded as R32G32B32A32_SFLOAT 2D array images (layer j = lobe j, whole mip chains); a "
+                "of CPU time, one-offs) and uploaded as R32G32B32A32_SFLOAT 2D array images (layer j = lobe j, whole mip chains); a "
                 "mixture is not filtered by averaging its parameters, so the shader reads the 8 texels of a trilinear fetch at "
                 "the driver's lod with `texelFetch` and sums their lobes with the trilinear weights (bench/pictures.c's "
                 "shade_vmf). Hence f32 and isotropic only (kappa reaches 1e5, past f16's range; no anisotropic variant); their "
@@ -1478,11 +1451,11 @@ int main(int argc, char **argv)
     for (s = 0; s < 2; ++s) {
         int br, ops0 = ops_of(ops_file, s, MT_NONE, &br);
         fprintf(md, "**%s**: %d surface pixels, lit %d (box reference) and %d (pixel reference), median footprint side %.1f "
-                    "texels; references %.1f s and %.1f s on one CPU core; %d pixels sit in quads at the surface's edge (the "
+                    "texels; references %.1f s and %.1f s (wall time, %d threads); %d pixels sit in quads at the surface's edge (the "
                     "shader's ray-differential fallback); pixels where the GPU's and the CPU's rays disagree on hitting: %d. "
                     "The CPU float path at pictures.c's own footprint (lod from the analytic ray differentials) against the box "
                     "reference: LEADR %.1f%%, naive %.1f%%, Toksvig %.1f%%, vMF m = 4 %.1f%%, m = 8 %.1f%%.\n\n",
-                scene_key[s], n_surf[s], n_lit[s][0], n_lit[s][1], fp_med[s], t_ref[s][0], t_ref[s][1], n_edge[s], n_mism[s],
+                scene_key[s], n_surf[s], n_lit[s][0], n_lit[s][1], fp_med[s], t_ref[s][0], t_ref[s][1], pfb_thread_count(), n_edge[s], n_mism[s],
                 100.0 * cpu_pic_err[s][MT_LEADR], 100.0 * cpu_pic_err[s][MT_NAIVE], 100.0 * cpu_pic_err[s][MT_TOKSVIG],
                 100.0 * cpu_pic_err[s][MT_VMF4], 100.0 * cpu_pic_err[s][MT_VMF8]);
         fprintf(md, "| %s: method | storage | aniso | error, box ref. (mean, p95) | error, pixel ref. (mean, p95) | CPU path: box, "
@@ -1529,7 +1502,7 @@ int main(int argc, char **argv)
                 "methods against each other (the naive mip-mapped normal is the anchor of shimmer).\n\n",
             MOTION_FRAMES, quick ? motion_quick[0][0] : motion_full[0][0], quick ? motion_quick[0][1] : motion_full[0][1],
             quick ? motion_quick[1][0] : motion_full[1][0], quick ? motion_quick[1][1] : motion_full[1][1], PLANE_DOLLY_STEP,
-            SPHERE_TURN_STEP * 180.0 / fr_pi, SPHERE_TURN_STEP / (2.0 * fr_pi) * SPHERE_TILES * W, MOTION_SPT, ref_max, ref_max,
+            SPHERE_TURN_STEP * 180.0 / pic_pi, SPHERE_TURN_STEP / (2.0 * pic_pi) * SPHERE_TILES * W, MOTION_SPT, ref_max, ref_max,
             100.0 * motion_ref_change[0], 100.0 * motion_ref_change[1]);
     fprintf(md, "| method | plane: error (mean over frames) | plane: change per frame | plane: flicker ratio | sphere: error | "
                 "sphere: change per frame | sphere: flicker ratio | non-finite |\n|---|---|--:|--:|---|--:|--:|--:|\n");

@@ -24,11 +24,11 @@
 #extension GL_GOOGLE_include_directive : require
 #define PF_GLSL 1
 #include "pf_core.h"
+#include "pf_moments.h"
 #include "pf_smith.h"
 #include "pf_beckmann.h"
 #include "pf_toksvig.h"
 #if PFF_METHOD >= 4
-#  include "pf_moments.h"
 #  include "pf_vmf.h"
 #endif
 
