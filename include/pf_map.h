@@ -1,8 +1,9 @@
 /* pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
    height-field march of the library, the pyramids of linear moments (slope, scalar, depth,
    normal) and their sampling, heights to slopes and to unit normals (the slope-preserving
-   height downsampler built on them is pf_map_downsample.h). Every module that bakes a map (pf_moments.h's texels, pf_vmf_fit.h,
-   pf_horizon.h) uses these, so its maps are laid out, bordered and differentiated alike.
+   height downsampler built on them is pf_map_downsample.h). Every module that bakes a map
+   (pf_moments.h's texels, pf_vmf_fit.h, pf_vmf_scale.h, pf_horizon.h) uses these, so its maps
+   are laid out, bordered and differentiated alike.
    CPU only (PF_CPU_DEF: caller-owned buffers, no allocation); empty under PF_GLSL. A shader
    reads what these functions bake with pf_moments.h's evaluators and its own sampler.
 
