@@ -26,6 +26,8 @@
    See pf_bench.h for what every column means; bench/run.sh (make bench) runs this. */
 #include "pf_bench.h" /* first: defines _POSIX_C_SOURCE */
 #include "pf_vmf_fit.h"
+#include "pf_vmf_scale.h"
+#include "pf_map_downsample.h"
 #include "pf_oracle.h"
 
 /* ------------------------------------------------------------------ normalization */
@@ -299,7 +301,7 @@ static int scaling_main(int argc, char **argv)
         for (i = 0; i < size * size; ++i) hm[i] = (pf_real)s.height[i];
         for (p = 0; p < patches && rc == PF_OK; ++p)
             /* the per-patch samples and the factorization the library's level calls build on
-               (pf_vmf_fit.h, private: this experiment fits each patch's own lobes) */
+               (pf_vmf_scale.h, private: this experiment fits each patch's own lobes) */
             rc = pfi_vmf_scale_patch(hm, size, size, PF_R(1.0), (p % per) * n, (p / per) * n, n, lobes, 24, sigma, f0, masking,
                                      nt, np, tm, nr, vis, fe + p * cnt, fl + p * cnt);
         if (rc == PF_OK) rc = pfi_vmf_scale_factor(fe, fl, patches, nt, np, 30, PF_R(0.0), T, S, scr, NULL, err);

@@ -2,7 +2,7 @@
    built on a height map and its vMF lobe pyramids, as bench/microsurface.c and bench/pictures.c
    both use it (bench code, not the library: it allocates nothing but keeps static scratch).
 
-   The orchestration is the library's (pf_vmf_fit.h: pf_vmf_scale_fit_level, one call per
+   The orchestration is the library's (pf_vmf_scale.h: pf_vmf_scale_fit_level, one call per
    level, and pf_vmf_scale_texel_t); this header only fixes the bench's settings:
      S   one VS_NT x VS_NT x VS_NP node table per lobe pyramid (theta max VS_THETA_MAX), the
          rank-1 fit (VS_ALS rounds, prior VS_SHRINK toward 1) over VS_TRAIN patches;
@@ -14,7 +14,7 @@
 #ifndef PF_BENCH_VMF_SCALING_H
 #define PF_BENCH_VMF_SCALING_H
 
-#include "pf_vmf_fit.h"
+#include "pf_vmf_scale.h"
 
 #define VS_NT 6
 #define VS_NP 5
@@ -47,7 +47,7 @@ static inline pf_real vs_texel_spec(const pf_real *pyr, int w, int h, int m, int
     return pf_vmf_sum_specular(sum, wo, wi, f0);
 }
 
-/* the library's description of the bench's scaling function (pf_vmf_fit.h): the centred
+/* the library's description of the bench's scaling function (pf_vmf_scale.h): the centred
    height map at 1 world unit per texel, the npyr lobe pyramids, VS_* nodes and fit settings */
 static inline pf_vmf_scale_desc vs_desc(const pf_real *heights, int w, int h, pf_real base_sigma, pf_real f0, int npyr,
                                  const pf_real *const *pyrs, const int *ms)

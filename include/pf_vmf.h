@@ -53,7 +53,7 @@
      }
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
-     pf_vmf_pyramid_from_normals, the scaling function).
+     pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
    FUNCTIONS
      lobes       pf_vmf_normalization, pf_vmf_mean_cosine, pf_vmf_tangent_variance,
@@ -71,8 +71,8 @@
      scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
                  pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
      facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
-     CPU baking  pf_vmf_fit.h (EM fit, lobe pyramid, scaling-function fit); pf_map.h
-                 (slope-preserving downsampling of the height map)
+     CPU baking  pf_vmf_fit.h (EM fit, lobe pyramid), pf_vmf_scale.h (scaling-function fit);
+                 pf_map_downsample.h (slope-preserving downsampling of the height map)
 
    CONVENTIONS
      Tangent frame of the macrosurface, +z up; directions and lobe axes unit vectors (lobe axes
@@ -605,7 +605,7 @@ PF_DEF pf_real pf_vmf_sum_specular_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi,
 }
 
 /* ================================================================ scaling function: shader side
-   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction of T and S is pf_vmf_fit.h's). The filtered specular f of a footprint is multiplied by
+   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction of T and S is pf_vmf_scale.h's). The filtered specular f of a footprint is multiplied by
    T(x) S(wi, wo): T one value per patch (a 2D texture), S a table over
    (theta_i, theta_o, phi_d) of nt x nt x np NODES (a 3D texture): theta_k = k theta_max /
    (nt - 1), phi_d,k = k pi / (np - 1) (phi_d the azimuth between wi and wo), so that the
@@ -682,7 +682,7 @@ PF_DEF pf_real pf_vmf_sum_specular_unmasked(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi
    radiance from wi with the light cosine included (as pf_vmf_sum_specular); 0 when a
    direction is on or below the macrosurface or the facet, and when the half vector's slope
    lies more than sqrt(80 base_var) from the facet's (D below 4e-18 of its peak). The facet
-   term of the scaling function's effective BRDF (pf_vmf_fit.h, Wu et al. 2019 eq. 6). */
+   term of the scaling function's effective BRDF (pf_vmf_scale.h, Wu et al. 2019 eq. 6). */
 PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, pf_vec3 wo, pf_vec3 wi, pf_real f0)
 {
     pf_slope_stats st = pf_slope_stats_make(sx, sy, base_var, base_var, PF_R(0.0));

@@ -16,7 +16,8 @@
      footprint (pf_leadr_specular, itself tested against quadrature); its masking on real
      microsurfaces (lobes fitted by pf_vmf_fit.h) against the brute-force march of
      tests/reference/pf_microsurface.h.
-   The fit, the lobe pyramid and the scaling function are tested in tests/test_vmf_fit.c.
+   The fit and the lobe pyramid are tested in tests/test_vmf_fit.c, the scaling function in
+   tests/test_vmf_scale.c.
    Same bodies in float and double; edge_* tests also run under -ffast-math. */
 /* MAP_ANONYMOUS and MAP_NORESERVE for pf_test_guarded_alloc under -std=c99 (before any include) */
 #if defined(__unix__) && !defined(_DEFAULT_SOURCE)

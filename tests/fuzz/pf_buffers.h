@@ -2404,16 +2404,16 @@ static const pfb_entry pfb_table[] = {
     { "pf_map_slope_stencil", "map", pfb_d_map_heights, 1 },
     { "pf_map_height pf_map_node_slope", "map", pfb_d_map_heights, 2 },
     { "pf_map_visible", "map", pfb_d_map_heights, 3 },
-    { "pf_map_downsample_slopes", "map", pfb_d_vmf_downsample, 0 },
-    { "pf_map_downsample_scratch_size", "map", pfb_d_vmf_downsample, 1 },
-    { "pf_vmf_effective_brdf", "vmf_fit", pfb_d_vmf_scale, 0 },
-    { "pf_vmf_scale_sample_count pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_scale, 1 }, /* the per-patch samples it builds on */
-    { "pf_vmf_scale_fit_level", "vmf_fit", pfb_d_vmf_level, 0 },
-    { "pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_level, 1 },
-    { "pf_vmf_scale_scratch_size", "vmf_fit", pfb_d_vmf_level, 2 },
-    { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_fit", pfb_d_vmf_scale, 2 },
-    { "pf_vmf_scale_cell_count pf_vmf_scale_texel_t", "vmf_fit", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
-    { "pf_vmf_scale_lookup", "vmf_fit", pfb_d_vmf_scale, 4 },
+    { "pf_map_downsample_slopes", "map_downsample", pfb_d_vmf_downsample, 0 },
+    { "pf_map_downsample_scratch_size", "map_downsample", pfb_d_vmf_downsample, 1 },
+    { "pf_vmf_effective_brdf", "vmf_scale", pfb_d_vmf_scale, 0 },
+    { "pf_vmf_scale_sample_count pf_vmf_scale_fit_level", "vmf_scale", pfb_d_vmf_scale, 1 }, /* the per-patch samples it builds on */
+    { "pf_vmf_scale_fit_level", "vmf_scale", pfb_d_vmf_level, 0 },
+    { "pf_vmf_scale_texel_t", "vmf_scale", pfb_d_vmf_level, 1 },
+    { "pf_vmf_scale_scratch_size", "vmf_scale", pfb_d_vmf_level, 2 },
+    { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_scale", pfb_d_vmf_scale, 2 },
+    { "pf_vmf_scale_cell_count pf_vmf_scale_texel_t", "vmf_scale", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
+    { "pf_vmf_scale_lookup", "vmf_scale", pfb_d_vmf_scale, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

@@ -34,6 +34,8 @@
 #include "pf_beckmann.h"
 #include "pf_map.h"
 #include "pf_vmf_fit.h"
+#include "pf_vmf_scale.h"
+#include "pf_map_downsample.h"
 #include "pf_toksvig.h"
 #include "pf_shadow.h"
 #include "pf_gaussgrid.h"

@@ -1,0 +1,10 @@
+/* tests/fuzz/fuzz_map_downsample_buffers.c - libFuzzer harness for the pointer-taking CPU-only
+   functions of include/pf_map_downsample.h (the slope-preserving downsampler and its scratch
+   size) against the size and error rules of include/pf_core.h: sizes from the whole int
+   range, exact-size guarded buffers, return codes, nothing written on error, outputs written,
+   finite and in range (see tests/fuzz/pf_buffers.h, pfb_d_vmf_downsample). Build and run:
+   sh tests/fuzz/run.sh. */
+#define _DEFAULT_SOURCE 1
+#include "pf_buffers.h"
+
+PFB_HARNESS("map_downsample")
