@@ -270,12 +270,7 @@ static const pfb_family families[] = {
         PFB_ENTRY_ABS("mask_n128_t64", st_n128, ref_step) } },
 };
 
-static double now_s(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
+static double now_s(void) { return pfb_now_ns() * 1e-9; } /* pf_bench_base.h's clock */
 
 /* --build-cost: the CPU side, once per application: pf_masks_samples and pf_masks_table_build
    for each table of the families (median of 5 runs), and the table sizes. */
