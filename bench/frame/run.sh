@@ -39,20 +39,9 @@ for s in 0 1; do
         f="$spv/frame_${sn}_$mn.spv"
         glslangValidator -V --target-env vulkan1.0 -S frag -DPFF_SCENE=$s -DPFF_METHOD=$m -Iinclude -o "$f" \
             bench/frame/frame.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
-        # ops of main after spirv-opt -O: bench/gpu/count.sh's rule (loads, stores, access
-        # chains, labels, branches, merges, returns not counted)
+        # ops of main after spirv-opt -O: the bench's one rule, bench/gpu/spirv_ops.awk
         spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
-        spirv-dis "$f.opt" | awk -v s="$sn" -v m="$mn" '
-            /OpEntryPoint/ { for (i = 1; i <= NF; i++) if ($i ~ /^%/) { ep = $i; break } }
-            $1 == ep && $3 == "OpFunction" { inmain = 1; next }
-            inmain && $1 == "OpFunctionEnd" { inmain = 0; next }
-            inmain {
-                op = ($2 == "=") ? $3 : $1
-                if (op == "OpBranchConditional" || op == "OpSwitch") br++
-                if (op ~ /^Op(Load|Store|AccessChain|InBoundsAccessChain|Variable|Label|Branch|BranchConditional|Switch|SelectionMerge|LoopMerge|Return|ReturnValue|FunctionParameter|Kill)$/) next
-                n++
-            }
-            END { print s, m, n + 0, br + 0 }' >> "$spv/ops.txt"
+        echo "$sn $mn $(spirv-dis "$f.opt" | awk -f bench/gpu/spirv_ops.awk)" >> "$spv/ops.txt"
     done
 done
 LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$bin" "$spv" "$out" "$spv/ops.txt" || { echo "frame: $bin failed" >&2; exit 1; }

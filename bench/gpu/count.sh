@@ -39,20 +39,10 @@ INC=include
 GEN=tests/portability/gen.awk
 TB=bench/gpu/textbook.h
 
-# spirv_count SPV: "ops branches" of main after spirv-opt -O.
+# spirv_count SPV: "ops branches" of main after spirv-opt -O (bench/gpu/spirv_ops.awk).
 spirv_count() {
     spirv-opt -O "$1" -o "$1.opt" 2> "$1.log" || return 1
-    spirv-dis "$1.opt" 2>> "$1.log" | awk '
-        /OpEntryPoint/ { for (i = 1; i <= NF; i++) if ($i ~ /^%/ ) { ep = $i; break } }
-        $1 == ep && $3 == "OpFunction" { inmain = 1; next }
-        inmain && $1 == "OpFunctionEnd" { inmain = 0; next }
-        inmain {
-            op = ($2 == "=") ? $3 : $1
-            if (op == "OpBranchConditional" || op == "OpSwitch") br++
-            if (op ~ /^Op(Load|Store|AccessChain|InBoundsAccessChain|Variable|Label|Branch|BranchConditional|Switch|SelectionMerge|LoopMerge|Return|ReturnValue|FunctionParameter)$/) next
-            n++
-        }
-        END { printf "%d %d\n", n, br }'
+    spirv-dis "$1.opt" 2>> "$1.log" | awk -f bench/gpu/spirv_ops.awk
 }
 
 # spirv_file F.comp: compile, optimize, count; writes F.count ("ops branches", or "n/a n/a"
