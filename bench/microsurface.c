@@ -971,6 +971,9 @@ static int cost_task(const method *m)
     return t;
 }
 
+/* the storage pass: every method with its pyramids in 16- and 8-bit formats (bench/storage.h) */
+#include "storage.h"
+
 /* ---------------------------------------------------------------- sample store per cell */
 /* a sample of task t: the references (full, in-footprint), then the task's methods */
 #define ROWW(t) (NREF + task_n[t])
@@ -1112,6 +1115,7 @@ typedef struct fp_item {
     long nrows[NTASK], cap[NTASK];
     fp_rec *rec;
     int nrec;
+    store_acc *store; /* the storage pass's sums (bench/storage.h) */
 } fp_item;
 typedef struct kind_job {
     const pfm_surface *surf;
@@ -1128,6 +1132,7 @@ typedef struct kind_job {
     fp_item *items;
     long long nitems;
     long long *box_item_off; /* box items: [box_item_off[i], box_item_off[i + 1]) of the used list */
+    store_set *store;        /* the pyramids in the storage formats (bench/storage.h) */
 } kind_job;
 
 /* a full visibility map per direction: the lights', then the views' */
@@ -1249,6 +1254,7 @@ static void fp_item_run(void *ctx, long long it)
                 row = item_row(I, T_MASK);
                 for (r = 0; r < NREF; ++r) row[r] = sh[r].masking;
                 for (k = 0; k < task_n[T_MASK]; ++k) row[NREF + k] = meth(T_MASK, k)->eval(&c);
+                store_rows(J->store, &I->store, T_MASK, &c, row);
                 for (r = 0; r < NREF; ++r) rec->mask[r] = sh[r].masking;
                 rec->vis_num = sh[0].visible_area * sh[0].area;
                 rec->vis_den = sh[0].area;
@@ -1259,6 +1265,7 @@ static void fp_item_run(void *ctx, long long it)
                 row = item_row(I, t);
                 for (r = 0; r < NREF; ++r) row[r] = t == T_SPEC ? sh[r].spec : sh[r].diffuse;
                 for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                store_rows(J->store, &I->store, t, &c, row);
             }
             if (sh[0].joint > 1e-9)
                 for (t = T_RAMP; t <= T_BANDS; ++t) {
@@ -1267,6 +1274,7 @@ static void fp_item_run(void *ctx, long long it)
                     for (r = 0; r < NREF; ++r)
                         row[r] = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
                     for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                    store_rows(J->store, &I->store, t, &c, row);
                 }
         }
     }
@@ -1359,6 +1367,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     J.views = views;
     J.pos = pos;
     J.pos_off = pos_off;
+    J.store = store_build(&L);
     /* full visibility maps, one per light and per view, shared by every footprint */
     J.vis_l = (unsigned char **)pfb_xcalloc((size_t)S->nlights, sizeof *J.vis_l);
     J.vis_v = (unsigned char **)pfb_xcalloc((size_t)nviews, sizeof *J.vis_v);
@@ -1451,8 +1460,10 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
             }
         }
         free(I->rec);
+        store_reduce(kind, I->store, I->si, vi);
     }
     cells_reduce(kind);
+    store_free(J.store);
     fprintf(stderr, "microsurface: %s: scaling function S and T: %.1f s, %ld patches' samples\n", kn, L.sc_seconds,
             L.sc_patches);
     for (r = 0; r < NREF; ++r) ci->mean_masking_60[r] = ci->mask_n ? ci->mask_sum[r] / (double)ci->mask_n : 0.0;
@@ -2660,6 +2671,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "microsurface: cost done (%.1f s total)\n", (pfb_now_ns() - t0) * 1e-9);
     }
     write_errors_csv(&S);
+    store_write(&S); /* microsurface_storage.csv, storage.md (bench/storage.h) */
     if (kinds_arg && !map_path) {
         print_subset_summary(have_gauss && !no_cost);
         if (have_gauss && !no_cost) write_cost_csv(&S);

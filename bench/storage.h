@@ -1,0 +1,396 @@
+/* bench/storage.h - the storage pass of bench/microsurface.c: every method with its pyramids
+   stored in 16- and 8-bit formats (include/pf_encode.h), against float32 storage, on the same
+   samples and references in the same run.
+
+   Included by microsurface.c after its method registry (it uses lib_maps, mctx, the registry
+   and the task/size/view constants); its hooks there are four calls: store_build after the
+   kind's pyramids (lib_maps_build), store_rows after each sample's methods (fp_item_run),
+   store_reduce in the item-order reduction, store_free at the kind's end, and store_write at
+   the end of the run.
+
+   FORMATS (bytes per texel in store_bytes below, float32 first):
+     float32   the pyramids as built (the main tables' numbers);
+     half      every moment pyramid in IEEE half (binary16): slope moments about the map's mean
+               slope (pf_slope_moments_encode, PF_ENCODE_HALF), average normals, (E[h], E[h^2]),
+               the colour attributes, the HDF moments as they are; vMF lobes in their 16-bit
+               encoding (octahedral axis, log kappa, amp in UNORM16: half cannot hold kappa up
+               to 1e5);
+     unorm16   every moment pyramid in 16-bit UNORM with a per-map offset and scale per channel
+               (slope moments about the map's mean slope), vMF lobes in UNORM16;
+     unorm8    the same at 8 bits.
+   Each pyramid is encoded whole (the ranges of the whole pyramid, which are its finest level's)
+   and decoded back into a pf_real pyramid of the same layout, which the methods read
+   unchanged: a method fetches one texel of level log2 n (what a point or centred bilinear
+   fetch reads), so the difference to float32 is the quantization alone; that filtering the
+   stored texels filters the moments is tests/test_encode.c's linearity tests.
+
+   OUTPUT. microsurface_storage.csv: per kind, reference, task, method, footprint size, view
+   and format: sum_sq_err (against the reference), sum_sq_ref, sum_sq_diff (against the same
+   method with float32 storage) and the samples; storage.md (the fragment docs/encode.md shows
+   between its GENERATED markers): per format, the worst ratio of a method's error to its
+   float32 error over every kind, footprint size and both references (views pooled 0-75
+   degrees as the main tables), and per method. */
+#ifndef BENCH_STORAGE_H
+#define BENCH_STORAGE_H
+
+#include "pf_encode.h"
+
+#define NSTORE 4
+enum { ST_F32, ST_HALF, ST_U16, ST_U8 };
+static const char *store_name[NSTORE] = { "float32", "half", "unorm16", "unorm8" };
+
+/* bytes per texel of each pyramid family, per format (vMF: per lobe; HDF: per azimuth) */
+enum { FAM_NONE, FAM_SLOPE, FAM_NORMAL, FAM_VMF, FAM_HDF, FAM_HEIGHT, NFAM };
+static const char *fam_name[NFAM] = { "none", "slope moments (5 channels)", "average normal (3)",
+                                      "vMF lobe (4 per lobe)", "HDF moments (3 per azimuth; + slope moments)",
+                                      "height / colour moments (2; + slope moments)" };
+static const int fam_channels[NFAM] = { 0, 5, 3, 4, 3, 2 };
+static int store_bytes(int fam, int f)
+{
+    int per = f == ST_F32 ? 4 : (f == ST_U8 ? 1 : 2);
+    return fam_channels[fam] * per;
+}
+/* the family of what a method fetches (the registry's fetch text) */
+static int method_family(const method *m)
+{
+    if (strstr(m->fetch, "vMF")) return FAM_VMF;
+    if (strstr(m->fetch, "HDF")) return FAM_HDF;
+    if (strstr(m->fetch, "average normal")) return FAM_NORMAL;
+    if (strstr(m->fetch, "E[h]") || strstr(m->fetch, "colour")) return FAM_HEIGHT;
+    if (strstr(m->fetch, "slope moments")) return FAM_SLOPE;
+    if (!strcmp(m->name, "oracle_histogram_smith")) return FAM_SLOPE;
+    return FAM_NONE;
+}
+
+/* the kind's pyramids decoded from each format (index 0 unused: float32 is the kind's own) */
+typedef struct store_set {
+    lib_maps L[NSTORE];
+} store_set;
+
+/* per item: sums per format, reference, task, method */
+typedef struct store_acc {
+    double d2[NSTORE][NREF][NTASK][MAX_TASK_METHODS];
+    double dd2[NSTORE][NTASK][MAX_TASK_METHODS];
+    double r2[NREF][NTASK];
+    long n[NTASK];
+} store_acc;
+static store_acc store_tot[NKIND + 1][NSIZE][NVIEW];
+static int store_ran[NKIND + 1];
+
+static void store_fail(const char *what)
+{
+    fprintf(stderr, "microsurface: storage pass: %s failed\n", what);
+    exit(1);
+}
+
+/* n texels of C generic channels: encode in format f (per-channel ranges of the whole buffer)
+   and decode in place */
+static void store_channels(pf_real *p, long long n, int C, int f)
+{
+    pf_real *off = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real)), *sc = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real));
+    void *q = pfb_xcalloc((size_t)n * (size_t)C, 2);
+    int fmt = f == ST_HALF ? PF_ENCODE_HALF : (f == ST_U16 ? PF_ENCODE_UNORM16 : PF_ENCODE_UNORM8);
+    long long i;
+    if (pf_encode_ranges(p, n, C, off, sc) != PF_OK || pf_encode_channels(p, n, C, off, sc, fmt, q) != PF_OK)
+        store_fail("pf_encode_channels");
+    for (i = 0; i < n * C; ++i) {
+        int c = (int)(i % C);
+        if (fmt == PF_ENCODE_HALF) p[i] = pf_real_from_half(((unsigned short *)q)[i]);
+        else if (fmt == PF_ENCODE_UNORM16) p[i] = pf_unorm_decode((pf_real)((unsigned short *)q)[i] / PF_R(65535.0), off[c], sc[c]);
+        else p[i] = pf_unorm_decode((pf_real)((unsigned char *)q)[i] / PF_R(255.0), off[c], sc[c]);
+    }
+    free(off);
+    free(sc);
+    free(q);
+}
+
+static pf_real store_s(const void *q, long long i, int fmt)
+{
+    if (fmt == PF_ENCODE_HALF) return pf_real_from_half(((const unsigned short *)q)[i]);
+    if (fmt == PF_ENCODE_UNORM16) return (pf_real)((const unsigned short *)q)[i] / PF_R(65535.0);
+    return (pf_real)((const unsigned char *)q)[i] / PF_R(255.0);
+}
+
+/* n slope texels: about the map's mean slope, format f, decoded in place */
+static void store_slope(pf_real *p, long long n, int f)
+{
+    int fmt = f == ST_HALF ? PF_ENCODE_HALF : (f == ST_U16 ? PF_ENCODE_UNORM16 : PF_ENCODE_UNORM8);
+    void *q = pfb_xcalloc((size_t)n * 5, 2);
+    pf_slope_encoding e;
+    long long i;
+    if (pf_slope_encoding_find(p, n, 1, &e) != PF_OK || pf_slope_moments_encode(p, n, &e, fmt, q) != PF_OK)
+        store_fail("pf_slope_moments_encode");
+    if (fmt == PF_ENCODE_HALF) { /* the half channels are the centred moments themselves */
+        e.off_x = e.off_y = e.off_xx = e.off_yy = e.off_xy = PF_R(0.0);
+        e.sc_x = e.sc_y = e.sc_xx = e.sc_yy = e.sc_xy = PF_R(1.0);
+    }
+    for (i = 0; i < n; ++i) {
+        pf_slope_moments m = pf_slope_moments_decode(
+            pf_slope_moments_make(store_s(q, 5 * i, fmt), store_s(q, 5 * i + 1, fmt), store_s(q, 5 * i + 2, fmt),
+                                  store_s(q, 5 * i + 3, fmt), store_s(q, 5 * i + 4, fmt)),
+            e);
+        p[5 * i] = m.ex;
+        p[5 * i + 1] = m.ey;
+        p[5 * i + 2] = m.exx;
+        p[5 * i + 3] = m.eyy;
+        p[5 * i + 4] = m.exy;
+    }
+    free(q);
+}
+
+/* nlobes lobe texels (mu.x, mu.y, kappa, amp): UNORM16 (half and unorm16) or UNORM8 */
+static void store_vmf(pf_real *p, long long nlobes, int f)
+{
+    int fmt = f == ST_U8 ? PF_ENCODE_UNORM8 : PF_ENCODE_UNORM16;
+    void *q = pfb_xcalloc((size_t)nlobes * 4, 2);
+    pf_vmf_encoding e;
+    long long i;
+    if (pf_vmf_encoding_find(p, nlobes, &e) != PF_OK || pf_vmf_lobes_encode(p, nlobes, &e, fmt, q) != PF_OK)
+        store_fail("pf_vmf_lobes_encode");
+    for (i = 0; i < nlobes; ++i) {
+        pf_vmf_lobe l = pf_vmf_lobe_decode(store_s(q, 4 * i, fmt), store_s(q, 4 * i + 1, fmt), store_s(q, 4 * i + 2, fmt),
+                                           store_s(q, 4 * i + 3, fmt), e);
+        p[4 * i] = l.mu.x;
+        p[4 * i + 1] = l.mu.y;
+        p[4 * i + 2] = l.kappa;
+        p[4 * i + 3] = l.amp;
+    }
+    free(q);
+}
+
+static pf_real *store_copy(const pf_real *p, long long n)
+{
+    pf_real *c = (pf_real *)pfb_xcalloc((size_t)n, sizeof(pf_real));
+    memcpy(c, p, (size_t)n * sizeof(pf_real));
+    return c;
+}
+
+/* the kind's pyramids in every format (shallow copies of L with the moment pyramids replaced;
+   the heights, scaling-function tables and attributes in double are shared) */
+static store_set *store_build(const lib_maps *L)
+{
+    store_set *S = (store_set *)pfb_xcalloc(1, sizeof *S);
+    const long long tc = pf_mip_texel_count(L->w, L->h);
+    int f, k;
+    double t0 = pfb_now_ns();
+    for (f = 1; f < NSTORE; ++f) {
+        lib_maps *D = &S->L[f];
+        *D = *L;
+        D->slope = store_copy(L->slope, tc * 5);
+        store_slope(D->slope, tc, f);
+        D->normal = store_copy(L->normal, tc * 3);
+        store_channels(D->normal, tc, 3, f);
+        D->height = store_copy(L->height, tc * 2);
+        store_channels(D->height, tc, 2, f);
+        for (k = 0; k < 2; ++k) {
+            D->attr[k] = store_copy(L->attr[k], tc * 2);
+            store_channels(D->attr[k], tc, 2, f);
+        }
+        for (k = 0; k < NVMF; ++k) {
+            const long long lobes = pf_vmf_pyramid_texel_count(L->w, L->h) * vmf_lobes[k];
+            D->vmf[k] = store_copy(L->vmf[k], lobes * 4);
+            store_vmf(D->vmf[k], lobes, f);
+        }
+        for (k = 0; k < NHOR; ++k) {
+            const int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
+            D->hor[k] = store_copy(L->hor[k], tc * C);
+            store_channels(D->hor[k], tc, C, f);
+        }
+    }
+    fprintf(stderr, "microsurface: storage pass: pyramids encoded and decoded in %d formats: %.2f s\n", NSTORE - 1,
+            (pfb_now_ns() - t0) * 1e-9);
+    return S;
+}
+
+static void store_free(store_set *S)
+{
+    int f, k;
+    for (f = 1; f < NSTORE; ++f) {
+        lib_maps *D = &S->L[f];
+        free(D->slope);
+        free(D->normal);
+        free(D->height);
+        for (k = 0; k < 2; ++k) free(D->attr[k]);
+        for (k = 0; k < NVMF; ++k) free(D->vmf[k]);
+        for (k = 0; k < NHOR; ++k) free(D->hor[k]);
+    }
+    free(S);
+}
+
+/* one sample of task t (row: the references, then the float32 methods' values): every method
+   again on the pyramids of each format, summed into the item's accumulator */
+static void store_rows(const store_set *S, store_acc **acc, int t, const mctx *c, const double *row)
+{
+    int f, k, r;
+    store_acc *A;
+    if (!S) return;
+    if (!*acc) *acc = (store_acc *)pfb_xcalloc(1, sizeof(store_acc));
+    A = *acc;
+    A->n[t]++;
+    for (r = 0; r < NREF; ++r) A->r2[r][t] += row[r] * row[r];
+    for (k = 0; k < task_n[t]; ++k) {
+        const double f32 = row[NREF + k];
+        for (f = 0; f < NSTORE; ++f) {
+            double v = f32;
+            if (f > 0 && method_family(meth(t, k)) != FAM_NONE) {
+                mctx cf = *c;
+                cf.L = &S->L[f];
+                v = meth(t, k)->eval(&cf);
+            }
+            for (r = 0; r < NREF; ++r) A->d2[f][r][t][k] += (v - row[r]) * (v - row[r]);
+            A->dd2[f][t][k] += (v - f32) * (v - f32);
+        }
+    }
+}
+
+/* an item's sums into the kind's totals (in item order: the CSV is the same for any thread
+   count) */
+static void store_reduce(int kind, store_acc *A, int si, int vi)
+{
+    store_acc *T = &store_tot[kind][si][vi];
+    int f, r, t, k;
+    if (!A) return;
+    store_ran[kind] = 1;
+    for (t = 0; t < NTASK; ++t) {
+        T->n[t] += A->n[t];
+        for (r = 0; r < NREF; ++r) T->r2[r][t] += A->r2[r][t];
+        for (f = 0; f < NSTORE; ++f)
+            for (k = 0; k < task_n[t]; ++k) {
+                for (r = 0; r < NREF; ++r) T->d2[f][r][t][k] += A->d2[f][r][t][k];
+                T->dd2[f][t][k] += A->dd2[f][t][k];
+            }
+    }
+    free(A);
+}
+
+/* error of (kind, ref, task, method, size, format) pooled over views 0 .. POOL_VIEW_HI */
+static void store_pooled(int kind, int r, int t, int k, int si, int f, double *err, double *diff)
+{
+    double d2 = 0, r2 = 0, dd2 = 0;
+    int v;
+    for (v = 0; v <= POOL_VIEW_HI; ++v) {
+        const store_acc *T = &store_tot[kind][si][v];
+        d2 += T->d2[f][r][t][k];
+        dd2 += T->dd2[f][t][k];
+        r2 += T->r2[r][t];
+    }
+    *err = r2 > 0 ? sqrt(d2 / r2) : 0.0;
+    *diff = r2 > 0 ? sqrt(dd2 / r2) : 0.0;
+}
+
+/* the kinds of this run that the storage pass saw, in display order */
+static int store_kinds(int *out)
+{
+    int i, n = 0;
+    for (i = 0; i < NKIND; ++i)
+        if (store_ran[kind_order[i]]) out[n++] = kind_order[i];
+    if (store_ran[KIND_MAP]) out[n++] = KIND_MAP;
+    return n;
+}
+
+/* worst ratio err_f / err_f32 of method (t, k) over the kinds, sizes and references (cells
+   whose float32 error is below 1e-6 are left out: a ratio of two roundings), with where */
+typedef struct store_worst {
+    double ratio, err, err32;
+    int kind, si, r;
+} store_worst;
+static store_worst store_method_worst(int t, int k, int f)
+{
+    store_worst w;
+    int kinds[NKIND + 1], nk = store_kinds(kinds), i, si, r;
+    memset(&w, 0, sizeof w);
+    w.kind = -1;
+    for (i = 0; i < nk; ++i)
+        for (si = 0; si < NSIZE; ++si)
+            for (r = 0; r < NREF; ++r) {
+                double e, e32, d;
+                store_pooled(kinds[i], r, t, k, si, f, &e, &d);
+                store_pooled(kinds[i], r, t, k, si, ST_F32, &e32, &d);
+                if (e32 < 1e-6) continue;
+                if (w.kind < 0 || e / e32 > w.ratio) {
+                    w.ratio = e / e32;
+                    w.err = e;
+                    w.err32 = e32;
+                    w.kind = kinds[i];
+                    w.si = si;
+                    w.r = r;
+                }
+            }
+    return w;
+}
+
+static void store_write(const settings *S)
+{
+    int kinds[NKIND + 1], nk = store_kinds(kinds), i, r, t, k, si, v, f, fam;
+    char path[1024];
+    FILE *c, *m;
+    if (nk == 0) return;
+    snprintf(path, sizeof path, "%s/microsurface_storage.csv", S->out);
+    c = fopen(path, "w");
+    if (!c) fatal("cannot write microsurface_storage.csv");
+    fprintf(c, "kind,reference,task,method,footprint_texels,view_deg,format,bytes_per_texel,samples,sum_sq_err,sum_sq_ref,"
+               "sum_sq_diff_float32\n");
+    for (i = 0; i < nk; ++i)
+        for (r = 0; r < NREF; ++r)
+            for (t = 0; t < NTASK; ++t)
+                for (k = 0; k < task_n[t]; ++k)
+                    for (si = 0; si < NSIZE; ++si)
+                        for (v = 0; v < NVIEW; ++v)
+                            for (f = 0; f < NSTORE; ++f) {
+                                const store_acc *T = &store_tot[kinds[i]][si][v];
+                                if (!T->n[t]) continue;
+                                fprintf(c, "%s,%s,%s,%s,%d,%g,%s,%d,%ld,%.9g,%.9g,%.9g\n", kname(kinds[i]), ref_name[r],
+                                        task_name[t], mname(t, k), 1 << (2 * si), view_deg[v], store_name[f],
+                                        store_bytes(method_family(meth(t, k)), f), T->n[t], T->d2[f][r][t][k], T->r2[r][t],
+                                        T->dd2[f][t][k]);
+                            }
+    fclose(c);
+    snprintf(path, sizeof path, "%s/storage.md", S->out);
+    m = fopen(path, "w");
+    if (!m) fatal("cannot write storage.md");
+    fprintf(m, "Measured by bench/microsurface.c's storage pass (bench/storage.h)%s: every method of the error tables "
+               "with its pyramids stored in each format, on the same samples and references as with float32 storage; "
+               "kinds:", S->quick ? " in BENCH_QUICK mode (smaller maps, fewer samples)" : "");
+    for (i = 0; i < nk; ++i) fprintf(m, " %s", kname(kinds[i]));
+    fprintf(m, "; footprints of 1 to 4096 texels; views pooled 0-75 degrees; both references. Raw numbers: "
+               "microsurface_storage.csv.\n\n");
+    fprintf(m, "Bytes per texel (vMF: per lobe, HDF: per azimuth):\n\n| pyramid | float32 | half | unorm16 | unorm8 |\n"
+               "| --- | --- | --- | --- | --- |\n");
+    for (fam = 1; fam < NFAM; ++fam)
+        fprintf(m, "| %s | %d | %d | %d | %d |\n", fam_name[fam], store_bytes(fam, ST_F32), store_bytes(fam, ST_HALF),
+                store_bytes(fam, ST_U16), store_bytes(fam, ST_U8));
+    fprintf(m, "\nWorst ratio of a method's error (rel_l2 against the reference) with its pyramids in the format to its "
+               "error with float32 pyramids, over every kind, footprint size and reference (cells with a float32 error "
+               "below 1e-6 left out), per pyramid family; target 1.1 for the 16-bit formats:\n\n"
+               "| pyramid family | half | unorm16 | unorm8 |\n| --- | --- | --- | --- |\n");
+    for (fam = 1; fam < NFAM; ++fam) {
+        double worst[NSTORE] = { 0, 0, 0, 0 };
+        int any = 0;
+        for (t = 0; t < NTASK; ++t)
+            for (k = 0; k < task_n[t]; ++k) {
+                if (method_family(meth(t, k)) != fam) continue;
+                any = 1;
+                for (f = 1; f < NSTORE; ++f) {
+                    store_worst w = store_method_worst(t, k, f);
+                    if (w.kind >= 0 && w.ratio > worst[f]) worst[f] = w.ratio;
+                }
+            }
+        if (any) fprintf(m, "| %s | %.3f | %.3f | %.3f |\n", fam_name[fam], worst[ST_HALF], worst[ST_U16], worst[ST_U8]);
+    }
+    fprintf(m, "\nPer method: the worst ratio per format, where it occurs (kind, footprint texels, reference) and the two "
+               "errors there (format / float32):\n\n| task | method | pyramid | half | unorm16 | unorm8 | unorm8 worst at "
+               "|\n| --- | --- | --- | --- | --- | --- | --- |\n");
+    for (t = 0; t < NTASK; ++t)
+        for (k = 0; k < task_n[t]; ++k) {
+            store_worst w[NSTORE];
+            if (method_family(meth(t, k)) == FAM_NONE) continue;
+            for (f = 1; f < NSTORE; ++f) w[f] = store_method_worst(t, k, f);
+            if (w[ST_U8].kind < 0) continue;
+            fprintf(m, "| %s | %s | %s | %.3f | %.3f | %.3f | %s, %d, %s: %.3g / %.3g |\n", task_name[t], mname(t, k),
+                    fam_name[method_family(meth(t, k))], w[ST_HALF].ratio, w[ST_U16].ratio, w[ST_U8].ratio,
+                    kname(w[ST_U8].kind), 1 << (2 * w[ST_U8].si), ref_name[w[ST_U8].r], w[ST_U8].err, w[ST_U8].err32);
+        }
+    fclose(m);
+}
+
+#endif /* BENCH_STORAGE_H */
