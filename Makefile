@@ -211,7 +211,7 @@ stability:
 # docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
 # are replaced by that module's section of bench/out/summary.md (run make bench first), so the
 # tables in docs are the bench's, never typed by hand.
-DOC_TESTS := core smith beckmann moments map map_downsample toksvig shadow gaussgrid height vmf vmf_fit vmf_scale horizon masks
+DOC_TESTS := core smith beckmann moments map map_downsample toksvig shadow gaussgrid height vmf vmf_fit vmf_scale horizon masks encode
 docs: $(foreach t,$(DOC_TESTS),$(BUILD)/c99-float/test_$(t) $(BUILD)/c99-double/test_$(t))
 	@BUILD=$(BUILD) sh bench/update_docs.sh bench/out/summary.md docs
 
