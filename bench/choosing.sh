@@ -19,6 +19,9 @@ mode=corpus
 [ "${2:-}" = --map ] && mode=map
 err="$out/microsurface_errors.csv"
 cost="$out/microsurface_cost.csv"
+# the storage pass (bench/storage.h): the same cells with the pyramids in 16- and 8-bit formats
+storage="$out/microsurface_storage.csv"
+[ -f "$storage" ] || storage=""
 page="$out/choosing.md"
 
 {
@@ -64,6 +67,8 @@ else
     echo "(\`microsurface_cost.csv\`, largest footprint; the fetch is about half of it on a CPU and"
     echo "hardware texture filtering on a GPU), and the ratio to LEADR specular timed in the same run."
     echo "Oracles (methods that read every texel) are not candidates."
+    [ -n "$storage" ] &&
+        echo "Stored: the smallest pyramid format (unorm8, then unorm16, then half; docs/encode.md) in which the chosen method still meets the target in the regime (\`microsurface_storage.csv\`; float32 when none does)."
     [ -f "$out/gpu_methods.csv" ] &&
         echo "GPU: the SPIR-V ops (after spirv-opt -O) of the method's library evaluators, fetches not included ([GPU cost](#gpu-cost), \`gpu_methods.csv\`), where the shader generator can count them."
     awk -F, -v costf="$cost" -v mode="$mode" -v gpuf="$out/gpu_methods.csv" '
@@ -97,9 +102,11 @@ else
             }
             ntgt = 4; tgt[1] = 0.10; tgt[2] = 0.03; tgt[3] = 0.01; tgt[4] = 0.001
         }
-        NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+        FNR == 1 { split("", col); for (i = 1; i <= NF; i++) col[$i] = i; next }
         {
             task = $col["task"]; meth = $col["method"]; kind = $col["kind"]
+            sf = ("format" in col) ? $col["format"] : ""   # a row of the storage CSV
+            if (sf == "float32") next
             if (meth ~ /^oracle/) next
             ref = ("reference" in col) ? $col["reference"] : "full"
             fp = $col["footprint_texels"] + 0; view = $col["view_deg"] + 0
@@ -127,6 +134,7 @@ else
                 }
                 if (!inr) continue
                 k = task SUBSEP meth SUBSEP r
+                if (sf != "") { sse_s[k, sf] += se; ssr_s[k, sf] += sr; have_s = 1; continue }
                 sse[k] += se; ssr[k] += sr
                 if (!((task SUBSEP meth) in seenm)) { seenm[task SUBSEP meth] = 1; mlist[task] = mlist[task] " " meth }
                 if (!(task in seent)) { seent[task] = 1; tasks[++nt] = task }
@@ -155,8 +163,17 @@ else
                             if (e <= tgt[g] && mc < bestc) { bestc = mc; best = ms[i]; be = e }
                         }
                         if (best != "") {
-                            if (bestc < 1e29) printf " `%s` (%s; %.0f ns, %.2fx LEADR%s) |", best, fmt(be), bestc, cx[best], gpu(best)
-                            else printf " `%s` (%s; cost not timed%s) |", best, fmt(be), gpu(best)
+                            st = ""
+                            if (have_s) {
+                                st = "; stored: float32"
+                                nf = split("unorm8 unorm16 half", fl, " ")
+                                for (j = 1; j <= nf; j++) {
+                                    ks = task SUBSEP best SUBSEP r SUBSEP fl[j]
+                                    if ((ks in ssr_s) && ssr_s[ks] > 0 && sqrt(sse_s[ks] / ssr_s[ks]) <= tgt[g]) { st = "; stored: " fl[j]; break }
+                                }
+                            }
+                            if (bestc < 1e29) printf " `%s` (%s; %.0f ns, %.2fx LEADR%s%s) |", best, fmt(be), bestc, cx[best], gpu(best), st
+                            else printf " `%s` (%s; cost not timed%s%s) |", best, fmt(be), gpu(best), st
                         } else if (acc != "") printf " none (best: `%s`, %s) |", acc, fmt(acce)
                         else printf " - |"
                     }
@@ -177,7 +194,7 @@ else
                     if (ms[i] in cns) printf " %.0f | %.2f |\n", cns[ms[i]], cx[ms[i]]; else printf " - | - |\n"
                 }
             }
-        }' "$err"
+        }' "$err" $storage
 fi
 
 # cheapest CSV FAMILY COLUMN LABEL SKIP_BASELINE: one table row per error target, the cheapest

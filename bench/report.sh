@@ -3,6 +3,7 @@
 # programs wrote into OUT_DIR during the same `make bench`:
 #   summary.md, <module>.csv, <module>_<family>.svg   bench/run.sh (per-module families)
 #   microsurface.md (+ csv, svg)                       bench/microsurface.c (ground truth)
+#   storage.md (+ microsurface_storage.csv)            bench/microsurface.c's storage pass
 #   pictures.md (+ png)                                bench/pictures.c
 #   frame.md (+ csv, png)                              bench/frame/ (the scenes on a Vulkan driver)
 #   stability.md (+ csv)                               bench/stability.c
@@ -260,6 +261,12 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
         done
     done
     fragment microsurface.md "Ground truth on synthetic microsurfaces"
+    # the storage pass of bench/microsurface.c (bench/storage.h): its fragment has no heading
+    # (docs/encode.md shows it whole)
+    echo
+    echo "## Storage formats"
+    echo
+    if [ -f "$out/storage.md" ]; then cat "$out/storage.md"; else echo "**Missing:** \`storage.md\` was not produced by this run (see the bench log)."; fi
     fragment pictures.md "Pictures"
     fragment frame.md "The frame on a Vulkan driver"
     fragment stability.md "Stability"

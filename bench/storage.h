@@ -24,6 +24,10 @@
    fetch reads), so the difference to float32 is the quantization alone; that filtering the
    stored texels filters the moments is tests/test_encode.c's linearity tests.
 
+   COST. Every method is evaluated NSTORE times per sample instead of once (the references,
+   which dominate, once); MICROSURFACE_STORAGE=0 in the environment skips the pass (no storage
+   files are written then).
+
    OUTPUT. microsurface_storage.csv: per kind, reference, task, method, footprint size, view
    and format: sum_sq_err (against the reference), sum_sq_ref, sum_sq_diff (against the same
    method with float32 storage) and the samples; storage.md (the fragment docs/encode.md shows
@@ -169,10 +173,13 @@ static pf_real *store_copy(const pf_real *p, long long n)
    the heights, scaling-function tables and attributes in double are shared) */
 static store_set *store_build(const lib_maps *L)
 {
-    store_set *S = (store_set *)pfb_xcalloc(1, sizeof *S);
+    store_set *S;
     const long long tc = pf_mip_texel_count(L->w, L->h);
+    const char *env = getenv("MICROSURFACE_STORAGE");
     int f, k;
     double t0 = pfb_now_ns();
+    if (env && !strcmp(env, "0")) return NULL; /* MICROSURFACE_STORAGE=0: no storage pass */
+    S = (store_set *)pfb_xcalloc(1, sizeof *S);
     for (f = 1; f < NSTORE; ++f) {
         lib_maps *D = &S->L[f];
         *D = *L;
@@ -205,6 +212,7 @@ static store_set *store_build(const lib_maps *L)
 static void store_free(store_set *S)
 {
     int f, k;
+    if (!S) return;
     for (f = 1; f < NSTORE; ++f) {
         lib_maps *D = &S->L[f];
         free(D->slope);
