@@ -2357,6 +2357,173 @@ static void pfb_d_vmf_level(pfc_ctx *c, int which)
     if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
 }
 
+/* ---------------------------------------------------------------- pf_encode.h: encoders
+   which: 0 pf_encode_ranges + pf_encode_channels, 1 pf_slope_encoding_find +
+   pf_slope_moments_encode, 2 pf_vmf_encoding_find + pf_vmf_lobes_encode; texel counts and
+   channel counts from the whole int range, a format from {UNORM16, UNORM8, HALF} or any int,
+   1 in 16 a NaN or inf texel. Rejected calls write nothing (their output is checked); accepted
+   ones: generic UNORM codes decode within half a step (plus rounding) of their texels, decoded
+   slope moments and lobes finite. */
+static int pfb_enc_format(pfc_ctx *c)
+{
+    pfc_u32 u = pfc_next(c);
+    return PFC_R(u) < 14 ? (int)(PFC_B(u) % 3u) : pfb_int(c, -2, 5);
+}
+static pf_real pfb_enc_s(const void *q, long long i, int f)
+{
+    if (f == PF_ENCODE_HALF) return pf_real_from_half(((const unsigned short *)q)[i]);
+    if (f == PF_ENCODE_UNORM16) return (pf_real)((const unsigned short *)q)[i] / PF_R(65535.0);
+    return (pf_real)((const unsigned char *)q)[i] / PF_R(255.0);
+}
+static void pfb_d_encode(pfc_ctx *c, int which)
+{
+    static const char *const fns[] = { "pf_encode_ranges/pf_encode_channels", "pf_slope_encoding_find/pf_slope_moments_encode",
+                                       "pf_vmf_encoding_find/pf_vmf_lobes_encode" };
+    const char *fn = fns[which];
+    int n = pfb_int(c, 0, 40), nc = which == 0 ? pfb_int(c, 0, 6) : (which == 1 ? 5 : 4);
+    int f = pfb_enc_format(c), null = pfb_null(c, 3), bytes = pf_encode_bytes(f), rc, rc2, allowed, allowed2, bad_val = 0;
+    pfb_expect ex = { 0, 0, 0 }, ex2;
+    long long nt = -1, i, k;
+    pf_real *tx, *out, *off, *sc;
+    pf_slope_encoding se, se0;
+    pf_vmf_encoding ve, ve0;
+    pfb_setcall("%s(%s, %d, %d channels, format %d%s)", fn, null == 1 ? "NULL" : "texels", n, nc, f,
+                null == 2 ? ", out NULL" : (null == 3 ? ", range/encoding NULL" : ""));
+    memset(&se0, 0x5A, sizeof se0);
+    memset(&ve0, 0x5A, sizeof ve0);
+    se = se0;
+    ve = ve0;
+    if (null == 1 || null == 3) ex.arg = 1;
+    if (n < 1 || nc < 1) ex.small = 1;
+    if (!ex.small) {
+        nt = pfb_mul(n, nc);
+        if (nt < 0) ex.size = 1;
+    }
+    ex2 = ex; /* the encode call: also the output pointer and the format */
+    if (null == 2 || bytes == 0 || (which == 2 && f == PF_ENCODE_HALF)) ex2.arg = 1;
+    allowed = pfb_allowed(ex);
+    allowed2 = pfb_allowed(ex2);
+    if (!(allowed & PFB_A_OK) || !(allowed2 & PFB_A_OK)) {
+        pf_real *b[3];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        b[2] = null == 3 ? 0 : pfb_small();
+        if (!(allowed & PFB_A_OK)) { /* the find call on the same arguments */
+            if (which == 0) rc = pf_encode_ranges(b[0], n, nc, b[2], b[2] ? b[2] + 32 : 0);
+            else if (which == 1) rc = pf_slope_encoding_find(b[0], n, 1, null == 3 ? 0 : &se);
+            else rc = pf_vmf_encoding_find(b[0], n, null == 3 ? 0 : &ve);
+            pfb_rc_check(rc, allowed, fn);
+            if (memcmp(&se, &se0, sizeof se) || memcmp(&ve, &ve0, sizeof ve)) pfb_fail(PFB_WROTE, "%s: encoding written on an error", fn);
+        }
+        if (b[2]) { /* a valid range / encoding: the encode call must reject for its own faults */
+            for (k = 0; k < 12; ++k) b[2][k] = k < 6 ? PF_R(0.0) : PF_R(1.0);
+            memset(&se, 0, sizeof se);
+            se.sc_x = se.sc_y = se.sc_xx = se.sc_yy = se.sc_xy = PF_R(1.0);
+            ve.log_kappa_lo = PF_R(0.0); ve.log_kappa_span = PF_R(1.0); ve.amp_scale = PF_R(1.0);
+        }
+        if (which == 0) rc2 = pf_encode_channels(b[0], n, nc, b[2], b[2] ? b[2] + 6 : 0, f, b[1]);
+        else if (which == 1) rc2 = pf_slope_moments_encode(b[0], n, null == 3 ? 0 : &se, f, b[1]);
+        else rc2 = pf_vmf_lobes_encode(b[0], n, null == 3 ? 0 : &ve, f, b[1]);
+        if (b[2]) pfb_fill_canary(b[2], PFB_SMALL); /* the range was ours, not the function's output */
+        pfb_rc_check(rc2, allowed2, fn);
+        pfb_check_untouched(b, 3);
+        return;
+    }
+    if (nt > pfb_work_cap) return;
+    tx = pfb_map(nt, 1);
+    out = pfb_map((nt * bytes + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real), 0);
+    off = pfb_map(nc, 1);
+    sc = pfb_map(nc, 0);
+    if (!tx || !out || !off || !sc) return;
+    pfb_fill(c, tx, nt, which == 2 ? 4 : 20);
+    if (which == 2)
+        for (i = 0; i < n; ++i) tx[4 * i + 2] = PF_EXP(pfc_sym(c, 3) * PF_R(4.0)); /* kappa > 0 */
+    if (PFC_R(pfc_next(c)) == 0) { /* a non-finite texel */
+        pfc_u32 u = pfc_next(c);
+        tx[(long long)(PFC_B(u) % (pfc_u32)nt)] = (u & 1u) ? pfc_from_bits(0x7FC00000u) : -pfc_from_bits(0x7F800000u);
+        bad_val = 1;
+    }
+    pfb_fill_canary(out, (nt * bytes + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real));
+    if (pfb_t) pfb_t->run += 1;
+    if (which == 0) rc = pf_encode_ranges(tx, n, nc, off, sc);
+    else if (which == 1) rc = pf_slope_encoding_find(tx, n, 1, &se);
+    else rc = pf_vmf_encoding_find(tx, n, &ve);
+    if (bad_val && rc != PF_ERR_ARG) pfb_fail(PFB_RC, "%s: a non-finite texel: find returned %d", fn, rc);
+    if (rc != PF_OK) {
+        if (rc != PF_ERR_ARG) pfb_fail(PFB_RC, "%s: find returned %d", fn, rc);
+        if (which == 1 && memcmp(&se, &se0, sizeof se)) pfb_fail(PFB_WROTE, "%s: encoding written on an error", fn);
+        if (which == 2 && memcmp(&ve, &ve0, sizeof ve)) pfb_fail(PFB_WROTE, "%s: encoding written on an error", fn);
+        return;
+    }
+    if (which == 0) rc2 = pf_encode_channels(tx, n, nc, off, sc, f, out);
+    else if (which == 1) rc2 = pf_slope_moments_encode(tx, n, &se, f, out);
+    else rc2 = pf_vmf_lobes_encode(tx, n, &ve, f, out);
+    if (rc2 != PF_OK) { /* half: a value of 65520 or more; slope: a centred channel that overflows */
+        if (rc2 != PF_ERR_ARG || (f != PF_ENCODE_HALF && which != 1))
+            pfb_fail(PFB_RC, "%s: encode returned %d after find succeeded", fn, rc2);
+        if (pfb_count_changed(out, (nt * bytes + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real)))
+            pfb_fail(PFB_WROTE, "%s: output written on an error", fn);
+        return;
+    }
+    for (i = 0; i < n; ++i) {
+        if (which == 0)
+            for (k = 0; k < nc; ++k) {
+                long double x = tx[i * nc + k], y = pfb_enc_s(out, i * nc + k, f), tol;
+                if (f != PF_ENCODE_HALF) y = pf_unorm_decode((pf_real)y, off[k], sc[k]);
+                tol = f == PF_ENCODE_HALF ? fabsl(x) * 4.9e-4L + 6e-8L
+                                          : (long double)sc[k] / (f == PF_ENCODE_UNORM8 ? 510.0L : 131070.0L) +
+                                                4.0L * (long double)PF_REAL_EPSILON * (fabsl((long double)off[k]) + (long double)sc[k]);
+                if (!(fabsl(y - x) <= tol)) { pfb_fail(PFB_VALUE, "%s: texel %lld channel %lld: %La decodes to %La", fn, i, k, x, y); return; }
+            }
+        else if (which == 1) {
+            pf_slope_encoding e = se;
+            pf_slope_moments m;
+            if (f == PF_ENCODE_HALF) {
+                e.off_x = e.off_y = e.off_xx = e.off_yy = e.off_xy = PF_R(0.0);
+                e.sc_x = e.sc_y = e.sc_xx = e.sc_yy = e.sc_xy = PF_R(1.0);
+            }
+            m = pf_slope_moments_decode(pf_slope_moments_make(pfb_enc_s(out, 5 * i, f), pfb_enc_s(out, 5 * i + 1, f),
+                                                              pfb_enc_s(out, 5 * i + 2, f), pfb_enc_s(out, 5 * i + 3, f),
+                                                              pfb_enc_s(out, 5 * i + 4, f)), e);
+            if (!pfb_finite(m.ex) || !pfb_finite(m.ey) || !pfb_finite(m.exx) || !pfb_finite(m.eyy) || !pfb_finite(m.exy)) {
+                pfb_fail(PFB_NONFINITE, "%s: texel %lld decodes to a non-finite moment", fn, i);
+                return;
+            }
+        } else {
+            pf_vmf_lobe l = pf_vmf_lobe_decode(pfb_enc_s(out, 4 * i, f), pfb_enc_s(out, 4 * i + 1, f), pfb_enc_s(out, 4 * i + 2, f),
+                                               pfb_enc_s(out, 4 * i + 3, f), ve);
+            if (!pfb_finite(l.kappa) || !pfb_finite(l.mu.z) || !(l.amp >= PF_R(0.0) && l.amp <= ve.amp_scale)) {
+                pfb_fail(PFB_VALUE, "%s: lobe %lld decodes to kappa %a, amp %a", fn, i, (double)l.kappa, (double)l.amp);
+                return;
+            }
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
+/* the scalar helpers: binary16 both ways over the whole float range and every bit pattern,
+   the octahedral map, the format sizes */
+static void pfb_d_encode_scalar(pfc_ctx *c, int which)
+{
+    pf_real x = pfb_coord(c, PF_R(-70000.0), PF_R(70000.0)), v, u, w;
+    unsigned short h = (unsigned short)(pfc_next(c) & 0xFFFFu);
+    pf_vec3 d;
+    int f = pfb_int(c, -2, 5), b = pf_encode_bytes(f);
+    (void)which;
+    pfb_setcall("pf_half_from_real(%a), pf_real_from_half(0x%04x), pf_encode_bytes(%d)", (double)x, (unsigned)h, f);
+    if (!pfb_finite(pf_real_from_half(h))) pfb_fail(PFB_NONFINITE, "pf_real_from_half(0x%04x)", (unsigned)h);
+    v = pf_real_from_half(pf_half_from_real(x));
+    if (pfb_finite(x) && PF_FABS(x) < PF_R(65520.0) &&
+        !(fabsl((long double)v - (long double)x) <= fabsl((long double)x) * 4.9e-4L + 6e-8L))
+        pfb_fail(PFB_VALUE, "half round trip of %a gave %a", (double)x, (double)v);
+    if (b != ((f == PF_ENCODE_UNORM16 || f == PF_ENCODE_HALF) ? 2 : (f == PF_ENCODE_UNORM8 ? 1 : 0)))
+        pfb_fail(PFB_VALUE, "pf_encode_bytes(%d) = %d", f, b);
+    d = pf_vec3_make(pfb_coord(c, PF_R(-1.0), PF_R(1.0)), pfb_coord(c, PF_R(-1.0), PF_R(1.0)), pfb_coord(c, PF_R(-1.0), PF_R(1.0)));
+    pf_oct_hemi_encode(d, &u, &w);
+    if (!(u >= PF_R(-1.0) && u <= PF_R(1.0) && w >= PF_R(-1.0) && w <= PF_R(1.0)))
+        pfb_fail(PFB_VALUE, "pf_oct_hemi_encode(%a, %a, %a) = (%a, %a)", (double)d.x, (double)d.y, (double)d.z, (double)u, (double)w);
+}
+
 static const pfb_entry pfb_table[] = {
     { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
     { "pf_floor_index", "core", pfb_d_floor_index, 0 },
@@ -2414,6 +2581,10 @@ static const pfb_entry pfb_table[] = {
     { "pf_vmf_scale_sample_count pf_vmf_scale_cell_count pf_vmf_scale_vis_bytes", "vmf_scale", pfb_d_vmf_scale, 2 },
     { "pf_vmf_scale_cell_count pf_vmf_scale_texel_t", "vmf_scale", pfb_d_vmf_scale, 3 }, /* the factorization and T it builds on */
     { "pf_vmf_scale_lookup", "vmf_scale", pfb_d_vmf_scale, 4 },
+    { "pf_encode_ranges pf_encode_channels pf_encode_bytes", "encode", pfb_d_encode, 0 },
+    { "pf_slope_encoding_find pf_slope_moments_encode", "encode", pfb_d_encode, 1 },
+    { "pf_vmf_encoding_find pf_vmf_lobes_encode", "encode", pfb_d_encode, 2 },
+    { "pf_half_from_real pf_real_from_half pf_oct_hemi_encode pf_encode_bytes", "encode", pfb_d_encode_scalar, 0 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

@@ -43,6 +43,7 @@
 #include "pf_horizon.h"
 #include "pf_masks.h"
 #include "pf_vmf.h"
+#include "pf_encode.h"
 
 typedef unsigned int pfc_u32;
 typedef unsigned long long pfc_u64;
@@ -1783,6 +1784,46 @@ static pf_vmf_lobe pfc_vmf_lobe(pfc_ctx *c)
     return pf_vmf_lobe_make(a, x, y, pfc_kappa(c));
 }
 static void pfc_out_lobe(pfc_ctx *c, pf_vmf_lobe l) { pfc_ge0(c, l.amp); pfc_out_vec3(c, l.mu); pfc_ge0(c, l.kappa); }
+/* ---------------------------------------------------------------- pf_encode.h decoders
+   Sampled values: UNORM in [0, 1] (pfc_u01: 0, 1 and in between); encodings: offsets and
+   scales as pf_encode_ranges makes them from values up to 2^20 (scale >= 0), a reference slope
+   within +-2^10. Decoded moments finite; the vMF lobe as pf_vmf_lobe_make promises. */
+static pf_slope_encoding pfc_slope_enc(pfc_ctx *c)
+{
+    pf_slope_encoding e;
+    e.ref_x = pfc_sym(c, 10); e.ref_y = pfc_sym(c, 10);
+    e.off_x = pfc_sym(c, 20); e.off_y = pfc_sym(c, 20); e.off_xx = pfc_sym(c, 20); e.off_yy = pfc_sym(c, 20);
+    e.off_xy = pfc_sym(c, 20);
+    e.sc_x = pfc_pos(c, 20); e.sc_y = pfc_pos(c, 20); e.sc_xx = pfc_pos(c, 20); e.sc_yy = pfc_pos(c, 20);
+    e.sc_xy = pfc_pos(c, 20);
+    return e;
+}
+static void pfc_f_pf_unorm_decode(pfc_ctx *c)
+{
+    pf_real s = pfc_u01(c), o = pfc_sym(c, 20), k = pfc_pos(c, 20);
+    pfc_in(c, pf_unorm_decode(s, o, k), o - PF_R(1e-6) * PF_FABS(o), o + k + PF_R(1e-6) * (PF_FABS(o) + k));
+}
+static void pfc_f_pf_slope_moments_decode(pfc_ctx *c)
+{
+    pf_slope_moments s = pf_slope_moments_make(pfc_u01(c), pfc_u01(c), pfc_u01(c), pfc_u01(c), pfc_u01(c));
+    pfc_out_sm(c, pf_slope_moments_decode(s, pfc_slope_enc(c)));
+}
+static void pfc_f_pf_oct_hemi_decode(pfc_ctx *c)
+{
+    pf_vec3 d = pf_oct_hemi_decode(pfc_u01(c), pfc_u01(c));
+    pfc_out_vec3(c, d);
+    pfc_in(c, d.z, PF_R(0.0), PF_R(1.0));
+    pfc_in(c, pf_vec3_length(d), PF_R(1.0) - PF_R(4.0) * PF_REAL_EPSILON, PF_R(1.0) + PF_R(4.0) * PF_REAL_EPSILON);
+}
+static void pfc_f_pf_vmf_lobe_decode(pfc_ctx *c)
+{
+    pf_vmf_encoding e;
+    pf_real su = pfc_u01(c), sv = pfc_u01(c), sk = pfc_u01(c), sa = pfc_u01(c);
+    e.log_kappa_lo = pfc_sym(c, 4);
+    e.log_kappa_span = pfc_pos(c, 5);
+    e.amp_scale = pfc_u01(c);
+    pfc_out_lobe(c, pf_vmf_lobe_decode(su, sv, sk, sa, e));
+}
 /* a sum of 1-4 lobes for the directions wo, wi, with the masking terms */
 static pf_vmf_sum pfc_vmf_sum(pfc_ctx *c, pf_vec3 wo, pf_vec3 wi, pf_real bv, int vmf_form)
 {
@@ -2106,6 +2147,11 @@ static const pfc_entry pfc_table[] = {
     PFC_E(moments, pf_height_slope_central, 0, "heights +-2^20, spacing [2^-20, 2^20]", "spacing 0 divides by 0 (outside the domain)"),
     PFC_E(moments, pf_height_slope_edge, 0, "heights +-2^20, spacing [2^-20, 2^20]", "as central"),
     PFC_E(moments, pf_slope_moments_from_heights, 0, "heights +-2^20, spacings [2^-20, 2^20], scale +-16", "squared slopes overflow float past ~1.8e19"),
+    /* encode */
+    PFC_E(encode, pf_unorm_decode, 0, "s in [0, 1], offset +-2^20, scale [0, 2^20]", "affine: in [offset, offset + scale]"),
+    PFC_E(encode, pf_slope_moments_decode, 0, "channels in [0, 1], encoding as pf_encode_ranges makes it (+-2^20, reference +-2^10)", "finite"),
+    PFC_E(encode, pf_oct_hemi_decode, 0, "su, sv in [0, 1]", "unit vector, z >= 0; outside [0, 1] clamped"),
+    PFC_E(encode, pf_vmf_lobe_decode, 0, "channels in [0, 1], log kappa +-16, span [0, 32], amp scale [0, 1]", "kappa clamped by pf_vmf_lobe_make"),
     /* toksvig */
     PFC_E(toksvig, pf_toksvig_variance, 0, "length in [0, 1 + 1/16] (0, tiny, > 1)", "length clamped to [1e-4, 1]: > 1 gives 0, -> 0 gives 9999"),
     PFC_E(toksvig, pf_toksvig_variance_from_normal, 0, "unit direction times a length as above", "as variance"),
