@@ -3266,13 +3266,26 @@ PF_CPU_DEF int pfi_enc_check(const void *in, long long n, int channels, int form
 PF_CPU_DEF int pf_encode_ranges(const pf_real *texels, long long n, int channels, pf_real *offset, pf_real *scale)
 {
     long long i;
-    int c;
+    int c, big = 0;
     int rc = pfi_enc_check(texels, n, channels, PF_ENCODE_UNORM16, offset);
     if (rc != PF_OK) return rc;
     if (!scale) return PF_ERR_ARG;
-    for (i = 0; i < n * channels; ++i)
+    for (i = 0; i < n * channels; ++i) {
         if (!pfi_enc_finite(texels[i])) return PF_ERR_ARG;
-    for (c = 0; c < channels; ++c) {
+        big |= PF_FABS(texels[i]) > PF_R(0.5) * PF_REAL_MAX;
+    }
+    if (!big) { /* no width can overflow: one pass in memory order, minima and maxima in place */
+        for (c = 0; c < channels; ++c) offset[c] = scale[c] = texels[c];
+        for (i = 1; i < n; ++i)
+            for (c = 0; c < channels; ++c) {
+                pf_real x = texels[i * channels + c];
+                offset[c] = x < offset[c] ? x : offset[c];
+                scale[c] = x > scale[c] ? x : scale[c];
+            }
+        for (c = 0; c < channels; ++c) scale[c] -= offset[c];
+        return PF_OK;
+    }
+    for (c = 0; c < channels; ++c) { /* values beyond PF_REAL_MAX / 2: check every width first */
         pf_real lo = texels[c], hi = texels[c];
         for (i = 1; i < n; ++i) {
             pf_real x = texels[i * channels + c];
