@@ -296,10 +296,14 @@ static int store_kinds(int *out)
     return n;
 }
 
-/* worst ratio err_f / err_f32 of method (t, k) over the kinds, sizes and references (cells
-   whose float32 error is below 1e-6 are left out: a ratio of two roundings), with where */
+/* Worst ratio err_f / err_f32 of method (t, k) over the kinds, sizes and references whose
+   float32 error is at least `floor` (below it the ratio divides by the method's near-exactness:
+   LEADR at 1-texel footprints is within 1e-6 of its reference, which no 16-bit quantization of
+   the slopes can match), with where; and the largest storage error, rel_l2 of the method with
+   the format's pyramids against the same method with float32 pyramids, over every cell. */
+#define STORE_FLOOR 0.01
 typedef struct store_worst {
-    double ratio, err, err32;
+    double ratio, err, err32, diff, raw;
     int kind, si, r;
 } store_worst;
 static store_worst store_method_worst(int t, int k, int f)
@@ -311,10 +315,12 @@ static store_worst store_method_worst(int t, int k, int f)
     for (i = 0; i < nk; ++i)
         for (si = 0; si < NSIZE; ++si)
             for (r = 0; r < NREF; ++r) {
-                double e, e32, d;
+                double e, e32, d, d32;
                 store_pooled(kinds[i], r, t, k, si, f, &e, &d);
-                store_pooled(kinds[i], r, t, k, si, ST_F32, &e32, &d);
-                if (e32 < 1e-6) continue;
+                store_pooled(kinds[i], r, t, k, si, ST_F32, &e32, &d32);
+                if (d > w.diff) w.diff = d;
+                if (e32 > 1e-300 && e / e32 > w.raw) w.raw = e / e32;
+                if (e32 < STORE_FLOOR) continue;
                 if (w.kind < 0 || e / e32 > w.ratio) {
                     w.ratio = e / e32;
                     w.err = e;
@@ -326,11 +332,17 @@ static store_worst store_method_worst(int t, int k, int f)
             }
     return w;
 }
+static const char *store_cell(char *buf, size_t n, store_worst w)
+{
+    if (w.kind < 0) snprintf(buf, n, "- / %.1e", w.diff);
+    else snprintf(buf, n, "%.3f / %.1e", w.ratio, w.diff);
+    return buf;
+}
 
 static void store_write(const settings *S)
 {
     int kinds[NKIND + 1], nk = store_kinds(kinds), i, r, t, k, si, v, f, fam;
-    char path[1024];
+    char path[1024], cb[NSTORE][64];
     FILE *c, *m;
     if (nk == 0) return;
     snprintf(path, sizeof path, "%s/microsurface_storage.csv", S->out);
@@ -367,36 +379,57 @@ static void store_write(const settings *S)
     for (fam = 1; fam < NFAM; ++fam)
         fprintf(m, "| %s | %d | %d | %d | %d |\n", fam_name[fam], store_bytes(fam, ST_F32), store_bytes(fam, ST_HALF),
                 store_bytes(fam, ST_U16), store_bytes(fam, ST_U8));
-    fprintf(m, "\nWorst ratio of a method's error (rel_l2 against the reference) with its pyramids in the format to its "
-               "error with float32 pyramids, over every kind, footprint size and reference (cells with a float32 error "
-               "below 1e-6 left out), per pyramid family; target 1.1 for the 16-bit formats:\n\n"
-               "| pyramid family | half | unorm16 | unorm8 |\n| --- | --- | --- | --- |\n");
+    fprintf(m, "\nEach cell: **ratio / storage error**. Ratio: the worst, over every kind, footprint size (1-4096 texels) "
+               "and reference where the method's float32 error is at least %g, of its error (rel_l2 against the "
+               "reference) with the format's pyramids over its error with float32 pyramids; target 1.1 for 16 bits. "
+               "Storage error: the largest rel_l2 of the method with the format's pyramids against the same method "
+               "with float32 pyramids, over every cell (it bounds what the format adds where the float32 error is "
+               "smaller, e.g. LEADR at 1-texel footprints, within 1e-6 of its reference). Raw: the worst ratio over "
+               "every cell, floor or not.\n\n"
+               "| pyramid family | half | unorm16 | unorm8 | raw worst ratio half / unorm16 / unorm8 |\n"
+               "| --- | --- | --- | --- | --- |\n", STORE_FLOOR);
     for (fam = 1; fam < NFAM; ++fam) {
-        double worst[NSTORE] = { 0, 0, 0, 0 };
+        store_worst worst[NSTORE];
         int any = 0;
+        memset(worst, 0, sizeof worst);
+        for (f = 0; f < NSTORE; ++f) worst[f].kind = -1;
         for (t = 0; t < NTASK; ++t)
             for (k = 0; k < task_n[t]; ++k) {
                 if (method_family(meth(t, k)) != fam) continue;
                 any = 1;
                 for (f = 1; f < NSTORE; ++f) {
                     store_worst w = store_method_worst(t, k, f);
-                    if (w.kind >= 0 && w.ratio > worst[f]) worst[f] = w.ratio;
+                    if (w.kind >= 0 && (worst[f].kind < 0 || w.ratio > worst[f].ratio)) {
+                        worst[f].ratio = w.ratio;
+                        worst[f].kind = w.kind;
+                    }
+                    if (w.diff > worst[f].diff) worst[f].diff = w.diff;
+                    if (w.raw > worst[f].raw) worst[f].raw = w.raw;
                 }
             }
-        if (any) fprintf(m, "| %s | %.3f | %.3f | %.3f |\n", fam_name[fam], worst[ST_HALF], worst[ST_U16], worst[ST_U8]);
+        if (any)
+            fprintf(m, "| %s | %s | %s | %s | %.3g / %.3g / %.3g |\n", fam_name[fam], store_cell(cb[1], 64, worst[ST_HALF]),
+                    store_cell(cb[2], 64, worst[ST_U16]), store_cell(cb[3], 64, worst[ST_U8]), worst[ST_HALF].raw,
+                    worst[ST_U16].raw, worst[ST_U8].raw);
     }
-    fprintf(m, "\nPer method: the worst ratio per format, where it occurs (kind, footprint texels, reference) and the two "
-               "errors there (format / float32):\n\n| task | method | pyramid | half | unorm16 | unorm8 | unorm8 worst at "
-               "|\n| --- | --- | --- | --- | --- | --- | --- |\n");
+    fprintf(m, "\nPer method (same cells: ratio / storage error), whether 8 bits serve it (ratio at most 1.1 and storage "
+               "error at most 0.01), and where its 8-bit ratio is worst (kind, footprint texels, reference: error with "
+               "unorm8 / with float32):\n\n| task | method | pyramid | half | unorm16 | unorm8 | 8 bits serve | unorm8 worst "
+               "at |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n");
     for (t = 0; t < NTASK; ++t)
         for (k = 0; k < task_n[t]; ++k) {
             store_worst w[NSTORE];
+            char where[160];
             if (method_family(meth(t, k)) == FAM_NONE) continue;
             for (f = 1; f < NSTORE; ++f) w[f] = store_method_worst(t, k, f);
-            if (w[ST_U8].kind < 0) continue;
-            fprintf(m, "| %s | %s | %s | %.3f | %.3f | %.3f | %s, %d, %s: %.3g / %.3g |\n", task_name[t], mname(t, k),
-                    fam_name[method_family(meth(t, k))], w[ST_HALF].ratio, w[ST_U16].ratio, w[ST_U8].ratio,
-                    kname(w[ST_U8].kind), 1 << (2 * w[ST_U8].si), ref_name[w[ST_U8].r], w[ST_U8].err, w[ST_U8].err32);
+            if (w[ST_U8].kind >= 0)
+                snprintf(where, sizeof where, "%s, %d, %s: %.3g / %.3g", kname(w[ST_U8].kind), 1 << (2 * w[ST_U8].si),
+                         ref_name[w[ST_U8].r], w[ST_U8].err, w[ST_U8].err32);
+            else
+                snprintf(where, sizeof where, "float32 error below %g everywhere", STORE_FLOOR);
+            fprintf(m, "| %s | %s | %s | %s | %s | %s | %s | %s |\n", task_name[t], mname(t, k), fam_name[method_family(meth(t, k))],
+                    store_cell(cb[1], 64, w[ST_HALF]), store_cell(cb[2], 64, w[ST_U16]), store_cell(cb[3], 64, w[ST_U8]),
+                    (w[ST_U8].kind < 0 || w[ST_U8].ratio <= 1.1) && w[ST_U8].diff <= 0.01 ? "yes" : "no", where);
         }
     fclose(m);
 }
