@@ -170,40 +170,56 @@ static pf_real *store_copy(const pf_real *p, long long n)
 }
 
 /* the kind's pyramids in every format (shallow copies of L with the moment pyramids replaced;
-   the heights, scaling-function tables and attributes in double are shared) */
+   the heights, scaling-function tables and attributes in double are shared), one work item per
+   format and pyramid on every core (each item writes its own pyramid) */
+#define STORE_PYRS (5 + NVMF + NHOR) /* slope, normal, height, 2 attributes, the lobes, the HDFs */
+typedef struct store_job {
+    const lib_maps *L;
+    store_set *S;
+} store_job;
+static void store_item(void *ctx, long long item)
+{
+    const store_job *J = (const store_job *)ctx;
+    const lib_maps *L = J->L;
+    const long long tc = pf_mip_texel_count(L->w, L->h);
+    const int f = 1 + (int)(item / STORE_PYRS), p = (int)(item % STORE_PYRS);
+    lib_maps *D = &J->S->L[f];
+    if (p == 0) {
+        D->slope = store_copy(L->slope, tc * 5);
+        store_slope(D->slope, tc, f);
+    } else if (p == 1) {
+        D->normal = store_copy(L->normal, tc * 3);
+        store_channels(D->normal, tc, 3, f);
+    } else if (p == 2) {
+        D->height = store_copy(L->height, tc * 2);
+        store_channels(D->height, tc, 2, f);
+    } else if (p <= 4) {
+        D->attr[p - 3] = store_copy(L->attr[p - 3], tc * 2);
+        store_channels(D->attr[p - 3], tc, 2, f);
+    } else if (p < 5 + NVMF) {
+        const int k = p - 5;
+        const long long lobes = pf_vmf_pyramid_texel_count(L->w, L->h) * vmf_lobes[k];
+        D->vmf[k] = store_copy(L->vmf[k], lobes * 4);
+        store_vmf(D->vmf[k], lobes, f);
+    } else {
+        const int k = p - 5 - NVMF, C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
+        D->hor[k] = store_copy(L->hor[k], tc * C);
+        store_channels(D->hor[k], tc, C, f);
+    }
+}
 static store_set *store_build(const lib_maps *L)
 {
     store_set *S;
-    const long long tc = pf_mip_texel_count(L->w, L->h);
+    store_job J;
     const char *env = getenv("MICROSURFACE_STORAGE");
-    int f, k;
+    int f;
     double t0 = pfb_now_ns();
     if (env && !strcmp(env, "0")) return NULL; /* MICROSURFACE_STORAGE=0: no storage pass */
     S = (store_set *)pfb_xcalloc(1, sizeof *S);
-    for (f = 1; f < NSTORE; ++f) {
-        lib_maps *D = &S->L[f];
-        *D = *L;
-        D->slope = store_copy(L->slope, tc * 5);
-        store_slope(D->slope, tc, f);
-        D->normal = store_copy(L->normal, tc * 3);
-        store_channels(D->normal, tc, 3, f);
-        D->height = store_copy(L->height, tc * 2);
-        store_channels(D->height, tc, 2, f);
-        for (k = 0; k < 2; ++k) {
-            D->attr[k] = store_copy(L->attr[k], tc * 2);
-            store_channels(D->attr[k], tc, 2, f);
-        }
-        for (k = 0; k < NVMF; ++k) {
-            const long long lobes = pf_vmf_pyramid_texel_count(L->w, L->h) * vmf_lobes[k];
-            D->vmf[k] = store_copy(L->vmf[k], lobes * 4);
-            store_vmf(D->vmf[k], lobes, f);
-        }
-        for (k = 0; k < NHOR; ++k) {
-            const int C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
-            D->hor[k] = store_copy(L->hor[k], tc * C);
-            store_channels(D->hor[k], tc, C, f);
-        }
-    }
+    for (f = 1; f < NSTORE; ++f) S->L[f] = *L;
+    J.L = L;
+    J.S = S;
+    pfb_parallel_for((long long)(NSTORE - 1) * STORE_PYRS, store_item, &J, "microsurface: storage pass: pyramids");
     fprintf(stderr, "microsurface: storage pass: pyramids encoded and decoded in %d formats: %.2f s\n", NSTORE - 1,
             (pfb_now_ns() - t0) * 1e-9);
     return S;
