@@ -80,10 +80,10 @@
 #define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
 #define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator */
 
-enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_COUNT };
-static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4",
-                                                  "vMF m = 8"};
-static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "vmf4", "vmf8"};
+enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_VMF8, MT_COUNT };
+static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig",
+                                                  "LEADR, taps in the shader", "vMF m = 4", "vMF m = 8"};
+static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "leadr_taps", "vmf4", "vmf8"};
 static const int vmf_lobes[2] = {4, 8};
 static const char *const scene_key[2] = {"plane", "sphere"};
 
@@ -346,7 +346,7 @@ static float shade_method(int method, const float a[4], const float b[4], const 
     pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
     float base_var = (float)(BASE_SIGMA * BASE_SIGMA);
     pf_slope_stats st;
-    if (method == MT_LEADR)
+    if (method == MT_LEADR || method == MT_LEADR_TAPS)
         st = pf_slope_moments_stats(pf_slope_moments_make(a[0], a[1], a[2], a[3], b[0]), base_var);
     else if (method == MT_NAIVE)
         st = pf_slope_moments_stats(pf_slope_moments_from_normal(pf_vec3_make(b[1], b[2], b[3])), base_var);
@@ -395,6 +395,28 @@ static void fetch_sampler(const fr_maps *m, double tx, double ty, const float g[
         fetch(m, (tx + f * du) / m->W, (ty + f * dv) / m->H, lod, ta, tb);
         for (k = 0; k < 4; ++k) a[k] += ta[k] / (float)N, b[k] += tb[k] / (float)N;
     }
+}
+
+/* frame.frag's anisotropic filter in the shader (MT_LEADR_TAPS), emulated: N = min(ceil(rho_max /
+   rho_min), 16) trilinear taps at the centres of N equal segments of the major axis, at lod
+   log2(rho_max / N) */
+static void fetch_taps(const fr_maps *m, double tx, double ty, const float g[4], float a[4], float b[4])
+{
+    double g0 = (double)g[0], g1 = (double)g[1], g2 = (double)g[2], g3 = (double)g[3];
+    double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3);
+    double rmax = rx > ry ? rx : ry, rmin = rx > ry ? ry : rx, N, lod, du = rx > ry ? g0 : g2, dv = rx > ry ? g1 : g3;
+    int i, k;
+    N = ceil(rmax / (rmin > 1e-6 * rmax + 1e-30 ? rmin : 1e-6 * rmax + 1e-30));
+    N = N < 1.0 ? 1.0 : (N > 16.0 ? 16.0 : N);
+    lod = rmax / N > 1.0 ? log2(rmax / N) : 0.0;
+    for (k = 0; k < 4; ++k) a[k] = b[k] = 0.0f;
+    for (i = 0; i < (int)N; ++i) {
+        float ta[4], tb[4];
+        double f = ((double)i + 0.5) / N - 0.5;
+        fetch(m, (tx + f * du) / m->W, (ty + f * dv) / m->H, lod, ta, tb);
+        for (k = 0; k < 4; ++k) a[k] += ta[k], b[k] += tb[k];
+    }
+    for (k = 0; k < 4; ++k) a[k] /= (float)N, b[k] /= (float)N;
 }
 
 /* vMF m = vmf_lobes[which] at (u, v) (fractions of the map) and lod: the lobes of the 8 texels
@@ -1019,7 +1041,7 @@ typedef struct {
     const float *gpu;
     int w, npx, method, levels, driver_lod; /* driver_lod: also vd and lodd (isotropic rows) */
     double aniso;
-    double *vc, *vd, *lodd;
+    double *vc, *vd, *lodd, *lodd2;
 } fr_gpu_job;
 
 static void gpu_path_row(void *ctx, long long row)
@@ -1035,7 +1057,7 @@ static void gpu_path_row(void *ctx, long long row)
         double g0 = (double)o1[0], g1 = (double)o1[1], g2 = (double)o1[2], g3 = (double)o1[3];
         double rx = sqrt(g0 * g0 + g1 * g1), ry = sqrt(g2 * g2 + g3 * g3), rho = rx > ry ? rx : ry;
         jb->vc[i] = jb->vd[i] = 0.0;
-        jb->lodd[i] = -1.0;
+        jb->lodd[i] = jb->lodd2[i] = -1e30;
         if (!p->hit || !(o0[3] > 0.5f) || !(jb->lit0[i] || jb->lit1[i])) continue;
         /* the CPU float path: the specification's sampler at the GPU's coordinates and
            derivatives; isotropic also at the lod the driver reports */
@@ -1043,8 +1065,21 @@ static void gpu_path_row(void *ctx, long long row)
             double ls = rho > 0.0 ? log2(rho) : 0.0;
             jb->vc[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
         } else {
-            fetch_sampler(mp, (double)o0[1], (double)o0[2], o1, jb->aniso, a, b);
+            if (m == MT_LEADR_TAPS) fetch_taps(mp, (double)o0[1], (double)o0[2], o1, a, b);
+            else fetch_sampler(mp, (double)o0[1], (double)o0[2], o1, jb->aniso, a, b);
             jb->vc[i] = (double)shade_method(m, a, b, p->wo, p->wi);
+        }
+        if (jb->aniso > 1.0 && jb->lit0[i] && m != MT_LEADR_TAPS) {
+            /* the driver's lod under anisotropy (the probe, read with the same sampler) against
+               the specification's log2(rho_max / N) (lodd) and log2(rho_min) (lodd2), signed */
+            double rmin = rx > ry ? ry : rx, N = rmin > 0.0 ? ceil(rho / rmin) : jb->aniso, l1, l2;
+            N = N > jb->aniso ? jb->aniso : (N < 1.0 ? 1.0 : N);
+            l1 = rho / N > 1.0 ? log2(rho / N) : 0.0;
+            l2 = rmin > 1.0 ? log2(rmin) : 0.0;
+            if (l1 > jb->levels - 1) l1 = jb->levels - 1;
+            if (l2 > jb->levels - 1) l2 = jb->levels - 1;
+            jb->lodd[i] = (double)o0[3] - 1.0 - l1;
+            jb->lodd2[i] = (double)o0[3] - 1.0 - l2;
         }
         if (jb->driver_lod) {
             double lod_drv = (double)o0[3] - 1.0;
@@ -1100,7 +1135,8 @@ typedef struct {
     double cpu_err[2];         /* the CPU float path (the specification's sampler) against them */
     double vs_cpu, vs_cpu_p95; /* GPU against the CPU float path, the specification's sampler */
     double vs_drv, vs_drv_p95; /* GPU against the CPU float path at the driver's own lod (isotropic) */
-    double lod_diff;           /* mean |driver's lod - specification's lod| (lit pixels) */
+    double lod_diff;           /* isotropic: mean |driver's lod - log2(rho_max)|; 16x: mean driver's lod - log2(rho_max / N) (lit pixels) */
+    double lod_rmin;           /* 16x: mean driver's lod - log2(rho_min) */
     double ms;                 /* GPU time of the render pass (real GPUs only), else -1 */
     int nonfinite, n_lit, done;
 } fr_row;
@@ -1295,6 +1331,7 @@ int main(int argc, char **argv)
         double *ref[2], *orc[2], *lex[2], *scratch = (double *)malloc(sizeof(double) * (size_t)npx), t0;
         double *vg = (double *)malloc(sizeof(double) * (size_t)npx), *vc = (double *)malloc(sizeof(double) * (size_t)npx);
         double *vd = (double *)malloc(sizeof(double) * (size_t)npx), *lodd = (double *)pfb_xmalloc(sizeof(double) * (size_t)npx);
+        double *lodd2 = (double *)pfb_xmalloc(sizeof(double) * (size_t)npx);
         unsigned char *lit[2], *vis_light = NULL;
         float *gpu = (float *)malloc(sizeof(float) * 8 * (size_t)npx), *leadr_f32 = (float *)calloc((size_t)npx, sizeof(float));
         for (r = 0; r < 2; ++r) {
@@ -1369,10 +1406,11 @@ int main(int argc, char **argv)
             for (st = 0; st < NSTORE; ++st)
                 for (an = 0; an < NANISO; ++an) {
                     fr_row *rw = &rows[s][m][st][an];
-                    double times[5], lod_sum = 0.0, dummy;
+                    double times[5], lod_sum = 0.0, lod_sum2 = 0.0, dummy;
                     int nl = 0;
                     if (!fmt_ok[st]) continue;
                     if (m >= MT_VMF4 && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
+                    if (m == MT_LEADR_TAPS && an > 0) continue;       /* its own anisotropic filter, isotropic sampler */
                     rw->done = 1;
                     times[0] = render(&tg, pipe, set[st][an], &pc, w, h);
                     memcpy(gpu, tg.rb_map, sizeof(float) * 8 * (size_t)npx);
@@ -1392,27 +1430,57 @@ int main(int argc, char **argv)
                     {
                         fr_gpu_job gj;
                         gj.maps = &maps, gj.px = sc.px, gj.lit0 = lit[0], gj.lit1 = lit[1], gj.gpu = gpu, gj.w = w, gj.npx = npx;
-                        gj.method = m, gj.levels = levels, gj.aniso = aniso_used[an], gj.driver_lod = an == 0;
-                        gj.vc = vc, gj.vd = vd, gj.lodd = lodd;
+                        gj.method = m, gj.levels = levels, gj.aniso = aniso_used[an], gj.driver_lod = an == 0 && m != MT_LEADR_TAPS;
+                        gj.vc = vc, gj.vd = vd, gj.lodd = lodd, gj.lodd2 = lodd2;
                         pfb_parallel_for(h, gpu_path_row, &gj, NULL);
                     }
                     for (i = 0; i < npx; ++i)
-                        if (lodd[i] >= 0.0) lod_sum += lodd[i], nl++;
+                        if (lodd[i] > -1e29) lod_sum += lodd[i], lod_sum2 += lodd2[i], nl++;
                     for (r = 0; r < 2; ++r) {
                         rel_stats(vg, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->err[r], &rw->err_p95[r]);
                         rel_stats(vc, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->cpu_err[r], &dummy);
                     }
                     /* against the CPU path: relative to max(CPU, the box reference's floor), its lit pixels */
                     rel_stats(vg, vc, lit[0], floor_[s][0], npx, scratch, &rw->vs_cpu, &rw->vs_cpu_p95);
-                    if (an == 0) rel_stats(vg, vd, lit[0], floor_[s][0], npx, scratch, &rw->vs_drv, &rw->vs_drv_p95);
+                    if (an == 0 && m != MT_LEADR_TAPS) rel_stats(vg, vd, lit[0], floor_[s][0], npx, scratch, &rw->vs_drv, &rw->vs_drv_p95);
                     else rw->vs_drv = rw->vs_drv_p95 = -1.0;
-                    rw->lod_diff = nl ? lod_sum / nl : -1.0;
+                    if (getenv("PFF_DEBUG_OUTLIERS") && an == 0 && st == 0 && m != MT_LEADR_TAPS) { /* the worst pixels against the CPU at the driver's lod */
+                        int q, worst[5] = {-1, -1, -1, -1, -1};
+                        for (i = 0; i < npx; ++i) {
+                            double e = lit[0][i] ? rel(vg[i], vd[i], floor_[s][0]) : -1.0;
+                            for (q = 0; q < 5; ++q)
+                                if (worst[q] < 0 || e > rel(vg[worst[q]], vd[worst[q]], floor_[s][0])) {
+                                    int z;
+                                    for (z = 4; z > q; --z) worst[z] = worst[z - 1];
+                                    worst[q] = i;
+                                    break;
+                                }
+                        }
+                        for (q = 0; q < 5; ++q) {
+                            const float *o0 = gpu + 4 * (size_t)worst[q], *o1 = gpu + 4 * ((size_t)npx + worst[q]);
+                            printf("    outlier %s %s: px %d,%d gpu %.6g cpu@drv %.6g cpu@spec %.6g rel %.4f lod_drv %.6f t %.4f %.4f g %.3g %.3g %.3g %.3g wo.z %.4f\n",
+                                   scene_key[s], method_key[m], worst[q] % w, worst[q] / w, vg[worst[q]], vd[worst[q]], vc[worst[q]],
+                                   rel(vg[worst[q]], vd[worst[q]], floor_[s][0]), (double)o0[3] - 1.0, (double)o0[1], (double)o0[2],
+                                   (double)o1[0], (double)o1[1], (double)o1[2], (double)o1[3], sc.px[worst[q]].wo[2]);
+                            {
+                                int qx = (worst[q] % w) & ~1, qy = (worst[q] / w) & ~1;
+                                printf("      quad lods: %.4f %.4f %.4f %.4f\n", (double)gpu[4 * ((size_t)qy * w + qx) + 3] - 1.0,
+                                       (double)gpu[4 * ((size_t)qy * w + qx + 1) + 3] - 1.0, (double)gpu[4 * ((size_t)(qy + 1) * w + qx) + 3] - 1.0,
+                                       (double)gpu[4 * ((size_t)(qy + 1) * w + qx + 1) + 3] - 1.0);
+                            }
+                        }
+                    }
+                    rw->lod_diff = nl ? lod_sum / nl : -1e30;
+                    rw->lod_rmin = nl && an > 0 ? lod_sum2 / nl : -1e30;
                     rw->n_lit = n_lit[s][0];
                     printf("  %-24s %s aniso %2.0f: error %5.1f%% / %5.1f%% (box / pixel ref.), CPU path %5.1f%% / %5.1f%%, "
                            "vs CPU %6.3f%% (p95 %6.3f%%), vs CPU at the driver's lod %7.4f%%, lod diff %.4f, non-finite %d\n",
                            method_name[m], store_name[st], aniso_used[an], 100.0 * rw->err[0], 100.0 * rw->err[1],
                            100.0 * rw->cpu_err[0], 100.0 * rw->cpu_err[1], 100.0 * rw->vs_cpu, 100.0 * rw->vs_cpu_p95,
                            100.0 * rw->vs_drv, rw->lod_diff, rw->nonfinite);
+                    if (an > 0 && rw->lod_rmin > -1e29)
+                        printf("    16x: driver's lod - log2(rho_max / N) %+.3f, - log2(rho_min) %+.3f (mean over lit pixels)\n", rw->lod_diff,
+                               rw->lod_rmin);
                 }
             vkDestroyPipeline(vk.dev, pipe, NULL);
         }
@@ -1460,7 +1528,7 @@ int main(int argc, char **argv)
         vkDestroyBuffer(vk.dev, tg.rb, NULL);
         vkFreeMemory(vk.dev, tg.rb_mem, NULL);
         for (r = 0; r < 2; ++r) free(ref[r]), free(orc[r]), free(lex[r]), free(lit[r]);
-        free(scratch), free(vg), free(vc), free(vd), free(lodd), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
+        free(scratch), free(vg), free(vc), free(vd), free(lodd), free(lodd2), free(gpu), free(leadr_f32), free(vis_light), free(sc.px);
     }
 
     /* ---------------------------------------------------------------- motion: MOTION_FRAMES frames per
@@ -1724,7 +1792,8 @@ int main(int argc, char **argv)
                     char drv[64] = "-", lod[32] = "-";
                     if (!rw->done) continue;
                     if (rw->vs_drv >= 0.0) snprintf(drv, sizeof drv, "%.4f%%, %.4f%%", 100.0 * rw->vs_drv, 100.0 * rw->vs_drv_p95);
-                    if (rw->lod_diff >= 0.0) snprintf(lod, sizeof lod, "%.4f", rw->lod_diff);
+                    if (rw->lod_diff > -1e29 && an == 0) snprintf(lod, sizeof lod, "%.4f", rw->lod_diff);
+                    if (rw->lod_diff > -1e29 && an > 0) snprintf(lod, sizeof lod, "%+.2f, %+.2f", rw->lod_diff, rw->lod_rmin);
                     fprintf(md, "| %s | %s | %.0f | %.1f%%, %.1f%% | %.1f%%, %.1f%% | %.2f, %.2f | %.1f%%, %.1f%% | %.3f%%, %.3f%% | %s | %s | %d | %d (%d) |",
                             method_name[m], store_name[st], aniso_used[an], 100.0 * rw->err[0], 100.0 * rw->err_p95[0],
                             100.0 * rw->err[1], 100.0 * rw->err_p95[1], rw->err[0] / oracle_err[s][0], rw->err[1] / oracle_err[s][1],
@@ -1836,6 +1905,45 @@ int main(int argc, char **argv)
             now_seconds() - t_start, quick ? " (BENCH_QUICK: small frames, at most 32 x 32 reference texels per pixel)" : "");
     fclose(md);
     fclose(csv);
+    { /* docs/gpu.md's frame block (bench/update_docs.sh copies OUT_DIR/gpuframe.md whole): one
+         table, f32 storage, isotropic sampler unless named */
+        FILE *g;
+        snprintf(path, sizeof path, "%s/gpuframe.md", outdir);
+        g = fopen(path, "w");
+        if (!g) return 1;
+        fprintf(g, "Measured by `make bench` (bench/frame/, device %s%s): mean relative error per lit pixel against the "
+                   "brute force over the pixel's own footprint (pixel reference), that error over the per-pixel oracle's (the exact "
+                   "histogram of the same texels with Smith's visibility), the GPU against the library's C float path for the same "
+                   "pixels, the flicker ratio under motion (the method's change per frame over the temporally stable reference's "
+                   "own), and the fragment shader's SPIR-V ops after `spirv-opt -O`. f32 textures.\n\n",
+                vk.name, vk.is_cpu ? ", a CPU implementation: no GPU time" : "");
+        fprintf(g, "| method | plane: error | / oracle | GPU vs CPU | flicker | sphere: error | / oracle | GPU vs CPU | flicker | SPIR-V ops "
+                   "(plane) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+        fprintf(g, "| oracle (CPU, reads every texel) | %.1f%% | 1 | - | %.2f | %.1f%% | 1 | - | %.2f | - |\n", 100.0 * oracle_err[0][1],
+                motion_flicker[0][MR_ORACLE], 100.0 * oracle_err[1][1], motion_flicker[1][MR_ORACLE]);
+        fprintf(g, "| LEADR from the exact footprint moments (CPU) | %.1f%% | %.2f | - | - | %.1f%% | %.2f | - | - | - |\n",
+                100.0 * lex_err[0][1], lex_err[0][1] / oracle_err[0][1], 100.0 * lex_err[1][1], lex_err[1][1] / oracle_err[1][1]);
+        for (m = MT_LEADR; m < MT_COUNT; ++m)
+            for (an = 0; an < NANISO; ++an) {
+                int br, ops = ops_of(ops_file, 0, m, &br), mk = -1;
+                char fl[2][16];
+                if (!rows[0][m][0][an].done) continue;
+                for (k = 0; k < MOTION_ROWS; ++k)
+                    if (k != MR_ORACLE && motion_method[k] == m && (k == MR_LEADR16) == (an == 1)) mk = k;
+                for (s = 0; s < 2; ++s) {
+                    if (mk >= 0) snprintf(fl[s], sizeof fl[s], "%.2f", motion_flicker[s][mk]);
+                    else snprintf(fl[s], sizeof fl[s], "-");
+                }
+                fprintf(g, "| %s%s | %.1f%% | %.2f | %.2f%% | %s | %.1f%% | %.2f | %.2f%% | %s | %d |\n", method_name[m],
+                        an ? ", 16x sampler" : "", 100.0 * rows[0][m][0][an].err[1], rows[0][m][0][an].err[1] / oracle_err[0][1],
+                        100.0 * rows[0][m][0][an].vs_cpu, fl[0], 100.0 * rows[1][m][0][an].err[1],
+                        rows[1][m][0][an].err[1] / oracle_err[1][1], 100.0 * rows[1][m][0][an].vs_cpu, fl[1], ops);
+            }
+        fprintf(g, "\n![plane: reference and GPU frame](frame_plane.png)\n\nDetail (f16 storage, the box reference, the "
+                   "CPU path at the driver's level of detail, the targets): the report's section \"The frame on a Vulkan "
+                   "driver\" (docs/report.md).\n");
+        fclose(g);
+    }
     printf("frame: wrote %s/frame.md, frame.csv (%.1f s)\n", outdir, now_seconds() - t_start);
     /* The plumbing check (it can fail): at the driver's own level of detail the CPU float path
        must reproduce the GPU's isotropic f32 LEADR frame (measured 2e-6 mean on lavapipe): a wrong
