@@ -1933,40 +1933,52 @@ int main(int argc, char **argv)
             now_seconds() - t_start, quick ? " (BENCH_QUICK: small frames, at most 32 x 32 reference texels per pixel)" : "");
     fclose(md);
     fclose(csv);
-    { /* docs/gpu.md's frame block (bench/update_docs.sh copies OUT_DIR/gpuframe.md whole): one
-         table, f32 storage, isotropic sampler unless named */
-        FILE *g;
+    { /* docs/gpu.md's frame block (bench/update_docs.sh copies OUT_DIR/gpuframe.md whole) and
+         the method guide's (bench/choosing.sh appends OUT_DIR/frame_choosing.md): one table,
+         f32 storage, isotropic sampler unless named */
+        FILE *g, *gg[2];
+        int gi;
         snprintf(path, sizeof path, "%s/gpuframe.md", outdir);
-        g = fopen(path, "w");
-        if (!g) return 1;
-        fprintf(g, "Measured by `make bench` (bench/frame/, device %s%s): mean relative error per lit pixel against the "
-                   "brute force over the pixel's own footprint (pixel reference), that error over the per-pixel oracle's (the exact "
-                   "histogram of the same texels with Smith's visibility), the GPU against the library's C float path for the same "
-                   "pixels, the flicker ratio under motion (the method's change per frame over the temporally stable reference's "
-                   "own), and the fragment shader's SPIR-V ops after `spirv-opt -O`. f32 textures.\n\n",
-                vk.name, vk.is_cpu ? ", a CPU implementation: no GPU time" : "");
-        fprintf(g, "| method | plane: error | / oracle | GPU vs CPU | flicker | sphere: error | / oracle | GPU vs CPU | flicker | SPIR-V ops "
-                   "(plane) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
-        fprintf(g, "| oracle (CPU, reads every texel) | %.1f%% | 1 | - | %.2f | %.1f%% | 1 | - | %.2f | - |\n", 100.0 * oracle_err[0][1],
-                motion_flicker[0][MR_ORACLE], 100.0 * oracle_err[1][1], motion_flicker[1][MR_ORACLE]);
-        fprintf(g, "| LEADR from the exact footprint moments (CPU) | %.1f%% | %.2f | - | - | %.1f%% | %.2f | - | - | - |\n",
-                100.0 * lex_err[0][1], lex_err[0][1] / oracle_err[0][1], 100.0 * lex_err[1][1], lex_err[1][1] / oracle_err[1][1]);
-        for (m = MT_LEADR; m < MT_COUNT; ++m)
-            for (an = 0; an < NANISO; ++an) {
-                int br, ops = ops_of(ops_file, 0, m, &br), mk = -1;
-                char fl[2][16];
-                if (!rows[0][m][0][an].done) continue;
-                for (k = 0; k < MOTION_ROWS; ++k)
-                    if (k != MR_ORACLE && motion_method[k] == m && (k == MR_LEADR16) == (an == 1)) mk = k;
-                for (s = 0; s < 2; ++s) {
-                    if (mk >= 0) snprintf(fl[s], sizeof fl[s], "%.2f", motion_flicker[s][mk]);
-                    else snprintf(fl[s], sizeof fl[s], "-");
+        gg[0] = fopen(path, "w");
+        snprintf(path, sizeof path, "%s/frame_choosing.md", outdir);
+        gg[1] = fopen(path, "w");
+        if (!gg[0] || !gg[1]) return 1;
+        fprintf(gg[1], "\n### the frame on a GPU (specular)\n\nThe specular methods in a rendered frame (bench/frame/, "
+                       "[the frame](#the-frame-on-a-vulkan-driver)): a fragment shader pasting the library, pyramids as GPU "
+                       "textures, the driver's sampler. ");
+        for (gi = 0; gi < 2; ++gi) {
+            g = gg[gi];
+            fprintf(g, "Measured by `make bench` (bench/frame/, device %s%s): mean relative error per lit pixel against the "
+                       "brute force over the pixel's own footprint (pixel reference), that error over the per-pixel oracle's (the exact "
+                       "histogram of the same texels with Smith's visibility), the GPU against the library's C float path for the same "
+                       "pixels, the flicker ratio under motion (the method's change per frame over the temporally stable reference's "
+                       "own), and the fragment shader's SPIR-V ops after `spirv-opt -O`. f32 textures.\n\n",
+                    vk.name, vk.is_cpu ? ", a CPU implementation: no GPU time" : "");
+            fprintf(g, "| method | plane: error | / oracle | GPU vs CPU | flicker | sphere: error | / oracle | GPU vs CPU | flicker | SPIR-V ops "
+                       "(plane) |\n|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n");
+            fprintf(g, "| oracle (CPU, reads every texel) | %.1f%% | 1 | - | %.2f | %.1f%% | 1 | - | %.2f | - |\n", 100.0 * oracle_err[0][1],
+                    motion_flicker[0][MR_ORACLE], 100.0 * oracle_err[1][1], motion_flicker[1][MR_ORACLE]);
+            fprintf(g, "| LEADR from the exact footprint moments (CPU) | %.1f%% | %.2f | - | - | %.1f%% | %.2f | - | - | - |\n",
+                    100.0 * lex_err[0][1], lex_err[0][1] / oracle_err[0][1], 100.0 * lex_err[1][1], lex_err[1][1] / oracle_err[1][1]);
+            for (m = MT_LEADR; m < MT_COUNT; ++m)
+                for (an = 0; an < NANISO; ++an) {
+                    int br, ops = ops_of(ops_file, 0, m, &br), mk = -1;
+                    char fl[2][16];
+                    if (!rows[0][m][0][an].done) continue;
+                    for (k = 0; k < MOTION_ROWS; ++k)
+                        if (k != MR_ORACLE && motion_method[k] == m && (k == MR_LEADR16) == (an == 1)) mk = k;
+                    for (s = 0; s < 2; ++s) {
+                        if (mk >= 0) snprintf(fl[s], sizeof fl[s], "%.2f", motion_flicker[s][mk]);
+                        else snprintf(fl[s], sizeof fl[s], "-");
+                    }
+                    fprintf(g, "| %s%s | %.1f%% | %.2f | %.2f%% | %s | %.1f%% | %.2f | %.2f%% | %s | %d |\n", method_name[m],
+                            an ? ", 16x sampler" : "", 100.0 * rows[0][m][0][an].err[1], rows[0][m][0][an].err[1] / oracle_err[0][1],
+                            100.0 * rows[0][m][0][an].vs_cpu, fl[0], 100.0 * rows[1][m][0][an].err[1],
+                            rows[1][m][0][an].err[1] / oracle_err[1][1], 100.0 * rows[1][m][0][an].vs_cpu, fl[1], ops);
                 }
-                fprintf(g, "| %s%s | %.1f%% | %.2f | %.2f%% | %s | %.1f%% | %.2f | %.2f%% | %s | %d |\n", method_name[m],
-                        an ? ", 16x sampler" : "", 100.0 * rows[0][m][0][an].err[1], rows[0][m][0][an].err[1] / oracle_err[0][1],
-                        100.0 * rows[0][m][0][an].vs_cpu, fl[0], 100.0 * rows[1][m][0][an].err[1],
-                        rows[1][m][0][an].err[1] / oracle_err[1][1], 100.0 * rows[1][m][0][an].vs_cpu, fl[1], ops);
-            }
+        }
+        g = gg[0];
+        fclose(gg[1]);
         fprintf(g, "\n![plane: reference and GPU frame](frame_plane.png)\n\nDetail (f16 storage, the box reference, the "
                    "CPU path at the driver's level of detail, the targets): the report's section \"The frame on a Vulkan "
                    "driver\" (docs/report.md).\n");

@@ -176,7 +176,9 @@ void main()
        log2(rho_max / N) (at d = 1 each tap's box spans its segment), the moments averaged
        (they are linear), LEADR once. The sampler stays isotropic (maxAnisotropy 1). d = 1:
        d = 2 (finer taps, twice as many) measured worse on both scenes (BENCH_QUICK, pixel
-       reference: plane 50.3% vs 49.7%, sphere 30.3% vs 28.9%). */
+       reference: plane 50.3% vs 49.7%, sphere 30.3% vs 28.9%). rho_min taken as the
+       parallelogram's own width across the major axis, |det(gx, gy)| / rho_max, moved the
+       plane by a tenth of a point (49.6% vs 49.7%): not kept. */
     float rx = length(gx), ry = length(gy), rmax = max(rx, ry), rmin = min(rx, ry);
     float N = clamp(ceil(PFF_TAP_DENSITY * rmax / max(rmin, 1e-6 * rmax + 1e-30)), 1.0, 16.0 * PFF_TAP_DENSITY);
     vec2 dmaj = (rx > ry ? gx : gy) / sz;
