@@ -29,10 +29,17 @@
    counts them as bench/gpu/count.sh does; the "none" shader, ray cast and two fetches, is the
    baseline).
 
+   ORACLE. Per pixel, the exact-histogram oracle of the reference's own texels (bench/pf_hist_oracle.h,
+   shared with bench/microsurface.c: every texel shaded with its own lobe and every texel
+   visible, times Smith's masking-shadowing of the texels' exact slope moments), and LEADR from
+   those exact moments; every method's error is also given over the oracle's.
+
    MOTION. MOTION_FRAMES frames per scene along a slow camera path (a dolly over the plane, a turn
-   of the sphere), smaller frames: each method's error, its change per frame and its flicker
-   ratio (its change / the reference's own change); frame.md says why the ratio is not yet a
-   fair test (the reference's own change is mostly its sampling noise).
+   of the sphere zoomed in so its footprints fit the reference's cap), smaller frames: each
+   method's error, its change per frame and its flicker ratio (its change / the reference's own
+   change). The motion reference integrates each pixel's footprint over its texels weighted by
+   the covered area (shade_reference_cover), so it moves continuously with the camera; the
+   still frames' grid-sampled pixel reference did not (its own change was mostly sampling noise).
 
    SCENES. Cameras, lights, pixel rays, footprints and the box brute force are bench/pictures.c's,
    from their one home bench/pic_scenes.h. CPU WORK (references, the CPU float path, the sampler
