@@ -260,4 +260,6 @@ else
     echo "**Missing:** $s"
 fi
 } >> "$page"
+# The GPU frame's block (written whole by bench/frame/frame.c; absent when the frame step did not run)
+[ -f "$out/frame_choosing.md" ] && cat "$out/frame_choosing.md" >> "$page"
 echo "choosing: wrote $page"

@@ -161,6 +161,7 @@
 #include "pf_vmf.h"
 #include "pf_horizon.h"
 #include "pf_microsurface.h"
+#include "pf_hist_oracle.h" /* the exact-histogram oracle, shared with bench/frame/frame.c */
 #include "pf_maps.h"
 #include "vmf_scaling.h"
 
@@ -854,7 +855,7 @@ static double novis_value(const mctx *c) { return c->task == T_SPEC ? c->novis->
 static double m_oracle_histogram_no_vis(const mctx *c) { return novis_value(c); }
 static double m_oracle_histogram_smith(const mctx *c)
 {
-    return novis_value(c) * (double)pf_beckmann_masking_shadowing(c->wo, c->wi, fetch_slope(c, PF_R(0.0)));
+    return pfb_oracle_smith(novis_value(c), c->wo, c->wi, fetch_slope(c, PF_R(0.0)));
 }
 /* colour (either map: task_cmap) */
 static double m_height_visible(const mctx *c)

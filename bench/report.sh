@@ -161,12 +161,16 @@ summary_page() {
         echo
     fi
     if [ -f "$out/frame.csv" ]; then
-        # frame.csv: scene, method, storage, max_anisotropy, lit, err_box ($6), ..., vs_cpu ($12), ..., nonfinite ($17)
-        echo "**GPU frame** ([detail](#the-frame-on-a-vulkan-driver)): the pictures' scenes through a Vulkan driver, LEADR from f32 textures, mean error per lit pixel against the brute force (box reference) at max anisotropy 1 / 16, and the GPU against the library's CPU float path for the same pixels: $(awk -F, '
-            NR > 1 && $2 == "leadr" && $3 == "f32" { e[$1, $4] = $6; if ($4 == 1) v[$1] = $12; if (!($1 in seen)) { seen[$1] = 1; sc[++n] = $1 } }
+        # frame.csv: scene, method, storage, max_anisotropy, lit, err_box ($6), ..., vs_cpu ($12), ..., nonfinite ($17), ...,
+        # err_box_over_oracle ($21); frame_motion.csv: scene, method, max_anisotropy, frames, err, change, flicker ($7)
+        echo "**GPU frame** ([detail](#the-frame-on-a-vulkan-driver)): the pictures' scenes through a Vulkan driver, LEADR from f32 textures, mean error per lit pixel against the brute force (box reference) at max anisotropy 1 / 16, in multiples of the per-pixel oracle's error (the exact histogram of the same texels with Smith's visibility), and the GPU against the library's CPU float path for the same pixels: $(awk -F, '
+            NR > 1 && $2 == "leadr" && $3 == "f32" { e[$1, $4] = $6; o[$1, $4] = $21; if ($4 == 1) v[$1] = $12; if (!($1 in seen)) { seen[$1] = 1; sc[++n] = $1 } }
             NR > 1 { nf += $17 }
-            END { for (i = 1; i <= n; i++) printf "%s%s %.1f%% / %.1f%% (GPU vs CPU %.2f%%)", (i > 1 ? "; " : ""), sc[i], 100 * e[sc[i], 1], 100 * e[sc[i], 16], 100 * v[sc[i]]
-                  printf "; non-finite pixels over all still frames (every method, storage and sampler): %d.", nf }' "$out/frame.csv")"
+            END { for (i = 1; i <= n; i++) printf "%s%s %.1f%% / %.1f%% (%.1fx / %.1fx the oracle%ss; GPU vs CPU %.2f%%)", (i > 1 ? "; " : ""), sc[i], 100 * e[sc[i], 1], 100 * e[sc[i], 16], o[sc[i], 1], o[sc[i], 16], sprintf("%c", 39), 100 * v[sc[i]]
+                  printf "; non-finite pixels over all still frames (every method, storage and sampler): %d.", nf }' "$out/frame.csv")$([ -f "$out/frame_motion.csv" ] && awk -F, '
+            NR > 1 && $2 == "leadr" && $3 == 1 { f[++n] = $1 " " sprintf("%.2f", $7) }
+            END { if (n) { printf " Flicker under motion (LEADR%ss change per frame over the box-filtered reference%ss own): ", sprintf("%c", 39), sprintf("%c", 39)
+                  for (i = 1; i <= n; i++) printf "%s%s", (i > 1 ? ", " : ""), f[i]; printf "." } }' "$out/frame_motion.csv")"
         echo
     fi
     if [ -f "$out/gpu_cost.md" ]; then
