@@ -92,9 +92,13 @@
 
    ACCURACY AND COST (measured; docs/specaa.md has the tables). The kernels are a few flops;
    the geometry kernel adds 12 SPIR-V ops to pf_leadr_specular (116 -> 128) (after spirv-opt -O,
-   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). Baker accuracy
-   per corpus kind against the exact footprint NDF, with the engines' formulas side by side:
-   bench/specaa.c, docs/specaa.md.
+   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). The anisotropic
+   kernel halved is the slope covariance of a sphere's normals over the Gaussian pixel filter
+   within 0.7% of its trace (spheres 20-200 px across). Baker (2), against the exact NDF of each
+   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): g = 1
+   is the measured best for both NDFs; the most accurate of the engines' formulas (Toksvig,
+   Filament, HDRP, Godot) on 4 of 7 kinds for GGX and 6 of 7 for Beckmann, within 1.4% of the
+   best one on the others (ridges, tiles, peaked). Tables: docs/specaa.md.
 
    SOURCES
      Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
@@ -218,8 +222,9 @@ PF_DEF pf_real pf_specaa_alpha_projected(pf_real alpha, pf_real k)
     return PF_SQRT(pf_clamp_nan_lo(PF_R(2.0) * pf_specaa_slope_variance_from_projected(vp), PF_R(0.0), PF_R(1.0)));
 }
 
-/* Measured gains g of (2) (bench/specaa.c picks them on the microsurface corpus; Beckmann's
-   1 is exact for the second moments). */
+/* Gains g of (2): the best on a 0.1 grid of the mean error over the microsurface corpus
+   (bench/specaa.c, docs/specaa.md "gain"): 1.0 for both; for Beckmann 1 is also exact for the
+   footprint's second moments. */
 #ifndef PF_SPECAA_GAIN_GGX
 #  define PF_SPECAA_GAIN_GGX PF_R(1.0)
 #endif
