@@ -7931,6 +7931,10 @@ PF_DEF pf_vmf_lobe pf_specaa_vmf_lobe(pf_vmf_lobe l, pf_real k)
 /* Channels of the baker's scratch pyramid: E[sx], E[sy], E[sx^2], E[sy^2], E[sx sy],
    E[alpha^2]. */
 #define PF_SPECAA_BAKE_CHANNELS 6
+/* Largest alpha the baker reads (larger ones, infinities too, are clamped here) and largest
+   gain it accepts: with slopes up to 100 every output then stays finite. */
+#define PF_SPECAA_MAX_ALPHA PF_R(1.0e3)
+#define PF_SPECAA_MAX_GAIN PF_R(1.0e6)
 /* Smallest n.z the baker reads (slopes up to 100: a normal within 0.6 degrees of the
    horizon); normals below it are clamped there. */
 #ifndef PF_SPECAA_MIN_NZ
@@ -7943,11 +7947,13 @@ typedef struct pf_specaa_bake_desc {
                                  (+z out of the surface); need not be unit. A zero-length or
                                  NaN normal reads as +z */
     const pf_real *roughness; /* optional width x height alphas (GGX alpha or Beckmann m);
-                                 NULL: `alpha` everywhere. NaN or negative reads as 0 */
+                                 NULL: `alpha` everywhere. NaN or negative reads as 0, above
+                                 PF_SPECAA_MAX_ALPHA as PF_SPECAA_MAX_ALPHA */
     int width, height;
-    pf_real alpha;            /* base roughness where roughness is NULL */
+    pf_real alpha;            /* base roughness where roughness is NULL (read as above) */
     int ndf;                  /* PF_SPECAA_NDF_GGX (0) or PF_SPECAA_NDF_BECKMANN */
-    pf_real gain;             /* g of (2); 0: PF_SPECAA_GAIN_GGX or _BECKMANN */
+    pf_real gain;             /* g of (2), <= PF_SPECAA_MAX_GAIN; 0: PF_SPECAA_GAIN_GGX or
+                                 _BECKMANN */
 } pf_specaa_bake_desc;
 
 /* pf_reals of scratch pf_specaa_bake needs: PF_SPECAA_BAKE_CHANNELS x pf_mip_texel_count;
@@ -7964,8 +7970,8 @@ PF_CPU_DEF long long pf_specaa_bake_scratch_reals(int w, int h)
    pf_specaa_alpha_from_variance). scratch: pf_specaa_bake_scratch_reals(w, h) pf_reals, the
    slope-moment and alpha^2 pyramid (left filled). Returns PF_OK, or having written nothing,
    PF_ERR_ARG (NULL desc, normals, scratch or alpha_out; width or height below 1; an unknown
-   ndf; a negative or NaN gain) or PF_ERR_SIZE (a side above PF_MAX_SIDE; a pyramid above
-   PF_MAX_REALS). */
+   ndf; a gain outside [0, PF_SPECAA_MAX_GAIN] or NaN) or PF_ERR_SIZE (a side above
+   PF_MAX_SIDE; a pyramid above PF_MAX_REALS). */
 PF_CPU_DEF int pf_specaa_bake(const pf_specaa_bake_desc *d, pf_real *scratch, pf_real *alpha_out,
                               pf_real *variance_out)
 {
@@ -7975,7 +7981,7 @@ PF_CPU_DEF int pf_specaa_bake(const pf_specaa_bake_desc *d, pf_real *scratch, pf
     if (!d || !d->normals || !scratch || !alpha_out) return PF_ERR_ARG;
     if (d->width < 1 || d->height < 1) return PF_ERR_ARG;
     if (d->ndf != PF_SPECAA_NDF_GGX && d->ndf != PF_SPECAA_NDF_BECKMANN) return PF_ERR_ARG;
-    if (!(d->gain >= PF_R(0.0))) return PF_ERR_ARG;
+    if (!(d->gain >= PF_R(0.0) && d->gain <= PF_SPECAA_MAX_GAIN)) return PF_ERR_ARG;
     n = pf_mip_texel_count(d->width, d->height);
     if (n <= 0 || pf_specaa_bake_scratch_reals(d->width, d->height) <= 0) return PF_ERR_SIZE;
     g = d->gain > PF_R(0.0) ? d->gain
@@ -7992,7 +7998,7 @@ PF_CPU_DEF int pf_specaa_bake(const pf_specaa_bake_desc *d, pf_real *scratch, pf
         z = pf_max(z * il, PF_SPECAA_MIN_NZ);
         sx = -x * il / z;
         sy = -y * il / z;
-        a = d->roughness ? pf_max(d->roughness[t], PF_R(0.0)) : pf_max(d->alpha, PF_R(0.0));
+        a = pf_min(pf_max(d->roughness ? d->roughness[t] : d->alpha, PF_R(0.0)), PF_SPECAA_MAX_ALPHA);
         o[0] = sx;
         o[1] = sy;
         o[2] = sx * sx;
