@@ -7671,13 +7671,17 @@ PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, p
    (b) The TEXTURE: the normals of a normal map spread inside a mip texel. Engines bake a
    roughness (or a variance) per mip level from the length r of the averaged normal
    (Toksvig 2005; a vMF fit, kappa = (3r - r^3)/(1 - r^2), Banerjee et al. 2005). The baker
-   here does not guess the spread from r: it averages the slope moments of the footprint
-   (pf_map.h's pyramid, exact for a box footprint) and adds their variance:
-       alpha'^2 = E[alpha_t^2] + 2 g var,   var = (Var[s_x] + Var[s_y]) / 2               (2)
-   Beckmann: g = 1 matches the mixture's second moments exactly (a Beckmann lobe of roughness
-   m has slope variance m^2/2 per axis). GGX has no finite slope variance; g is the one
-   constant chosen by measurement (bench/specaa.c: the exact NDF of the footprint's texels,
-   each texel's GGX lobe shifted to its slope, against the baked single lobe).
+   here does not guess the spread from r: it averages the slope moments of the footprint up to
+   the fourth order (pf_map.h's pyramid, exact for a box footprint) and adds the variance of
+   the Gaussian with the footprint's peakedness:
+       alpha'^2 = E[alpha_t^2] + 2 g v,   v = var rho,   var = (Var[s_x] + Var[s_y]) / 2,
+       rho = 8 var^2 / E[|s - E s|^4]  (1 for Gaussian slopes), clamped to [0, 2]          (2)
+   A Gaussian footprint keeps its variance; a heavy-tailed one (ridges, log-normal bumps, a flat
+   ground with a few steep bowls) gets the narrower lobe that fits its peak, where the raw
+   variance (rho = 1) over-widens and the engines' 1 - r under-widens Gaussian footprints. g is
+   the one constant chosen by measurement (bench/specaa.c: the exact NDF of the footprint's
+   texels, each texel's lobe shifted to its slope, against the baked single lobe); rho's form
+   (the exponent 1 on the ratio) was compared there with 1/4 and 1/2 on the same corpus.
 
    COMPOSITION. A kernel is a slope covariance; what it widens:
      LEADR     the footprint's slope covariance: var_x, var_y (and cov_xy) += the kernel's
@@ -7704,7 +7708,7 @@ PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, p
                  2016's slope-space form), pf_specaa_kernel_aniso (the full covariance,
                  pf_specaa_kernel struct), pf_specaa_kernel_trace
      roughness   pf_specaa_alpha (1), pf_specaa_alpha_projected (projected-space sum),
-                 pf_specaa_alpha_from_variance (2), pf_specaa_projected_variance,
+                 pf_specaa_alpha_from_variance (2) with a stored v, pf_specaa_projected_variance,
                  pf_specaa_slope_variance_from_projected
      compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
                  pf_specaa_vmf_lobe, pf_specaa_leadr_specular
@@ -7738,10 +7742,10 @@ PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, p
    bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). The anisotropic
    kernel halved is the slope covariance of a sphere's normals over the Gaussian pixel filter
    within 0.7% of its trace (spheres 20-200 px across). Baker (2), against the exact NDF of each
-   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): g = 1
-   is the measured best for both NDFs; the most accurate of the engines' formulas (Toksvig,
-   Filament, HDRP, Godot) on 4 of 7 kinds for GGX and 6 of 7 for Beckmann, within 1.4% of the
-   best one on the others (ridges, tiles, peaked). Tables: docs/specaa.md.
+   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): more
+   accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
+   GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
+   isotropic lobe.
 
    SOURCES
      Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
@@ -7866,13 +7870,12 @@ PF_DEF pf_real pf_specaa_alpha_projected(pf_real alpha, pf_real k)
 }
 
 /* Gains g of (2): the best on a 0.1 grid of the mean error over the microsurface corpus
-   (bench/specaa.c, docs/specaa.md "gain"): 1.0 for both; for Beckmann 1 is also exact for the
-   footprint's second moments. */
+   (bench/specaa.c, docs/specaa.md "gain"): 0.9 for both (1.0 is within 0.2% of it). */
 #ifndef PF_SPECAA_GAIN_GGX
-#  define PF_SPECAA_GAIN_GGX PF_R(1.0)
+#  define PF_SPECAA_GAIN_GGX PF_R(0.9)
 #endif
 #ifndef PF_SPECAA_GAIN_BECKMANN
-#  define PF_SPECAA_GAIN_BECKMANN PF_R(1.0)
+#  define PF_SPECAA_GAIN_BECKMANN PF_R(0.9)
 #endif
 
 /* (2) in the shader: the roughness of a texel from a per-axis slope variance stored beside a
@@ -7929,8 +7932,8 @@ PF_DEF pf_vmf_lobe pf_specaa_vmf_lobe(pf_vmf_lobe l, pf_real k)
 #define PF_SPECAA_NDF_GGX 0
 #define PF_SPECAA_NDF_BECKMANN 1
 /* Channels of the baker's scratch pyramid: E[sx], E[sy], E[sx^2], E[sy^2], E[sx sy],
-   E[alpha^2]. */
-#define PF_SPECAA_BAKE_CHANNELS 6
+   E[|s|^2 sx], E[|s|^2 sy], E[|s|^4], E[alpha^2]. */
+#define PF_SPECAA_BAKE_CHANNELS 9
 /* Largest alpha the baker reads (larger ones, infinities too, are clamped here) and largest
    gain it accepts: with slopes up to 100 every output then stays finite. */
 #define PF_SPECAA_MAX_ALPHA PF_R(1.0e3)
@@ -7965,9 +7968,10 @@ PF_CPU_DEF long long pf_specaa_bake_scratch_reals(int w, int h)
 }
 
 /* (2) for every texel of the mip chain (pf_map.h's layout, pf_mip_texel_count(w, h) texels):
-   alpha_out[t] = sqrt(E[alpha^2] + 2 g var), and, when variance_out is not NULL, the per-axis
-   slope variance var itself (for the spare channel of a two-channel normal map, read back by
-   pf_specaa_alpha_from_variance). scratch: pf_specaa_bake_scratch_reals(w, h) pf_reals, the
+   alpha_out[t] = sqrt(E[alpha^2] + 2 g v), and, when variance_out is not NULL, v itself (for
+   the spare channel of a two-channel normal map, read back by pf_specaa_alpha_from_variance).
+   The moments are pf_reals: where a footprint's mean slope is much larger than its spread the
+   fourth central moment loses precision in float (rho stays clamped to [0, 2]). scratch: pf_specaa_bake_scratch_reals(w, h) pf_reals, the
    slope-moment and alpha^2 pyramid (left filled). Returns PF_OK, or having written nothing,
    PF_ERR_ARG (NULL desc, normals, scratch or alpha_out; width or height below 1; an unknown
    ndf; a gain outside [0, PF_SPECAA_MAX_GAIN] or NaN) or PF_ERR_SIZE (a side above
@@ -8004,15 +8008,25 @@ PF_CPU_DEF int pf_specaa_bake(const pf_specaa_bake_desc *d, pf_real *scratch, pf
         o[2] = sx * sx;
         o[3] = sy * sy;
         o[4] = sx * sy;
-        o[5] = a * a;
+        o[5] = (o[2] + o[3]) * sx;
+        o[6] = (o[2] + o[3]) * sy;
+        o[7] = (o[2] + o[3]) * (o[2] + o[3]);
+        o[8] = a * a;
     }
     rc = pf_mip_build(scratch, d->width, d->height, PF_SPECAA_BAKE_CHANNELS);
     if (rc != PF_OK) return rc;
     for (t = 0; t < n; ++t) {
         const pf_real *m = scratch + PF_SPECAA_BAKE_CHANNELS * t;
-        pf_real var = PF_R(0.5) * (pf_max(m[2] - m[0] * m[0], PF_R(0.0)) + pf_max(m[3] - m[1] * m[1], PF_R(0.0)));
-        alpha_out[t] = PF_SQRT(pf_max(m[5], PF_R(0.0)) + PF_R(2.0) * g * var);
-        if (variance_out) variance_out[t] = var;
+        pf_real mx = m[0], my = m[1], mm = mx * mx + my * my;
+        pf_real var = PF_R(0.5) * (pf_max(m[2] - mx * mx, PF_R(0.0)) + pf_max(m[3] - my * my, PF_R(0.0)));
+        /* E|s - m|^4 = E|s|^4 - 4 m.E[|s|^2 s] + 4 m^T E[s s^T] m + 2 E|s|^2 |m|^2 - 3 |m|^4 */
+        pf_real m4 = m[7] - PF_R(4.0) * (mx * m[5] + my * m[6]) +
+                     PF_R(4.0) * (mx * mx * m[2] + PF_R(2.0) * mx * my * m[4] + my * my * m[3]) +
+                     PF_R(2.0) * (m[2] + m[3]) * mm - PF_R(3.0) * mm * mm;
+        pf_real rho = m4 > PF_R(0.0) ? pf_min(PF_R(8.0) * var * (var / m4), PF_R(2.0)) : PF_R(1.0);
+        pf_real v = var * rho;
+        alpha_out[t] = PF_SQRT(pf_max(m[8], PF_R(0.0)) + PF_R(2.0) * g * v);
+        if (variance_out) variance_out[t] = v;
     }
     return PF_OK;
 }

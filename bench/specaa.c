@@ -25,10 +25,13 @@
                                                                     the normal map's B channel,
                                                                     threshold 0.2 at run time)
      godot     alpha'^2 = alpha0^2 + min(0.75/kappa, 0.4^2)        (Godot's generate_mipmap_roughness)
-     library   pf_specaa_bake: alpha'^2 = E[alpha^2] + 2 g var, the footprint's slope variance
-               from its slope moments (pf_map.h pyramid), g = PF_SPECAA_GAIN_GGX / _BECKMANN
+     library   pf_specaa_bake: alpha'^2 = E[alpha^2] + 2 g var rho, the footprint's slope variance
+               corrected by its peakedness rho = 8 var^2 / E|s - E s|^4 (clamped to [0, 2]) from
+               its slope moments up to the fourth (pf_map.h pyramid), g = PF_SPECAA_GAIN_GGX /
+               _BECKMANN
    GAIN. The same error for g on a grid (the table "gain"): the default g is the grid's best
-   mean over the whole corpus (both alpha0), measured here.
+   mean over the whole corpus (both alpha0), measured here. The table "spread estimators"
+   gives other spreads v in alpha'^2 = alpha0^2 + 2 g v, each at its own best g.
 
    CORPUS. The seven kinds of tests/reference/pf_microsurface.h (512 x 512, quick 256), the
    normals from its central-difference slopes; levels 1-6 (2 to 64 texels on a side); alpha0
@@ -80,7 +83,7 @@ static long long nitems;
 /* results per item: error per baker, and per gain */
 static double *err_b;  /* nitems * NBAKER */
 static double *err_g;  /* nitems * NGAIN */
-#define NVAR 5
+#define NVAR 7
 static double *err_v;  /* nitems * NVAR * NGAIN: variance estimators (experiment) */
 
 static double p22(int ndf, double sx, double sy, double a)
@@ -122,7 +125,7 @@ static void run_item(void *ctx, long long it)
     const kind_data *D = &K[I->kind];
     int n = 1 << I->level, x, y, i, j, b;
     double a0 = alpha0s[I->ai];
-    double mx = 0, my = 0, mxx = 0, myy = 0, nx = 0, ny = 0, nz = 0, pxx = 0, var, r, cx, cy, W, kap;
+    double mx = 0, my = 0, mxx = 0, myy = 0, nx = 0, ny = 0, nz = 0, pxx = 0, rho = 1, var, r, cx, cy, W, kap;
     double *pref = (double *)malloc(sizeof(double) * (size_t)G * (size_t)G);
     double *ts = (double *)malloc(sizeof(double) * 2 * (size_t)n * (size_t)n);
     grid_ctx g;
@@ -143,6 +146,16 @@ static void run_item(void *ctx, long long it)
     nx /= n * n; ny /= n * n; nz /= n * n;
     var = 0.5 * ((mxx - mx * mx) + (myy - my * my));
     if (var < 0) var = 0;
+    {   /* the library's peakedness-corrected spread, in double (the bench's own computation) */
+        double m4c = 0;
+        int t;
+        for (t = 0; t < n * n; ++t) {
+            double dx = ts[2 * t] - mx, dy = ts[2 * t + 1] - my, q = dx * dx + dy * dy;
+            m4c += q * q;
+        }
+        m4c /= n * n;
+        rho = m4c > 0 ? fmin(8.0 * var * var / m4c, 2.0) : 1.0;
+    }
     r = sqrt(nx * nx + ny * ny + nz * nz);
     cx = -nx / nz;
     cy = -ny / nz;
@@ -185,7 +198,7 @@ static void run_item(void *ctx, long long it)
     }
     for (b = 0; b < NBAKER; ++b) err_b[it * NBAKER + b] = lobe_err(&g, alpha[b]);
     for (b = 0; b < NGAIN; ++b) {
-        double e2 = a0 * a0 + 2.0 * gains[b] * var;
+        double e2 = a0 * a0 + 2.0 * gains[b] * var * rho;
         err_g[it * NGAIN + b] = lobe_err(&g, sqrt(e2));
     }
     {
@@ -196,7 +209,9 @@ static void run_item(void *ctx, long long it)
         vs = vp / (1.0 - 4.0 * vp);
         for (b = 0; b < NGAIN; ++b) {
             double tv = r < 1.0 ? (1.0 - r) / r : 0.0, kv = isinf(kap) ? 0.0 : 1.0 / kap;
-            err_v[(it * NVAR + 0) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * var));
+            err_v[(it * NVAR + 0) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * var * rho));
+            err_v[(it * NVAR + 5) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * var));
+            err_v[(it * NVAR + 6) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * var * sqrt(rho)));
             err_v[(it * NVAR + 1) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * tv));
             err_v[(it * NVAR + 2) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * kv));
             err_v[(it * NVAR + 3) * NGAIN + b] = lobe_err(&g, sqrt(a0 * a0 + 2.0 * gains[b] * sqrt(var * tv)));
@@ -490,8 +505,9 @@ int main(int argc, char **argv)
                "`bench/out/specaa_bakers.csv`.\n", (double)PF_SPECAA_GAIN_GGX, (double)PF_SPECAA_GAIN_BECKMANN);
     fclose(f);
     {   /* the spread estimators tried, each at its best gain */
-        static const char *vname[NVAR] = { "slope variance (the library)", "Toksvig (1 - r)/r", "vMF 1/kappa",
-                                           "sqrt(slope variance x Toksvig)", "projected variance through (3)" };
+        static const char *vname[NVAR] = { "var rho (the library)", "Toksvig (1 - r)/r", "vMF 1/kappa",
+                                           "sqrt(var x Toksvig)", "projected variance through (3)",
+                                           "var (rho = 1)", "var sqrt(rho)" };
         int v;
         f = fopen(path, "a");
         if (!f) return 1;

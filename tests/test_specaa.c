@@ -8,8 +8,8 @@
      a half-vector field;
    - the projected-space map (3) against the per-axis projected variance of a Beckmann lobe,
      1D quadrature in long double;
-   - the baker against the box-footprint moments of the normals recomputed here in long
-     double for every texel of every level (power-of-two and odd sizes);
+   - the baker against the box-footprint central moments (second and fourth) of the normals
+     recomputed here in long double, two passes, for every texel of every level;
    - degenerate derivatives (zero, huge, inf, NaN) against the documented values.
    The same bodies run in float, double, C++ and under sanitizers; edge_* also under
    -ffast-math (finiteness only there). */
@@ -302,17 +302,27 @@ static void box_stats(const pf_real *nrm, const pf_real *rough, pf_real a0, int 
                       long double *var, long double *ea2)
 {
     int n = 1 << l, x, y;
-    long double sx = 0, sy = 0, sxx = 0, syy = 0, aa = 0;
+    long double sx = 0, sy = 0, sxx = 0, syy = 0, aa = 0, m4 = 0, v, rho;
     for (y = j * n; y < (j + 1) * n; ++y)
         for (x = i * n; x < (i + 1) * n; ++x) {
             const pf_real *p = nrm + 3 * ((long long)y * w + x);
             long double p0 = (long double)p[0], p1 = (long double)p[1], p2 = (long double)p[2];
-            long double u = -p0 / p2, v = -p1 / p2;
+            long double u = -p0 / p2, v2 = -p1 / p2;
             long double a = rough ? (long double)rough[(long long)y * w + x] : (long double)a0;
-            sx += u; sy += v; sxx += u * u; syy += v * v; aa += a * a;
+            sx += u; sy += v2; aa += a * a;
         }
-    sx /= n * n; sy /= n * n; sxx /= n * n; syy /= n * n;
-    *var = 0.5L * ((sxx - sx * sx) + (syy - sy * sy));
+    sx /= n * n; sy /= n * n;
+    for (y = j * n; y < (j + 1) * n; ++y) /* central moments, second pass */
+        for (x = i * n; x < (i + 1) * n; ++x) {
+            const pf_real *p = nrm + 3 * ((long long)y * w + x);
+            long double du = -(long double)p[0] / (long double)p[2] - sx, dv = -(long double)p[1] / (long double)p[2] - sy;
+            sxx += du * du; syy += dv * dv; m4 += (du * du + dv * dv) * (du * du + dv * dv);
+        }
+    sxx /= n * n; syy /= n * n; m4 /= n * n;
+    v = 0.5L * (sxx + syy);
+    rho = m4 > 0 ? 8.0L * v * v / m4 : 1.0L;
+    if (rho > 2.0L) rho = 2.0L;
+    *var = v * rho;
     *ea2 = aa / (n * n);
 }
 
@@ -372,7 +382,7 @@ static void test_bake(void)
     }
     pf_test_note("alpha max rel err %.3Lg eps, variance %.3Lg eps", worst / PF_TEST_EPS, worstv / PF_TEST_EPS);
     PF_CHECK(worst <= 256.0L * PF_TEST_EPS, "%Lg", worst);
-    PF_CHECK(worstv <= 1024.0L * PF_TEST_EPS, "%Lg", worstv);
+    PF_CHECK(worstv <= 4096.0L * PF_TEST_EPS, "%Lg", worstv); /* measured 2.3e3 eps (float): the fourth moment from raw moments */
     /* errors: nothing written */
     {
         pf_specaa_bake_desc d;
@@ -391,7 +401,7 @@ static void test_bake(void)
         d.width = PF_MAX_SIDE + 1;
         PF_CHECK(pf_specaa_bake(&d, scratch, alpha, NULL) == PF_ERR_SIZE, "side");
         PF_CHECK(alpha[0] == PF_R(-7.0), "nothing written");
-        PF_CHECK(pf_specaa_bake_scratch_reals(0, 4) == 0 && pf_specaa_bake_scratch_reals(3, 5) == 6 * pf_mip_texel_count(3, 5),
+        PF_CHECK(pf_specaa_bake_scratch_reals(0, 4) == 0 && pf_specaa_bake_scratch_reals(3, 5) == PF_SPECAA_BAKE_CHANNELS * pf_mip_texel_count(3, 5),
                  "scratch size");
     }
     free(scratch); free(alpha); free(var);
@@ -402,7 +412,7 @@ static void test_bake(void)
 static void edge_bake_odd(void)
 {
     enum { W = 5, H = 3 };
-    pf_real nrm[W * H * 3], scratch[6 * 40], alpha[40], var[40];
+    pf_real nrm[W * H * 3], scratch[PF_SPECAA_BAKE_CHANNELS * 40], alpha[40], var[40];
     pf_specaa_bake_desc d;
     long double sx = 0, sy = 0, sxx = 0, syy = 0, v;
     int t, top;
@@ -417,6 +427,16 @@ static void edge_bake_odd(void)
     }
     sx /= W * H; sy /= W * H; sxx /= W * H; syy /= W * H;
     v = 0.5L * ((sxx - sx * sx) + (syy - sy * sy));
+    {
+        long double m4 = 0, rho;
+        for (t = 0; t < W * H; ++t) {
+            long double du = -(long double)nrm[3 * t] - sx, dv = -(long double)nrm[3 * t + 1] - sy;
+            m4 += (du * du + dv * dv) * (du * du + dv * dv);
+        }
+        m4 /= W * H;
+        rho = 8.0L * v * v / m4;
+        v *= rho > 2.0L ? 2.0L : rho;
+    }
     memset(&d, 0, sizeof d);
     d.normals = nrm; d.width = W; d.height = H; d.alpha = PF_R(0.2); d.ndf = PF_SPECAA_NDF_BECKMANN;
     PF_CHECK(pf_specaa_bake(&d, scratch, alpha, var) == PF_OK, "bake");
