@@ -41,7 +41,11 @@
    mean and max error, texels), specaa_sphere.csv (the sphere below), specaa.md (the tables;
    docs/specaa.md's generated block). BENCH_QUICK=1 or --quick: the smoke run (256 x 256, a
    32 x 32 slope grid, fewer texels; sphere 8 x 8 samples, 8 frames).
-   Usage: specaa [--quick] [--out DIR] [--sphere-only]. PFB_THREADS as every bench program. */
+   THE USER'S MAP (--map PATH and pf_maps.h's --map-NAME VALUE options, what `make bench MAP=`
+   runs through bench/map.sh): the corpus is replaced by that map (its slopes as
+   tests/reference/pf_maps.h makes them), the same tables for the one kind "map", no sphere.
+   Usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]].
+   PFB_THREADS as every bench program. */
 #include "pf_bench_base.h"
 #include <stdio.h>
 #include <stdlib.h>
@@ -52,6 +56,7 @@
 #include "pf_specaa.h"
 #include "pf_toksvig.h"
 #include "pf_microsurface.h"
+#include "pf_maps.h"
 
 #define NKIND PFM_KIND_COUNT
 #define NLEVEL 6
@@ -66,6 +71,10 @@ static const double gains[] = { 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4
 #define NGAIN ((int)(sizeof gains / sizeof gains[0]))
 
 static int N = 512, G = 64, npos_small = 8, npos_large = 4;
+/* the user's map (--map): one kind, "map", in slot 0 */
+static int nkinds = NKIND;
+static const char *map_path;
+static const char *kname(int k) { return map_path ? "map" : pfm_kind_name(k); }
 
 typedef struct kind_data {
     double *slope;    /* N*N*2 */
@@ -339,23 +348,46 @@ int main(int argc, char **argv)
 {
     const char *outdir = "bench/out";
     int quick = 0, sphere_only = 0, k, a, d, l, i;
+    pfmap_options map_opt = pfmap_options_default();
+    pfm_surface map_surf;
+    pfmap_info map_info;
+    char err[512];
     char path[1024];
     FILE *f;
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--quick")) quick = 1;
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) outdir = argv[++i];
         else if (!strcmp(argv[i], "--sphere-only")) sphere_only = 1;
-        else { fprintf(stderr, "usage: specaa [--quick] [--out DIR]\n"); return 2; }
+        else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
+        else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
+            const char *o = argv[i] + 6, *v = argv[++i];
+            if (pfmap_parse_option(o, v, &map_opt, err, sizeof err) != 0) { fprintf(stderr, "specaa: %s\n", err); return 2; }
+        } else {
+            fprintf(stderr, "usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]]\n");
+            return 2;
+        }
     }
     if (!quick) { const char *q = getenv("BENCH_QUICK"); quick = q && *q && strcmp(q, "0"); }
     if (quick) { N = 256; G = 32; npos_small = 4; npos_large = 2; }
+    if (map_path) {   /* the user's map replaces the corpus; loaded and checked before anything is written */
+        if (pfmap_load(map_path, &map_opt, &map_surf, &map_info, err, sizeof err) != 0) { fprintf(stderr, "specaa: %s\n", err); return 1; }
+        if (map_surf.w < 64) {
+            fprintf(stderr, "specaa: %s: the kept square is %d x %d texels; footprints up to 64 x 64 need at least 64 x 64\n",
+                    map_path, map_surf.w, map_surf.h);
+            return 1;
+        }
+        nkinds = 1;
+        N = map_surf.w;
+    }
     if (sphere_only) goto sphere;
     /* the corpus: normals and the library's baked pyramids */
-    for (k = 0; k < NKIND; ++k) {
+    for (k = 0; k < nkinds; ++k) {
         pfm_surface s;
         long long t, nt = pf_mip_texel_count(N, N);
         pf_real *scratch = (pf_real *)malloc(sizeof(pf_real) * (size_t)pf_specaa_bake_scratch_reals(N, N));
-        if (pfm_surface_make(&s, N, N, 1.0, pfm_params_default(k)) != 0 || !scratch) { fprintf(stderr, "specaa: surface\n"); return 1; }
+        if (map_path) s = map_surf;
+        else if (pfm_surface_make(&s, N, N, 1.0, pfm_params_default(k)) != 0) { fprintf(stderr, "specaa: surface\n"); return 1; }
+        if (!scratch) { fprintf(stderr, "specaa: out of memory\n"); return 1; }
         K[k].slope = (double *)malloc(sizeof(double) * 2 * (size_t)N * N);
         K[k].normals = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)N * N);
         if (!K[k].slope || !K[k].normals) return 1;
@@ -385,7 +417,7 @@ int main(int argc, char **argv)
     }
     /* the work items */
     nitems = 0;
-    for (l = 1; l <= NLEVEL; ++l) nitems += (long long)NKIND * NNDF * NALPHA * (l <= 4 ? npos_small : npos_large);
+    for (l = 1; l <= NLEVEL; ++l) nitems += (long long)nkinds * NNDF * NALPHA * (l <= 4 ? npos_small : npos_large);
     items = (item *)malloc(sizeof(item) * (size_t)nitems);
     err_b = (double *)malloc(sizeof(double) * (size_t)nitems * NBAKER);
     err_g = (double *)malloc(sizeof(double) * (size_t)nitems * NGAIN);
@@ -396,7 +428,7 @@ int main(int argc, char **argv)
         pfm_rng rng;
         rng.state = 0x5eca5eca5ecaULL;
         for (l = NLEVEL; l >= 1; --l) /* largest first: the parallel loop ends evenly */
-            for (k = 0; k < NKIND; ++k)
+            for (k = 0; k < nkinds; ++k)
                 for (d = 0; d < NNDF; ++d)
                     for (a = 0; a < NALPHA; ++a) {
                         int p, np = l <= 4 ? npos_small : npos_large, lw = N >> l;
@@ -415,7 +447,7 @@ int main(int argc, char **argv)
     f = fopen(path, "w");
     if (!f) { fprintf(stderr, "specaa: cannot write %s\n", path); return 1; }
     fprintf(f, "kind,ndf,alpha0,level,texels,baker,mean_err,max_err,footprints\n");
-    for (k = 0; k < NKIND; ++k)
+    for (k = 0; k < nkinds; ++k)
         for (d = 0; d < NNDF; ++d)
             for (a = 0; a < NALPHA; ++a)
                 for (l = 1; l <= NLEVEL; ++l) {
@@ -432,10 +464,10 @@ int main(int argc, char **argv)
                             s += e; if (e > mx) mx = e; ++c;
                         }
                         if (b < NBAKER)
-                            fprintf(f, "%s,%s,%g,%d,%d,%s,%.5g,%.5g,%d\n", pfm_kind_name(k), ndf_name[d], alpha0s[a], l, 1 << (2 * l),
+                            fprintf(f, "%s,%s,%g,%d,%d,%s,%.5g,%.5g,%d\n", kname(k), ndf_name[d], alpha0s[a], l, 1 << (2 * l),
                                     baker_name[b], s / c, mx, c);
                         else
-                            fprintf(f, "%s,%s,%g,%d,%d,gain_%g,%.5g,%.5g,%d\n", pfm_kind_name(k), ndf_name[d], alpha0s[a], l,
+                            fprintf(f, "%s,%s,%g,%d,%d,gain_%g,%.5g,%.5g,%d\n", kname(k), ndf_name[d], alpha0s[a], l,
                                     1 << (2 * l), gains[b - NBAKER], s / c, mx, c);
                     }
                 }
@@ -445,11 +477,13 @@ int main(int argc, char **argv)
     snprintf(path, sizeof path, "%s/specaa.md", outdir);
     f = fopen(path, "w");
     if (!f) { fprintf(stderr, "specaa: cannot write %s\n", path); return 1; }
-    fprintf(f, "Measured by `bench/specaa.c`%s: %dx%d maps of the microsurface corpus, mip levels 1-%d (footprints of 4 to %d texels), "
+    if (map_path) fprintf(f, "The user's map `%s` (%s, the kept %dx%d square): its mip texels baked by every baker below. ", map_path,
+                          pfmap_kind_name(map_opt.kind), N, N);
+    fprintf(f, "Measured by `bench/specaa.c`%s: %dx%d texels of %s, mip levels 1-%d (footprints of 4 to %d texels), "
                "alpha0 in {0.05, 0.2}, %d + %d mip texels per level (small, large), slope grid %dx%d. Error: relative L2 distance "
                "between the baked lobe (centred on the averaged normal) and the exact NDF of the footprint's texels, mean over "
                "levels, alpha0 and texels. **bold**: the best formula of the row (the oracle excepted).\n\n",
-            quick ? " (BENCH_QUICK: smoke run, not for publication)" : "", N, N, NLEVEL, 1 << (2 * NLEVEL), npos_small,
+            quick ? " (BENCH_QUICK: smoke run, not for publication)" : "", N, N, map_path ? "the user's map" : "the microsurface corpus", NLEVEL, 1 << (2 * NLEVEL), npos_small,
             npos_large, G, G);
     for (d = 0; d < NNDF; ++d) {
         int b, wins = 0;
@@ -458,7 +492,7 @@ int main(int argc, char **argv)
         fprintf(f, " library best? |\n| --- |");
         for (b = 0; b < NBAKER; ++b) fprintf(f, " ---: |");
         fprintf(f, " --- |\n");
-        for (k = 0; k < NKIND; ++k) {
+        for (k = 0; k < nkinds; ++k) {
             double m[NBAKER], best = 1e300;
             int bb = 0;
             for (b = 0; b < NBAKER; ++b) {
@@ -470,12 +504,12 @@ int main(int argc, char **argv)
                 m[b] = s / c;
                 if (b != B_ORACLE && m[b] < best) { best = m[b]; bb = b; }
             }
-            fprintf(f, "| %s |", pfm_kind_name(k));
+            fprintf(f, "| %s |", kname(k));
             for (b = 0; b < NBAKER; ++b) fprintf(f, b == bb ? " **%.4f** |" : " %.4f |", m[b]);
             fprintf(f, " %s |\n", bb == B_LIB ? "yes" : "no");
             wins += bb == B_LIB;
         }
-        fprintf(f, "\nThe library's baker is the most accurate formula on %d of %d kinds (%s).\n\n", wins, NKIND, ndf_name[d]);
+        fprintf(f, "\nThe library's baker is the most accurate formula on %d of %d kinds (%s).\n\n", wins, nkinds, ndf_name[d]);
     }
     fprintf(f, "#### Gain g of the library's baker (mean error over the corpus)\n\n| g |");
     for (i = 0; i < NGAIN; ++i) fprintf(f, " %g |", gains[i]);
@@ -514,9 +548,9 @@ int main(int argc, char **argv)
         fprintf(f, "\n#### Spread estimators tried (alpha'^2 = alpha0^2 + 2 g v, each at its best g on the grid)\n\n");
         for (d = 0; d < NNDF; ++d) {
             fprintf(f, "%s\n\n| estimator v | best g | mean |", d == 0 ? "GGX" : "Beckmann");
-            for (k = 0; k < NKIND; ++k) fprintf(f, " %s |", pfm_kind_name(k));
+            for (k = 0; k < nkinds; ++k) fprintf(f, " %s |", kname(k));
             fprintf(f, "\n| --- | ---: | ---: |");
-            for (k = 0; k < NKIND; ++k) fprintf(f, " ---: |");
+            for (k = 0; k < nkinds; ++k) fprintf(f, " ---: |");
             fprintf(f, "\n");
             for (v = 0; v < NVAR; ++v) {
                 double best = 1e300;
@@ -530,7 +564,7 @@ int main(int argc, char **argv)
                     if (sm / c < best) { best = sm / c; bi = i; }
                 }
                 fprintf(f, "| %s | %g | %.4f |", vname[v], gains[bi], best);
-                for (k = 0; k < NKIND; ++k) {
+                for (k = 0; k < nkinds; ++k) {
                     double sm = 0;
                     int c = 0;
                     long long it;
@@ -544,6 +578,7 @@ int main(int argc, char **argv)
         }
         fclose(f);
     }
+    if (map_path) goto done; /* the sphere has no map */
     /* ---- the sphere */
 sphere:
     if (quick) { S = 8; F = 8; }
@@ -598,6 +633,7 @@ sphere:
         fclose(c);
         fclose(md);
     }
+done:
     fprintf(stderr, "specaa: wrote %s/specaa.md and specaa_bakers.csv\n", outdir);
     return 0;
 }
