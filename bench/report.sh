@@ -4,6 +4,7 @@
 #   summary.md, <module>.csv, <module>_<family>.svg   bench/run.sh (per-module families)
 #   microsurface.md (+ csv, svg)                       bench/microsurface.c (ground truth)
 #   pictures.md (+ png)                                bench/pictures.c
+#   specaa.md (+ csv)                                  bench/specaa.c (roughness bakers, sphere)
 #   frame.md (+ csv, png)                              bench/frame/ (the scenes on a Vulkan driver)
 #   stability.md (+ csv)                               bench/stability.c
 #   gpu_cost.md (+ csv, svg)                           bench/gpu/cost.sh (GPU instruction counts)
@@ -193,6 +194,7 @@ if [ "${2:-}" = --map ]; then
         echo "- CPU: $cpu ($(getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?") logical CPUs), $(uname -sr)"
         [ -n "${MAP_TIMES:-}" ] && echo "- run time: ${MAP_TIMES}"
         fragment microsurface.md "Ground truth on your map"
+        fragment specaa.md "Specular antialiasing: roughness bakers on this map"
         fragment choosing.md "Choosing a method on this map"
         fragment pictures.md "Pictures"
     } > "$rep.body"
@@ -261,6 +263,7 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     done
     fragment microsurface.md "Ground truth on synthetic microsurfaces"
     fragment pictures.md "Pictures"
+    fragment specaa.md "Specular antialiasing: roughness bakers and the sphere (pf_specaa.h)"
     fragment frame.md "The frame on a Vulkan driver"
     fragment stability.md "Stability"
     fragment gpu_cost.md "GPU cost"

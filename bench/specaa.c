@@ -477,6 +477,7 @@ int main(int argc, char **argv)
     snprintf(path, sizeof path, "%s/specaa.md", outdir);
     f = fopen(path, "w");
     if (!f) { fprintf(stderr, "specaa: cannot write %s\n", path); return 1; }
+    fprintf(f, "## Specular antialiasing: roughness bakers%s\n\n", map_path ? " on this map" : " and the sphere (pf_specaa.h)");
     if (map_path) fprintf(f, "The user's map `%s` (%s, the kept %dx%d square): its mip texels baked by every baker below. ", map_path,
                           pfmap_kind_name(map_opt.kind), N, N);
     fprintf(f, "Measured by `bench/specaa.c`%s: %dx%d texels of %s, mip levels 1-%d (footprints of 4 to %d texels), "
