@@ -138,8 +138,10 @@ $(BUILD)/bench/%-double: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAM
 #                         microsurfaces, error tables and charts, cost against footprint size
 #   bench/pictures.c      brute force against the filtered formulas, side by side (PNG drawn by
 #                         gnuplot, bench/pictures.gp: titled panels, numbered colour bars)
+#   bench/specaa.c        roughness mips baked from normal maps against the engines' formulas
+#                         and the exact footprint NDF; a supersampled sphere with the geometry kernel
 # They include tests/reference/pf_microsurface.h, the synthetic microsurfaces and brute-force reference.
-REPORT_PROGS := microsurface pictures
+REPORT_PROGS := microsurface pictures specaa
 REPORT_BINS  := $(REPORT_PROGS:%=$(BUILD)/bench/%)
 $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.gp) $(BENCH_STAMP)
 	@mkdir -p $(@D)
@@ -211,7 +213,7 @@ stability:
 # docs/<module>.md regions marked <!-- BEGIN GENERATED: module --> ... <!-- END GENERATED: module -->
 # are replaced by that module's section of bench/out/summary.md (run make bench first), so the
 # tables in docs are the bench's, never typed by hand.
-DOC_TESTS := core smith beckmann moments map map_downsample toksvig shadow gaussgrid height vmf vmf_fit vmf_scale horizon masks encode
+DOC_TESTS := core smith beckmann moments map map_downsample toksvig shadow gaussgrid height vmf vmf_fit vmf_scale horizon masks encode specaa
 docs: $(foreach t,$(DOC_TESTS),$(BUILD)/c99-float/test_$(t) $(BUILD)/c99-double/test_$(t))
 	@BUILD=$(BUILD) sh bench/update_docs.sh bench/out/summary.md docs
 

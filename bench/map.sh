@@ -6,6 +6,7 @@
 #                              the pictures, the method guide for that map (bench/report.sh --map)
 #   microsurface.md, *.csv, *.svg   bench/microsurface.c --map (ground truth, cost, charts)
 #   pictures.md, pic_*.png     bench/pictures.c --map (the plane and the sphere tiled with the map)
+#   specaa.md, specaa_bakers.csv   bench/specaa.c --map (every roughness baker on the map's mips)
 #   choosing.md                bench/choosing.sh --map (cheapest method per error target)
 # The map is read and checked first (microsurface --check): a missing, corrupt, flat or
 # mis-sized map stops here with one message and exit status 1, and nothing is written or removed.
@@ -18,7 +19,7 @@ out=${MAP_OUT:-bench/out/map}
 [ -n "${MAP:-}" ] || { echo "map: no map given (make bench MAP=path/to/map.png)" >&2; exit 2; }
 command -v gnuplot >/dev/null 2>&1 ||
     { echo "map: gnuplot not found; run make bench (it installs it) or: sudo apt-get install -y gnuplot-nox" >&2; exit 1; }
-for prog in microsurface pictures; do
+for prog in microsurface pictures specaa; do
     [ -x "$dir/$prog" ] || { echo "map: missing $dir/$prog (run through make bench MAP=...)" >&2; exit 1; }
 done
 set -- --map "$MAP" --map-kind "${MAP_KIND:-height}" --map-scale "${MAP_SCALE:-}" \
@@ -48,6 +49,8 @@ t0=$(date +%s)
 "$dir/pictures" "$out" --gp bench/pictures.gp "$@"
 t_pic=$(($(date +%s) - t0))
 echo "map: [$(date +%H:%M:%S)] pictures done in $t_pic s" >&2
+echo "map: [$(date +%H:%M:%S)] roughness bakers (bench/specaa.c --map) ..." >&2
+"$dir/specaa" --out "$out" "$@"
 sh bench/choosing.sh "$out" --map
 MAP_TIMES="ground truth ${t_ms} s, pictures ${t_pic} s, $(($(date +%s) - t_start)) s in all, ${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)} threads" \
     sh bench/report.sh "$out" --map "$how"

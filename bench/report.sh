@@ -5,6 +5,7 @@
 #   microsurface.md (+ csv, svg)                       bench/microsurface.c (ground truth)
 #   storage.md (+ microsurface_storage.csv)            bench/microsurface.c's storage pass
 #   pictures.md (+ png)                                bench/pictures.c
+#   specaa.md (+ csv)                                  bench/specaa.c (roughness bakers, sphere)
 #   frame.md (+ csv, png)                              bench/frame/ (the scenes on a Vulkan driver)
 #   stability.md (+ csv)                               bench/stability.c
 #   gpu_cost.md (+ csv, svg)                           bench/gpu/cost.sh (GPU instruction counts)
@@ -198,6 +199,7 @@ if [ "${2:-}" = --map ]; then
         echo "- CPU: $cpu ($(getconf _NPROCESSORS_ONLN 2>/dev/null || echo "?") logical CPUs), $(uname -sr)"
         [ -n "${MAP_TIMES:-}" ] && echo "- run time: ${MAP_TIMES}"
         fragment microsurface.md "Ground truth on your map"
+        fragment specaa.md "Specular antialiasing: roughness bakers on this map"
         fragment choosing.md "Choosing a method on this map"
         fragment pictures.md "Pictures"
     } > "$rep.body"
@@ -272,6 +274,7 @@ Moment reductions and pyramids|moments/esm_reduce2x2 moments/pyramid'
     echo
     if [ -f "$out/storage.md" ]; then cat "$out/storage.md"; else echo "**Missing:** \`storage.md\` was not produced by this run (see the bench log)."; fi
     fragment pictures.md "Pictures"
+    fragment specaa.md "Specular antialiasing: roughness bakers and the sphere (pf_specaa.h)"
     fragment frame.md "The frame on a Vulkan driver"
     fragment stability.md "Stability"
     fragment gpu_cost.md "GPU cost"

@@ -158,7 +158,7 @@ for m in $modules; do
         [ -x "$dir/bench_$m-$b" ] || { echo "bench: missing $dir/bench_$m-$b (run through make bench)" >&2; exit 1; }
     done
 done
-for prog in microsurface pictures; do
+for prog in microsurface pictures specaa; do
     [ -x "$dir/$prog" ] || { echo "bench: missing $dir/$prog (run through make bench)" >&2; exit 1; }
 done
 jobs="$out/jobs.tmp"
@@ -235,6 +235,8 @@ stage "microsurface (ground truth)"
 "$dir/microsurface" --out "$out" --gp bench/microsurface.gp
 stage "pictures"
 "$dir/pictures" "$out"
+stage "specaa (roughness bakers against the footprint NDF, the sphere reference)"
+"$dir/specaa" --out "$out"
 # The frame on a Vulkan driver (bench/frame/run.sh: lavapipe here; frame.md, frame.csv, frame_*.png)
 stage "GPU frame (Vulkan)"
 sh bench/frame/run.sh "$dir" "$out"

@@ -45,6 +45,7 @@
 #include <unistd.h>
 #include "pf_calls.h"
 #include "pf_horizon.h"
+#include "pf_specaa.h"
 
 /* The checks compute in long double on purpose (independent references): the float build's
    -Wdouble-promotion, meant for library code, is silenced for this header only. */
@@ -2496,6 +2497,86 @@ static void pfb_d_encode(pfc_ctx *c, int which)
                 pfb_fail(PFB_VALUE, "%s: lobe %lld decodes to kappa %a, amp %a", fn, i, (double)l.kappa, (double)l.amp);
                 return;
             }
+/* ---------------------------------------------------------------- pf_specaa.h: the baker
+   which: 0 pf_specaa_bake, 1 pf_specaa_bake_scratch_reals */
+static void pfb_d_specaa(pfc_ctx *c, int which)
+{
+    const char *fn = which == 0 ? "pf_specaa_bake" : "pf_specaa_bake_scratch_reals";
+    int w = pfb_int(c, 1, 40), h = pfb_int(c, 1, 40), null = pfb_null(c, 4), ndf, at_start = PFC_R(pfc_next(c)) < 4;
+    int with_rough = PFC_R(pfc_next(c)) < 8, with_var = PFC_R(pfc_next(c)) < 8, rc, allowed;
+    pf_real gain, alpha;
+    pfb_expect ex = { 0, 0, 0 };
+    long long npix = -1, nscr = -1, nout = -1, i;
+    pf_real *nrm, *rough = 0, *scr, *al, *var = 0;
+    pf_specaa_bake_desc d;
+    {
+        pfc_u32 u = pfc_next(c);
+        ndf = PFC_R(u) < 14 ? (int)(PFC_B(u) % 2u) : pfb_int(c, -2, 4);
+    }
+    gain = PFC_R(pfc_next(c)) < 12 ? PF_R(0.0) : pfb_coord(c, PF_R(-1.0), PF_R(4.0));
+    alpha = pfb_coord(c, PF_R(0.0), PF_R(1.0));
+    pfb_side(&ex, w, 1);
+    pfb_side(&ex, h, 1);
+    if (which == 1) {
+        long long r, want;
+        pfb_setcall("%s(%d, %d)", fn, w, h);
+        r = pf_specaa_bake_scratch_reals(w, h);
+        want = ex.small || ex.size ? 0 : pfb_pyr_reals(w, h, PF_SPECAA_BAKE_CHANNELS);
+        if (want < 0) want = 0;
+        if (r != want) pfb_fail(PFB_VALUE, "%s = %lld, expected %lld", fn, r, want);
+        return;
+    }
+    pfb_setcall("%s(normals %s, roughness %s, %d, %d, alpha %a, ndf %d, gain %a, scratch %s, alpha_out %s, variance %s)", fn,
+                null == 2 ? "NULL" : "map", with_rough ? "map" : "NULL", w, h, (double)alpha, ndf, (double)gain,
+                null == 3 ? "NULL" : "buf", null == 4 ? "NULL" : "buf", with_var ? "buf" : "NULL");
+    if (null || (ndf != PF_SPECAA_NDF_GGX && ndf != PF_SPECAA_NDF_BECKMANN) ||
+        !(gain >= PF_R(0.0) && gain <= PF_SPECAA_MAX_GAIN))
+        ex.arg = 1;
+    if (!ex.small && !ex.size) {
+        npix = pfb_mul(w, h);
+        nscr = pfb_pyr_reals(w, h, PF_SPECAA_BAKE_CHANNELS);
+        nout = pfb_pyr_reals(w, h, 1);
+        if (npix < 0 || nscr < 0 || nout < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    memset(&d, 0, sizeof d);
+    d.width = w; d.height = h; d.alpha = alpha; d.ndf = ndf; d.gain = gain;
+    if (allowed != PFB_A_OK) {
+        pf_real *b[4];
+        int k;
+        for (k = 0; k < 4; ++k) b[k] = pfb_small();
+        d.normals = null == 2 ? 0 : b[0];
+        d.roughness = with_rough ? b[1] : 0;
+        rc = pf_specaa_bake(null == 1 ? 0 : &d, null == 3 ? 0 : b[2], null == 4 ? 0 : b[3], with_var ? b[1] : 0);
+        pfb_rc_check(rc, allowed, fn);
+        pfb_check_untouched(b, 4);
+        return;
+    }
+    if (nscr > pfb_work_cap) return;
+    nrm = pfb_map(pfb_mul(npix, 3), at_start);
+    if (with_rough) rough = pfb_map(npix, !at_start);
+    scr = pfb_map(nscr, !at_start);
+    al = pfb_map(nout, at_start);
+    if (with_var) var = pfb_map(nout, !at_start);
+    if (!nrm || !scr || !al || (with_rough && !rough) || (with_var && !var)) return;
+    pfb_fill(c, nrm, npix * 3, 20);
+    if (with_rough) pfb_fill(c, rough, npix, 4);
+    pfb_fill_canary(scr, nscr);
+    pfb_fill_canary(al, nout);
+    if (with_var) pfb_fill_canary(var, nout);
+    d.normals = nrm;
+    d.roughness = rough;
+    if (pfb_t) pfb_t->run += 1;
+    rc = pf_specaa_bake(&d, scr, al, var);
+    if (!pfb_rc_check(rc, allowed, fn)) return;
+    pfb_check_written(al, nout, "alpha_out", 1);
+    if (with_var) pfb_check_written(var, nout, "variance_out", 1);
+    pfb_check_levels(scr, w, h, PF_SPECAA_BAKE_CHANNELS, 0, fn);
+    for (i = 0; i < nout; ++i) {
+        if (!(al[i] >= PF_R(0.0))) { pfb_fail(PFB_VALUE, "alpha_out[%lld] = %a < 0", i, (double)al[i]); break; }
+        if (var && !(var[i] >= PF_R(0.0) && var[i] <= PF_R(1.0e4) * (PF_R(1.0) + PF_R(1.0e-3)))) {
+            pfb_fail(PFB_VALUE, "variance_out[%lld] = %a outside [0, 1e4]", i, (double)var[i]);
+            break;
         }
     }
     if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
@@ -2585,6 +2666,8 @@ static const pfb_entry pfb_table[] = {
     { "pf_slope_encoding_find pf_slope_moments_encode", "encode", pfb_d_encode, 1 },
     { "pf_vmf_encoding_find pf_vmf_lobes_encode", "encode", pfb_d_encode, 2 },
     { "pf_half_from_real pf_real_from_half pf_oct_hemi_encode pf_encode_bytes", "encode", pfb_d_encode_scalar, 0 },
+    { "pf_specaa_bake", "specaa", pfb_d_specaa, 0 },
+    { "pf_specaa_bake_scratch_reals", "specaa", pfb_d_specaa, 1 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

@@ -44,6 +44,7 @@
 #include "pf_masks.h"
 #include "pf_vmf.h"
 #include "pf_encode.h"
+#include "pf_specaa.h"
 
 typedef unsigned int pfc_u32;
 typedef unsigned long long pfc_u64;
@@ -2001,6 +2002,71 @@ static void pfc_f_pf_vmf_scale_apply(pfc_ctx *c)
 #define PFC_LIN "finite texels of the type's range, convex weights"
 #define PFC_LINREG "linear (products and sums only): non-finite only when an input is already near overflow"
 
+/* ---- specaa */
+/* a screen-space derivative of a unit vector: a direction times 0, tiny, [0, 2^8], huge */
+static pf_vec3 pfc_deriv(pfc_ctx *c) { pf_vec3 d = pfc_dir(c); return pf_vec3_scale(d, pfc_pos(c, 8)); }
+static void pfc_out_kernel(pfc_ctx *c, pf_specaa_kernel k) { pfc_ge0(c, k.var_x); pfc_ge0(c, k.var_y); pfc_out(c, k.cov_xy); }
+static void pfc_f_pf_specaa_kernel_make(pfc_ctx *c)
+{
+    pf_real a = pfc_sym(c, 60), b = pfc_sym(c, 60);
+    pf_specaa_kernel k = pf_specaa_kernel_make(a, b, pfc_sym(c, 60));
+    pfc_out(c, k.var_x); pfc_out(c, k.var_y); pfc_out(c, k.cov_xy);
+}
+static void pfc_f_pf_specaa_kernel_normal(pfc_ctx *c)
+{
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_real s2 = pfc_u01(c), kap = pfc_u01(c);
+    pfc_in(c, pf_specaa_kernel_normal(a, b, s2, kap), PF_R(0.0), kap);
+}
+static void pfc_f_pf_specaa_kernel_halfvector(pfc_ctx *c)
+{
+    pf_vec3 h = pfc_dir(c), a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_real s2 = pfc_u01(c), kap = pfc_u01(c);
+    pfc_in(c, pf_specaa_kernel_halfvector(h, a, b, s2, kap), PF_R(0.0), kap);
+}
+static void pfc_f_pf_specaa_kernel_aniso(pfc_ctx *c)
+{
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_real s2 = pfc_u01(c), kap = pfc_u01(c);
+    pf_specaa_kernel k = pf_specaa_kernel_aniso(a, b, s2, kap);
+    pfc_out_kernel(c, k);
+    pfc_in(c, k.var_x + k.var_y, PF_R(0.0), kap * (PF_R(1.0) + PF_R(8.0) * PF_REAL_EPSILON) + PF_R(8.0) * PF_REAL_MIN); /* subnormal kappa: absolute rounding */
+}
+static void pfc_f_pf_specaa_kernel_trace(pfc_ctx *c)
+{
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pfc_ge0(c, pf_specaa_kernel_trace(pf_specaa_kernel_aniso(a, b, pfc_u01(c), pfc_u01(c))));
+}
+static void pfc_f_pf_specaa_alpha(pfc_ctx *c) { pf_real a = pfc_pos(c, 4); pfc_01(c, pf_specaa_alpha(a, pfc_u01(c))); }
+static void pfc_f_pf_specaa_alpha_projected(pfc_ctx *c) { pf_real a = pfc_pos(c, 4); pfc_01(c, pf_specaa_alpha_projected(a, pfc_pos(c, 60))); }
+static void pfc_f_pf_specaa_alpha_from_variance(pfc_ctx *c)
+{
+    pf_real a = pfc_pos(c, 4), v = pfc_var(c, 1);
+    pfc_ge0(c, pf_specaa_alpha_from_variance(a, v, pfc_pos(c, 4)));
+}
+static void pfc_f_pf_specaa_projected_variance(pfc_ctx *c) { pfc_in(c, pf_specaa_projected_variance(pfc_pos(c, 60)), PF_R(0.0), PF_R(0.25)); }
+static void pfc_f_pf_specaa_slope_variance_from_projected(pfc_ctx *c)
+{
+    pfc_in(c, pf_specaa_slope_variance_from_projected(pfc_sym(c, 2)), PF_R(0.0), PF_R(625.0) * (PF_R(1.0) + PF_R(1.0e-3)));
+}
+static void pfc_f_pf_specaa_slope_stats(pfc_ctx *c) { pf_slope_stats s = pfc_stats(c, 0); pfc_out_stats(c, pf_specaa_slope_stats(s, pfc_u01(c))); }
+static void pfc_f_pf_specaa_slope_stats_aniso(pfc_ctx *c)
+{
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pfc_out_stats(c, pf_specaa_slope_stats_aniso(s, pf_specaa_kernel_aniso(a, b, pfc_u01(c), pfc_u01(c))));
+}
+static void pfc_f_pf_specaa_leadr_specular(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_slope_stats s = pfc_leadr_stats(c);
+    pf_real f0 = pfc_u01(c);
+    pf_vec3 a = pfc_deriv(c);
+    pfc_ge0(c, pf_specaa_leadr_specular(wo, wi, s, f0, a, pfc_deriv(c)));
+}
+static void pfc_f_pf_specaa_vmf_kappa(pfc_ctx *c) { pf_real k = pfc_kappa(c); pfc_ge0(c, pf_specaa_vmf_kappa(k, pfc_pos(c, 60))); }
+static void pfc_f_pf_specaa_vmf_lobe(pfc_ctx *c) { pf_vmf_lobe l = pfc_vmf_lobe(c); pfc_out_lobe(c, pf_specaa_vmf_lobe(l, pfc_pos(c, 60))); }
+
 static const pfc_entry pfc_table[] = {
     /* core */
     PFC_E(core, pf_min, 0, "+-[0, 2^100]", "comparison; NaN in b returns b, NaN in a returns b"),
@@ -2311,6 +2377,21 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_scale_texel_pos, 0, "u +-2^20, n in [-2, 64]", "in [0, max(n - 1, 0)]"),
     PFC_E(vmf, pf_vmf_scale_trilinear, 0, "8 values and 3 fractions in [0, 1]", "in [0, 1] (rounding)"),
     PFC_E(vmf, pf_vmf_scale_apply, 0, "T, S +-2^20, f [0, 1]", ">= 0"),
+    PFC_E(specaa, pf_specaa_kernel_make, PFC_WIDE, "+-2^60", "the three members as given"),
+    PFC_E(specaa, pf_specaa_kernel_normal, 0, "derivatives: unit direction x [0, 2^8] (0, tiny, huge), sigma2, kappa in [0, 1]", "in [0, kappa]; huge -> kappa"),
+    PFC_E(specaa, pf_specaa_kernel_halfvector, 0, "unit h (grazing, below), derivatives as above, sigma2, kappa in [0, 1]", "in [0, kappa]"),
+    PFC_E(specaa, pf_specaa_kernel_aniso, 0, "derivatives as above, sigma2, kappa in [0, 1]", "variances >= 0, trace <= kappa"),
+    PFC_E(specaa, pf_specaa_kernel_trace, 0, "kernels of pf_specaa_kernel_aniso", ">= 0"),
+    PFC_E(specaa, pf_specaa_alpha, 0, "alpha in [0, 2^4], k in [0, 1]", "in [0, 1]"),
+    PFC_E(specaa, pf_specaa_alpha_projected, 0, "alpha in [0, 2^4], k in [0, 2^60]", "in [0, 1]"),
+    PFC_E(specaa, pf_specaa_alpha_from_variance, 0, "alpha, gain in [0, 2^4], variance (slightly negative too)", ">= 0"),
+    PFC_E(specaa, pf_specaa_projected_variance, 0, "v in [0, 2^60]", "in [0, 1/4]"),
+    PFC_E(specaa, pf_specaa_slope_variance_from_projected, 0, "v in +-4", "in [0, 625]"),
+    PFC_E(specaa, pf_specaa_slope_stats, 0, "stats, k in [0, 1]", "finite"),
+    PFC_E(specaa, pf_specaa_slope_stats_aniso, 0, "stats, kernels of pf_specaa_kernel_aniso", "finite"),
+    PFC_E(specaa, pf_specaa_leadr_specular, 0, "as pf_leadr_specular, derivatives as above", ">= 0"),
+    PFC_E(specaa, pf_specaa_vmf_kappa, 0, "kappa as pf_vmf's, k in [0, 2^60]", "clamped kappa"),
+    PFC_E(specaa, pf_specaa_vmf_lobe, 0, "packed lobe, k in [0, 2^60]", "as pf_vmf_lobe_make"),
 };
 #define PFC_COUNT ((int)(sizeof pfc_table / sizeof pfc_table[0]))
 

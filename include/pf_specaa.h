@@ -1,0 +1,395 @@
+/* pf_specaa.h - specular antialiasing as engines ship it: NDF filtering from the screen-space
+   derivatives of the shading normal (or of the half vector), composed with the footprint
+   filtering of the other modules (LEADR's slope covariance, vMF lobes, plain GGX/Beckmann
+   roughness), and a CPU baker of roughness mip chains from normal maps.
+
+   IDEA. Two causes make a narrow specular lobe alias. (a) The GEOMETRY: the macro-normal turns
+   inside a pixel on curved, distant or finely tessellated surfaces. Kaplanyan, Hill, Patney &
+   Lefohn 2016 ("Filtering distributions of normals for shading antialiasing", HPG) read the
+   turn from the screen-space derivatives of the half vector, build a Gaussian filtering kernel
+   in the slope domain over the pixel footprint and convolve the NDF with it: for a Beckmann or
+   GGX lobe, covariances add, so the roughness grows, alpha'^2 = alpha^2 + 2 Sigma. Tokuyoshi &
+   Kaplanyan 2019 ("Improved geometric specular antialiasing", I3D) take the derivatives in the
+   PROJECTED half-vector space (the tangent-plane components of the unit vector, no division by
+   h.z: the slope-space form blows up at grazing half vectors and near edges, their Fig. 1:
+   RMSE 13124 against 0.2188), clamp the kernel (kappa = 0.18), and for deferred shading use
+   the derivatives of the normal in an isotropic form:
+       k = min(2 sigma^2 (|dn/dx|^2 + |dn/dy|^2), kappa),   alpha'^2 = saturate(alpha^2 + k) (1)
+   with sigma^2 = 1/(2 pi), the variance of the Gaussian pixel filter of unit peak and unit
+   integral. |dn|^2 does not depend on the frame, so world-space dFdx(n) may be passed as is.
+   Engines ship (1) with other constants: Filament's normalFiltering (sigma^2 = 0.15, kappa =
+   0.2), Unity HDRP's GeometricSpecularAA (screen-space variance and a threshold, kappa = t^2).
+   Tokuyoshi & Kaplanyan 2021 ("Stable geometric specular antialiasing with projected-space NDF
+   filtering", JCGT 10(2)) add the kernel in projected space instead of slope space: that
+   space is bounded (|p| < 1), so a kernel as wide as the hemisphere saturates instead of
+   growing alpha without bound. pf_specaa_alpha_projected does that sum here with a map
+   between slope and projected variances of our own (below, "projected space"), measured
+   against quadrature in tests/test_specaa.c.
+   (b) The TEXTURE: the normals of a normal map spread inside a mip texel. Engines bake a
+   roughness (or a variance) per mip level from the length r of the averaged normal
+   (Toksvig 2005; a vMF fit, kappa = (3r - r^3)/(1 - r^2), Banerjee et al. 2005). The baker
+   here does not guess the spread from r: it averages the slope moments of the footprint up to
+   the fourth order (pf_map.h's pyramid, exact for a box footprint) and adds the variance of
+   the Gaussian with the footprint's peakedness:
+       alpha'^2 = E[alpha_t^2] + 2 g v,   v = var rho,   var = (Var[s_x] + Var[s_y]) / 2,
+       rho = 8 var^2 / E[|s - E s|^4]  (1 for Gaussian slopes), clamped to [0, 2]          (2)
+   A Gaussian footprint keeps its variance; a heavy-tailed one (ridges, log-normal bumps, a flat
+   ground with a few steep bowls) gets the narrower lobe that fits its peak, where the raw
+   variance (rho = 1) over-widens and the engines' 1 - r under-widens Gaussian footprints. g is
+   the one constant chosen by measurement (bench/specaa.c: the exact NDF of the footprint's
+   texels, each texel's lobe shifted to its slope, against the baked single lobe); rho's form
+   (the exponent 1 on the ratio) was compared there with the exponents 0 and 1/2.
+
+   COMPOSITION. A kernel is a slope covariance; what it widens:
+     LEADR     the footprint's slope covariance: var_x, var_y (and cov_xy) += the kernel's
+               (pf_specaa_slope_stats; Dupuy et al. 2013 add the micro-BRDF's variance alike);
+     vMF       each lobe's tangent variance ~1/kappa grows by the kernel's per-axis variance:
+               kappa' = kappa / (1 + kappa k/2) (pf_vmf.h's small-angle rule);
+     GGX, Beckmann roughness  alpha'^2 = alpha^2 + k (1), or the projected-space sum.
+   The kernel's alpha^2 increment k is twice its per-axis slope variance (k/2 per axis).
+
+   USAGE (shader)
+     pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+     pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
+     pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
+     pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
+     l.kappa = pf_specaa_vmf_kappa(l.kappa, k);                   -- each vMF lobe
+   USAGE (CPU baker)
+     pf_specaa_bake_desc d = { normals, NULL, w, h, PF_R(0.1), PF_SPECAA_NDF_GGX, PF_R(0.0) };
+     pf_real *scratch = malloc(pf_specaa_bake_scratch_reals(w, h) * sizeof(pf_real));
+     pf_real *alpha = malloc(pf_mip_texel_count(w, h) * sizeof(pf_real));
+     if (pf_specaa_bake(&d, scratch, alpha, NULL) != PF_OK) ...   -- pf_map.h's layout
+
+   FUNCTIONS (shader subset)
+     kernels     pf_specaa_kernel_normal (1), pf_specaa_kernel_halfvector (Kaplanyan et al.
+                 2016's slope-space form), pf_specaa_kernel_aniso (the full covariance,
+                 pf_specaa_kernel struct), pf_specaa_kernel_make, pf_specaa_kernel_trace
+     roughness   pf_specaa_alpha (1), pf_specaa_alpha_projected (projected-space sum),
+                 pf_specaa_alpha_from_variance (2) with a stored v, pf_specaa_projected_variance,
+                 pf_specaa_slope_variance_from_projected
+     compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
+                 pf_specaa_vmf_lobe, pf_specaa_leadr_specular
+   FUNCTIONS (CPU only, PF_CPU_DEF, compiled out under PF_GLSL)
+     pf_specaa_bake_scratch_reals, pf_specaa_bake (2)
+
+   CONVENTIONS
+     Derivatives are screen-space derivatives per pixel (dFdx, dFdy) of the UNIT shading
+     normal or half vector. pf_specaa_kernel_normal uses |d|^2 (any frame);
+     pf_specaa_kernel_aniso and pf_specaa_kernel_halfvector need them in the tangent frame
+     (x, y along the tangent and bitangent of the slopes the kernel is added to).
+     Degenerate derivatives give a finite kernel: zero -> 0 (no widening); huge or +inf ->
+     the clamp kappa; NaN (a helper lane's or a silhouette's garbage) -> the clamp kappa as
+     well (NaN means "unknown", and a wide lobe on one pixel does not sparkle). sigma2 and
+     kappa are >= 0 and finite. Roughnesses: alpha'^2 is clamped to [0, 1] as the engines
+     saturate it (pf_specaa_alpha*); a NaN alpha gives 0. vMF: kappa as pf_vmf_kappa_clamp.
+     The NaN rule holds in C and CUDA; GLSL leaves min(NaN, x) to the implementation (the main
+     vendors return x), see pf_core.h.
+
+   PROJECTED SPACE. The projected coordinate of a slope s is p = s / sqrt(1 + |s|^2) (the
+   tangent-plane part of the unit normal). Over the projected-area measure a fully rough
+   surface is uniform on the unit disk, per-axis variance 1/4; a narrow lobe has the same
+   variance v in both spaces. The map used here joins the two ends:
+       v_p = v_s / (1 + 4 v_s),   v_s = v_p / (1 - 4 v_p)                               (3)
+   alpha'^2 = 2 v_s(v_p(alpha^2/2) + k/2), v_p capped below 1/4 (alpha' <= 1 after the clamp).
+   Against the exact per-axis projected variance of a Beckmann lobe (quadrature), (3) is
+   within 20% for alpha in [0.01, 1] (tests/test_specaa.c measures it).
+
+   ACCURACY AND COST (measured; docs/specaa.md has the tables). The kernels are a few flops;
+   the geometry kernel adds 12 SPIR-V ops to pf_leadr_specular (116 -> 128) (after spirv-opt -O,
+   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). The anisotropic
+   kernel halved is the slope covariance of a sphere's normals over the Gaussian pixel filter
+   within 0.7% of its trace (spheres 20-200 px across). Baker (2), against the exact NDF of each
+   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): more
+   accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
+   GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
+   isotropic lobe. On a supersampled sphere 10-60 px across (bench/specaa.c), (1) with the
+   default constants cuts the flicker of an unfiltered narrow highlight 9-47x, stays above the
+   reference's own flicker, and over-blurs the 60 px sphere; sigma2 = 1/24 (the box pixel
+   filter's exact bandwidth) has the lowest per-pixel error there, with more flicker.
+
+   SOURCES
+     Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
+     derivatives); Tokuyoshi & Kaplanyan 2019, I3D (projected-space derivatives, the clamp
+     kappa = 0.18, sigma^2 = 1/(2 pi), the isotropic deferred form (1)); Tokuyoshi &
+     Kaplanyan 2021, JCGT 10(2) (the sum in projected space); Toksvig 2005; Banerjee et al.
+     2005 (vMF kappa from r); Dupuy et al. 2013 (LEADR: covariances add). */
+#ifndef PF_SPECAA_H
+#define PF_SPECAA_H
+
+#ifndef PF_GLSL
+#  include "pf_core.h"
+#  include "pf_moments.h"
+#  include "pf_beckmann.h"
+#  include "pf_vmf.h"
+#  include "pf_map.h"
+#endif
+
+/* Variance of the Gaussian pixel filter, 1/(2 pi) (unit peak and unit integral; Tokuyoshi &
+   Kaplanyan 2019). Filament uses 0.15. */
+#ifndef PF_SPECAA_SIGMA2
+#  define PF_SPECAA_SIGMA2 PF_R(0.15915494309189535)
+#endif
+/* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament: 0.2). */
+#ifndef PF_SPECAA_KAPPA
+#  define PF_SPECAA_KAPPA PF_R(0.18)
+#endif
+
+/* A slope-space kernel: its per-axis covariance (var_x, var_y, cov_xy). */
+PF_STRUCT_BEGIN(pf_specaa_kernel)
+    pf_real var_x;
+    pf_real var_y;
+    pf_real cov_xy;
+PF_STRUCT_END(pf_specaa_kernel)
+
+PF_DEF pf_specaa_kernel pf_specaa_kernel_make(pf_real var_x, pf_real var_y, pf_real cov_xy)
+{
+    pf_specaa_kernel k;
+    k.var_x = var_x;
+    k.var_y = var_y;
+    k.cov_xy = cov_xy;
+    return k;
+}
+
+/* (1): the alpha^2 increment min(2 sigma2 (|dndx|^2 + |dndy|^2), kappa) of Tokuyoshi &
+   Kaplanyan 2019 (isotropic, deferred form; the same with the projected derivatives of the
+   half vector is their forward form). Any frame. Zero derivatives -> 0; huge, inf or NaN ->
+   kappa (the comparison is false for NaN). */
+PF_DEF pf_real pf_specaa_kernel_normal(pf_vec3 dndx, pf_vec3 dndy, pf_real sigma2, pf_real kappa)
+{
+    pf_real t = PF_R(2.0) * sigma2 * (pf_vec3_dot(dndx, dndx) + pf_vec3_dot(dndy, dndy));
+    return t < kappa ? t : kappa;
+}
+
+/* Kaplanyan et al. 2016's form: the same increment from the derivatives of the SLOPE of the
+   half vector, s = -h.xy/h.z, d s = -(dh.xy h.z - h.xy dh.z)/h.z^2 (tangent frame, unit h);
+   h.z floored at 1e-4 (a half vector on the horizon: huge slopes, then the clamp). Grows as
+   1/h.z^2 at grazing half vectors, the error Tokuyoshi & Kaplanyan 2019 remove. */
+PF_DEF pf_real pf_specaa_kernel_halfvector(pf_vec3 h, pf_vec3 dhdx, pf_vec3 dhdy, pf_real sigma2,
+                                           pf_real kappa)
+{
+    pf_real z = pf_max(h.z, PF_R(1.0e-4)), iz2 = PF_R(1.0) / (z * z);
+    pf_real ax = (dhdx.x * z - h.x * dhdx.z) * iz2, ay = (dhdx.y * z - h.y * dhdx.z) * iz2;
+    pf_real bx = (dhdy.x * z - h.x * dhdy.z) * iz2, by = (dhdy.y * z - h.y * dhdy.z) * iz2;
+    pf_real t = PF_R(2.0) * sigma2 * (ax * ax + ay * ay + bx * bx + by * by);
+    return t < kappa ? t : kappa;
+}
+
+/* The anisotropic kernel Sigma = 2 sigma2 (a a^T + b b^T), a = dndx.xy, b = dndy.xy (tangent
+   frame, projected derivatives). sigma2 (a a^T + b b^T) is the slope covariance of a normal
+   varying linearly across a Gaussian pixel filter of variance sigma2 (tests/test_specaa.c
+   checks it by quadrature); the factor 2 is Tokuyoshi & Kaplanyan 2019's conservative
+   bandwidth, which (1) has too: trace(Sigma) is (1)'s increment k, and (1) is this kernel made
+   isotropic (k/2 per axis). Scaled down as a whole so that trace(Sigma) <= kappa. Huge, inf or
+   NaN derivatives: kappa/2 on each axis, no covariance. */
+PF_DEF pf_specaa_kernel pf_specaa_kernel_aniso(pf_vec3 dndx, pf_vec3 dndy, pf_real sigma2, pf_real kappa)
+{
+    pf_real s = PF_R(2.0) * sigma2;
+    pf_real xx = s * (dndx.x * dndx.x + dndy.x * dndy.x);
+    pf_real yy = s * (dndx.y * dndx.y + dndy.y * dndy.y);
+    pf_real xy = s * (dndx.x * dndx.y + dndy.x * dndy.y);
+    pf_real t = xx + yy, f;
+    if (!(t <= PF_REAL_MAX)) return pf_specaa_kernel_make(PF_R(0.5) * kappa, PF_R(0.5) * kappa, PF_R(0.0));
+    f = t > kappa ? kappa / t : PF_R(1.0);
+    return pf_specaa_kernel_make(f * xx, f * yy, f * xy);
+}
+
+/* The alpha^2 increment of an anisotropic kernel: its trace (2 x the mean per-axis variance). */
+PF_DEF pf_real pf_specaa_kernel_trace(pf_specaa_kernel k)
+{
+    return k.var_x + k.var_y;
+}
+
+/* (1): sqrt(saturate(alpha^2 + k)) for GGX alpha or Beckmann m; NaN alpha -> 0. */
+PF_DEF pf_real pf_specaa_alpha(pf_real alpha, pf_real k)
+{
+    return PF_SQRT(pf_clamp_nan_lo(alpha * alpha + k, PF_R(0.0), PF_R(1.0)));
+}
+
+/* (3): per-axis projected variance of a lobe of per-axis slope variance v_s >= 0. */
+PF_DEF pf_real pf_specaa_projected_variance(pf_real v_s)
+{
+    pf_real v = pf_max(v_s, PF_R(0.0));
+    return v / (PF_R(1.0) + PF_R(4.0) * v);
+}
+
+/* (3) inverted: v_s = v_p / (1 - 4 v_p), v_p capped at 0.2499 (v_s <= 625). */
+PF_DEF pf_real pf_specaa_slope_variance_from_projected(pf_real v_p)
+{
+    pf_real v = pf_clamp_nan_lo(v_p, PF_R(0.0), PF_R(0.2499));
+    return v / (PF_R(1.0) - PF_R(4.0) * v);
+}
+
+/* The kernel added in projected space: alpha'^2 = 2 v_s(v_p(alpha^2/2) + k/2), clamped to
+   [0, 1]. Equals (1) to first order in k and alpha^2; a kernel as wide as the hemisphere
+   saturates at alpha' = 1 without the clamp kappa (pass kappa = +inf to
+   pf_specaa_kernel_normal to rely on it). */
+PF_DEF pf_real pf_specaa_alpha_projected(pf_real alpha, pf_real k)
+{
+    pf_real vp = pf_specaa_projected_variance(PF_R(0.5) * alpha * alpha) + PF_R(0.5) * pf_max(k, PF_R(0.0));
+    return PF_SQRT(pf_clamp_nan_lo(PF_R(2.0) * pf_specaa_slope_variance_from_projected(vp), PF_R(0.0), PF_R(1.0)));
+}
+
+/* Gains g of (2): the best on a 0.1 grid of the mean error over the microsurface corpus
+   (bench/specaa.c, docs/specaa.md "gain"): 0.9 for both (1.0 is within 0.2% of it). */
+#ifndef PF_SPECAA_GAIN_GGX
+#  define PF_SPECAA_GAIN_GGX PF_R(0.9)
+#endif
+#ifndef PF_SPECAA_GAIN_BECKMANN
+#  define PF_SPECAA_GAIN_BECKMANN PF_R(0.9)
+#endif
+
+/* (2) in the shader: the roughness of a texel from a per-axis slope variance stored beside a
+   two-channel normal map (pf_specaa_bake's variance_out) and the material's alpha:
+   sqrt(alpha^2 + 2 gain var), var < 0 or NaN read as 0. Not clamped (Beckmann m may pass 1). */
+PF_DEF pf_real pf_specaa_alpha_from_variance(pf_real alpha, pf_real var, pf_real gain)
+{
+    return PF_SQRT(alpha * alpha + PF_R(2.0) * gain * pf_max(var, PF_R(0.0)));
+}
+
+/* LEADR: the footprint's slope statistics widened by an isotropic kernel increment k (k/2 on
+   each variance). */
+PF_DEF pf_slope_stats pf_specaa_slope_stats(pf_slope_stats s, pf_real k)
+{
+    pf_real h = PF_R(0.5) * k;
+    return pf_slope_stats_make(s.mean_x, s.mean_y, s.var_x + h, s.var_y + h, s.cov_xy);
+}
+
+/* LEADR: the footprint's slope covariance plus an anisotropic kernel's (covariances add). */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_kernel k)
+{
+    return pf_slope_stats_make(s.mean_x, s.mean_y, s.var_x + k.var_x, s.var_y + k.var_y,
+                               s.cov_xy + k.cov_xy);
+}
+
+/* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives added to the
+   footprint's slope statistics (default sigma^2 and kappa). */
+PF_DEF pf_real pf_specaa_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
+                                        pf_vec3 dndx, pf_vec3 dndy)
+{
+    pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+    return pf_leadr_specular(wo, wi, pf_specaa_slope_stats(s, k), f0);
+}
+
+/* vMF: kappa' = kappa / (1 + kappa k/2), the lobe's tangent variance ~1/kappa plus the
+   kernel's per-axis variance k/2 (pf_vmf_convolve_kappa's rule); clamped as
+   pf_vmf_kappa_clamp. k < 0 or NaN reads as 0. */
+PF_DEF pf_real pf_specaa_vmf_kappa(pf_real kappa, pf_real k)
+{
+    pf_real a = pf_vmf_kappa_clamp(kappa);
+    return pf_vmf_kappa_clamp(a / (PF_R(1.0) + a * PF_R(0.5) * pf_max(k, PF_R(0.0))));
+}
+
+/* A vMF lobe widened by the kernel increment k (pf_specaa_vmf_kappa). */
+PF_DEF pf_vmf_lobe pf_specaa_vmf_lobe(pf_vmf_lobe l, pf_real k)
+{
+    pf_vmf_lobe o = l;
+    o.kappa = pf_specaa_vmf_kappa(l.kappa, k);
+    return o;
+}
+
+#ifndef PF_GLSL
+/* ---------------------------------------------------------------- CPU: the roughness baker */
+#define PF_SPECAA_NDF_GGX 0
+#define PF_SPECAA_NDF_BECKMANN 1
+/* Channels of the baker's scratch pyramid: E[sx], E[sy], E[sx^2], E[sy^2], E[sx sy],
+   E[|s|^2 sx], E[|s|^2 sy], E[|s|^4], E[alpha^2]. */
+#define PF_SPECAA_BAKE_CHANNELS 9
+/* Largest alpha the baker reads (larger ones, infinities too, are clamped here) and largest
+   gain it accepts: with slopes up to 100 every output then stays finite. */
+#define PF_SPECAA_MAX_ALPHA PF_R(1.0e3)
+#define PF_SPECAA_MAX_GAIN PF_R(1.0e6)
+/* Smallest n.z the baker reads (slopes up to 100: a normal within 0.6 degrees of the
+   horizon); normals below it are clamped there. */
+#ifndef PF_SPECAA_MIN_NZ
+#  define PF_SPECAA_MIN_NZ PF_R(0.01)
+#endif
+
+/* What pf_specaa_bake reads; zero means the default where one is stated. */
+typedef struct pf_specaa_bake_desc {
+    const pf_real *normals;   /* width x height normals, 3 interleaved pf_reals, tangent space
+                                 (+z out of the surface); need not be unit. A zero-length or
+                                 NaN normal reads as +z */
+    const pf_real *roughness; /* optional width x height alphas (GGX alpha or Beckmann m);
+                                 NULL: `alpha` everywhere. NaN or negative reads as 0, above
+                                 PF_SPECAA_MAX_ALPHA as PF_SPECAA_MAX_ALPHA */
+    int width, height;
+    pf_real alpha;            /* base roughness where roughness is NULL (read as above) */
+    int ndf;                  /* PF_SPECAA_NDF_GGX (0) or PF_SPECAA_NDF_BECKMANN */
+    pf_real gain;             /* g of (2), <= PF_SPECAA_MAX_GAIN; 0: PF_SPECAA_GAIN_GGX or
+                                 _BECKMANN */
+} pf_specaa_bake_desc;
+
+/* pf_reals of scratch pf_specaa_bake needs: PF_SPECAA_BAKE_CHANNELS x pf_mip_texel_count;
+   0 for a size it does not accept. */
+PF_CPU_DEF long long pf_specaa_bake_scratch_reals(int w, int h)
+{
+    long long n = pf_mip_texel_count(w, h);
+    return n > 0 ? (pf_size_mul(n, PF_SPECAA_BAKE_CHANNELS) < 0 ? 0 : n * PF_SPECAA_BAKE_CHANNELS) : 0;
+}
+
+/* (2) for every texel of the mip chain (pf_map.h's layout, pf_mip_texel_count(w, h) texels):
+   alpha_out[t] = sqrt(E[alpha^2] + 2 g v), and, when variance_out is not NULL, v itself (for
+   the spare channel of a two-channel normal map, read back by pf_specaa_alpha_from_variance).
+   The moments are pf_reals: where a footprint's mean slope is much larger than its spread the
+   fourth central moment loses precision in float (rho stays clamped to [0, 2]). scratch: pf_specaa_bake_scratch_reals(w, h) pf_reals, the
+   slope-moment and alpha^2 pyramid (left filled). Returns PF_OK, or having written nothing,
+   PF_ERR_ARG (NULL desc, normals, scratch or alpha_out; width or height below 1; an unknown
+   ndf; a gain outside [0, PF_SPECAA_MAX_GAIN] or NaN) or PF_ERR_SIZE (a side above
+   PF_MAX_SIDE; a pyramid above PF_MAX_REALS). */
+PF_CPU_DEF int pf_specaa_bake(const pf_specaa_bake_desc *d, pf_real *scratch, pf_real *alpha_out,
+                              pf_real *variance_out)
+{
+    long long n, t, npix;
+    pf_real g;
+    int rc;
+    if (!d || !d->normals || !scratch || !alpha_out) return PF_ERR_ARG;
+    if (d->width < 1 || d->height < 1) return PF_ERR_ARG;
+    if (d->ndf != PF_SPECAA_NDF_GGX && d->ndf != PF_SPECAA_NDF_BECKMANN) return PF_ERR_ARG;
+    if (!(d->gain >= PF_R(0.0) && d->gain <= PF_SPECAA_MAX_GAIN)) return PF_ERR_ARG;
+    n = pf_mip_texel_count(d->width, d->height);
+    if (n <= 0 || pf_specaa_bake_scratch_reals(d->width, d->height) <= 0) return PF_ERR_SIZE;
+    g = d->gain > PF_R(0.0) ? d->gain
+        : (d->ndf == PF_SPECAA_NDF_GGX ? PF_SPECAA_GAIN_GGX : PF_SPECAA_GAIN_BECKMANN);
+    npix = (long long)d->width * d->height;
+    for (t = 0; t < npix; ++t) {
+        const pf_real *nn = d->normals + 3 * t;
+        pf_real *o = scratch + PF_SPECAA_BAKE_CHANNELS * t;
+        pf_real x = nn[0], y = nn[1], z = nn[2], a;
+        pf_real l2 = x * x + y * y + z * z;
+        pf_real sx, sy, il;
+        if (!(l2 > PF_R(0.0)) || !(l2 <= PF_REAL_MAX)) { x = PF_R(0.0); y = PF_R(0.0); z = PF_R(1.0); l2 = PF_R(1.0); }
+        il = PF_R(1.0) / PF_SQRT(l2);
+        z = pf_max(z * il, PF_SPECAA_MIN_NZ);
+        sx = -x * il / z;
+        sy = -y * il / z;
+        a = pf_min(pf_max(d->roughness ? d->roughness[t] : d->alpha, PF_R(0.0)), PF_SPECAA_MAX_ALPHA);
+        o[0] = sx;
+        o[1] = sy;
+        o[2] = sx * sx;
+        o[3] = sy * sy;
+        o[4] = sx * sy;
+        o[5] = (o[2] + o[3]) * sx;
+        o[6] = (o[2] + o[3]) * sy;
+        o[7] = (o[2] + o[3]) * (o[2] + o[3]);
+        o[8] = a * a;
+    }
+    rc = pf_mip_build(scratch, d->width, d->height, PF_SPECAA_BAKE_CHANNELS);
+    if (rc != PF_OK) return rc;
+    for (t = 0; t < n; ++t) {
+        const pf_real *m = scratch + PF_SPECAA_BAKE_CHANNELS * t;
+        pf_real mx = m[0], my = m[1], mm = mx * mx + my * my;
+        pf_real var = PF_R(0.5) * (pf_max(m[2] - mx * mx, PF_R(0.0)) + pf_max(m[3] - my * my, PF_R(0.0)));
+        /* E|s - m|^4 = E|s|^4 - 4 m.E[|s|^2 s] + 4 m^T E[s s^T] m + 2 E|s|^2 |m|^2 - 3 |m|^4 */
+        pf_real m4 = m[7] - PF_R(4.0) * (mx * m[5] + my * m[6]) +
+                     PF_R(4.0) * (mx * mx * m[2] + PF_R(2.0) * mx * my * m[4] + my * my * m[3]) +
+                     PF_R(2.0) * (m[2] + m[3]) * mm - PF_R(3.0) * mm * mm;
+        pf_real rho = m4 > PF_R(0.0) ? pf_min(PF_R(8.0) * var * (var / m4), PF_R(2.0)) : PF_R(1.0);
+        pf_real v = var * rho;
+        alpha_out[t] = PF_SQRT(pf_max(m[8], PF_R(0.0)) + PF_R(2.0) * g * v);
+        if (variance_out) variance_out[t] = v;
+    }
+    return PF_OK;
+}
+#endif /* !PF_GLSL */
+
+#endif /* PF_SPECAA_H */

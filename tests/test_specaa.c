@@ -1,0 +1,470 @@
+/* test_specaa.c - tests of include/pf_specaa.h.
+
+   The truth is never the module's own formula:
+   - the anisotropic kernel against the slope covariance of a sphere's normals over a Gaussian
+     pixel filter, integrated on a grid in long double (orthographic view, sphere 20-200 px
+     across, pixels up to 70% of the radius off centre);
+   - Kaplanyan et al. 2016's half-vector kernel against central differences of the slope of
+     a half-vector field;
+   - the projected-space map (3) against the per-axis projected variance of a Beckmann lobe,
+     1D quadrature in long double;
+   - the baker against the box-footprint central moments (second and fourth) of the normals
+     recomputed here in long double, two passes, for every texel of every level;
+   - degenerate derivatives (zero, huge, inf, NaN) against the documented values.
+   The same bodies run in float, double, C++ and under sanitizers; edge_* also under
+   -ffast-math (finiteness only there). */
+#include "pf_specaa.h"
+#include "pf_test.h"
+
+#define SIGMA2L 0.15915494309189533577L
+
+static unsigned long long rng_state = 0x1234567887654321ULL;
+static long double urand(void)
+{
+    unsigned long long z = (rng_state += 0x9E3779B97F4A7C15ULL);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    return (long double)(z >> 11) / 9007199254740992.0L;
+}
+
+static pf_vec3 v3(long double x, long double y, long double z)
+{
+    return pf_vec3_make((pf_real)x, (pf_real)y, (pf_real)z);
+}
+
+/* ------------------------------------------------------------------ sphere oracle */
+/* Unit normal of an orthographic sphere of radius R (pixels) at pixel (x, y); inside only. */
+static void sphere_n(long double R, long double x, long double y, long double n[3])
+{
+    long double r2 = (x * x + y * y) / (R * R);
+    n[0] = x / R;
+    n[1] = y / R;
+    n[2] = sqrtl(1.0L - r2);
+}
+
+static void frame_at(const long double N[3], long double T[3], long double B[3])
+{
+    /* T = normalize(ey x N) when N is not along ey; B = N x T */
+    long double t[3] = { N[2], 0.0L, -N[0] }, l = sqrtl(t[0] * t[0] + t[2] * t[2]);
+    T[0] = t[0] / l; T[1] = 0.0L; T[2] = t[2] / l;
+    B[0] = N[1] * T[2] - N[2] * T[1];
+    B[1] = N[2] * T[0] - N[0] * T[2];
+    B[2] = N[0] * T[1] - N[1] * T[0];
+}
+
+static long double dot3(const long double a[3], const long double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+static void test_kernel_sphere(void)
+{
+    static const long double radii[] = { 10.0L, 30.0L, 100.0L };
+    static const long double offs[] = { 0.0L, 0.3L, 0.5L, 0.7L };
+    long double worst = 0.0L;
+    unsigned ri, oi;
+    for (ri = 0; ri < sizeof radii / sizeof radii[0]; ++ri)
+        for (oi = 0; oi < sizeof offs / sizeof offs[0]; ++oi) {
+            long double R = radii[ri], x0 = offs[oi] * R, y0 = 0.35L * offs[oi] * R;
+            long double N[3], T[3], B[3], sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, wsum = 0;
+            long double s = sqrtl(SIGMA2L), h = 6.0L * s / 60.0L, exact[3], a[3], b[3];
+            int i, j;
+            pf_specaa_kernel k;
+            sphere_n(R, x0, y0, N);
+            frame_at(N, T, B);
+            for (j = -60; j <= 60; ++j)
+                for (i = -60; i <= 60; ++i) {
+                    long double dx = i * h, dy = j * h, n[3], w, px, py, pz, u, v;
+                    w = expl(-(dx * dx + dy * dy) / (2.0L * SIGMA2L));
+                    sphere_n(R, x0 + dx, y0 + dy, n);
+                    px = dot3(n, T); py = dot3(n, B); pz = dot3(n, N);
+                    u = -px / pz; v = -py / pz;
+                    sx += w * u; sy += w * v; sxx += w * u * u; syy += w * v * v; sxy += w * u * v;
+                    wsum += w;
+                }
+            sx /= wsum; sy /= wsum;
+            exact[0] = sxx / wsum - sx * sx;
+            exact[1] = syy / wsum - sy * sy;
+            exact[2] = sxy / wsum - sx * sy;
+            /* dn/dx = (1/R, 0, -x0/(R^2 nz)), dn/dy = (0, 1/R, -y0/(R^2 nz)) in view space */
+            {
+                long double dnx[3] = { 1.0L / R, 0.0L, -x0 / (R * R * N[2]) };
+                long double dny[3] = { 0.0L, 1.0L / R, -y0 / (R * R * N[2]) };
+                a[0] = dot3(dnx, T); a[1] = dot3(dnx, B); a[2] = dot3(dnx, N);
+                b[0] = dot3(dny, T); b[1] = dot3(dny, B); b[2] = dot3(dny, N);
+            }
+            k = pf_specaa_kernel_aniso(v3(a[0], a[1], a[2]), v3(b[0], b[1], b[2]), PF_SPECAA_SIGMA2,
+                                       PF_R(1.0e30));
+            {
+                long double tr = exact[0] + exact[1];
+                long double e0 = fabsl(0.5L * (long double)k.var_x - exact[0]) / tr;
+                long double e1 = fabsl(0.5L * (long double)k.var_y - exact[1]) / tr;
+                long double e2 = fabsl(0.5L * (long double)k.cov_xy - exact[2]) / tr;
+                long double e = e0 > e1 ? e0 : e1;
+                if (e2 > e) e = e2;
+                if (e > worst) worst = e;
+            }
+        }
+    pf_test_note("kernel/2 vs sphere slope covariance: max err %.3Lg of the trace", worst);
+    PF_CHECK(worst <= 0.02L, "max %Lg", worst);
+}
+
+/* (1) is the anisotropic kernel made isotropic: trace equal, frame invariant. */
+static void test_kernel_normal_iso(void)
+{
+    long double worst = 0.0L;
+    int t;
+    for (t = 0; t < 200; ++t) {
+        long double ax = 0.2L * (urand() - 0.5L), ay = 0.2L * (urand() - 0.5L);
+        long double bx = 0.2L * (urand() - 0.5L), by = 0.2L * (urand() - 0.5L);
+        long double ref = 2.0L * SIGMA2L * (ax * ax + ay * ay + bx * bx + by * by);
+        long double c = cosl(urand() * 6.0L), s = sinl(urand() * 6.0L);
+        long double cs = sqrtl(c * c + s * s);
+        pf_real k, kr, ka;
+        c /= cs; s /= cs;
+        if (ref > 0.18L) ref = 0.18L;
+        k = pf_specaa_kernel_normal(v3(ax, ay, 0), v3(bx, by, 0), PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+        /* rotated about z and then about x: the same |d|^2 */
+        kr = pf_specaa_kernel_normal(v3(c * ax - s * ay, c * (s * ax + c * ay), s * (s * ax + c * ay)),
+                                     v3(c * bx - s * by, c * (s * bx + c * by), s * (s * bx + c * by)),
+                                     PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+        ka = pf_specaa_kernel_trace(pf_specaa_kernel_aniso(v3(ax, ay, 0), v3(bx, by, 0), PF_SPECAA_SIGMA2,
+                                                           PF_SPECAA_KAPPA));
+        {
+            long double e = fabsl((long double)k - ref) / ref;
+            long double er = fabsl((long double)kr - ref) / ref;
+            long double ea = fabsl((long double)ka - ref) / ref;
+            if (e > worst) worst = e;
+            if (er > worst) worst = er;
+            if (ea > worst) worst = ea;
+        }
+    }
+    pf_test_note("max rel err %.3Lg eps", worst / PF_TEST_EPS);
+    PF_CHECK(worst <= 16.0L * PF_TEST_EPS, "%Lg", worst);
+}
+
+/* Kaplanyan et al. 2016: the half-vector slope's derivative against central differences. */
+static void test_kernel_halfvector(void)
+{
+    long double worst = 0.0L;
+    int t;
+    for (t = 0; t < 100; ++t) {
+        long double h0[3] = { urand() - 0.5L, urand() - 0.5L, 0.3L + urand() };
+        long double u[3] = { 0.02L * (urand() - 0.5L), 0.02L * (urand() - 0.5L), 0.02L * (urand() - 0.5L) };
+        long double v[3] = { 0.02L * (urand() - 0.5L), 0.02L * (urand() - 0.5L), 0.02L * (urand() - 0.5L) };
+        long double e = 1.0e-6L, ds[2][2], hn[3], dh[2][3], l;
+        int a, c;
+        /* h(x, y) = normalize(h0 + x u + y v) */
+        for (a = 0; a < 2; ++a) {
+            const long double *w = a == 0 ? u : v;
+            long double sp[2], sm[2], hp[3], hm[3], lp, lm;
+            for (c = 0; c < 3; ++c) { hp[c] = h0[c] + e * w[c]; hm[c] = h0[c] - e * w[c]; }
+            lp = sqrtl(dot3(hp, hp)); lm = sqrtl(dot3(hm, hm));
+            sp[0] = -hp[0] / hp[2]; sp[1] = -hp[1] / hp[2];
+            sm[0] = -hm[0] / hm[2]; sm[1] = -hm[1] / hm[2];
+            ds[a][0] = (sp[0] - sm[0]) / (2 * e);
+            ds[a][1] = (sp[1] - sm[1]) / (2 * e);
+            for (c = 0; c < 3; ++c) dh[a][c] = (hp[c] / lp - hm[c] / lm) / (2 * e);
+        }
+        l = sqrtl(dot3(h0, h0));
+        for (c = 0; c < 3; ++c) hn[c] = h0[c] / l;
+        {
+            long double ref = 2.0L * SIGMA2L * (ds[0][0] * ds[0][0] + ds[0][1] * ds[0][1] +
+                                                ds[1][0] * ds[1][0] + ds[1][1] * ds[1][1]);
+            pf_real k = pf_specaa_kernel_halfvector(v3(hn[0], hn[1], hn[2]), v3(dh[0][0], dh[0][1], dh[0][2]),
+                                                    v3(dh[1][0], dh[1][1], dh[1][2]), PF_SPECAA_SIGMA2,
+                                                    PF_R(1.0e30));
+            long double er = fabsl((long double)k - ref) / ref;
+            if (er > worst) worst = er;
+        }
+    }
+    pf_test_note("max rel err %.3Lg", worst);
+    PF_CHECK(worst <= 1.0e-4L + 64.0L * PF_TEST_EPS, "%Lg", worst);
+}
+
+/* Per-axis projected variance of a Beckmann lobe of roughness alpha: |s|^2 ~ Exp(mean
+   alpha^2) over the projected-area measure, p^2 = X/(1+X): E[X/(1+X)]/2, by quadrature in
+   the variable q = X/(1+X) in [0, 1): density of X is exp(-X/m)/m, dX = dq/(1-q)^2. */
+static long double beckmann_projected_var(long double alpha)
+{
+    long double m = alpha * alpha, sum = 0.0L;
+    int i, n = 20000;
+    for (i = 0; i < n; ++i) {
+        long double q = (i + 0.5L) / n, x = q / (1.0L - q);
+        sum += q * expl(-x / m) / m / ((1.0L - q) * (1.0L - q));
+    }
+    return 0.5L * sum / n;
+}
+
+static void test_projected_map(void)
+{
+    long double worst = 0.0L, rt = 0.0L, a;
+    for (a = 0.01L; a <= 1.0001L; a *= 1.2L) {
+        long double ex = beckmann_projected_var(a);
+        long double vp = (long double)pf_specaa_projected_variance((pf_real)(0.5L * a * a));
+        long double e = fabsl(vp - ex) / ex;
+        long double back = (long double)pf_specaa_slope_variance_from_projected((pf_real)vp);
+        long double eb = fabsl(back - 0.5L * a * a) / (0.5L * a * a);
+        if (e > worst) worst = e;
+        if (eb > rt) rt = eb;
+    }
+    pf_test_note("(3) vs Beckmann projected variance: max rel err %.3Lg; round trip %.3Lg eps", worst,
+                 rt / PF_TEST_EPS);
+    PF_CHECK(worst <= 0.2L, "%Lg", worst);
+    PF_CHECK(rt <= 64.0L * PF_TEST_EPS, "%Lg", rt);
+    /* first order: the projected sum equals (1) for small alpha and k */
+    {
+        long double al = 0.02L, k = 1.0e-4L;
+        long double p = (long double)pf_specaa_alpha_projected((pf_real)al, (pf_real)k);
+        long double s = (long double)pf_specaa_alpha((pf_real)al, (pf_real)k);
+        PF_CHECK(fabsl(p - s) / s <= 2.0e-3L, "projected %Lg vs slope %Lg", p, s);
+    }
+    /* saturation: a hemisphere-wide kernel gives alpha' = 1, never more */
+    PF_CHECK(pf_specaa_alpha_projected(PF_R(0.1), PF_R(1.0e30)) == PF_R(1.0), "saturation");
+}
+
+/* Composition: LEADR's covariance and vMF lobes. */
+static void test_compose(void)
+{
+    pf_slope_stats s = pf_slope_stats_make(PF_R(0.1), PF_R(-0.05), PF_R(0.02), PF_R(0.03), PF_R(0.004));
+    pf_vec3 dx = v3(0.12L, -0.03L, 0.01L), dy = v3(0.02L, 0.09L, -0.02L);
+    pf_vec3 wo = pf_vec3_normalize(v3(0.3L, 0.1L, 0.9L)), wi = pf_vec3_normalize(v3(-0.25L, -0.05L, 0.9L));
+    pf_real k = pf_specaa_kernel_normal(dx, dy, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+    pf_slope_stats w = pf_specaa_slope_stats(s, k);
+    pf_real a = pf_specaa_leadr_specular(wo, wi, s, PF_R(0.04), dx, dy);
+    pf_real b = pf_leadr_specular(wo, wi, w, PF_R(0.04));
+    long double kk = 2.0L * SIGMA2L * (0.12L * 0.12L + 0.03L * 0.03L + 0.01L * 0.01L + 0.02L * 0.02L +
+                                       0.09L * 0.09L + 0.02L * 0.02L);
+    long double ev = fabsl((long double)w.var_x - (0.02L + 0.5L * kk)) / (0.02L + 0.5L * kk);
+    PF_CHECK(ev <= 8.0L * PF_TEST_EPS, "var_x %Lg", ev);
+    PF_CHECK(w.cov_xy == s.cov_xy && w.mean_x == s.mean_x, "mean and covariance kept");
+    PF_CHECK(a == b, "pf_specaa_leadr_specular %g vs %g", (double)a, (double)b);
+    /* vMF: 1/kappa' = 1/kappa + k/2 */
+    {
+        long double worst = 0.0L, kap;
+        for (kap = 1.0L; kap <= 1.0e4L; kap *= 3.0L) {
+            long double ref = 1.0L / (1.0L / kap + 0.5L * kk);
+            pf_vmf_lobe l = pf_vmf_lobe_make(PF_R(1.0), PF_R(0.1), PF_R(0.2), (pf_real)kap);
+            pf_vmf_lobe o = pf_specaa_vmf_lobe(l, k);
+            long double e = fabsl((long double)o.kappa - ref) / ref;
+            if (e > worst) worst = e;
+            PF_CHECK(o.mu.x == l.mu.x && o.amp == l.amp, "axis and amplitude kept");
+        }
+        pf_test_note("vMF kappa' max rel err %.3Lg eps", worst / PF_TEST_EPS);
+        PF_CHECK(worst <= 8.0L * PF_TEST_EPS, "%Lg", worst);
+    }
+}
+
+/* Degenerate derivatives: the documented finite answers. */
+static void edge_degenerate(void)
+{
+    pf_real kap = PF_SPECAA_KAPPA, s2 = PF_SPECAA_SIGMA2, inf = PF_REAL_MAX * (PF_R(1.0) + PF_R(1.0));
+    pf_real nan = inf - inf;
+    pf_vec3 z = v3(0, 0, 0), big = v3(1e18L, 0, 0), vi = pf_vec3_make(inf, 0, 0), vn = pf_vec3_make(nan, 0, nan);
+    pf_vec3 h = pf_vec3_normalize(v3(0.1L, 0.2L, 0.9L));
+    pf_vec3 wo = pf_vec3_normalize(v3(0.3L, 0.1L, 0.9L)), wi = pf_vec3_normalize(v3(-0.25L, -0.05L, 0.9L));
+    pf_slope_stats s = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.01), PF_R(0.01), PF_R(0.0));
+    pf_specaa_kernel ka;
+    pf_real r;
+    (void)vi; (void)vn; (void)h; (void)nan;
+    PF_CHECK(pf_specaa_kernel_normal(z, z, s2, kap) == PF_R(0.0), "zero");
+    PF_CHECK(pf_specaa_kernel_normal(big, z, s2, kap) == kap, "huge");
+#ifndef __FAST_MATH__
+    PF_CHECK(pf_specaa_kernel_normal(vi, z, s2, kap) == kap, "inf");
+    PF_CHECK(pf_specaa_kernel_normal(vn, z, s2, kap) == kap, "nan");
+    PF_CHECK(pf_specaa_kernel_halfvector(h, vn, z, s2, kap) == kap, "halfvector nan");
+    PF_CHECK(pf_specaa_kernel_halfvector(pf_vec3_make(PF_R(0.0), PF_R(1.0), PF_R(0.0)), v3(0, 0, 0.01L), z, s2, kap) == kap,
+             "halfvector on the horizon");
+    ka = pf_specaa_kernel_aniso(vn, z, s2, kap);
+    PF_CHECK(ka.var_x == PF_R(0.5) * kap && ka.var_y == PF_R(0.5) * kap && ka.cov_xy == PF_R(0.0), "aniso nan");
+    ka = pf_specaa_kernel_aniso(vi, vi, s2, kap);
+    PF_CHECK(ka.var_x == PF_R(0.5) * kap && ka.cov_xy == PF_R(0.0), "aniso inf");
+    r = pf_specaa_leadr_specular(wo, wi, s, PF_R(0.04), vn, vn);
+    PF_CHECK(r == pf_leadr_specular(wo, wi, pf_specaa_slope_stats(s, kap), PF_R(0.04)), "leadr nan = leadr kappa");
+    PF_CHECK(pf_specaa_alpha(nan, PF_R(0.0)) == PF_R(0.0), "alpha nan");
+#endif
+    ka = pf_specaa_kernel_aniso(big, big, s2, kap);
+    PF_CHECK(ka.var_x + ka.var_y <= kap * (PF_R(1.0) + PF_R(4.0) * PF_REAL_EPSILON), "aniso huge trace %g", (double)(ka.var_x + ka.var_y));
+    r = pf_specaa_leadr_specular(wo, wi, s, PF_R(0.04), big, big);
+    PF_CHECK(r == r && r >= PF_R(0.0) && r < PF_REAL_MAX, "leadr huge finite %g", (double)r);
+    PF_CHECK(pf_specaa_alpha(PF_R(0.5), kap) <= PF_R(1.0), "saturated");
+    PF_CHECK(pf_specaa_alpha_projected(PF_R(0.5), inf) == PF_R(1.0), "projected inf");
+    PF_CHECK(pf_specaa_vmf_kappa(PF_R(100.0), inf) >= PF_VMF_KAPPA_MIN, "vmf inf");
+    r = pf_specaa_vmf_kappa(PF_R(100.0), nan);
+    PF_CHECK(r == r && r > PF_R(0.0), "vmf nan %g", (double)r);
+}
+
+/* ------------------------------------------------------------------ the baker */
+/* Footprint moments of level l, texel (i, j), for power-of-two sides (the box of 2^l texels),
+   in long double: the per-axis variance and E[alpha^2]. */
+static void box_stats(const pf_real *nrm, const pf_real *rough, pf_real a0, int w, int l, int i, int j,
+                      long double *var, long double *ea2)
+{
+    int n = 1 << l, x, y;
+    long double sx = 0, sy = 0, sxx = 0, syy = 0, aa = 0, m4 = 0, v, rho;
+    for (y = j * n; y < (j + 1) * n; ++y)
+        for (x = i * n; x < (i + 1) * n; ++x) {
+            const pf_real *p = nrm + 3 * ((long long)y * w + x);
+            long double p0 = (long double)p[0], p1 = (long double)p[1], p2 = (long double)p[2];
+            long double u = -p0 / p2, v2 = -p1 / p2;
+            long double a = rough ? (long double)rough[(long long)y * w + x] : (long double)a0;
+            sx += u; sy += v2; aa += a * a;
+        }
+    sx /= n * n; sy /= n * n;
+    for (y = j * n; y < (j + 1) * n; ++y) /* central moments, second pass */
+        for (x = i * n; x < (i + 1) * n; ++x) {
+            const pf_real *p = nrm + 3 * ((long long)y * w + x);
+            long double du = -(long double)p[0] / (long double)p[2] - sx, dv = -(long double)p[1] / (long double)p[2] - sy;
+            sxx += du * du; syy += dv * dv; m4 += (du * du + dv * dv) * (du * du + dv * dv);
+        }
+    sxx /= n * n; syy /= n * n; m4 /= n * n;
+    v = 0.5L * (sxx + syy);
+    rho = m4 > 0 ? 8.0L * v * v / m4 : 1.0L;
+    if (rho > 2.0L) rho = 2.0L;
+    *var = v * rho;
+    *ea2 = aa / (n * n);
+}
+
+static void test_bake(void)
+{
+    enum { W = 32, H = 16 };
+    static pf_real nrm[W * H * 3], rough[W * H];
+    pf_real *scratch, *alpha, *var;
+    long long nt = pf_mip_texel_count(W, H);
+    long double worst = 0.0L, worstv = 0.0L;
+    int pass, l;
+    scratch = (pf_real *)malloc((size_t)pf_specaa_bake_scratch_reals(W, H) * sizeof(pf_real));
+    alpha = (pf_real *)malloc((size_t)nt * sizeof(pf_real));
+    var = (pf_real *)malloc((size_t)nt * sizeof(pf_real));
+    if (!scratch || !alpha || !var) { PF_CHECK(0, "malloc"); free(scratch); free(alpha); free(var); return; }
+    for (pass = 0; pass < 3; ++pass) {
+        pf_specaa_bake_desc d;
+        int t;
+        for (t = 0; t < W * H; ++t) {
+            long double x = 0.6L * (urand() - 0.5L), y = 0.6L * (urand() - 0.5L), z = 1.0L;
+            if (pass == 0) x = y = 0.0L;              /* flat: alpha kept */
+            nrm[3 * t] = (pf_real)x; nrm[3 * t + 1] = (pf_real)y;
+            nrm[3 * t + 2] = (pf_real)(z * (0.5L + urand())); /* not unit */
+            rough[t] = (pf_real)(0.05L + 0.4L * urand());
+        }
+        memset(&d, 0, sizeof d);
+        d.normals = nrm;
+        d.roughness = pass == 2 ? rough : NULL;
+        d.width = W; d.height = H;
+        d.alpha = PF_R(0.1);
+        d.ndf = pass == 1 ? PF_SPECAA_NDF_BECKMANN : PF_SPECAA_NDF_GGX;
+        d.gain = PF_R(0.0);
+        PF_CHECK(pf_specaa_bake(&d, scratch, alpha, var) == PF_OK, "bake");
+        for (l = 0; l < pf_mip_level_count(W, H); ++l) {
+            int lw = pf_mip_level_size(W, l), lh = pf_mip_level_size(H, l), i, j;
+            long long off = pf_mip_level_offset(W, H, l);
+            if (lw * (1 << l) != W || lh * (1 << l) != H) continue; /* box footprints only */
+            for (j = 0; j < lh; ++j)
+                for (i = 0; i < lw; ++i) {
+                    long double v, ea2, g = pass == 1 ? (long double)PF_SPECAA_GAIN_BECKMANN
+                                                      : (long double)PF_SPECAA_GAIN_GGX;
+                    long double ref, e, ev;
+                    box_stats(nrm, d.roughness, d.alpha, W, l, i, j, &v, &ea2);
+                    ref = sqrtl(ea2 + 2.0L * g * v);
+                    e = fabsl((long double)alpha[off + (long long)j * lw + i] - ref) / ref;
+                    ev = fabsl((long double)var[off + (long long)j * lw + i] - v) / (v + 1e-3L);
+                    if (e > worst) worst = e;
+                    if (ev > worstv) worstv = ev;
+                }
+        }
+        if (pass == 0) {
+            long long t2;
+            int ok = 1;
+            for (t2 = 0; t2 < nt; ++t2) ok &= alpha[t2] == PF_R(0.1) && var[t2] == PF_R(0.0);
+            PF_CHECK(ok, "flat map: alpha kept, variance 0");
+        }
+    }
+    pf_test_note("alpha max rel err %.3Lg eps, variance %.3Lg eps", worst / PF_TEST_EPS, worstv / PF_TEST_EPS);
+    PF_CHECK(worst <= 256.0L * PF_TEST_EPS, "%Lg", worst);
+    PF_CHECK(worstv <= 4096.0L * PF_TEST_EPS, "%Lg", worstv); /* measured 2.3e3 eps (float): the fourth moment from raw moments */
+    /* errors: nothing written */
+    {
+        pf_specaa_bake_desc d;
+        memset(&d, 0, sizeof d);
+        d.normals = nrm; d.width = W; d.height = H; d.alpha = PF_R(0.1);
+        alpha[0] = PF_R(-7.0);
+        PF_CHECK(pf_specaa_bake(NULL, scratch, alpha, NULL) == PF_ERR_ARG, "NULL desc");
+        PF_CHECK(pf_specaa_bake(&d, NULL, alpha, NULL) == PF_ERR_ARG, "NULL scratch");
+        PF_CHECK(pf_specaa_bake(&d, scratch, NULL, NULL) == PF_ERR_ARG, "NULL out");
+        d.ndf = 7;
+        PF_CHECK(pf_specaa_bake(&d, scratch, alpha, NULL) == PF_ERR_ARG, "ndf");
+        d.ndf = 0; d.gain = PF_R(-1.0);
+        PF_CHECK(pf_specaa_bake(&d, scratch, alpha, NULL) == PF_ERR_ARG, "gain");
+        d.gain = PF_R(0.0); d.width = 0;
+        PF_CHECK(pf_specaa_bake(&d, scratch, alpha, NULL) == PF_ERR_ARG, "width");
+        d.width = PF_MAX_SIDE + 1;
+        PF_CHECK(pf_specaa_bake(&d, scratch, alpha, NULL) == PF_ERR_SIZE, "side");
+        PF_CHECK(alpha[0] == PF_R(-7.0), "nothing written");
+        PF_CHECK(pf_specaa_bake_scratch_reals(0, 4) == 0 && pf_specaa_bake_scratch_reals(3, 5) == PF_SPECAA_BAKE_CHANNELS * pf_mip_texel_count(3, 5),
+                 "scratch size");
+    }
+    free(scratch); free(alpha); free(var);
+}
+
+/* Odd sizes and bad texels: the polyphase footprint keeps the global mean (the top texel is
+   the whole map's statistics); NaN and zero normals read as +z. */
+static void edge_bake_odd(void)
+{
+    enum { W = 5, H = 3 };
+    pf_real nrm[W * H * 3], scratch[PF_SPECAA_BAKE_CHANNELS * 40], alpha[40], var[40];
+    pf_specaa_bake_desc d;
+    long double sx = 0, sy = 0, sxx = 0, syy = 0, v;
+    int t, top;
+    for (t = 0; t < W * H; ++t) {
+        nrm[3 * t] = (pf_real)(0.3L * ((t * 7) % 5 - 2) / 2.0L);
+        nrm[3 * t + 1] = (pf_real)(0.2L * ((t * 3) % 4 - 1.5L));
+        nrm[3 * t + 2] = PF_R(1.0);
+    }
+    for (t = 0; t < W * H; ++t) {
+        long double u = -(long double)nrm[3 * t], w = -(long double)nrm[3 * t + 1];
+        sx += u; sy += w; sxx += u * u; syy += w * w;
+    }
+    sx /= W * H; sy /= W * H; sxx /= W * H; syy /= W * H;
+    v = 0.5L * ((sxx - sx * sx) + (syy - sy * sy));
+    {
+        long double m4 = 0, rho;
+        for (t = 0; t < W * H; ++t) {
+            long double du = -(long double)nrm[3 * t] - sx, dv = -(long double)nrm[3 * t + 1] - sy;
+            m4 += (du * du + dv * dv) * (du * du + dv * dv);
+        }
+        m4 /= W * H;
+        rho = 8.0L * v * v / m4;
+        v *= rho > 2.0L ? 2.0L : rho;
+    }
+    memset(&d, 0, sizeof d);
+    d.normals = nrm; d.width = W; d.height = H; d.alpha = PF_R(0.2); d.ndf = PF_SPECAA_NDF_BECKMANN;
+    PF_CHECK(pf_specaa_bake(&d, scratch, alpha, var) == PF_OK, "bake");
+    top = (int)pf_mip_texel_count(W, H) - 1;
+    PF_CHECK(fabsl((long double)var[top] - v) <= 1e-4L, "top variance %g vs %Lg", (double)var[top], v);
+#ifndef __FAST_MATH__
+    { pf_real i2 = PF_REAL_MAX * (PF_R(1.0) + PF_R(1.0)); nrm[0] = i2 - i2; } /* NaN */
+    nrm[3] = nrm[4] = nrm[5] = PF_R(0.0);
+    PF_CHECK(pf_specaa_bake(&d, scratch, alpha, var) == PF_OK, "bake");
+    {
+        int ok = 1;
+        for (t = 0; t <= top; ++t) ok &= alpha[t] == alpha[t] && var[t] == var[t];
+        PF_CHECK(ok, "NaN and zero normals give finite texels");
+        PF_CHECK(var[0] == PF_R(0.0) && var[1] == PF_R(0.0), "read as +z");
+    }
+#endif
+}
+
+int main(int argc, char **argv)
+{
+    PF_TEST_BEGIN(argc, argv);
+    PF_TEST_RUN(test_kernel_sphere);
+    PF_TEST_RUN(test_kernel_normal_iso);
+    PF_TEST_RUN(test_kernel_halfvector);
+    PF_TEST_RUN(test_projected_map);
+    PF_TEST_RUN(test_compose);
+    PF_TEST_RUN(edge_degenerate);
+    PF_TEST_RUN(test_bake);
+    PF_TEST_RUN(edge_bake_odd);
+    return PF_TEST_END();
+}
