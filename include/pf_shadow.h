@@ -359,7 +359,7 @@ PF_STRUCT_BEGIN(pfi_msm_state)
 PF_STRUCT_END(pfi_msm_state)
 
 PF_DEF pfi_msm_state pfi_shadow_msm_state(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias,
-                                          pf_real uf_lo, pf_real uf_hi)
+                                          pf_real uf_lo, pf_real uf_hi, pf_real floor22, pf_real floor33)
 {
     pfi_msm_state r;
     pf_real keep = PF_R(1.0) - moment_bias, coin = PF_R(0.5) * moment_bias;
@@ -379,10 +379,10 @@ PF_DEF pfi_msm_state pfi_shadow_msm_state(pf_depth_moments4 m, pf_real d, pf_rea
     pf_real b4 = pf_max(PFI_MSM_BIASED(m.m4, moment_bias, keep, coin), PFI_MSM_LOW(b22));
     pf_real uf = pf_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), uf_lo, uf_hi);
     /* L D L^T of the Hankel matrix */
-    pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + PFI_MSM_D22_FLOOR);
+    pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + floor22);
     pf_real e32 = b3 - b1 * b2; /* l32 d22 */
     pf_real l32 = e32 * i22;
-    pf_real i33 = PF_R(1.0) / pf_max((b4 - b22) - l32 * e32, PFI_MSM_NOISE * b4 + PFI_MSM_D33_FLOOR);
+    pf_real i33 = PF_R(1.0) / pf_max((b4 - b22) - l32 * e32, PFI_MSM_NOISE * b4 + floor33);
     /* y = L^-1 v(uf); c3 = y3/d33; K(uf) = 1 + y2^2/d22 + y3^2/d33 */
     pf_real y2 = uf - b1;
     pf_real y3 = (uf * uf - b2) - l32 * y2;
@@ -421,7 +421,8 @@ PF_DEF pfi_msm_state pfi_shadow_msm_state(pf_depth_moments4 m, pf_real d, pf_rea
 /* (upper, w1) of the Hamburger reconstruction, the receiver clamped to [-1, 2]. */
 PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
 {
-    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(-1.0), PF_R(2.0));
+    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(-1.0), PF_R(2.0), PFI_MSM_D22_FLOOR,
+                                           PFI_MSM_D33_FLOOR);
     return pf_vec2_make(r.upper, r.w1);
 }
 
@@ -472,9 +473,10 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
    min changes no exact value and keeps any rounding of the four-atom form from raising the
    bound. The receiver is clamped to uf in [0, 1] (the support). Every intermediate is finite
    for every finite input; the result is in [0, 1]. */
-PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
+PF_DEF pf_real pfi_shadow_msm_hausdorff_f(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias,
+                                          pf_real floor22, pf_real floor33)
 {
-    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(0.0), PF_R(1.0));
+    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(0.0), PF_R(1.0), floor22, floor33);
     pf_real uf = r.uf, lo = -uf, hi = PF_R(1.0) - uf;
     pf_real plo = PF_R(1.0) + lo * (r.qb + r.qa * lo);
     pf_real phi = PF_R(1.0) + hi * (r.qb + r.qa * hi);
@@ -485,10 +487,10 @@ PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real m
     pf_real in_below = pf_min(plo, -(two_qa * lo + r.qb));
     pf_real inside = r.qa < PF_R(0.0) ? in_mid : (r.qb < PF_R(0.0) ? in_above : in_below);
     /* nu = u (1 - u) mu: b2 <= b1 and b3 <= b2 after the confinement, so n0, n1 >= 0 */
-    pf_real e11 = pf_max(r.b1 - r.b2, PFI_MSM_NOISE * r.b1 + PFI_MSM_D22_FLOOR);
+    pf_real e11 = pf_max(r.b1 - r.b2, PFI_MSM_NOISE * r.b1 + floor22);
     pf_real n1 = r.b2 - r.b3;
     pf_real l = pf_min(n1 / e11, PF_R(1.0));
-    pf_real e22 = pf_max((r.b3 - r.b4) - l * n1, PFI_MSM_NOISE * r.b3 + PFI_MSM_D33_FLOOR);
+    pf_real e22 = pf_max((r.b3 - r.b4) - l * n1, PFI_MSM_NOISE * r.b3 + floor33);
     pf_real g = uf - l, ag = PF_FABS(g);
     pf_real eg = e11 * ag;
     pf_real den = e22 + eg * ag;
@@ -498,6 +500,11 @@ PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real m
     pf_real four = (PF_R(1.0) - r.b1) + af / pf_max(hi, PF_R(1.0e-18)) + (g < PF_R(0.0) ? -far_term : far_term);
     pf_real outside = pf_min(r.upper, pf_max(four, PF_R(0.0)));
     return inside >= PF_R(0.0) ? r.upper : outside;
+}
+
+PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
+{
+    return pfi_shadow_msm_hausdorff_f(m, d, moment_bias, depth_bias, PFI_MSM_D22_FLOOR, PFI_MSM_D33_FLOOR);
 }
 
 /* ---------------------------------------------------------------- MSM at 64 bits per texel
@@ -521,9 +528,15 @@ PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real m
    PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT 1e-4: the smallest of the biases scanned on the bench
    scenes (3e-5 .. 1e-3, docs/shadow.md) for which storage at 64 bits meets the targets
    (lit fraction within 0.01 of fp32 MSM, no more leaking); Peters & Klein's 3e-5 is for fp32. */
-#define PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT PF_R(1.0e-4)
+#define PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT PF_R(2.0e-5)
 #define PF_SHADOW_BYTES_MSM16 8
 #define PF_SHADOW_MSM16_OFFSET PF_R(0.035955884801)
+#ifndef PFI_MSM16_D22_FLOOR
+#  define PFI_MSM16_D22_FLOOR PF_R(1.0e-5)
+#endif
+#ifndef PFI_MSM16_D33_FLOOR
+#  define PFI_MSM16_D33_FLOOR PF_R(3.0e-7)
+#endif
 
 /* q = Theta b + o: the values to store (16-bit UNORM) for the moments b of u = 1 - z. */
 PF_DEF pf_depth_moments4 pf_msm_quantize_moments(pf_depth_moments4 b)
@@ -554,13 +567,15 @@ PF_DEF pf_depth_moments4 pf_msm_dequantize_moments(pf_depth_moments4 q)
    finite q. */
 PF_DEF pf_real pf_shadow_msm16(pf_depth_moments4 q, pf_real d, pf_real moment_bias, pf_real depth_bias)
 {
-    return pf_shadow_msm(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias);
+    return pfi_shadow_msm_state(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias, PF_R(-1.0), PF_R(2.0),
+                                PFI_MSM16_D22_FLOOR, PFI_MSM16_D33_FLOOR).upper;
 }
 
 /* pf_shadow_msm16_hausdorff: the same with the Hausdorff bound. */
 PF_DEF pf_real pf_shadow_msm16_hausdorff(pf_depth_moments4 q, pf_real d, pf_real moment_bias, pf_real depth_bias)
 {
-    return pf_shadow_msm_hausdorff(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias);
+    return pfi_shadow_msm_hausdorff_f(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias, PFI_MSM16_D22_FLOOR,
+                                      PFI_MSM16_D33_FLOOR);
 }
 
 /* ---------------------------------------------------------------- 16- and 32-bit float storage
