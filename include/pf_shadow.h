@@ -597,16 +597,18 @@ PF_DEF pf_real pf_shadow_msm16_hausdorff(pf_depth_moments4 q, pf_real d, pf_real
    must keep exp(c) and its square exp(2c) below the format's largest finite value:
    PF_EVSM_EXP_MAX_F16 = 5.54 (exp(11.08) = 64853 < 65504, which rounds to 64864 in fp16) and
    PF_EVSM_EXP_MAX_F32 = 44 (pf_moments.h). The fp16 defaults take the ceiling for both warps.
-   fp16 keeps 11 significant bits: E[z^2] - E[z]^2 then cancels to about 3 x 2^-12 = 7e-4 at
-   z ~ 1 (the rounding of m2 and of 2 m1 times m1's), so fp16 VSM needs that as its minimum
-   variance (PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT): a flat lit plane must not read shadowed.
-   For EVSM the minimum variance is in depth units and is mapped through the warp's slope; the
-   warped values' fp16 rounding is relative (2^-12 of p and of p^2) and the same 7e-4 floor
-   (times (2 c w)^2 at the warp's mean) covers it. Float storage is linear up to its
-   rounding: the hardware filters the decoded values. */
+   fp16 keeps 11 significant bits, so a stored depth near the far plane is off by up to 2^-12
+   (2.4e-4) and E[z^2] - E[z]^2 by up to 3 x 2^-12: fp16 VSM reads spurious variance where the
+   footprint is flat and leaks behind contact occluders (docs/shadow.md: mean leak 0.23 against
+   0.10 with fp32 on the bench scenes). A larger minimum variance does not help: a scan of
+   1e-6 .. 7e-4 on the bench scenes gave the lowest error and leak at 1e-6 for fp16 VSM and
+   EVSM alike (EVSM maps it through the warp's slope, and fp16's relative rounding of the warp
+   is far below it), and no receiver-at-its-own-depth error gained from a larger one; so
+   PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT is the fp32 default. Float storage is linear up to its
+   rounding: the sampler filters the decoded values. */
 #define PF_SHADOW_EVSM16_POS_DEFAULT PF_EVSM_EXP_MAX_F16
 #define PF_SHADOW_EVSM16_NEG_DEFAULT PF_EVSM_EXP_MAX_F16
-#define PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT PF_R(7.0e-4)
+#define PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT
 #define PF_SHADOW_BYTES_VSM16 4
 #define PF_SHADOW_BYTES_EVSM2_16 4
 #define PF_SHADOW_BYTES_EVSM4_16 8

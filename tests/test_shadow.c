@@ -1551,28 +1551,48 @@ static void test_stored_formats_scenes(void)
     double *zd = (double *)malloc(sizeof(double) * SHS_N * SHS_N);
     pf_real *z = (pf_real *)malloc(sizeof(pf_real) * SHS_N * SHS_N);
     unsigned short *m16 = (unsigned short *)malloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    unsigned short *e16 = (unsigned short *)malloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    const pf_real c16 = PF_SHADOW_EVSM16_POS_DEFAULT;
     shs_lookup *L = (shs_lookup *)malloc(sizeof(shs_lookup) * SHS_LOOKUPS_PER_SCENE);
     int s, i, worst_scene = 0, nonfinite = 0;
-    long double worst_diff = 0, worst_leak_gap = -1;
-    char line[256];
-    if (!zd || !z || !m16 || !L) { PF_CHECK(0, "out of memory"); free(zd); free(z); free(m16); free(L); return; }
+    long double worst_diff = 0, worst_leak_gap = -1, worst_e16 = 0;
+    char line[320];
+    if (!zd || !z || !m16 || !e16 || !L) { PF_CHECK(0, "out of memory"); free(zd); free(z); free(m16); free(e16); free(L); return; }
     for (s = 0; s < SHS_N_SCENES; ++s) {
         shs_stats st32, st16, sth32, sth16;
-        long double diff = 0;
+        long double diff = 0, de16 = 0;
         memset(&st32, 0, sizeof st32); memset(&st16, 0, sizeof st16);
         memset(&sth32, 0, sizeof sth32); memset(&sth16, 0, sizeof sth16);
         shs_make_scene(s, zd);
         for (i = 0; i < SHS_N * SHS_N; ++i) z[i] = (pf_real)zd[i];
-        if (pf_shadow_encode_msm16(z, SHS_N * SHS_N, m16) != PF_OK) { PF_CHECK(0, "encode failed"); break; }
+        if (pf_shadow_encode_msm16(z, SHS_N * SHS_N, m16) != PF_OK
+            || pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, SHS_N * SHS_N, c16, c16, e16) != PF_OK) {
+            PF_CHECK(0, "encode failed");
+            break;
+        }
         shs_scene_lookups(s, L);
         for (i = 0; i < SHS_LOOKUPS_PER_SCENE; ++i) {
             long double acc[4] = { 0, 0, 0, 0 };
             int x, y, k, n = L[i].size * L[i].size;
             pf_depth_moments4 b;
             pf_real v16, v32, h16, h32;
+            long double ae[4] = { 0, 0, 0, 0 }, a32[4] = { 0, 0, 0, 0 };
+            pf_real e16v, e32v;
             for (y = L[i].y0; y < L[i].y0 + L[i].size; ++y)
-                for (x = L[i].x0; x < L[i].x0 + L[i].size; ++x)
-                    for (k = 0; k < 4; ++k) acc[k] += (long double)m16[4 * (y * SHS_N + x) + k] / 65535.0L;
+                for (x = L[i].x0; x < L[i].x0 + L[i].size; ++x) {
+                    pf_evsm_moments e = pf_evsm_moments_from_depth(z[y * SHS_N + x], c16, c16);
+                    for (k = 0; k < 4; ++k) {
+                        acc[k] += (long double)m16[4 * (y * SHS_N + x) + k] / 65535.0L;
+                        ae[k] += (long double)pf_shadow_half_to_real(e16[4 * (y * SHS_N + x) + k]);
+                    }
+                    a32[0] += (long double)e.pos1, a32[1] += (long double)e.pos2, a32[2] += (long double)e.neg1, a32[3] += (long double)e.neg2;
+                }
+            e16v = pf_shadow_evsm4(pf_evsm_moments_make((pf_real)(ae[0] / n), (pf_real)(ae[1] / n), (pf_real)(ae[2] / n), (pf_real)(ae[3] / n)),
+                                   L[i].d, c16, c16, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+            e32v = pf_shadow_evsm4(pf_evsm_moments_make((pf_real)(a32[0] / n), (pf_real)(a32[1] / n), (pf_real)(a32[2] / n), (pf_real)(a32[3] / n)),
+                                   L[i].d, c16, c16, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+            nonfinite += !(e16v - e16v == PF_R(0.0));
+            de16 += fabsl((long double)e16v - (long double)e32v);
             b = pf_depth_moments4_make((pf_real)(acc[0] / n), (pf_real)(acc[1] / n), (pf_real)(acc[2] / n), (pf_real)(acc[3] / n));
             v16 = pf_shadow_msm16(b, L[i].d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
             h16 = pf_shadow_msm16_hausdorff(b, L[i].d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
@@ -1586,18 +1606,22 @@ static void test_stored_formats_scenes(void)
             diff += fabsl((long double)v16 - (long double)v32);
         }
         diff /= SHS_LOOKUPS_PER_SCENE;
+        de16 /= SHS_LOOKUPS_PER_SCENE;
+        if (de16 > worst_e16) worst_e16 = de16;
         if (diff > worst_diff) worst_diff = diff, worst_scene = s;
         if (shs_mean_leak(&st16) - shs_mean_leak(&st32) > worst_leak_gap) worst_leak_gap = shs_mean_leak(&st16) - shs_mean_leak(&st32);
-        snprintf(line, sizeof line, "%s: MSM64 vs fp32 %.4f, err %.4f/%.4f leak %.4f/%.4f, Hausdorff err %.4f/%.4f",
+        snprintf(line, sizeof line, "%s: MSM64 vs fp32 %.4f, err %.4f/%.4f leak %.4f/%.4f, Hausdorff err %.4f/%.4f, "
+                 "EVSM-4 fp16 vs fp32 (c = 5.54) %.4f",
                  shs_scene_names[s], (double)diff, (double)shs_mean_err(&st16), (double)shs_mean_err(&st32),
                  (double)shs_mean_leak(&st16), (double)shs_mean_leak(&st32), (double)shs_mean_err(&sth16),
-                 (double)shs_mean_err(&sth32));
+                 (double)shs_mean_err(&sth32), (double)de16);
         pf_test_note("%s", line);
     }
     PF_CHECK(nonfinite == 0, "%d non-finite", nonfinite);
+    PF_CHECK(worst_e16 <= 0.005L, "fp16 EVSM-4 off fp32 storage at the same exponent by %.4f", (double)worst_e16);
     PF_CHECK(worst_diff <= 0.01L, "64-bit MSM off fp32 MSM by %.4f on %s", (double)worst_diff, shs_scene_names[worst_scene]);
     PF_CHECK(worst_leak_gap <= 0.002L, "64-bit MSM leaks %.4f more than fp32", (double)worst_leak_gap);
-    free(zd); free(z); free(m16); free(L);
+    free(zd); free(z); free(m16); free(e16); free(L);
 }
 
 int main(int argc, char **argv)
