@@ -1308,7 +1308,7 @@ static void test_msm16_linear(void)
         want[1] = (long double)a.m2 + (long double)t * ((long double)b.m2 - (long double)a.m2);
         want[2] = (long double)a.m3 + (long double)t * ((long double)b.m3 - (long double)a.m3);
         want[3] = (long double)a.m4 + (long double)t * ((long double)b.m4 - (long double)a.m4);
-        got[0] = dm.m1, got[1] = dm.m2, got[2] = dm.m3, got[3] = dm.m4;
+        got[0] = (long double)dm.m1, got[1] = (long double)dm.m2, got[2] = (long double)dm.m3, got[3] = (long double)dm.m4;
         if (pf_shadow_encode_msm16(zz, 1, sa) != PF_OK || pf_shadow_encode_msm16(zz + 1, 1, sb) != PF_OK) { worst_q = 1; break; }
         da = pf_shadow_decode_msm16(sa), db = pf_shadow_decode_msm16(sb);
         gotq[0] = (long double)da.m1 + (long double)t * ((long double)db.m1 - (long double)da.m1);
