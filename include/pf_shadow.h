@@ -37,9 +37,17 @@
      pf_shadow_evsm4(m4, d, c_pos, c_neg, min_variance, bleed)  EVSM, both warps      16
      pf_shadow_msm(m4, d, moment_bias, depth_bias)      MSM, Hamburger 4-moment       16
      pf_shadow_msm_bounds(m4, d, moment_bias, depth_bias)  (lower, upper) lit bounds
+     pf_shadow_msm_hausdorff(m4, d, moment_bias, depth_bias)  MSM, Hausdorff (depths in [0, 1]) 16
+     pf_shadow_msm16(q, d, moment_bias, depth_bias)     MSM of a 64-bit texel (4 x UNORM16)   8
+     pf_shadow_msm16_hausdorff(q, d, moment_bias, depth_bias)  the same, Hausdorff            8
+     pf_msm_quantize_moments(b), pf_msm_dequantize_moments(q)  Peters & Klein's 16-bit map
      pf_shadow_csm(m, d, terms, scale, offset)          CSM, Fourier series, <= 16 terms  8/term
      pf_csm_sum_begin, _add, _add_harmonic, _lit, _make   CSM streamed pair by pair (any M)
    All are pure, pointer-free and branch only on values: they paste into GLSL, HLSL, CUDA.
+   CPU only (caller buffers, library return codes): pf_shadow_encode_f32 / _f16 (VSM, EVSM-2,
+   EVSM-4, MSM texels in fp32 / fp16 with the exponent ceilings), pf_shadow_encode_msm16 /
+   _msm16_moments (64-bit MSM texels), pf_shadow_half_from_real / _to_real,
+   pf_shadow_decode_msm16; see "16- and 32-bit float storage" and "CPU encoders" below.
 
    ROBUSTNESS
      Every function returns a finite value in [0, 1] for every finite input (also under
@@ -78,7 +86,9 @@
      bleeding reduction); Annen, Mertens, Seidel, Flerackers, Kautz 2008 and Salvi 2008 (ESM);
      Lauritzen & McCool 2008 (EVSM, layered VSM); Peters & Klein 2015, "Moment Shadow
      Mapping", I3D (Hamburger 4MSM, Algorithm 2, with the author's erratum: the last case
-     returns 1 - w1). */
+     returns 1 - w1; Hausdorff 4MSM; sec. 4.3, the optimized 16-bit quantization); Krein &
+     Nudelman 1977, "The Markov Moment Problem and Extremal Problems" (canonical
+     representations, for the Hausdorff extremals). */
 #ifndef PF_SHADOW_H
 #define PF_SHADOW_H
 
@@ -110,9 +120,8 @@
 #define PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT PF_R(3.0e-5)
 #define PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT PF_R(0.0)
 
-/* Bytes per texel each method stores with fp32 channels (fp16 halves them where the method
-   tolerates it: VSM yes, EVSM only with exponents <= PF_EVSM_EXP_MAX_F16, MSM only with
-   Peters & Klein's optimized quantization, which pf_moments.h does not do). */
+/* Bytes per texel each method stores with fp32 channels (16-bit formats: PF_SHADOW_BYTES_MSM16,
+   _VSM16, _EVSM2_16, _EVSM4_16 below; EVSM in fp16 only with exponents <= PF_EVSM_EXP_MAX_F16). */
 #define PF_SHADOW_BYTES_VSM 8
 #define PF_SHADOW_BYTES_ESM 4
 #define PF_SHADOW_BYTES_EVSM2 8
