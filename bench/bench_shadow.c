@@ -314,6 +314,57 @@ static void storage_fill(void)
     free(zd); free(z); free(zr); free(q); free(qz); free(hv); free(he); free(hm);
 }
 
+/* The later quantization, for comparison only (notes): Peters, Muenstermann, Wetzstein & Klein
+   2017 (JCGT, "Improved moment shadow maps") store the moments of x = 2z - 1 in [-1, 1] through
+   two 2 x 2 maps, odd (1.5 b1 - 2 b3 + 1/2, (sqrt(3)/2) b1 - (2 sqrt(3)/9) b3 + 1/2) and even
+   (4 b2 - 4 b4, (b2 + b4)/2), each in [0, 1]. Encoded per texel in double and rounded to UNORM16
+   like pf_shadow_encode_msm16; the filtered values inverted in long double, converted to the
+   moments of u = 1 - z = (1 - x)/2 and read by pf_shadow_msm16's evaluator (its floors, its
+   bias) through q = Theta b + o. */
+static pf_depth_moments4 *g_msm17;
+static void msm17_store(double z, unsigned short *o)
+{
+    double x = 2.0 * z - 1.0, b1 = x, b2 = x * x, b3 = b2 * x, b4 = b2 * b2, q[4];
+    int k;
+    q[0] = 1.5 * b1 - 2.0 * b3 + 0.5;
+    q[1] = 0.8660254037844386 * b1 - 0.38490017945975050 * b3 + 0.5;
+    q[2] = 4.0 * b2 - 4.0 * b4;
+    q[3] = 0.5 * b2 + 0.5 * b4;
+    for (k = 0; k < 4; ++k) o[k] = (unsigned short)((q[k] < 0.0 ? 0.0 : (q[k] > 1.0 ? 1.0 : q[k])) * 65535.0 + 0.5);
+}
+static pf_depth_moments4 msm17_read(const long double *q)
+{
+    long double c1 = 0.8660254037844386L, c3 = 0.38490017945975050L, a = q[0] - 0.5L, b = q[1] - 0.5L;
+    long double det = -1.5L * c3 + 2.0L * c1;
+    long double b1 = (-a * c3 + 2.0L * b) / det, b3 = (1.5L * b - c1 * a) / det;
+    long double b2 = q[3] + q[2] / 8.0L, b4 = q[3] - q[2] / 8.0L;
+    long double u1 = (1 - b1) / 2, u2 = (1 - 2 * b1 + b2) / 4, u3 = (1 - 3 * b1 + 3 * b2 - b3) / 8;
+    long double u4 = (1 - 4 * b1 + 6 * b2 - 4 * b3 + b4) / 16;
+    return pf_msm_quantize_moments(pf_depth_moments4_make((pf_real)u1, (pf_real)u2, (pf_real)u3, (pf_real)u4));
+}
+static void msm17_fill(void)
+{
+    double *zd = (double *)pfb_alloc(sizeof(double) * SHS_N * SHS_N);
+    unsigned short *q = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    int s, x, y, k;
+    size_t i;
+    g_msm17 = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    for (s = 0; s < SHS_N_SCENES; ++s) {
+        shs_make_scene(s, zd);
+        for (i = 0; i < (size_t)SHS_N * SHS_N; ++i) msm17_store((double)(pf_real)zd[i], q + 4 * i);
+        for (i = (size_t)s * SHS_LOOKUPS_PER_SCENE; i < (size_t)(s + 1) * SHS_LOOKUPS_PER_SCENE; ++i) {
+            const shs_lookup *L = &g_lookups[i];
+            long double a[4] = { 0, 0, 0, 0 }, n = (long double)(L->size * L->size);
+            for (y = L->y0; y < L->y0 + L->size; ++y)
+                for (x = L->x0; x < L->x0 + L->size; ++x)
+                    for (k = 0; k < 4; ++k) a[k] += (long double)q[4 * (size_t)(y * SHS_N + x) + (size_t)k] / 65535.0L;
+            for (k = 0; k < 4; ++k) a[k] = (long double)(pf_real)(a[k] / n); /* the sampler's output */
+            g_msm17[i] = msm17_read(a);
+        }
+    }
+    free(zd); free(q);
+}
+
 #define MSM16_A PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT
 #define MV16 PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT
 PFB_METHOD(msm_haus, pf_shadow_msm_hausdorff(g_msm[IDX(y)], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
@@ -353,6 +404,8 @@ SR_FN(tb_msm16, pf_textbook_msm16(g_msm16_z[y].m1, g_msm16_z[y].m2, g_msm16_z[y]
 SR_FN(tb_msm16_a6, pf_textbook_msm16(g_msm16_z[y].m1, g_msm16_z[y].m2, g_msm16_z[y].m3, g_msm16_z[y].m4, x, PF_R(6.0e-5), PF_R(0.0)))
 SR_FN(tb_msm_haus, pf_textbook_msm_hausdorff(g_msm_z[y].m1, g_msm_z[y].m2, g_msm_z[y].m3, g_msm_z[y].m4, x,
                                              PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(msm17, pf_shadow_msm16(g_msm17[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm17_haus, pf_shadow_msm16_hausdorff(g_msm17[y], x, MSM16_A, PF_R(0.0)))
 SR_FN(msm_f16, pf_shadow_msm(g_msm_h[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
 SR_FN(vsm, pf_shadow_vsm(g_vsm[y], x, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
 SR_FN(vsm_f16, pf_shadow_vsm(g_vsm_h[y], x, MV16, PF_R(0.0)))
@@ -369,6 +422,8 @@ static const storage_row storage_rows[] = {
     { "msm 64-bit per texel (pf_shadow_msm16, bias 2e-5)", 8, sr_msm16, sr_msm, "msm fp32" },
     { "msm 64-bit per texel, bias 3e-5", 8, sr_msm16_fp32bias, sr_msm, "msm fp32" },
     { "msm 64-bit filtered then stored (pf_shadow_encode_msm16_moments)", 8, sr_msm16_filt, sr_msm, "msm fp32" },
+    { "msm 64-bit, Peters et al. 2017 quantization (x = 2z - 1), same evaluator", 8, sr_msm17, sr_msm, "msm fp32" },
+    { "hausdorff 64-bit, Peters et al. 2017 quantization", 8, sr_msm17_haus, sr_msm_haus, "hausdorff fp32" },
     { "msm u-moments in fp16, no quantization", 8, sr_msm_f16, sr_msm, "msm fp32" },
     { "msm textbook (alg. 2) on z-moments fp32", 16, sr_tb_msm, sr_msm, "msm fp32" },
     { "msm textbook 64-bit z-moments (engines), bias 2e-5", 8, sr_tb_msm16, sr_msm, "msm fp32" },
@@ -620,11 +675,12 @@ int main(int argc, char **argv)
     }
     csm_fill();
     storage_fill();
+    msm17_fill();
     build_notes();
     rc = pfb_main(argc, argv, "shadow", families, (int)(sizeof families / sizeof families[0]));
     free(g_lookups); free(g_zc); free(g_vsm); free(g_evsm2); free(g_evsm4); free(g_msm); free(g_msm_z); free(g_esm);
     free(g_csm); free(g_csm_all);
     free(g_msm16); free(g_msm16_z); free(g_msm16_f); free(g_msm_h); free(g_vsm_h); free(g_vsm_hf); free(g_evsm2_h);
-    free(g_evsm2_e16); free(g_evsm4_h); free(g_evsm4_e16);
+    free(g_evsm2_e16); free(g_evsm4_h); free(g_evsm4_e16); free(g_msm17);
     return rc;
 }
