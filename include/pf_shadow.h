@@ -540,14 +540,15 @@ PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real m
    component in [-6.5e-8, 1]; the encoders clamp to [0, 1]). The shader reads the filtered q
    and inverts: b = Theta^-1 (q - o); Theta^-1's rows (below, computed exactly from the
    paper's decimals and rounded) have absolute sums <= 1.414, so a UNORM16 rounding of
-   2^-17 per channel moves each moment by <= 1.08e-5 (the bias must cover that:
-   PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, docs/shadow.md).
+   2^-17 per channel moves each moment by <= 1.08e-5 (the pivot floors and the bias below
+   cover that).
    Linear: q is an affine function of the moments, so decode(lerp(q_a, q_b, t)) =
    lerp(b_a, b_b, t) exactly (up to the storage rounding): hardware bilinear, trilinear and
    anisotropic filtering of the stored texels still filters the moments
    (test_msm16_linear). The library applies it to its reversed-depth moments (u = 1 - z, u
-   in [0, 1], the same moment curve), so the decoded moments go straight to pf_shadow_msm or
-   pf_shadow_msm_hausdorff.
+   in [0, 1], the same moment curve), so the decoded moments are the ones pf_shadow_msm
+   reads; pf_shadow_msm16 and _hausdorff read them with pivot floors set for the storage
+   noise.
    Noise and bias. The UNORM16 rounding (<= 1.08e-5 per moment) is absolute, not relative like
    fp32's, so pf_shadow_msm16 and pf_shadow_msm16_hausdorff floor the pivots at that level
    (d22 >= 1e-5, d33 >= 3e-7, against 1e-9 and 1e-12 for fp32 moments; same form otherwise):
