@@ -646,7 +646,8 @@ PF_DEF pf_real pf_shadow_msm16_hausdorff(pf_depth_moments4 q, pf_real d, pf_real
    pf_shadow_encode_msm16_moments(b, n, out): the same from n filtered moment vectors (a blurred
    map or a mip level stored at 64 bits).
    Return PF_OK, or, having written nothing: PF_ERR_ARG for a NULL pointer, n < 0, an unknown
-   kind, a depth that is NaN, infinite or outside [0, 1], a non-finite moment, or an exponent
+   kind, a depth that is NaN, infinite or outside [0, 1], a moment outside [-1, 2] (those of
+   depths in [0, 1] lie in [0, 1]; NaN and infinities included), or an exponent
    that is not finite, not positive or above the format's ceiling (PF_EVSM_EXP_MAX_F16 for
    fp16, PF_EVSM_EXP_MAX_F32 for fp32; c_neg only checked for EVSM4); PF_ERR_SIZE when
    the output would exceed PF_MAX_REALS values. c_pos, c_neg are ignored by VSM and MSM.
@@ -781,7 +782,7 @@ PF_CPU_DEF void pfi_shadow_msm16_store(double b1, double b2, double b3, double b
     q[2] = (0.105877704 * b1 - 1.9077466311 * b2) + (9.3496555107 * b3 - 6.6543490743 * b4);
     q[3] = (9.7924062118 * b1 - 33.7652110555 * b2) + (47.9456096605 * b3 - 23.9728048165 * b4);
     for (k = 0; k < 4; ++k) {
-        double c = q[k] < 0.0 ? 0.0 : (q[k] > 1.0 ? 1.0 : q[k]);
+        double c = q[k] > 0.0 ? (q[k] < 1.0 ? q[k] : 1.0) : 0.0; /* NaN: 0 */
         out[k] = (unsigned short)(c * 65535.0 + 0.5);
     }
 }
@@ -804,10 +805,10 @@ PF_CPU_DEF int pf_shadow_encode_msm16_moments(const pf_depth_moments4 *b, long l
     long long i;
     if (!b || !out || n < 0) return PF_ERR_ARG;
     if (pf_size_mul(n, 4) < 0) return PF_ERR_SIZE;
-    for (i = 0; i < n; ++i) {
-        pf_real s = b[i].m1 + b[i].m2 + b[i].m3 + b[i].m4;
-        if (!(s - s == PF_R(0.0))) return PF_ERR_ARG; /* NaN or inf in any of them */
-    }
+    for (i = 0; i < n; ++i) /* moments of depths in [0, 1] lie in [0, 1]; NaN fails too */
+        if (!(b[i].m1 >= PF_R(-1.0) && b[i].m1 <= PF_R(2.0) && b[i].m2 >= PF_R(-1.0) && b[i].m2 <= PF_R(2.0)
+              && b[i].m3 >= PF_R(-1.0) && b[i].m3 <= PF_R(2.0) && b[i].m4 >= PF_R(-1.0) && b[i].m4 <= PF_R(2.0)))
+            return PF_ERR_ARG;
     for (i = 0; i < n; ++i)
         pfi_shadow_msm16_store((double)b[i].m1, (double)b[i].m2, (double)b[i].m3, (double)b[i].m4, out + 4 * i);
     return PF_OK;

@@ -1485,12 +1485,14 @@ static void test_shadow_encode_bad_input(void)
     fails += pf_shadow_encode_msm16(z, PF_MAX_REALS / 2, h) != PF_ERR_SIZE;
     fails += pf_shadow_encode_msm16_moments(mb, PF_MAX_REALS / 2, h) != PF_ERR_SIZE;
     mb[0] = pf_depth_moments4_from_depth(PF_R(0.5));
-    for (i = 0; i < 4; ++i) {
+    for (i = 0; i < 6; ++i) {
         mb[1] = pf_depth_moments4_from_depth(PF_R(0.5));
         if (i == 0) mb[1].m1 = (pf_real)NAN;
         if (i == 1) mb[1].m2 = (pf_real)INFINITY;
         if (i == 2) mb[1].m3 = -(pf_real)INFINITY;
         if (i == 3) mb[1].m4 = (pf_real)NAN;
+        if (i == 4) mb[1].m1 = PF_R(1e30), mb[1].m2 = PF_R(-1e30); /* huge: no inf - inf inside */
+        if (i == 5) mb[1].m4 = PF_R(2.001);
         fails += pf_shadow_encode_msm16_moments(mb, 2, h) != PF_ERR_ARG;
     }
     fails += pf_shadow_encode_msm16_moments(NULL, 2, h) != PF_ERR_ARG;
