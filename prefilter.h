@@ -7675,9 +7675,17 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
      pf_shadow_evsm4(m4, d, c_pos, c_neg, min_variance, bleed)  EVSM, both warps      16
      pf_shadow_msm(m4, d, moment_bias, depth_bias)      MSM, Hamburger 4-moment       16
      pf_shadow_msm_bounds(m4, d, moment_bias, depth_bias)  (lower, upper) lit bounds
+     pf_shadow_msm_hausdorff(m4, d, moment_bias, depth_bias)  MSM, Hausdorff (depths in [0, 1]) 16
+     pf_shadow_msm16(q, d, moment_bias, depth_bias)     MSM of a 64-bit texel (4 x UNORM16)   8
+     pf_shadow_msm16_hausdorff(q, d, moment_bias, depth_bias)  the same, Hausdorff            8
+     pf_msm_quantize_moments(b), pf_msm_dequantize_moments(q)  Peters & Klein's 16-bit map
      pf_shadow_csm(m, d, terms, scale, offset)          CSM, Fourier series, <= 16 terms  8/term
      pf_csm_sum_begin, _add, _add_harmonic, _lit, _make   CSM streamed pair by pair (any M)
    All are pure, pointer-free and branch only on values: they paste into GLSL, HLSL, CUDA.
+   CPU only (caller buffers, library return codes): pf_shadow_encode_f32 / _f16 (VSM, EVSM-2,
+   EVSM-4, MSM texels in fp32 / fp16 with the exponent ceilings), pf_shadow_encode_msm16 /
+   _msm16_moments (64-bit MSM texels), pf_shadow_half_from_real / _to_real,
+   pf_shadow_decode_msm16; see "16- and 32-bit float storage" and "CPU encoders" below.
 
    ROBUSTNESS
      Every function returns a finite value in [0, 1] for every finite input (also under
@@ -7716,7 +7724,9 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
      bleeding reduction); Annen, Mertens, Seidel, Flerackers, Kautz 2008 and Salvi 2008 (ESM);
      Lauritzen & McCool 2008 (EVSM, layered VSM); Peters & Klein 2015, "Moment Shadow
      Mapping", I3D (Hamburger 4MSM, Algorithm 2, with the author's erratum: the last case
-     returns 1 - w1). */
+     returns 1 - w1; Hausdorff 4MSM; sec. 4.3, the optimized 16-bit quantization); Krein &
+     Nudelman 1977, "The Markov Moment Problem and Extremal Problems" (canonical
+     representations, for the Hausdorff extremals). */
 #ifndef PF_SHADOW_H
 #define PF_SHADOW_H
 
@@ -7748,9 +7758,8 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
 #define PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT PF_R(3.0e-5)
 #define PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT PF_R(0.0)
 
-/* Bytes per texel each method stores with fp32 channels (fp16 halves them where the method
-   tolerates it: VSM yes, EVSM only with exponents <= PF_EVSM_EXP_MAX_F16, MSM only with
-   Peters & Klein's optimized quantization, which pf_moments.h does not do). */
+/* Bytes per texel each method stores with fp32 channels (16-bit formats: PF_SHADOW_BYTES_MSM16,
+   _VSM16, _EVSM2_16, _EVSM4_16 below; EVSM in fp16 only with exponents <= PF_EVSM_EXP_MAX_F16). */
 #define PF_SHADOW_BYTES_VSM 8
 #define PF_SHADOW_BYTES_ESM 4
 #define PF_SHADOW_BYTES_EVSM2 8
@@ -7988,10 +7997,27 @@ PF_DEF pf_real pf_shadow_evsm4(pf_evsm_moments m, pf_real d, pf_real c_pos, pf_r
 #  endif
 #endif
 
-/* (upper, w1) of the Hamburger 4MSM reconstruction (see above): upper bound of the lit
-   fraction, and the weight of the atom at the receiver. */
-PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
+/* The Hamburger 4MSM reconstruction (see above): upper = the upper bound of the lit fraction,
+   w1 = the weight of the atom at the receiver, and what the Hausdorff form reuses: the
+   confined biased moments b1..b4, the receiver uf (clamped to [uf_lo, uf_hi]) and the
+   normalized kernel quadratic K(uf + t)/K(uf) = qa t^2 + qb t + 1. */
+PF_STRUCT_BEGIN(pfi_msm_state)
+    pf_real b1, b2, b3, b4, uf, qa, qb, w1, upper;
+PF_STRUCT_END(pfi_msm_state)
+
+/* PFI_MSM_INLINE: gcc -O2 stopped inlining this function once five evaluators called it, and
+   returning the struct through memory cost pf_shadow_msm 20 instructions per lookup (164.3
+   against 144.7, callgrind, bench_shadow); the one forced inline of the library, on the CPU
+   compilers that take it. */
+#if defined(__GNUC__) && !defined(PF_GLSL) && !defined(__CUDACC__)
+#  define PFI_MSM_INLINE __attribute__((always_inline))
+#else
+#  define PFI_MSM_INLINE
+#endif
+PFI_MSM_INLINE PF_DEF pfi_msm_state pfi_shadow_msm_state(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias,
+                                          pf_real uf_lo, pf_real uf_hi, pf_real floor22, pf_real floor33)
 {
+    pfi_msm_state r;
     pf_real keep = PF_R(1.0) - moment_bias, coin = PF_R(0.5) * moment_bias;
     /* The moments are confined to what moments of depths in [0, 1] satisfy (u^2 <= u and
        Cauchy-Schwarz: b1^2 <= b2 <= b1, b2^2 <= b3 <= b2, b2^2 <= b4), which valid moment
@@ -8007,12 +8033,12 @@ PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real momen
     pf_real b22 = b2 * b2;
     pf_real b3 = pf_clamp_nan_lo(PFI_MSM_BIASED(m.m3, moment_bias, keep, coin), PFI_MSM_LOW(b22), b2);
     pf_real b4 = pf_max(PFI_MSM_BIASED(m.m4, moment_bias, keep, coin), PFI_MSM_LOW(b22));
-    pf_real uf = pf_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), PF_R(-1.0), PF_R(2.0));
+    pf_real uf = pf_clamp_nan_lo(PF_R(1.0) - (d - depth_bias), uf_lo, uf_hi);
     /* L D L^T of the Hankel matrix */
-    pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + PFI_MSM_D22_FLOOR);
+    pf_real i22 = PF_R(1.0) / pf_max(b2 - b11, PFI_MSM_NOISE * b2 + floor22);
     pf_real e32 = b3 - b1 * b2; /* l32 d22 */
     pf_real l32 = e32 * i22;
-    pf_real i33 = PF_R(1.0) / pf_max((b4 - b22) - l32 * e32, PFI_MSM_NOISE * b4 + PFI_MSM_D33_FLOOR);
+    pf_real i33 = PF_R(1.0) / pf_max((b4 - b22) - l32 * e32, PFI_MSM_NOISE * b4 + floor33);
     /* y = L^-1 v(uf); c3 = y3/d33; K(uf) = 1 + y2^2/d22 + y3^2/d33 */
     pf_real y2 = uf - b1;
     pf_real y3 = (uf * uf - b2) - l32 * y2;
@@ -8043,7 +8069,17 @@ PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real momen
     pf_real middle = w1 + wt;
     pf_real outside = qb > PF_R(0.0) ? PF_R(1.0) : w1;
     pf_real upper = qa < PF_R(0.0) ? middle : outside;
-    return pf_vec2_make(pf_min(upper, PF_R(1.0)), w1);
+    r.b1 = b1; r.b2 = b2; r.b3 = b3; r.b4 = b4; r.uf = uf; r.qa = qa; r.qb = qb; r.w1 = w1;
+    r.upper = pf_min(upper, PF_R(1.0));
+    return r;
+}
+
+/* (upper, w1) of the Hamburger reconstruction, the receiver clamped to [-1, 2]. */
+PF_DEF pf_vec2 pfi_shadow_msm_core(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
+{
+    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(-1.0), PF_R(2.0), PFI_MSM_D22_FLOOR,
+                                           PFI_MSM_D33_FLOOR);
+    return pf_vec2_make(r.upper, r.w1);
 }
 
 /* pf_shadow_msm_bounds: (lower, upper) bounds of the lit fraction from the four biased
@@ -8064,6 +8100,366 @@ PF_DEF pf_real pf_shadow_msm(pf_depth_moments4 m, pf_real d, pf_real moment_bias
 {
     return pfi_shadow_msm_core(m, d, moment_bias, depth_bias).x;
 }
+
+/* ---------------------------------------------------------------- MSM, Hausdorff
+   pf_shadow_msm_hausdorff: the sharp upper bound of the lit fraction over distributions of
+   u = 1 - z SUPPORTED IN [0, 1] (the truncated Hausdorff moment problem; Peters & Klein 2015
+   sec. 4, Hausdorff 4MSM), where pf_shadow_msm bounds over all distributions on the real line
+   (Hamburger). Knowing the depths lie in [0, 1] can only tighten the bound, and does so where
+   a Hamburger atom falls outside [0, 1]. Same inputs, same defaults.
+   The extremal distributions (Krein & Nudelman's canonical representations of index 3, the
+   end points counting 1/2) that put an atom at uf are: the Hamburger three atoms when both
+   roots of the kernel K lie in [0, 1]; otherwise four atoms {0, uf, x, 1}. Tested without a
+   root: p(t) = K(uf + t)/K(uf) = qa t^2 + qb t + 1 has p(0) = 1, so with lo = -uf, hi = 1 - uf
+   both roots are in [lo, hi] iff  qa < 0: p(lo) <= 0 and p(hi) <= 0;  qa >= 0, qb < 0 (both
+   above): p(hi) >= 0 and -qb <= 2 qa hi;  qb >= 0 (both below): p(lo) >= 0 and -qb >= 2 qa lo.
+   The four-atom case through nu = u (1 - u) mu, which does not see the end atoms: its moments
+   n0 = b1 - b2, n1 = b2 - b3, n2 = b3 - b4 are matched by atoms uf and x alone, so with
+   nu's Hankel LDL^T (e11 = n0, l = n1/n0, e22 = n2 - l n1) and g = uf - l
+       a_f = e11 e22 / D,  a_x = e11^2 g^2 / D,  D = e22 + e11 g^2    (nu's Christoffel weights,
+       x = l - e22 / (e11 g): x > uf iff g < 0)                       both >= 0, no cancellation)
+   and mu's weights follow from a = w u (1 - u) and b1 = w_1 + w_f uf + w_x x:
+       g < 0 (x above uf): upper = 1 - w_1 - w_x = 1 - b1 + a_f/(1 - uf) - a_x/x
+       g > 0 (x below uf): upper = 1 - w_1       = 1 - b1 + a_f/(1 - uf) + a_x/(1 - x)
+   with a_x/x = a_x e11 |g| / (l e11 |g| + e22) and a_x/(1 - x) = a_x e11 g / ((1 - l) e11 g +
+   e22): every denominator is >= e22, floored like the Hamburger pivots (4 eps b + 1e-9 for
+   e11, 4 eps b3 + 1e-12 for e22); 1 - uf is floored at 1e-18 (uf = 1 is a receiver at the
+   light: the bound is 1, and the min below returns the Hamburger 1). The result is
+   min(Hamburger, max(four-atom, 0)): the Hausdorff bound never exceeds the Hamburger one, so the
+   min changes no exact value and keeps any rounding of the four-atom form from raising the
+   bound. The receiver is clamped to uf in [0, 1] (the support). Every intermediate is finite
+   for every finite input; the result is in [0, 1]. */
+PF_DEF pf_real pfi_shadow_msm_hausdorff_f(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias,
+                                          pf_real floor22, pf_real floor33)
+{
+    pfi_msm_state r = pfi_shadow_msm_state(m, d, moment_bias, depth_bias, PF_R(0.0), PF_R(1.0), floor22, floor33);
+    pf_real uf = r.uf, lo = -uf, hi = PF_R(1.0) - uf;
+    pf_real plo = PF_R(1.0) + lo * (r.qb + r.qa * lo);
+    pf_real phi = PF_R(1.0) + hi * (r.qb + r.qa * hi);
+    pf_real two_qa = r.qa + r.qa;
+    /* each case's conditions as one value that is >= 0 iff they hold (selects, no bool) */
+    pf_real in_mid = -pf_max(plo, phi);
+    pf_real in_above = pf_min(phi, two_qa * hi + r.qb);
+    pf_real in_below = pf_min(plo, -(two_qa * lo + r.qb));
+    pf_real in_one_side = r.qb < PF_R(0.0) ? in_above : in_below;
+    pf_real inside = r.qa < PF_R(0.0) ? in_mid : in_one_side;
+    /* nu = u (1 - u) mu: b2 <= b1 and b3 <= b2 after the confinement, so n0, n1 >= 0 */
+    pf_real e11 = pf_max(r.b1 - r.b2, PFI_MSM_NOISE * r.b1 + floor22);
+    pf_real n1 = r.b2 - r.b3;
+    pf_real l = pf_min(n1 / e11, PF_R(1.0));
+    pf_real e22 = pf_max((r.b3 - r.b4) - l * n1, PFI_MSM_NOISE * r.b3 + floor33);
+    pf_real g = uf - l, ag = PF_FABS(g);
+    pf_real eg = e11 * ag;
+    pf_real den = e22 + eg * ag;
+    pf_real af = e11 * e22 / den;
+    pf_real ax = eg * eg / den;
+    /* selects of plain values (no branch in SPIR-V): the far atom's share and its sign */
+    pf_real one_minus_l = PF_R(1.0) - l;
+    pf_real lever = g < PF_R(0.0) ? l : one_minus_l;
+    pf_real sgn = g < PF_R(0.0) ? PF_R(-1.0) : PF_R(1.0);
+    pf_real far_term = ax * eg / (lever * eg + e22);
+    pf_real four = (PF_R(1.0) - r.b1) + af / pf_max(hi, PF_R(1.0e-18)) + sgn * far_term;
+    pf_real outside = pf_min(r.upper, pf_max(four, PF_R(0.0)));
+    return inside >= PF_R(0.0) ? r.upper : outside;
+}
+
+PF_DEF pf_real pf_shadow_msm_hausdorff(pf_depth_moments4 m, pf_real d, pf_real moment_bias, pf_real depth_bias)
+{
+    return pfi_shadow_msm_hausdorff_f(m, d, moment_bias, depth_bias, PFI_MSM_D22_FLOOR, PFI_MSM_D33_FLOOR);
+}
+
+/* ---------------------------------------------------------------- MSM at 64 bits per texel
+   Peters & Klein 2015 sec. 4.3 ("optimized moment quantization"): four power moments stored
+   as 16-bit UNORM lose the differences the reconstruction reads (the moment curve of [0, 1]
+   fills a thin sliver of [0, 1]^4), so the texel stores instead
+       q = Theta (b1, b2, b3, b4)^T + (0.035955884801, 0, 0, 0)^T
+   with the paper's fixed 4x4 matrix Theta (the rows below), chosen so that the image of the
+   moment curve of depths in [0, 1] spreads over [0, 1]^4 (measured on 10^5 depths: every
+   component in [-6.5e-8, 1]; the encoders clamp to [0, 1]). The shader reads the filtered q
+   and inverts: b = Theta^-1 (q - o); Theta^-1's rows (below, computed exactly from the
+   paper's decimals and rounded) have absolute sums <= 1.414, so a UNORM16 rounding of
+   2^-17 per channel moves each moment by <= 1.08e-5 (the pivot floors and the bias below
+   cover that).
+   Linear: q is an affine function of the moments, so decode(lerp(q_a, q_b, t)) =
+   lerp(b_a, b_b, t) exactly (up to the storage rounding): hardware bilinear, trilinear and
+   anisotropic filtering of the stored texels still filters the moments
+   (test_msm16_linear). The library applies it to its reversed-depth moments (u = 1 - z, u
+   in [0, 1], the same moment curve), so the decoded moments are the ones pf_shadow_msm
+   reads; pf_shadow_msm16 and _hausdorff read them with pivot floors set for the storage
+   noise.
+   Noise and bias. The UNORM16 rounding (<= 1.08e-5 per moment) is absolute, not relative like
+   fp32's, so pf_shadow_msm16 and pf_shadow_msm16_hausdorff floor the pivots at that level
+   (d22 >= 1e-5, d33 >= 3e-7, against 1e-9 and 1e-12 for fp32 moments; same form otherwise):
+   a pivot below the storage noise is read as the two-moment extremal, as for fp32 (see the
+   pivot floors above). Call them, not pf_shadow_msm on dequantized moments.
+   PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT 2e-5, chosen with the floors by a scan on the bench
+   scenes and on the clustered footprints of test_msm16_clustered_falls (biases 0 .. 1e-3,
+   d22 floors 5e-6 .. 1e-4, d33 floors 3e-8 .. 3e-7; docs/shadow.md): the pair that keeps the
+   lit fraction within 0.002 of fp32 MSM at its default on every scene, with less mean error
+   and less leaking than fp32, and at most one fall of more than 0.1 below the truth in
+   40000 clustered footprints (0 falls needed 3e-5 floors, which cost 0.011 on the scenes).
+   Peters & Klein's 3e-5 is the fp32 bias. */
+#define PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT PF_R(2.0e-5)
+#define PF_SHADOW_BYTES_MSM16 8
+#define PF_SHADOW_MSM16_OFFSET PF_R(0.035955884801)
+#ifndef PFI_MSM16_D22_FLOOR
+#  define PFI_MSM16_D22_FLOOR PF_R(1.0e-5)
+#endif
+#ifndef PFI_MSM16_D33_FLOOR
+#  define PFI_MSM16_D33_FLOOR PF_R(3.0e-7)
+#endif
+
+/* q = Theta b + o: the values to store (16-bit UNORM) for the moments b of u = 1 - z. */
+PF_DEF pf_depth_moments4 pf_msm_quantize_moments(pf_depth_moments4 b)
+{
+    return pf_depth_moments4_make(
+        ((PF_R(-2.07224649) * b.m1 + PF_R(32.23703778) * b.m2) + (PF_R(-68.571074599) * b.m3 + PF_R(39.3703274134) * b.m4))
+            + PF_SHADOW_MSM16_OFFSET,
+        (PF_R(13.7948857237) * b.m1 + PF_R(-59.4683975703) * b.m2) + (PF_R(82.0359750338) * b.m3 + PF_R(-35.364903257) * b.m4),
+        (PF_R(0.105877704) * b.m1 + PF_R(-1.9077466311) * b.m2) + (PF_R(9.3496555107) * b.m3 + PF_R(-6.6543490743) * b.m4),
+        (PF_R(9.7924062118) * b.m1 + PF_R(-33.7652110555) * b.m2) + (PF_R(47.9456096605) * b.m3 + PF_R(-23.9728048165) * b.m4));
+}
+
+/* b = Theta^-1 (q - o): the moments of u = 1 - z from the filtered stored values q (each in
+   [0, 1] as a UNORM texture returns them; any finite q gives finite moments, which the MSM
+   tests confine). */
+PF_DEF pf_depth_moments4 pf_msm_dequantize_moments(pf_depth_moments4 q)
+{
+    pf_real q0 = q.m1 - PF_SHADOW_MSM16_OFFSET;
+    return pf_depth_moments4_make(
+        (PF_R(0.22277441458975106) * q0 + PF_R(0.077197286078127286) * q.m2) + (PF_R(0.79269866365602848) * q.m3 + PF_R(0.031941755461409697) * q.m4),
+        (PF_R(0.15496792611583607) * q0 + PF_R(0.13946294265353615) * q.m2) + (PF_R(0.79634158378587572) * q.m3 + PF_R(-0.17228231730199037) * q.m4),
+        (PF_R(0.14519889456443683) * q0 + PF_R(0.21202021568252677) * q.m2) + (PF_R(0.72586944638507078) * q.m3 + PF_R(-0.27580148114915759) * q.m4),
+        (PF_R(0.16312744299137799) * q0 + PF_R(0.25914322664410966) * q.m2) + (PF_R(0.65390924967369524) * q.m3 + PF_R(-0.33761317340581742) * q.m4));
+}
+
+/* pf_shadow_msm16: the Hamburger test of a 64-bit texel: pf_shadow_msm of the dequantized
+   filtered values q (moment_bias PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT). In [0, 1] for every
+   finite q. */
+PF_DEF pf_real pf_shadow_msm16(pf_depth_moments4 q, pf_real d, pf_real moment_bias, pf_real depth_bias)
+{
+    return pfi_shadow_msm_state(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias, PF_R(-1.0), PF_R(2.0),
+                                PFI_MSM16_D22_FLOOR, PFI_MSM16_D33_FLOOR).upper;
+}
+
+/* pf_shadow_msm16_hausdorff: the same with the Hausdorff bound. */
+PF_DEF pf_real pf_shadow_msm16_hausdorff(pf_depth_moments4 q, pf_real d, pf_real moment_bias, pf_real depth_bias)
+{
+    return pfi_shadow_msm_hausdorff_f(pf_msm_dequantize_moments(q), d, moment_bias, depth_bias, PFI_MSM16_D22_FLOOR,
+                                      PFI_MSM16_D33_FLOOR);
+}
+
+/* ---------------------------------------------------------------- 16- and 32-bit float storage
+   VSM and EVSM store their moments in fp16 (RG16F / RGBA16F) or fp32. The EVSM warp exponent
+   must keep exp(c) and its square exp(2c) below the format's largest finite value:
+   PF_EVSM_EXP_MAX_F16 = 5.54 (exp(11.08) = 64853 < 65504, which rounds to 64864 in fp16) and
+   PF_EVSM_EXP_MAX_F32 = 44 (pf_moments.h). The fp16 defaults take the ceiling for both warps.
+   fp16 keeps 11 significant bits, so a stored depth near the far plane is off by up to 2^-12
+   (2.4e-4) and E[z^2] - E[z]^2 by up to 3 x 2^-12: fp16 VSM reads spurious variance where the
+   footprint is flat and leaks behind contact occluders (docs/shadow.md: mean leak 0.23 against
+   0.10 with fp32 on the bench scenes). A larger minimum variance does not help: a scan of
+   1e-6 .. 7e-4 on the bench scenes gave the lowest error and leak at 1e-6 for fp16 VSM and
+   EVSM alike (EVSM maps it through the warp's slope, and fp16's relative rounding of the warp
+   is far below it), and no receiver-at-its-own-depth error gained from a larger one; so
+   PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT is the fp32 default. Float storage is linear up to its
+   rounding: the sampler filters the decoded values. */
+#define PF_SHADOW_EVSM16_POS_DEFAULT PF_EVSM_EXP_MAX_F16
+#define PF_SHADOW_EVSM16_NEG_DEFAULT PF_EVSM_EXP_MAX_F16
+#define PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT
+#define PF_SHADOW_BYTES_VSM16 4
+#define PF_SHADOW_BYTES_EVSM2_16 4
+#define PF_SHADOW_BYTES_EVSM4_16 8
+
+#ifndef PF_GLSL
+/* ---------------------------------------------------------------- CPU encoders (caller buffers)
+   pf_shadow_encode_f32 / _f16(kind, depth, n, c_pos, c_neg, out): the per-texel values of n
+   depths, pf_shadow_store_channels(kind) per texel, written to out as fp32 (float) or as fp16
+   bit patterns (unsigned short, round to nearest even):
+     PF_SHADOW_STORE_VSM    2 channels  (z, z^2)                       pf_depth_moments2_from_depth
+     PF_SHADOW_STORE_EVSM2  2 channels  (p, p^2), p = exp(c_pos (2z - 1))   pf_evsm2_from_depth
+     PF_SHADOW_STORE_EVSM4  4 channels  (p, p^2, n, n^2), n = -exp(-c_neg (2z - 1))
+     PF_SHADOW_STORE_MSM    4 channels  (u, u^2, u^3, u^4), u = 1 - z     pf_depth_moments4_from_depth
+   pf_shadow_encode_msm16(depth, n, out): 4 UNORM16 values per texel, round(65535 q) of the
+   optimized quantization above, computed in double whatever pf_real is.
+   pf_shadow_encode_msm16_moments(b, n, out): the same from n filtered moment vectors (a blurred
+   map or a mip level stored at 64 bits).
+   Return PF_OK, or, having written nothing: PF_ERR_ARG for a NULL pointer, n < 0, an unknown
+   kind, a depth that is NaN, infinite or outside [0, 1], a moment outside [-1, 2] (those of
+   depths in [0, 1] lie in [0, 1]; NaN and infinities included), or an exponent
+   that is not finite, not positive or above the format's ceiling (PF_EVSM_EXP_MAX_F16 for
+   fp16, PF_EVSM_EXP_MAX_F32 for fp32; c_neg only checked for EVSM4); PF_ERR_SIZE when
+   the output would exceed PF_MAX_REALS values. c_pos, c_neg are ignored by VSM and MSM.
+   Decoders: pf_shadow_half_to_real(h) returns a finite value for every bit pattern (an
+   infinity reads as +-65504, a NaN as 0; what a GPU sampler returns for those is its own);
+   pf_shadow_decode_msm16(t) the moments of u from 4 UNORM16 values (any values: finite). */
+#define PF_SHADOW_STORE_VSM 0
+#define PF_SHADOW_STORE_EVSM2 1
+#define PF_SHADOW_STORE_EVSM4 2
+#define PF_SHADOW_STORE_MSM 3
+
+PF_CPU_DEF int pf_shadow_store_channels(int kind)
+{
+    return kind == PF_SHADOW_STORE_VSM || kind == PF_SHADOW_STORE_EVSM2 ? 2
+         : (kind == PF_SHADOW_STORE_EVSM4 || kind == PF_SHADOW_STORE_MSM ? 4 : 0);
+}
+
+/* 2^e for |e| <= 64, exact */
+PF_CPU_DEF double pfi_shadow_pow2(int e)
+{
+    double p = 1.0, f = e < 0 ? 0.5 : 2.0;
+    int k = e < 0 ? -e : e;
+    while (k-- > 0) p *= f;
+    return p;
+}
+
+/* fp16 bits of v, round to nearest even; |v| >= 65520 gives the infinity, NaN a quiet NaN
+   (the encoders never pass those). Exact in float and double: scaling by powers of two. */
+PF_CPU_DEF unsigned short pf_shadow_half_from_real(pf_real v)
+{
+    unsigned short sign = (unsigned short)(v < PF_R(0.0) ? 0x8000u : 0u);
+    double a = v < PF_R(0.0) ? -(double)v : (double)v, s;
+    long long r;
+    int e = -14;
+    if (v != v) return (unsigned short)0x7e00u;
+    if (a >= 65520.0) return (unsigned short)(sign | 0x7c00u);
+    while (e < 15 && a >= 2.0 * pfi_shadow_pow2(e)) ++e; /* a in [2^e, 2^(e+1)), or below 2^-14 */
+    s = a * pfi_shadow_pow2(10 - e);                     /* exact: in [0, 2048) */
+    r = (long long)s;
+    if (s - (double)r > 0.5 || (s - (double)r == 0.5 && (r & 1))) ++r;
+    if (r < 1024) return (unsigned short)(sign | (unsigned short)r); /* subnormal (e = -14) or zero */
+    if (r == 2048) { r = 1024; ++e; }
+    if (e > 15) return (unsigned short)(sign | 0x7c00u);
+    return (unsigned short)(sign | (unsigned short)((e + 15) << 10) | (unsigned short)(r - 1024));
+}
+
+/* The value of fp16 bits h; finite for every h (inf -> +-65504, NaN -> 0). */
+PF_CPU_DEF pf_real pf_shadow_half_to_real(unsigned short h)
+{
+    int ex = (h >> 10) & 31, mant = h & 1023;
+    double v;
+    if (ex == 31) v = mant ? 0.0 : 65504.0;
+    else if (ex == 0) v = (double)mant * pfi_shadow_pow2(-24);
+    else v = (double)(mant + 1024) * pfi_shadow_pow2(ex - 25);
+    return (pf_real)((h & 0x8000u) ? -v : v);
+}
+
+PF_CPU_DEF int pfi_shadow_exponent_ok(pf_real c, pf_real ceiling)
+{
+    return c > PF_R(0.0) && c <= ceiling; /* false for NaN */
+}
+
+/* Checks every input before anything is written (see above). */
+PF_CPU_DEF int pfi_shadow_encode_check(int kind, const pf_real *depth, long long n, pf_real c_pos, pf_real c_neg,
+                                       pf_real ceiling, const void *out)
+{
+    long long i;
+    int ch = pf_shadow_store_channels(kind);
+    if (!depth || !out || n < 0 || ch == 0) return PF_ERR_ARG;
+    if (pf_size_mul(n, ch) < 0) return PF_ERR_SIZE;
+    if ((kind == PF_SHADOW_STORE_EVSM2 || kind == PF_SHADOW_STORE_EVSM4) && !pfi_shadow_exponent_ok(c_pos, ceiling))
+        return PF_ERR_ARG;
+    if (kind == PF_SHADOW_STORE_EVSM4 && !pfi_shadow_exponent_ok(c_neg, ceiling)) return PF_ERR_ARG;
+    for (i = 0; i < n; ++i)
+        if (!(depth[i] >= PF_R(0.0) && depth[i] <= PF_R(1.0))) return PF_ERR_ARG;
+    return PF_OK;
+}
+
+/* The 2 or 4 values of one depth (validated) in double. */
+PF_CPU_DEF void pfi_shadow_store_values(int kind, pf_real z, pf_real c_pos, pf_real c_neg, double *v)
+{
+    double zd = (double)z, u = 1.0 - zd;
+    if (kind == PF_SHADOW_STORE_VSM) { v[0] = zd; v[1] = zd * zd; return; }
+    if (kind == PF_SHADOW_STORE_MSM) { v[0] = u; v[1] = u * u; v[2] = u * u * u; v[3] = v[1] * v[1]; return; }
+    /* the warps in pf_real (the PF_EXP of pf_moments.h's constructors), their squares in double */
+    v[0] = (double)pf_evsm_warp_pos(z, c_pos);
+    v[1] = v[0] * v[0];
+    if (kind == PF_SHADOW_STORE_EVSM4) {
+        v[2] = (double)pf_evsm_warp_neg(z, c_neg);
+        v[3] = v[2] * v[2];
+    }
+}
+
+PF_CPU_DEF int pf_shadow_encode_f32(int kind, const pf_real *depth, long long n, pf_real c_pos, pf_real c_neg,
+                                    float *out)
+{
+    long long i;
+    int k, ch = pf_shadow_store_channels(kind);
+    int rc = pfi_shadow_encode_check(kind, depth, n, c_pos, c_neg, PF_EVSM_EXP_MAX_F32, out);
+    if (rc != PF_OK) return rc;
+    for (i = 0; i < n; ++i) {
+        double v[4];
+        pfi_shadow_store_values(kind, depth[i], c_pos, c_neg, v);
+        for (k = 0; k < ch; ++k) out[i * ch + k] = (float)v[k];
+    }
+    return PF_OK;
+}
+
+PF_CPU_DEF int pf_shadow_encode_f16(int kind, const pf_real *depth, long long n, pf_real c_pos, pf_real c_neg,
+                                    unsigned short *out)
+{
+    long long i;
+    int k, ch = pf_shadow_store_channels(kind);
+    int rc = pfi_shadow_encode_check(kind, depth, n, c_pos, c_neg, PF_EVSM_EXP_MAX_F16, out);
+    if (rc != PF_OK) return rc;
+    for (i = 0; i < n; ++i) {
+        double v[4];
+        pfi_shadow_store_values(kind, depth[i], c_pos, c_neg, v);
+        /* through pf_real: exact for the fp16 values, and double's extra bits only matter at ties */
+        for (k = 0; k < ch; ++k) out[i * ch + k] = pf_shadow_half_from_real((pf_real)v[k]);
+    }
+    return PF_OK;
+}
+
+/* round(65535 clamp(Theta b + o, 0, 1)) of one moment vector, in double */
+PF_CPU_DEF void pfi_shadow_msm16_store(double b1, double b2, double b3, double b4, unsigned short *out)
+{
+    double q[4];
+    int k;
+    q[0] = ((-2.07224649 * b1 + 32.23703778 * b2) + (-68.571074599 * b3 + 39.3703274134 * b4)) + 0.035955884801;
+    q[1] = (13.7948857237 * b1 - 59.4683975703 * b2) + (82.0359750338 * b3 - 35.364903257 * b4);
+    q[2] = (0.105877704 * b1 - 1.9077466311 * b2) + (9.3496555107 * b3 - 6.6543490743 * b4);
+    q[3] = (9.7924062118 * b1 - 33.7652110555 * b2) + (47.9456096605 * b3 - 23.9728048165 * b4);
+    for (k = 0; k < 4; ++k) {
+        double c = q[k] > 0.0 ? (q[k] < 1.0 ? q[k] : 1.0) : 0.0; /* NaN: 0 */
+        out[k] = (unsigned short)(c * 65535.0 + 0.5);
+    }
+}
+
+PF_CPU_DEF int pf_shadow_encode_msm16(const pf_real *depth, long long n, unsigned short *out)
+{
+    long long i;
+    int rc = pfi_shadow_encode_check(PF_SHADOW_STORE_MSM, depth, n, PF_R(0.0), PF_R(0.0), PF_R(0.0), out);
+    if (rc != PF_OK) return rc;
+    for (i = 0; i < n; ++i) {
+        double v[4];
+        pfi_shadow_store_values(PF_SHADOW_STORE_MSM, depth[i], PF_R(0.0), PF_R(0.0), v);
+        pfi_shadow_msm16_store(v[0], v[1], v[2], v[3], out + 4 * i);
+    }
+    return PF_OK;
+}
+
+PF_CPU_DEF int pf_shadow_encode_msm16_moments(const pf_depth_moments4 *b, long long n, unsigned short *out)
+{
+    long long i;
+    if (!b || !out || n < 0) return PF_ERR_ARG;
+    if (pf_size_mul(n, 4) < 0) return PF_ERR_SIZE;
+    for (i = 0; i < n; ++i) /* moments of depths in [0, 1] lie in [0, 1]; NaN fails too */
+        if (!(b[i].m1 >= PF_R(-1.0) && b[i].m1 <= PF_R(2.0) && b[i].m2 >= PF_R(-1.0) && b[i].m2 <= PF_R(2.0)
+              && b[i].m3 >= PF_R(-1.0) && b[i].m3 <= PF_R(2.0) && b[i].m4 >= PF_R(-1.0) && b[i].m4 <= PF_R(2.0)))
+            return PF_ERR_ARG;
+    for (i = 0; i < n; ++i)
+        pfi_shadow_msm16_store((double)b[i].m1, (double)b[i].m2, (double)b[i].m3, (double)b[i].m4, out + 4 * i);
+    return PF_OK;
+}
+
+/* The moments of u = 1 - z from one stored texel (4 UNORM16 values, unfiltered). */
+PF_CPU_DEF pf_depth_moments4 pf_shadow_decode_msm16(const unsigned short *t)
+{
+    const pf_real s = PF_R(1.0) / PF_R(65535.0);
+    return pf_msm_dequantize_moments(pf_depth_moments4_make((pf_real)t[0] * s, (pf_real)t[1] * s,
+                                                            (pf_real)t[2] * s, (pf_real)t[3] * s));
+}
+#endif /* PF_GLSL */
 
 /* ---------------------------------------------------------------- CSM
    Convolution shadow maps (Annen, Mertens, Bekaert, Seidel, Kautz 2007; B&N 2012 eqs. 36-37).

@@ -31,6 +31,7 @@
 #include <stdarg.h>
 #include "pf_shadow.h"
 #include "shadow_scenes.h"
+#include "gpu/textbook.h" /* the engines' Hausdorff and 64-bit forms */
 
 #define NL (SHS_N_SCENES * SHS_LOOKUPS_PER_SCENE)
 
@@ -227,6 +228,260 @@ PFB_METHOD(tb_evsm4, tb_evsm4(g_evsm4[IDX(y)], x, SHS_EVSM_POS, SHS_EVSM_NEG, PF
                               PF_SHADOW_BLEED_DEFAULT))
 PFB_METHOD(tb_msm, tb_msm(g_msm_z[IDX(y)], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
 
+/* ---------------------------------------------------------------- stored formats
+   The depth moments as a GPU stores them: each texel of the scene's map encoded by the
+   library's CPU encoders (pf_shadow_encode_msm16: 4 x UNORM16 of the optimized quantization,
+   8 bytes; pf_shadow_encode_f16: fp16 VSM (z, z^2) 4 bytes, EVSM-4 at the fp16 exponent
+   ceiling 5.54 8 bytes (EVSM-2 = its first two channels, 4 bytes), MSM u-moments in fp16
+   without the quantization 8 bytes), then decoded to what a sampler returns and box-filtered
+   over the footprint in long double (rounded to pf_real: the filter's output). A second model,
+   "filtered then stored", encodes the footprint's fp32 mean instead (a blurred map or a mip
+   level written in the format): pf_shadow_encode_msm16_moments, pf_shadow_half_from_real.
+   The textbook 64-bit baseline stores z-moments as engines do: pf_shadow_encode_msm16 of
+   1 - z gives Theta (z, z^2, z^3, z^4) + o. */
+static pf_depth_moments4 *g_msm16, *g_msm16_z, *g_msm16_f, *g_msm_h;
+static pf_depth_moments2 *g_vsm_h, *g_evsm2_h, *g_evsm2_e16, *g_vsm_hf;
+static pf_evsm_moments *g_evsm4_h, *g_evsm4_e16;
+
+#define E16 PF_SHADOW_EVSM16_POS_DEFAULT
+
+static void storage_fill(void)
+{
+    double *zd = (double *)pfb_alloc(sizeof(double) * SHS_N * SHS_N);
+    pf_real *z = (pf_real *)pfb_alloc(sizeof(pf_real) * SHS_N * SHS_N);
+    pf_real *zr = (pf_real *)pfb_alloc(sizeof(pf_real) * SHS_N * SHS_N);
+    unsigned short *q = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    unsigned short *qz = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    unsigned short *hv = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 2 * SHS_N * SHS_N);
+    unsigned short *he = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    unsigned short *hm = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    int s, x, y, k;
+    size_t i;
+    g_msm16 = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    g_msm16_z = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    g_msm16_f = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    g_msm_h = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    g_vsm_h = (pf_depth_moments2 *)pfb_alloc(sizeof(pf_depth_moments2) * NL);
+    g_vsm_hf = (pf_depth_moments2 *)pfb_alloc(sizeof(pf_depth_moments2) * NL);
+    g_evsm2_h = (pf_depth_moments2 *)pfb_alloc(sizeof(pf_depth_moments2) * NL);
+    g_evsm2_e16 = (pf_depth_moments2 *)pfb_alloc(sizeof(pf_depth_moments2) * NL);
+    g_evsm4_h = (pf_evsm_moments *)pfb_alloc(sizeof(pf_evsm_moments) * NL);
+    g_evsm4_e16 = (pf_evsm_moments *)pfb_alloc(sizeof(pf_evsm_moments) * NL);
+    for (s = 0; s < SHS_N_SCENES; ++s) {
+        shs_make_scene(s, zd);
+        for (i = 0; i < (size_t)SHS_N * SHS_N; ++i) z[i] = (pf_real)zd[i], zr[i] = PF_R(1.0) - z[i];
+        if (pf_shadow_encode_msm16(z, SHS_N * SHS_N, q) != PF_OK || pf_shadow_encode_msm16(zr, SHS_N * SHS_N, qz) != PF_OK
+            || pf_shadow_encode_f16(PF_SHADOW_STORE_VSM, z, SHS_N * SHS_N, E16, E16, hv) != PF_OK
+            || pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, SHS_N * SHS_N, E16, E16, he) != PF_OK
+            || pf_shadow_encode_f16(PF_SHADOW_STORE_MSM, z, SHS_N * SHS_N, E16, E16, hm) != PF_OK) {
+            fprintf(stderr, "bench_shadow: an encoder failed\n");
+            exit(1);
+        }
+        for (i = (size_t)s * SHS_LOOKUPS_PER_SCENE; i < (size_t)(s + 1) * SHS_LOOKUPS_PER_SCENE; ++i) {
+            const shs_lookup *L = &g_lookups[i];
+            long double aq[4] = { 0, 0, 0, 0 }, az[4] = { 0, 0, 0, 0 }, av[2] = { 0, 0 }, ae[4] = { 0, 0, 0, 0 };
+            long double am[4] = { 0, 0, 0, 0 }, a32[4] = { 0, 0, 0, 0 }, n = (long double)(L->size * L->size);
+            unsigned short t[4];
+            for (y = L->y0; y < L->y0 + L->size; ++y)
+                for (x = L->x0; x < L->x0 + L->size; ++x) {
+                    size_t o = (size_t)(y * SHS_N + x);
+                    pf_evsm_moments e = pf_evsm_moments_from_depth(z[o], E16, E16);
+                    for (k = 0; k < 4; ++k) {
+                        aq[k] += (long double)q[4 * o + (size_t)k] / 65535.0L;
+                        az[k] += (long double)qz[4 * o + (size_t)k] / 65535.0L;
+                        ae[k] += (long double)pf_shadow_half_to_real(he[4 * o + (size_t)k]);
+                        am[k] += (long double)pf_shadow_half_to_real(hm[4 * o + (size_t)k]);
+                    }
+                    for (k = 0; k < 2; ++k) av[k] += (long double)pf_shadow_half_to_real(hv[2 * o + (size_t)k]);
+                    a32[0] += (long double)e.pos1, a32[1] += (long double)e.pos2, a32[2] += (long double)e.neg1, a32[3] += (long double)e.neg2;
+                }
+            g_msm16[i] = pf_depth_moments4_make((pf_real)(aq[0] / n), (pf_real)(aq[1] / n), (pf_real)(aq[2] / n), (pf_real)(aq[3] / n));
+            g_msm16_z[i] = pf_depth_moments4_make((pf_real)(az[0] / n), (pf_real)(az[1] / n), (pf_real)(az[2] / n), (pf_real)(az[3] / n));
+            g_msm_h[i] = pf_depth_moments4_make((pf_real)(am[0] / n), (pf_real)(am[1] / n), (pf_real)(am[2] / n), (pf_real)(am[3] / n));
+            g_vsm_h[i] = pf_depth_moments2_make((pf_real)(av[0] / n), (pf_real)(av[1] / n));
+            g_evsm4_h[i] = pf_evsm_moments_make((pf_real)(ae[0] / n), (pf_real)(ae[1] / n), (pf_real)(ae[2] / n), (pf_real)(ae[3] / n));
+            g_evsm2_h[i] = pf_depth_moments2_make(g_evsm4_h[i].pos1, g_evsm4_h[i].pos2);
+            g_evsm4_e16[i] = pf_evsm_moments_make((pf_real)(a32[0] / n), (pf_real)(a32[1] / n), (pf_real)(a32[2] / n), (pf_real)(a32[3] / n));
+            g_evsm2_e16[i] = pf_depth_moments2_make(g_evsm4_e16[i].pos1, g_evsm4_e16[i].pos2);
+            /* filtered then stored */
+            if (pf_shadow_encode_msm16_moments(&L->msm, 1, t) != PF_OK) exit(1);
+            g_msm16_f[i] = pf_depth_moments4_make((pf_real)t[0] / PF_R(65535.0), (pf_real)t[1] / PF_R(65535.0),
+                                                  (pf_real)t[2] / PF_R(65535.0), (pf_real)t[3] / PF_R(65535.0));
+            g_vsm_hf[i] = pf_depth_moments2_make(pf_shadow_half_to_real(pf_shadow_half_from_real(L->vsm.m1)),
+                                                 pf_shadow_half_to_real(pf_shadow_half_from_real(L->vsm.m2)));
+        }
+    }
+    free(zd); free(z); free(zr); free(q); free(qz); free(hv); free(he); free(hm);
+}
+
+/* The later quantization, for comparison only (notes): Peters, Muenstermann, Wetzstein & Klein
+   2017 (JCGT, "Improved moment shadow maps") store the moments of x = 2z - 1 in [-1, 1] through
+   two 2 x 2 maps, odd (1.5 b1 - 2 b3 + 1/2, (sqrt(3)/2) b1 - (2 sqrt(3)/9) b3 + 1/2) and even
+   (4 b2 - 4 b4, (b2 + b4)/2), each in [0, 1]. Encoded per texel in double and rounded to UNORM16
+   like pf_shadow_encode_msm16; the filtered values inverted in long double, converted to the
+   moments of u = 1 - z = (1 - x)/2 and read by pf_shadow_msm16's evaluator (its floors, its
+   bias) through q = Theta b + o. */
+static pf_depth_moments4 *g_msm17;
+static void msm17_store(double z, unsigned short *o)
+{
+    double x = 2.0 * z - 1.0, b1 = x, b2 = x * x, b3 = b2 * x, b4 = b2 * b2, q[4];
+    int k;
+    q[0] = 1.5 * b1 - 2.0 * b3 + 0.5;
+    q[1] = 0.8660254037844386 * b1 - 0.38490017945975050 * b3 + 0.5;
+    q[2] = 4.0 * b2 - 4.0 * b4;
+    q[3] = 0.5 * b2 + 0.5 * b4;
+    for (k = 0; k < 4; ++k) o[k] = (unsigned short)((q[k] < 0.0 ? 0.0 : (q[k] > 1.0 ? 1.0 : q[k])) * 65535.0 + 0.5);
+}
+static pf_depth_moments4 msm17_read(const long double *q)
+{
+    long double c1 = 0.8660254037844386L, c3 = 0.38490017945975050L, a = q[0] - 0.5L, b = q[1] - 0.5L;
+    long double det = -1.5L * c3 + 2.0L * c1;
+    long double b1 = (-a * c3 + 2.0L * b) / det, b3 = (1.5L * b - c1 * a) / det;
+    long double b2 = q[3] + q[2] / 8.0L, b4 = q[3] - q[2] / 8.0L;
+    long double u1 = (1 - b1) / 2, u2 = (1 - 2 * b1 + b2) / 4, u3 = (1 - 3 * b1 + 3 * b2 - b3) / 8;
+    long double u4 = (1 - 4 * b1 + 6 * b2 - 4 * b3 + b4) / 16;
+    return pf_msm_quantize_moments(pf_depth_moments4_make((pf_real)u1, (pf_real)u2, (pf_real)u3, (pf_real)u4));
+}
+static void msm17_fill(void)
+{
+    double *zd = (double *)pfb_alloc(sizeof(double) * SHS_N * SHS_N);
+    unsigned short *q = (unsigned short *)pfb_alloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    int s, x, y, k;
+    size_t i;
+    g_msm17 = (pf_depth_moments4 *)pfb_alloc(sizeof(pf_depth_moments4) * NL);
+    for (s = 0; s < SHS_N_SCENES; ++s) {
+        shs_make_scene(s, zd);
+        for (i = 0; i < (size_t)SHS_N * SHS_N; ++i) msm17_store((double)(pf_real)zd[i], q + 4 * i);
+        for (i = (size_t)s * SHS_LOOKUPS_PER_SCENE; i < (size_t)(s + 1) * SHS_LOOKUPS_PER_SCENE; ++i) {
+            const shs_lookup *L = &g_lookups[i];
+            long double a[4] = { 0, 0, 0, 0 }, n = (long double)(L->size * L->size);
+            for (y = L->y0; y < L->y0 + L->size; ++y)
+                for (x = L->x0; x < L->x0 + L->size; ++x)
+                    for (k = 0; k < 4; ++k) a[k] += (long double)q[4 * (size_t)(y * SHS_N + x) + (size_t)k] / 65535.0L;
+            for (k = 0; k < 4; ++k) a[k] = (long double)(pf_real)(a[k] / n); /* the sampler's output */
+            g_msm17[i] = msm17_read(a);
+        }
+    }
+    free(zd); free(q);
+}
+
+#define MSM16_A PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT
+#define MV16 PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT
+PFB_METHOD(msm_haus, pf_shadow_msm_hausdorff(g_msm[IDX(y)], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(msm16, pf_shadow_msm16(g_msm16[IDX(y)], x, MSM16_A, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(msm16_haus, pf_shadow_msm16_hausdorff(g_msm16[IDX(y)], x, MSM16_A, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(msm16_filt, pf_shadow_msm16(g_msm16_f[IDX(y)], x, MSM16_A, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(msm_f16, pf_shadow_msm(g_msm_h[IDX(y)], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(vsm_f16, pf_shadow_vsm(g_vsm_h[IDX(y)], x, MV16, PF_SHADOW_BLEED_DEFAULT))
+PFB_METHOD(vsm_f16_filt, pf_shadow_vsm(g_vsm_hf[IDX(y)], x, MV16, PF_SHADOW_BLEED_DEFAULT))
+PFB_METHOD(evsm2_f16, pf_shadow_evsm2(g_evsm2_h[IDX(y)], x, E16, MV16, PF_SHADOW_BLEED_DEFAULT))
+PFB_METHOD(evsm4_f16, pf_shadow_evsm4(g_evsm4_h[IDX(y)], x, E16, E16, MV16, PF_SHADOW_BLEED_DEFAULT))
+/* the engines' forms (bench/gpu/textbook.h): Hausdorff as MJP's Shadows and HDRP ship it, on
+   z-moments in fp32; the 64-bit texel of z-moments decoded and read by Algorithm 2 */
+PFB_METHOD(tb_msm_haus, pf_textbook_msm_hausdorff(g_msm_z[IDX(y)].m1, g_msm_z[IDX(y)].m2, g_msm_z[IDX(y)].m3, g_msm_z[IDX(y)].m4, x,
+                                                  PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+PFB_METHOD(tb_msm16, pf_textbook_msm16(g_msm16_z[IDX(y)].m1, g_msm16_z[IDX(y)].m2, g_msm16_z[IDX(y)].m3, g_msm16_z[IDX(y)].m4, x,
+                                       MSM16_A, PF_SHADOW_MSM_DEPTH_BIAS_DEFAULT))
+
+/* One format's figures against the same method with fp32 storage, for the notes. */
+typedef struct storage_row {
+    const char *name;
+    int bytes;
+    pf_real (*eval)(long double d, size_t i);
+    pf_real (*ref)(long double d, size_t i);
+    const char *ref_name;
+} storage_row;
+
+#define SR_FN(id, expr) static pf_real sr_##id(long double dl, size_t i) { pf_real x = (pf_real)dl; size_t y = i; (void)x; (void)y; return expr; }
+SR_FN(msm, pf_shadow_msm(g_msm[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(msm_haus, pf_shadow_msm_hausdorff(g_msm[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(msm16, pf_shadow_msm16(g_msm16[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm16_haus, pf_shadow_msm16_hausdorff(g_msm16[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm16_filt, pf_shadow_msm16(g_msm16_f[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm16_fp32bias, pf_shadow_msm16(g_msm16[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(tb_msm, tb_msm(g_msm_z[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(tb_msm16, pf_textbook_msm16(g_msm16_z[y].m1, g_msm16_z[y].m2, g_msm16_z[y].m3, g_msm16_z[y].m4, x, MSM16_A, PF_R(0.0)))
+SR_FN(tb_msm16_a6, pf_textbook_msm16(g_msm16_z[y].m1, g_msm16_z[y].m2, g_msm16_z[y].m3, g_msm16_z[y].m4, x, PF_R(6.0e-5), PF_R(0.0)))
+SR_FN(tb_msm_haus, pf_textbook_msm_hausdorff(g_msm_z[y].m1, g_msm_z[y].m2, g_msm_z[y].m3, g_msm_z[y].m4, x,
+                                             PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(msm17, pf_shadow_msm16(g_msm17[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm17_haus, pf_shadow_msm16_hausdorff(g_msm17[y], x, MSM16_A, PF_R(0.0)))
+SR_FN(msm_f16, pf_shadow_msm(g_msm_h[y], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT, PF_R(0.0)))
+SR_FN(vsm, pf_shadow_vsm(g_vsm[y], x, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
+SR_FN(vsm_f16, pf_shadow_vsm(g_vsm_h[y], x, MV16, PF_R(0.0)))
+SR_FN(vsm_f16_filt, pf_shadow_vsm(g_vsm_hf[y], x, MV16, PF_R(0.0)))
+SR_FN(evsm2, pf_shadow_evsm2(g_evsm2[y], x, SHS_EVSM_POS, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
+SR_FN(evsm4, pf_shadow_evsm4(g_evsm4[y], x, SHS_EVSM_POS, SHS_EVSM_NEG, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
+SR_FN(evsm2_e16, pf_shadow_evsm2(g_evsm2_e16[y], x, E16, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
+SR_FN(evsm4_e16, pf_shadow_evsm4(g_evsm4_e16[y], x, E16, E16, PF_SHADOW_VSM_MIN_VARIANCE_DEFAULT, PF_R(0.0)))
+SR_FN(evsm2_f16, pf_shadow_evsm2(g_evsm2_h[y], x, E16, MV16, PF_R(0.0)))
+SR_FN(evsm4_f16, pf_shadow_evsm4(g_evsm4_h[y], x, E16, E16, MV16, PF_R(0.0)))
+
+static const storage_row storage_rows[] = {
+    { "msm fp32 (pf_shadow_msm, bias 3e-5)", 16, sr_msm, sr_msm, "itself" },
+    { "msm 64-bit per texel (pf_shadow_msm16, bias 2e-5)", 8, sr_msm16, sr_msm, "msm fp32" },
+    { "msm 64-bit per texel, bias 3e-5", 8, sr_msm16_fp32bias, sr_msm, "msm fp32" },
+    { "msm 64-bit filtered then stored (pf_shadow_encode_msm16_moments)", 8, sr_msm16_filt, sr_msm, "msm fp32" },
+    { "msm 64-bit, Peters et al. 2017 quantization (x = 2z - 1), same evaluator", 8, sr_msm17, sr_msm, "msm fp32" },
+    { "hausdorff 64-bit, Peters et al. 2017 quantization", 8, sr_msm17_haus, sr_msm_haus, "hausdorff fp32" },
+    { "msm u-moments in fp16, no quantization", 8, sr_msm_f16, sr_msm, "msm fp32" },
+    { "msm textbook (alg. 2) on z-moments fp32", 16, sr_tb_msm, sr_msm, "msm fp32" },
+    { "msm textbook 64-bit z-moments (engines), bias 2e-5", 8, sr_tb_msm16, sr_msm, "msm fp32" },
+    { "msm textbook 64-bit z-moments (engines), bias 6e-5", 8, sr_tb_msm16_a6, sr_msm, "msm fp32" },
+    { "hausdorff fp32 (pf_shadow_msm_hausdorff)", 16, sr_msm_haus, sr_msm, "msm fp32" },
+    { "hausdorff 64-bit (pf_shadow_msm16_hausdorff)", 8, sr_msm16_haus, sr_msm_haus, "hausdorff fp32" },
+    { "hausdorff textbook (MJP/HDRP form) z-moments fp32", 16, sr_tb_msm_haus, sr_msm_haus, "hausdorff fp32" },
+    { "vsm fp32", 8, sr_vsm, sr_vsm, "itself" },
+    { "vsm fp16 per texel", 4, sr_vsm_f16, sr_vsm, "vsm fp32" },
+    { "vsm fp16 filtered then stored", 4, sr_vsm_f16_filt, sr_vsm, "vsm fp32" },
+    { "evsm2 fp32 (c = 40)", 8, sr_evsm2, sr_evsm2, "itself" },
+    { "evsm2 fp32 at c = 5.54", 8, sr_evsm2_e16, sr_evsm2, "evsm2 fp32 c = 40" },
+    { "evsm2 fp16 (c = 5.54)", 4, sr_evsm2_f16, sr_evsm2_e16, "evsm2 fp32 c = 5.54" },
+    { "evsm4 fp32 (c = 40, 5)", 16, sr_evsm4, sr_evsm4, "itself" },
+    { "evsm4 fp32 at c = 5.54, 5.54", 16, sr_evsm4_e16, sr_evsm4, "evsm4 fp32 c = 40, 5" },
+    { "evsm4 fp16 (c = 5.54, 5.54)", 8, sr_evsm4_f16, sr_evsm4_e16, "evsm4 fp32 c = 5.54" },
+};
+
+/* The notes' storage lines: per format, bytes per texel, mean |lit - lit of the reference|
+   (worst scene), mean abs error and mean leak against the brute-force truth (the reference's
+   beside it), max leak, non-finite results. */
+static void storage_notes(char *out, size_t cap)
+{
+    size_t used = strlen(out), i;
+    int r, s;
+    for (r = 0; r < (int)(sizeof storage_rows / sizeof storage_rows[0]); ++r) {
+        const storage_row *R = &storage_rows[r];
+        shs_stats st, sr;
+        long double diff[SHS_N_SCENES], all = 0, worst = 0;
+        int worst_s = 0;
+        long nonfinite = 0;
+        memset(&st, 0, sizeof st);
+        memset(&sr, 0, sizeof sr);
+        memset(diff, 0, sizeof diff);
+        for (i = 0; i < NL; ++i) {
+            const shs_lookup *L = &g_lookups[i];
+            pf_real v = R->eval((long double)L->d, i), w = R->ref((long double)L->d, i);
+            nonfinite += !(v - v == PF_R(0.0));
+            shs_stats_add(&st, (long double)v, L->truth);
+            shs_stats_add(&sr, (long double)w, L->truth);
+            diff[L->scene] += fabsl((long double)v - (long double)w);
+            all += fabsl((long double)v - (long double)w);
+        }
+        for (s = 0; s < SHS_N_SCENES; ++s) {
+            diff[s] /= SHS_LOOKUPS_PER_SCENE;
+            if (diff[s] > worst) worst = diff[s], worst_s = s;
+        }
+        if (used < cap)
+            used += (size_t)snprintf(out + used, cap - used,
+                                     "storage: %s, %d bytes/texel: mean |lit - %s| %.4f (worst scene %s %.4f); "
+                                     "mean abs error %.4f (reference %.4f), mean leak %.4f (reference %.4f), max leak %.2f; "
+                                     "%ld non-finite\n", R->name, R->bytes, R->ref_name, (double)(all / NL),
+                                     shs_scene_names[worst_s], (double)worst, (double)shs_mean_err(&st), (double)shs_mean_err(&sr),
+                                     (double)shs_mean_leak(&st), (double)shs_mean_leak(&sr), (double)st.max_leak, nonfinite);
+    }
+}
+/* ---------------------------------------------------------------- end of stored formats */
+
 /* the truth travels as the third input */
 static long double ref_truth(long double x, long double y, long double z)
 {
@@ -272,6 +527,15 @@ static size_t grid_lookups(pf_real *a, pf_real *b, pf_real *c)
     "on z-power moments (what engines store; the library's MSM reads moments of u = 1 - z); " \
     "comparison min/max, no robustness work), same lookups and parameters; inputs and reference as in lookup\n"
 
+#define HAUS_NOTE "Hausdorff 4MSM (depths in [0, 1]): the engines' form (bench/gpu/textbook.h pf_textbook_msm_hausdorff, " \
+    "as MJP's Shadows sample and Unity HDRP ship it: Algorithm 2's roots, the four-atom solution when one leaves [0, 1]; " \
+    "z-power moments in fp32, no robustness work) against pf_shadow_msm_hausdorff (u-moments in fp32), bias 3e-5, " \
+    "same lookups; inputs and reference as in lookup\n"
+#define MSM16_NOTE "MSM at 64 bits per texel (Peters & Klein 2015's optimized quantization, 4 x UNORM16): the engines' " \
+    "decode (bench/gpu/textbook.h pf_textbook_msm16: Theta^-1, then Algorithm 2, on quantized z-moments) against " \
+    "pf_shadow_msm16 (quantized u-moments), both at bias 2e-5; each texel encoded, the decoded values box-filtered " \
+    "over the footprint; inputs and reference as in lookup\n"
+
 static pfb_family families[] = {
     { "lookup", 2, { "d", "lookup" }, 0, NULL, gen_lookups, grid_lookups, 10,
       { SH_ENTRY("pcf_1tap", pcf1),
@@ -295,10 +559,28 @@ static pfb_family families[] = {
       { SH_ENTRY("textbook_evsm4", tb_evsm4), SH_ENTRY("pf_shadow_evsm4", evsm4) } },
     { "vs_textbook_msm", 2, { "d", "lookup" }, 0, TB_NOTE, gen_lookups, grid_lookups, 2,
       { SH_ENTRY("textbook_msm", tb_msm), SH_ENTRY("pf_shadow_msm", msm) } },
+    /* the depth moments as GPUs store them: baseline MSM with fp32 moments */
+    { "storage", 2, { "d", "lookup" }, 0, NULL, gen_lookups, grid_lookups, 11,
+      { SH_ENTRY("pf_shadow_msm_fp32", msm),
+        SH_ENTRY("pf_shadow_msm16", msm16),
+        SH_ENTRY("pf_shadow_msm16_filtered", msm16_filt),
+        SH_ENTRY("textbook_msm16_z", tb_msm16),
+        SH_ENTRY("pf_shadow_msm_hausdorff", msm_haus),
+        SH_ENTRY("pf_shadow_msm16_hausdorff", msm16_haus),
+        SH_ENTRY("pf_shadow_msm_u_f16", msm_f16),
+        SH_ENTRY("pf_shadow_vsm_f16", vsm_f16),
+        SH_ENTRY("pf_shadow_vsm_f16_filtered", vsm_f16_filt),
+        SH_ENTRY("pf_shadow_evsm2_f16", evsm2_f16),
+        SH_ENTRY("pf_shadow_evsm4_f16", evsm4_f16) } },
+    { "vs_textbook_msm_hausdorff", 2, { "d", "lookup" }, 0, HAUS_NOTE, gen_lookups, grid_lookups, 2,
+      { SH_ENTRY("textbook_msm_hausdorff", tb_msm_haus), SH_ENTRY("pf_shadow_msm_hausdorff", msm_haus) } },
+    { "vs_textbook_msm16", 2, { "d", "lookup" }, 0, MSM16_NOTE, gen_lookups, grid_lookups, 2,
+      { SH_ENTRY("textbook_msm16", tb_msm16), SH_ENTRY("pf_shadow_msm16", msm16) } },
 };
 
 /* ---------------------------------------------------------------- error figures for the notes */
 static char g_notes[16384];
+static char g_storage_notes[8192];
 
 static void add_note(const char *fmt, ...)
 {
@@ -353,6 +635,8 @@ static void build_notes(void)
     }
     csm_notes(g_notes, sizeof g_notes);
     families[0].notes = g_notes;
+    storage_notes(g_storage_notes, sizeof g_storage_notes);
+    families[6].notes = g_storage_notes;
 }
 
 int main(int argc, char **argv)
@@ -390,9 +674,13 @@ int main(int argc, char **argv)
         g_esm[i] = g_lookups[i].esm_log;
     }
     csm_fill();
+    storage_fill();
+    msm17_fill();
     build_notes();
     rc = pfb_main(argc, argv, "shadow", families, (int)(sizeof families / sizeof families[0]));
     free(g_lookups); free(g_zc); free(g_vsm); free(g_evsm2); free(g_evsm4); free(g_msm); free(g_msm_z); free(g_esm);
     free(g_csm); free(g_csm_all);
+    free(g_msm16); free(g_msm16_z); free(g_msm16_f); free(g_msm_h); free(g_vsm_h); free(g_vsm_hf); free(g_evsm2_h);
+    free(g_evsm2_e16); free(g_evsm4_h); free(g_evsm4_e16); free(g_msm17);
     return rc;
 }

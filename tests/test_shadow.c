@@ -353,8 +353,8 @@ static void test_msm_two_depth_far_plane(void)
 static void test_msm_clustered_falls(void)
 {
     pf_test_rng r = pf_test_rng_seed(0x17c1u);
-    int i, k, falls = 0, n = 40000;
-    long double worst = 0;
+    int i, k, falls = 0, falls_h = 0, n = 40000;
+    long double worst = 0, worst_h = 0;
     for (i = 0; i < n; ++i) {
         dist p;
         long double sum = 0, c = (long double)pf_test_uniform(&r, 0.0, 1.0);
@@ -376,9 +376,16 @@ static void test_msm_clustered_falls(void)
         up = pf_shadow_msm(m.msm, d, ALPHA, PF_R(0.0));
         if (lit_of(&p, (long double)d) - (long double)up > worst) worst = lit_of(&p, (long double)d) - (long double)up;
         falls += lit_of(&p, (long double)d) - (long double)up > 0.1L;
+        up = pf_shadow_msm_hausdorff(m.msm, d, ALPHA, PF_R(0.0));
+        if (lit_of(&p, (long double)d) - (long double)up > worst_h) worst_h = lit_of(&p, (long double)d) - (long double)up;
+        falls_h += lit_of(&p, (long double)d) - (long double)up > 0.1L;
     }
-    pf_test_note("%d clustered footprints: %d fall > 0.1 below the truth, largest fall %.2g", n, falls, (double)worst);
-    PF_CHECK(falls == 0, "%d falls of more than 0.1 below the truth", falls);
+    pf_test_note("%d clustered footprints: %d fall > 0.1 below the truth, largest fall %.2g; Hausdorff %d, largest %.2g", n, falls,
+                 (double)worst, falls_h, (double)worst_h);
+    /* Hausdorff is the tighter bound, so rounding reaches below the truth more easily: measured 1
+       fall (0.11) in float, 0 in double */
+    PF_CHECK(falls == 0 && falls_h <= 2 && worst_h <= 0.15L, "%d / %d falls of more than 0.1 below the truth (largest %.2f)",
+             falls, falls_h, (double)worst_h);
 }
 
 /* Sharpness: a three-atom distribution with an atom at the receiver depth is the extremal
@@ -1145,6 +1152,480 @@ static void test_csm_terms_match_stream(void)
 }
 /* ------------------------------------------------------------------ end of CSM */
 
+/* ------------------------------------------------------------------ Hausdorff 4MSM, stored formats */
+
+/* The Hausdorff bound is a bound: for random distributions of depths in [0, 1] (the same
+   generator as test_msm_bounds_random, receivers uniform in [0, 1]) the upper bound is at least
+   the biased truth, and never above the Hamburger bound (it only adds the support constraint). */
+static void test_msm_hausdorff_bound_random(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x4a75u);
+    long double worst_hi = 0, worst_above = 0, a = (long double)ALPHA, gain = 0;
+    int i, n = 0, tighter = 0;
+    for (i = 0; i < 6000; ++i) {
+        dist p = random_dist(&r);
+        dist_moments m = moments_of(&p);
+        pf_real d = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+        pf_real h = pf_shadow_msm_hausdorff(m.msm, d, ALPHA, PF_R(0.0));
+        pf_real hb = pf_shadow_msm(m.msm, d, ALPHA, PF_R(0.0));
+        long double coin_ge = 0.5L * ((long double)d <= 0.0L ? 1.0L : 0.0L) + 0.5L;
+        long double t_ge = (1 - a) * lit_of(&p, (long double)d) + a * coin_ge;
+        if (t_ge - (long double)h > worst_hi) worst_hi = t_ge - (long double)h;
+        if ((long double)h - (long double)hb > worst_above) worst_above = (long double)h - (long double)hb;
+        if (h < hb - PF_R(1e-4)) tighter++;
+        gain += (long double)(hb - h);
+        n++;
+    }
+    pf_test_note("%d distributions on [0, 1]: truth exceeds the Hausdorff bound by <= %.2g; above Hamburger by <= %.2g; "
+                 "tighter than Hamburger (by > 1e-4) in %d, mean gain %.4f",
+                 n, (double)worst_hi, (double)worst_above, tighter, (double)(gain / n));
+    PF_CHECK(worst_above == 0, "Hausdorff above Hamburger by %.3g", (double)worst_above);
+    PF_CHECK(tighter > n / 20, "Hausdorff tighter in only %d of %d", tighter, n);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_hi <= 1e-6L, "Hausdorff bound violated by %.3g", (double)worst_hi);
+#else
+    PF_CHECK(worst_hi <= 2e-3L, "Hausdorff bound violated by %.3g", (double)worst_hi);
+#endif
+}
+
+/* Sharp: the bound is attained by the extremal distributions. Four atoms {0, uf, x, 1} (depths
+   {1, d, z_x, 0}) with weights >= 0.05: the bound at the receiver d is P(z >= d) of that
+   distribution (the oracle, by brute force over its atoms), whatever side of d the free atom
+   lies; and for three interior atoms whose Hamburger extremal stays in [0, 1] it is the
+   Hamburger value. No bias. Together with the bound property above this makes the value the
+   supremum over all distributions on [0, 1] with those moments. */
+static void test_msm_hausdorff_sharp(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x5ba2u);
+    long double worst4 = 0, worst3 = 0;
+    int i, k;
+    for (i = 0; i < 3000; ++i) {
+        dist p;
+        dist_moments m;
+        long double s = 0, e;
+        pf_real h;
+        p.n = 4;
+        p.z[0] = 0.0L;
+        p.z[1] = 1.0L;
+        do {
+            p.z[2] = (long double)(pf_real)pf_test_uniform(&r, 0.1, 0.9);
+            p.z[3] = (long double)(pf_real)pf_test_uniform(&r, 0.1, 0.9);
+        } while (fabsl(p.z[2] - p.z[3]) < 0.1L);
+        for (k = 0; k < 4; ++k) s += (p.w[k] = (long double)pf_test_uniform(&r, 0.05, 1.0));
+        for (k = 0; k < 4; ++k) p.w[k] /= s;
+        m = moments_of(&p);
+        h = pf_shadow_msm_hausdorff(m.msm, (pf_real)p.z[2], PF_R(0.0), PF_R(0.0));
+        e = fabsl((long double)h - lit_of(&p, p.z[2]));
+        if (e > worst4) worst4 = e;
+        /* three interior atoms: the Hamburger extremal itself */
+        p.n = 3;
+        p.z[0] = (long double)(pf_real)pf_test_uniform(&r, 0.05, 0.3);
+        p.z[1] = (long double)(pf_real)pf_test_uniform(&r, 0.4, 0.6);
+        p.z[2] = (long double)(pf_real)pf_test_uniform(&r, 0.7, 0.95);
+        s = 0;
+        for (k = 0; k < 3; ++k) s += (p.w[k] = (long double)pf_test_uniform(&r, 0.1, 1.0));
+        for (k = 0; k < 3; ++k) p.w[k] /= s;
+        m = moments_of(&p);
+        h = pf_shadow_msm_hausdorff(m.msm, (pf_real)p.z[i % 3], PF_R(0.0), PF_R(0.0));
+        e = fabsl((long double)h - lit_of(&p, p.z[i % 3]));
+        if (e > worst3) worst3 = e;
+    }
+    pf_test_note("3000 four-atom {0, d, x, 1} distributions: max |bound - attained| %.2g; 3000 interior three-atom: %.2g",
+                 (double)worst4, (double)worst3);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst4 <= 1e-8L && worst3 <= 1e-8L, "Hausdorff bound not attained: %.3g / %.3g", (double)worst4, (double)worst3);
+#else
+    PF_CHECK(worst4 <= 5e-3L && worst3 <= 5e-3L, "Hausdorff bound not attained: %.3g / %.3g", (double)worst4, (double)worst3);
+#endif
+}
+
+/* Degenerate and arbitrary finite moments (point masses at 0, 1/2, 1, two-point footprints,
+   all-zero, huge and negative values, biases 0 .. 1, receivers outside [0, 1]): Hausdorff and the
+   64-bit decoders return a finite value in [0, 1]. Also under -ffast-math. */
+static void edge_msm_hausdorff_finite(void)
+{
+    static const double vals[] = { 0.0, 1e-30, 1e-7, 0.25, 0.5, 1.0 - 1e-7, 1.0, 2.0, -1e-7, -1.0, 1e30, -1e30 };
+    static const double ds[] = { -1.0, 0.0, 1e-7, 0.3, 0.5, 0.999999, 1.0, 2.0 };
+    static const double biases[] = { 0.0, 3e-5, 1e-4, 1.0 };
+    pf_test_rng r = pf_test_rng_seed(0xed9eu);
+    const int nv = (int)(sizeof vals / sizeof vals[0]);
+    long bad = 0, total = 0;
+    int a, b, c, e, k, j;
+    for (a = 0; a < nv; ++a)
+        for (b = 0; b < nv; ++b)
+            for (c = 0; c < nv; ++c)
+                for (e = 0; e < nv; e += 3)
+                    for (k = 0; k < 8; ++k) {
+                        pf_depth_moments4 m = pf_depth_moments4_make((pf_real)vals[a], (pf_real)vals[b], (pf_real)vals[c], (pf_real)vals[e]);
+                        pf_real bias = (pf_real)biases[k & 3], d = (pf_real)ds[k];
+                        pf_real v1 = pf_shadow_msm_hausdorff(m, d, bias, PF_R(0.0));
+                        pf_real v2 = pf_shadow_msm16(m, d, bias, PF_R(0.0));
+                        pf_real v3 = pf_shadow_msm16_hausdorff(m, d, bias, PF_R(0.0));
+                        bad += !(v1 >= PF_R(0.0) && v1 <= PF_R(1.0)) + !(v2 >= PF_R(0.0) && v2 <= PF_R(1.0))
+                             + !(v3 >= PF_R(0.0) && v3 <= PF_R(1.0));
+                        total += 3;
+                    }
+    /* moments of point masses and two-point footprints, as fp32 stores them */
+    for (j = 0; j < 20000; ++j) {
+        pf_real z0 = (pf_real)(j % 3 == 0 ? 0.0 : (j % 3 == 1 ? 1.0 : pf_test_uniform(&r, 0.0, 1.0)));
+        pf_real z1 = (pf_real)pf_test_uniform(&r, 0.0, 1.0), f = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+        pf_depth_moments4 m0 = pf_depth_moments4_from_depth(z0), m1 = pf_depth_moments4_from_depth(z1);
+        pf_depth_moments4 m = pf_depth_moments4_make(f * m0.m1 + (1 - f) * m1.m1, f * m0.m2 + (1 - f) * m1.m2,
+                                                     f * m0.m3 + (1 - f) * m1.m3, f * m0.m4 + (1 - f) * m1.m4);
+        pf_real d = (pf_real)pf_test_uniform(&r, -0.1, 1.1);
+        pf_real v1 = pf_shadow_msm_hausdorff(m, d, j & 1 ? ALPHA : PF_R(0.0), PF_R(0.0));
+        pf_real v2 = pf_shadow_msm16_hausdorff(pf_msm_quantize_moments(m), d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+        bad += !(v1 >= PF_R(0.0) && v1 <= PF_R(1.0)) + !(v2 >= PF_R(0.0) && v2 <= PF_R(1.0));
+        total += 2;
+    }
+    pf_test_note("%ld values, %ld outside [0, 1] or not finite", total, bad);
+    PF_CHECK(bad == 0, "%ld of %ld Hausdorff/MSM16 values outside [0, 1] or not finite", bad, total);
+}
+
+/* Linear: decode(lerp(encode a, encode b, t)) = lerp(moments a, moments b, t). Unquantized (the
+   affine map in pf_real), up to its rounding; stored as UNORM16 per texel, up to the storage
+   rounding (<= 1.414 x 2^-17 = 1.08e-5 per moment, see pf_shadow.h). */
+static void test_msm16_linear(void)
+{
+    pf_test_rng r = pf_test_rng_seed(0x11e4u);
+    long double worst = 0, worst_q = 0;
+    int i;
+    for (i = 0; i < 20000; ++i) {
+        pf_real za = (pf_real)pf_test_uniform(&r, 0.0, 1.0), zb = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+        pf_real t = (pf_real)pf_test_uniform(&r, 0.0, 1.0);
+        pf_depth_moments4 a = pf_depth_moments4_from_depth(za), b = pf_depth_moments4_from_depth(zb);
+        pf_depth_moments4 qa = pf_msm_quantize_moments(a), qb = pf_msm_quantize_moments(b);
+        pf_depth_moments4 mix = pf_depth_moments4_make(qa.m1 + t * (qb.m1 - qa.m1), qa.m2 + t * (qb.m2 - qa.m2),
+                                                       qa.m3 + t * (qb.m3 - qa.m3), qa.m4 + t * (qb.m4 - qa.m4));
+        pf_depth_moments4 dm = pf_msm_dequantize_moments(mix);
+        unsigned short sa[4], sb[4];
+        pf_real zz[2];
+        pf_depth_moments4 da, db;
+        long double want[4], got[4], gotq[4];
+        int k;
+        zz[0] = za, zz[1] = zb;
+        want[0] = (long double)a.m1 + (long double)t * ((long double)b.m1 - (long double)a.m1);
+        want[1] = (long double)a.m2 + (long double)t * ((long double)b.m2 - (long double)a.m2);
+        want[2] = (long double)a.m3 + (long double)t * ((long double)b.m3 - (long double)a.m3);
+        want[3] = (long double)a.m4 + (long double)t * ((long double)b.m4 - (long double)a.m4);
+        got[0] = (long double)dm.m1, got[1] = (long double)dm.m2, got[2] = (long double)dm.m3, got[3] = (long double)dm.m4;
+        if (pf_shadow_encode_msm16(zz, 1, sa) != PF_OK || pf_shadow_encode_msm16(zz + 1, 1, sb) != PF_OK) { worst_q = 1; break; }
+        da = pf_shadow_decode_msm16(sa), db = pf_shadow_decode_msm16(sb);
+        gotq[0] = (long double)da.m1 + (long double)t * ((long double)db.m1 - (long double)da.m1);
+        gotq[1] = (long double)da.m2 + (long double)t * ((long double)db.m2 - (long double)da.m2);
+        gotq[2] = (long double)da.m3 + (long double)t * ((long double)db.m3 - (long double)da.m3);
+        gotq[3] = (long double)da.m4 + (long double)t * ((long double)db.m4 - (long double)da.m4);
+        for (k = 0; k < 4; ++k) {
+            if (fabsl(got[k] - want[k]) > worst) worst = fabsl(got[k] - want[k]);
+            if (fabsl(gotq[k] - want[k]) > worst_q) worst_q = fabsl(gotq[k] - want[k]);
+        }
+    }
+    pf_test_note("20000 lerps: |decode(lerp(q)) - lerp(b)| <= %.2g unquantized, %.2g through UNORM16 (bound 1.08e-5)",
+                 (double)worst, (double)worst_q);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-12L, "MSM quantization not linear: %.3g", (double)worst);
+    PF_CHECK(worst_q <= 1.09e-5L, "UNORM16 error above its bound: %.3g", (double)worst_q);
+#else
+    PF_CHECK(worst <= 1e-5L, "MSM quantization not linear: %.3g", (double)worst);
+    PF_CHECK(worst_q <= 1.2e-5L, "UNORM16 error above its bound: %.3g", (double)worst_q);
+#endif
+}
+
+/* The clustered footprints of test_msm_clustered_falls stored at 64 bits per texel (each depth
+   encoded by pf_shadow_encode_msm16, the decoded UNORM values averaged with the footprint's
+   weights: a sampler's filter): counts of lit fractions more than 0.1 below the truth (a lit
+   receiver read as shadowed: acne), Hamburger and Hausdorff, for several moment biases; the
+   check is on PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT. */
+static void test_msm16_clustered_falls(void)
+{
+    static const double biases[5] = { 0.0, 1e-5, 2e-5, 3e-5, 1e-4 };
+    int falls[5][2], i, k, j, n = 40000, dflt = -1;
+    long double worst[5][2];
+    char line[640];
+    size_t used = 0;
+    for (j = 0; j < 5; ++j) {
+        pf_test_rng r = pf_test_rng_seed(0x17c1u);
+        falls[j][0] = falls[j][1] = 0;
+        worst[j][0] = worst[j][1] = 0;
+        if ((pf_real)biases[j] == PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT) dflt = j;
+        for (i = 0; i < n; ++i) {
+            dist p;
+            long double sum = 0, c = (long double)pf_test_uniform(&r, 0.0, 1.0), acc[4] = { 0, 0, 0, 0 }, truth;
+            long double s = powl(10.0L, (long double)pf_test_uniform(&r, -5.0, -1.0)), dd;
+            pf_depth_moments4 b;
+            pf_real d, up[2];
+            int t;
+            p.n = 2 + (int)(pf_test_rng_next(&r) % 5u);
+            for (k = 0; k < p.n; ++k) {
+                long double z = c + s * (long double)pf_test_uniform(&r, -1.0, 1.0);
+                p.z[k] = (long double)(pf_real)(z < 0 ? 0 : (z > 1 ? 1 : z));
+                p.w[k] = (long double)pf_test_uniform(&r, 0.05, 1.05);
+                sum += p.w[k];
+            }
+            for (k = 0; k < p.n; ++k) {
+                unsigned short q[4];
+                pf_real zk = (pf_real)p.z[k];
+                p.w[k] /= sum;
+                if (pf_shadow_encode_msm16(&zk, 1, q) != PF_OK) q[0] = q[1] = q[2] = q[3] = 0;
+                for (t = 0; t < 4; ++t) acc[t] += p.w[k] * (long double)q[t] / 65535.0L;
+            }
+            dd = pf_test_uniform(&r, 0.0, 1.0) < 0.5 ? p.z[pf_test_rng_next(&r) % (unsigned)p.n]
+                                                     : c + s * (long double)pf_test_uniform(&r, -1.0, 1.0);
+            d = (pf_real)(dd < 0 ? 0 : (dd > 1 ? 1 : dd));
+            b = pf_depth_moments4_make((pf_real)acc[0], (pf_real)acc[1], (pf_real)acc[2], (pf_real)acc[3]);
+            up[0] = pf_shadow_msm16(b, d, (pf_real)biases[j], PF_R(0.0));
+            up[1] = pf_shadow_msm16_hausdorff(b, d, (pf_real)biases[j], PF_R(0.0));
+            truth = lit_of(&p, (long double)d);
+            for (t = 0; t < 2; ++t) {
+                if (truth - (long double)up[t] > worst[j][t]) worst[j][t] = truth - (long double)up[t];
+                falls[j][t] += truth - (long double)up[t] > 0.1L;
+            }
+        }
+        used += (size_t)snprintf(line + used, sizeof line - used, "%sbias %.0e: %d / %d falls > 0.1 (largest %.2f / %.2f)",
+                                 j ? ", " : "", biases[j], falls[j][0], falls[j][1], (double)worst[j][0], (double)worst[j][1]);
+    }
+    pf_test_note("%d clustered footprints at 64 bits, Hamburger / Hausdorff: %s", n, line);
+    PF_CHECK(dflt >= 0, "default bias not among those tested");
+    /* measured at the default: Hamburger 0 (float) / 1 (double) falls, largest 0.08 / 0.13;
+       Hausdorff (the tighter bound) 3 / 5, largest 0.20 */
+    if (dflt >= 0)
+        PF_CHECK(falls[dflt][0] <= 2 && worst[dflt][0] <= 0.15L && falls[dflt][1] <= 8 && worst[dflt][1] <= 0.25L,
+                 "%d / %d falls at the default bias (largest %.2f / %.2f)", falls[dflt][0], falls[dflt][1],
+                 (double)worst[dflt][0], (double)worst[dflt][1]);
+}
+
+/* fp16 conversion: every finite fp16 value round-trips; values between two fp16 numbers round
+   to the nearer (ties to even); infinities and NaN decode to finite values. */
+static void test_half_conversion(void)
+{
+    long bad = 0;
+    unsigned h;
+    for (h = 0; h < 65536u; ++h) {
+        pf_real v = pf_shadow_half_to_real((unsigned short)h);
+        int ex = (int)((h >> 10) & 31u);
+        if (!(v - v == PF_R(0.0))) bad++;
+        if (ex != 31 && pf_shadow_half_from_real(v) != (unsigned short)h && !(v == PF_R(0.0) && (h & 0x7fffu) == 0)) bad++;
+        if (ex < 30 && (h & 0x7fffu) != 0x7bffu) {
+            pf_real next = pf_shadow_half_to_real((unsigned short)(h + 1u));
+            pf_real mid = (v + next) * PF_R(0.5);
+            unsigned short want = (unsigned short)((h & 1u) ? h + 1u : h); /* ties to even */
+            if ((h & 0x8000u) == 0 && pf_shadow_half_from_real(mid) != want) bad++;
+        }
+    }
+    bad += pf_shadow_half_from_real(PF_R(65519.0)) != 0x7bffu;
+    bad += pf_shadow_half_from_real(PF_R(65520.0)) != 0x7c00u;
+    pf_test_note("65536 fp16 patterns: %ld round-trip, midpoint or finiteness failures", bad);
+    PF_CHECK(bad == 0, "%ld fp16 conversion failures", bad);
+}
+
+/* fp16 EVSM at the exponent ceiling does not overflow: the largest stored value exp(2c) at
+   c = PF_EVSM_EXP_MAX_F16 is finite in fp16 (and so is every filtered mean of finite values);
+   an exponent above the ceiling is refused, fp32 likewise at PF_EVSM_EXP_MAX_F32. */
+static void test_f16_no_overflow(void)
+{
+    pf_real z[5] = { PF_R(0.0), PF_R(0.25), PF_R(0.5), PF_R(0.75), PF_R(1.0) };
+    unsigned short h[20];
+    float f[20];
+    pf_real c = PF_EVSM_EXP_MAX_F16, largest = 0;
+    int i, rc, rc_above, rc32, rc32_above, inf = 0;
+    rc = pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, 5, c, c, h);
+    for (i = 0; i < 20; ++i) {
+        pf_real v = pf_shadow_half_to_real(h[i]);
+        inf += ((h[i] >> 10) & 31u) == 31u;
+        if (PF_FABS(v) > largest) largest = PF_FABS(v);
+    }
+    rc_above = pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM2, z, 5, c + PF_R(0.01), c, h);
+    rc32 = pf_shadow_encode_f32(PF_SHADOW_STORE_EVSM4, z, 5, PF_EVSM_EXP_MAX_F32, PF_EVSM_EXP_MAX_F32, f);
+    for (i = 0; i < 20; ++i) inf += !(f[i] - f[i] == 0.0f);
+    rc32_above = pf_shadow_encode_f32(PF_SHADOW_STORE_EVSM4, z, 5, PF_EVSM_EXP_MAX_F32, PF_EVSM_EXP_MAX_F32 + PF_R(0.5), f);
+    pf_test_note("fp16 at c = %.2f: largest stored %.0f (fp16 max 65504), %d non-finite; above the ceiling: %s; fp32 at 44: %s",
+                 (double)c, (double)largest, inf, rc_above == PF_ERR_ARG ? "refused" : "ACCEPTED",
+                 rc32_above == PF_ERR_ARG ? "refused above" : "ACCEPTED above");
+    PF_CHECK(rc == PF_OK && rc32 == PF_OK, "encoders failed at the ceiling: %d %d", rc, rc32);
+    PF_CHECK(inf == 0 && largest < PF_R(65504.0) && largest > PF_R(60000.0), "fp16 overflow: %d non-finite, largest %g", inf,
+             (double)largest);
+    PF_CHECK(rc_above == PF_ERR_ARG && rc32_above == PF_ERR_ARG, "exponent above the ceiling accepted");
+}
+
+/* Bad input: every encoder refuses NaN/inf/out-of-range depths, non-finite moments, bad exponents,
+   NULL, negative and huge counts, unknown kinds - and writes nothing (the sentinel survives). */
+static void test_shadow_encode_bad_input(void)
+{
+    pf_real z[3] = { PF_R(0.5), PF_R(0.25), PF_R(0.75) };
+    pf_real bad_z[5];
+    pf_depth_moments4 mb[2];
+    unsigned short h[12];
+    float f[12];
+    int i, k, fails = 0, untouched = 1;
+    bad_z[0] = (pf_real)NAN; bad_z[1] = (pf_real)INFINITY; bad_z[2] = -(pf_real)INFINITY; bad_z[3] = PF_R(-0.001);
+    bad_z[4] = PF_R(1.001);
+    for (i = 0; i < 12; ++i) h[i] = 0xabcdu, f[i] = 12345.0f;
+    for (i = 0; i < 5; ++i) {
+        z[1] = bad_z[i];
+        for (k = 0; k < 4; ++k) {
+            fails += pf_shadow_encode_f16(k, z, 3, PF_R(5.0), PF_R(5.0), h) != PF_ERR_ARG;
+            fails += pf_shadow_encode_f32(k, z, 3, PF_R(5.0), PF_R(5.0), f) != PF_ERR_ARG;
+        }
+        fails += pf_shadow_encode_msm16(z, 3, h) != PF_ERR_ARG;
+    }
+    z[1] = PF_R(0.25);
+    for (i = 0; i < 4; ++i) { /* exponents: NaN, 0, negative, inf */
+        pf_real c = i == 0 ? (pf_real)NAN : (i == 1 ? PF_R(0.0) : (i == 2 ? PF_R(-1.0) : (pf_real)INFINITY));
+        fails += pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM2, z, 3, c, PF_R(1.0), h) != PF_ERR_ARG;
+        fails += pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, 3, PF_R(1.0), c, h) != PF_ERR_ARG;
+        fails += pf_shadow_encode_f32(PF_SHADOW_STORE_EVSM4, z, 3, c, PF_R(1.0), f) != PF_ERR_ARG;
+    }
+    fails += pf_shadow_encode_f16(7, z, 3, PF_R(1.0), PF_R(1.0), h) != PF_ERR_ARG;
+    fails += pf_shadow_encode_f16(-1, z, 3, PF_R(1.0), PF_R(1.0), h) != PF_ERR_ARG;
+    fails += pf_shadow_encode_f16(PF_SHADOW_STORE_VSM, NULL, 3, PF_R(1.0), PF_R(1.0), h) != PF_ERR_ARG;
+    fails += pf_shadow_encode_f32(PF_SHADOW_STORE_VSM, z, 3, PF_R(1.0), PF_R(1.0), NULL) != PF_ERR_ARG;
+    fails += pf_shadow_encode_f16(PF_SHADOW_STORE_VSM, z, -1, PF_R(1.0), PF_R(1.0), h) != PF_ERR_ARG;
+    fails += pf_shadow_encode_msm16(z, -5, h) != PF_ERR_ARG;
+    fails += pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, PF_MAX_REALS, PF_R(1.0), PF_R(1.0), h) != PF_ERR_SIZE;
+    fails += pf_shadow_encode_msm16(z, PF_MAX_REALS / 2, h) != PF_ERR_SIZE;
+    fails += pf_shadow_encode_msm16_moments(mb, PF_MAX_REALS / 2, h) != PF_ERR_SIZE;
+    mb[0] = pf_depth_moments4_from_depth(PF_R(0.5));
+    for (i = 0; i < 6; ++i) {
+        mb[1] = pf_depth_moments4_from_depth(PF_R(0.5));
+        if (i == 0) mb[1].m1 = (pf_real)NAN;
+        if (i == 1) mb[1].m2 = (pf_real)INFINITY;
+        if (i == 2) mb[1].m3 = -(pf_real)INFINITY;
+        if (i == 3) mb[1].m4 = (pf_real)NAN;
+        if (i == 4) mb[1].m1 = PF_R(1e30), mb[1].m2 = PF_R(-1e30); /* huge: no inf - inf inside */
+        if (i == 5) mb[1].m4 = PF_R(2.001);
+        fails += pf_shadow_encode_msm16_moments(mb, 2, h) != PF_ERR_ARG;
+    }
+    fails += pf_shadow_encode_msm16_moments(NULL, 2, h) != PF_ERR_ARG;
+    for (i = 0; i < 12; ++i) untouched &= h[i] == 0xabcdu && f[i] == 12345.0f;
+    /* n = 0 writes nothing and succeeds */
+    fails += pf_shadow_encode_msm16(z, 0, h) != PF_OK;
+    pf_test_note("%d wrong return codes, output %s", fails, untouched ? "untouched" : "WRITTEN");
+    PF_CHECK(fails == 0 && untouched, "%d wrong codes, untouched %d", fails, untouched);
+}
+
+/* Any stored bit pattern decodes to finite values and a lit fraction in [0, 1]: the 64-bit MSM
+   texel over every combination of {0, 1, 32767, 32768, 65534, 65535} per channel and 50000
+   random patterns; fp16 VSM/EVSM texels over random patterns (infinities and NaN included,
+   through pf_shadow_half_to_real). Also under -ffast-math. */
+static void edge_shadow_decode_any_bits(void)
+{
+    static const unsigned short sp[6] = { 0, 1, 32767, 32768, 65534, 65535 };
+    pf_test_rng r = pf_test_rng_seed(0xdec0u);
+    long bad = 0, total = 0;
+    int i, k;
+    for (i = 0; i < 6 * 6 * 6 * 6 + 50000; ++i) {
+        unsigned short t[4];
+        pf_depth_moments4 b, q;
+        pf_real d = (pf_real)pf_test_uniform(&r, 0.0, 1.0), v1, v2, v3, v4, v5;
+        pf_evsm_moments e;
+        if (i < 1296) {
+            t[0] = sp[i % 6], t[1] = sp[(i / 6) % 6], t[2] = sp[(i / 36) % 6], t[3] = sp[(i / 216) % 6];
+        } else {
+            for (k = 0; k < 4; ++k) t[k] = (unsigned short)(pf_test_rng_next(&r) & 0xffffu);
+        }
+        b = pf_shadow_decode_msm16(t);
+        q = pf_msm_quantize_moments(b);
+        v1 = pf_shadow_msm(b, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+        v2 = pf_shadow_msm_hausdorff(b, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+        v3 = pf_shadow_msm16(q, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+        e = pf_evsm_moments_make(pf_shadow_half_to_real(t[0]), pf_shadow_half_to_real(t[1]), pf_shadow_half_to_real(t[2]),
+                                 pf_shadow_half_to_real(t[3]));
+        v4 = pf_shadow_evsm4(e, d, PF_SHADOW_EVSM16_POS_DEFAULT, PF_SHADOW_EVSM16_NEG_DEFAULT,
+                             PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+        v5 = pf_shadow_vsm(pf_depth_moments2_make(e.pos1, e.pos2), d, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+        bad += !(b.m1 - b.m1 == PF_R(0.0) && b.m2 - b.m2 == PF_R(0.0) && b.m3 - b.m3 == PF_R(0.0) && b.m4 - b.m4 == PF_R(0.0));
+        bad += !(v1 >= PF_R(0.0) && v1 <= PF_R(1.0)) + !(v2 >= PF_R(0.0) && v2 <= PF_R(1.0))
+             + !(v3 >= PF_R(0.0) && v3 <= PF_R(1.0)) + !(v4 >= PF_R(0.0) && v4 <= PF_R(1.0))
+             + !(v5 >= PF_R(0.0) && v5 <= PF_R(1.0));
+        total += 6;
+    }
+    pf_test_note("%ld decoded values, %ld outside [0, 1] or not finite", total, bad);
+    PF_CHECK(bad == 0, "%ld of %ld decoded values bad", bad, total);
+}
+
+/* The stored formats on the shadow scenes: each footprint's texels encoded as stored (64-bit MSM,
+   fp16 VSM/EVSM at the fp16 defaults, fp16 MSM u-moments), decoded and box-filtered (the
+   sampler's work), against the same footprint in fp32 moments. Targets: 64-bit MSM within 0.01
+   mean absolute lit fraction of fp32 MSM on every scene, no more mean leak than fp32 (+0.002), no
+   NaN; the fp16 forms finite. */
+static void test_stored_formats_scenes(void)
+{
+    double *zd = (double *)malloc(sizeof(double) * SHS_N * SHS_N);
+    pf_real *z = (pf_real *)malloc(sizeof(pf_real) * SHS_N * SHS_N);
+    unsigned short *m16 = (unsigned short *)malloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    unsigned short *e16 = (unsigned short *)malloc(sizeof(unsigned short) * 4 * SHS_N * SHS_N);
+    const pf_real c16 = PF_SHADOW_EVSM16_POS_DEFAULT;
+    shs_lookup *L = (shs_lookup *)malloc(sizeof(shs_lookup) * SHS_LOOKUPS_PER_SCENE);
+    int s, i, worst_scene = 0, nonfinite = 0;
+    long double worst_diff = 0, worst_leak_gap = -1, worst_e16 = 0;
+    char line[320];
+    if (!zd || !z || !m16 || !e16 || !L) { PF_CHECK(0, "out of memory"); free(zd); free(z); free(m16); free(e16); free(L); return; }
+    for (s = 0; s < SHS_N_SCENES; ++s) {
+        shs_stats st32, st16, sth32, sth16;
+        long double diff = 0, de16 = 0;
+        memset(&st32, 0, sizeof st32); memset(&st16, 0, sizeof st16);
+        memset(&sth32, 0, sizeof sth32); memset(&sth16, 0, sizeof sth16);
+        shs_make_scene(s, zd);
+        for (i = 0; i < SHS_N * SHS_N; ++i) z[i] = (pf_real)zd[i];
+        if (pf_shadow_encode_msm16(z, SHS_N * SHS_N, m16) != PF_OK
+            || pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, SHS_N * SHS_N, c16, c16, e16) != PF_OK) {
+            PF_CHECK(0, "encode failed");
+            break;
+        }
+        shs_scene_lookups(s, L);
+        for (i = 0; i < SHS_LOOKUPS_PER_SCENE; ++i) {
+            long double acc[4] = { 0, 0, 0, 0 };
+            int x, y, k, n = L[i].size * L[i].size;
+            pf_depth_moments4 b;
+            pf_real v16, v32, h16, h32;
+            long double ae[4] = { 0, 0, 0, 0 }, a32[4] = { 0, 0, 0, 0 };
+            pf_real e16v, e32v;
+            for (y = L[i].y0; y < L[i].y0 + L[i].size; ++y)
+                for (x = L[i].x0; x < L[i].x0 + L[i].size; ++x) {
+                    pf_evsm_moments e = pf_evsm_moments_from_depth(z[y * SHS_N + x], c16, c16);
+                    for (k = 0; k < 4; ++k) {
+                        acc[k] += (long double)m16[4 * (y * SHS_N + x) + k] / 65535.0L;
+                        ae[k] += (long double)pf_shadow_half_to_real(e16[4 * (y * SHS_N + x) + k]);
+                    }
+                    a32[0] += (long double)e.pos1, a32[1] += (long double)e.pos2, a32[2] += (long double)e.neg1, a32[3] += (long double)e.neg2;
+                }
+            e16v = pf_shadow_evsm4(pf_evsm_moments_make((pf_real)(ae[0] / n), (pf_real)(ae[1] / n), (pf_real)(ae[2] / n), (pf_real)(ae[3] / n)),
+                                   L[i].d, c16, c16, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+            e32v = pf_shadow_evsm4(pf_evsm_moments_make((pf_real)(a32[0] / n), (pf_real)(a32[1] / n), (pf_real)(a32[2] / n), (pf_real)(a32[3] / n)),
+                                   L[i].d, c16, c16, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
+            nonfinite += !(e16v - e16v == PF_R(0.0));
+            de16 += fabsl((long double)e16v - (long double)e32v);
+            b = pf_depth_moments4_make((pf_real)(acc[0] / n), (pf_real)(acc[1] / n), (pf_real)(acc[2] / n), (pf_real)(acc[3] / n));
+            v16 = pf_shadow_msm16(b, L[i].d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+            h16 = pf_shadow_msm16_hausdorff(b, L[i].d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
+            v32 = pf_shadow_msm(L[i].msm, L[i].d, ALPHA, PF_R(0.0));
+            h32 = pf_shadow_msm_hausdorff(L[i].msm, L[i].d, ALPHA, PF_R(0.0));
+            nonfinite += !(v16 - v16 == PF_R(0.0)) + !(h16 - h16 == PF_R(0.0));
+            shs_stats_add(&st16, (long double)v16, L[i].truth);
+            shs_stats_add(&st32, (long double)v32, L[i].truth);
+            shs_stats_add(&sth16, (long double)h16, L[i].truth);
+            shs_stats_add(&sth32, (long double)h32, L[i].truth);
+            diff += fabsl((long double)v16 - (long double)v32);
+        }
+        diff /= SHS_LOOKUPS_PER_SCENE;
+        de16 /= SHS_LOOKUPS_PER_SCENE;
+        if (de16 > worst_e16) worst_e16 = de16;
+        if (diff > worst_diff) worst_diff = diff, worst_scene = s;
+        if (shs_mean_leak(&st16) - shs_mean_leak(&st32) > worst_leak_gap) worst_leak_gap = shs_mean_leak(&st16) - shs_mean_leak(&st32);
+        snprintf(line, sizeof line, "%s: MSM64 vs fp32 %.4f, err %.4f/%.4f leak %.4f/%.4f, Hausdorff err %.4f/%.4f, "
+                 "EVSM-4 fp16 vs fp32 (c = 5.54) %.4f",
+                 shs_scene_names[s], (double)diff, (double)shs_mean_err(&st16), (double)shs_mean_err(&st32),
+                 (double)shs_mean_leak(&st16), (double)shs_mean_leak(&st32), (double)shs_mean_err(&sth16),
+                 (double)shs_mean_err(&sth32), (double)de16);
+        pf_test_note("%s", line);
+    }
+    PF_CHECK(nonfinite == 0, "%d non-finite", nonfinite);
+    PF_CHECK(worst_e16 <= 0.005L, "fp16 EVSM-4 off fp32 storage at the same exponent by %.4f", (double)worst_e16);
+    PF_CHECK(worst_diff <= 0.01L, "64-bit MSM off fp32 MSM by %.4f on %s", (double)worst_diff, shs_scene_names[worst_scene]);
+    PF_CHECK(worst_leak_gap <= 0.002L, "64-bit MSM leaks %.4f more than fp32", (double)worst_leak_gap);
+    free(zd); free(z); free(m16); free(e16); free(L);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1174,5 +1655,15 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_csm_nan_inputs);
     PF_TEST_RUN(test_csm_scenes);
     PF_TEST_RUN(test_csm_terms_match_stream);
+    PF_TEST_RUN(test_msm_hausdorff_bound_random);
+    PF_TEST_RUN(test_msm_hausdorff_sharp);
+    PF_TEST_RUN(edge_msm_hausdorff_finite);
+    PF_TEST_RUN(test_msm16_linear);
+    PF_TEST_RUN(test_msm16_clustered_falls);
+    PF_TEST_RUN(test_half_conversion);
+    PF_TEST_RUN(test_f16_no_overflow);
+    PF_TEST_RUN(test_shadow_encode_bad_input);
+    PF_TEST_RUN(edge_shadow_decode_any_bits);
+    PF_TEST_RUN(test_stored_formats_scenes);
     return PF_TEST_END();
 }

@@ -15,6 +15,8 @@
        pf_textbook_evsm2            pf_shadow_evsm2       EVSM, positive warp
        pf_textbook_evsm4            pf_shadow_evsm4       EVSM, both warps
        pf_textbook_msm              pf_shadow_msm         Hamburger 4MSM
+       pf_textbook_msm_hausdorff    pf_shadow_msm_hausdorff  Hausdorff 4MSM (MJP's Shadows, HDRP)
+       pf_textbook_msm16            pf_shadow_msm16       Hamburger 4MSM of a 64-bit texel
        pf_textbook_lean_d           pf_beckmann_d         the LEAN lobe
        pf_textbook_walter_g1        pf_g1_beckmann        Walter's rational G1
        pf_textbook_walter_lambda    pf_lambda_beckmann    Walter's rational Lambda
@@ -138,6 +140,72 @@ PF_DEF pf_real pf_textbook_msm(pf_real m1, pf_real m2, pf_real m3, pf_real m4, p
     pf_real w = (u * z3 - b1 * (u + z3) + b2) / (span * (zf - z2));
     pf_real shadow = zf > z2 ? far + (PF_R(1.0) - PF_R(2.0) * far) * w : PF_R(0.0);
     return PF_R(1.0) - PFT_SATURATE(shadow);
+}
+
+/* Hausdorff 4MSM (Peters & Klein 2015, depths known to lie in [0, 1]) as MJP's Shadows sample
+   (MSM.hlsl) and Unity HDRP (ShadowMoments.hlsl) ship it, written here from that description:
+   the Hamburger kernel roots z2 <= z3 as in pf_textbook_msm; when both lie in [0, 1] the
+   three-atom shadow of pf_textbook_msm, otherwise the four-atom solution {0, zf, x, 1}: with
+   the moments of z (1 - z) mu, n0 = b1 - b2, n1 = b2 - b3, n2 = b3 - b4, the free atom is
+   x = (zf n1 - n2) / (zf n0 - n1), and the shadow (the mass in front of zf) is
+       w0 + [x < zf] wx,   w0 = E[(1 - z)(z - zf)(z - x)] / (zf x),
+                           wx = (n1 - zf n0) / (x (1 - x)(x - zf)).
+   Selects of plain values, as the engines write them. */
+PF_DEF pf_real pf_textbook_msm_hausdorff(pf_real m1, pf_real m2, pf_real m3, pf_real m4, pf_real d,
+                                         pf_real moment_bias, pf_real depth_bias)
+{
+    pf_real ha = PF_R(0.5) * moment_bias;
+    pf_real k = PF_R(1.0) - moment_bias;
+    pf_real b1 = k * m1 + ha, b2 = k * m2 + ha, b3 = k * m3 + ha, b4 = k * m4 + ha;
+    pf_real zf = d - depth_bias;
+    pf_real d22 = b2 - b1 * b1;
+    pf_real inv_d22 = PF_R(1.0) / d22;
+    pf_real e32 = b3 - b1 * b2;
+    pf_real l32 = e32 * inv_d22;
+    pf_real d33 = b4 - b2 * b2 - l32 * e32;
+    pf_real y2 = zf - b1;
+    pf_real y3 = zf * zf - b2 - l32 * y2;
+    pf_real c3 = y3 / d33;
+    pf_real c2 = y2 * inv_d22 - l32 * c3;
+    pf_real c1 = PF_R(1.0) - b1 * c2 - b2 * c3;
+    pf_real p = c2 / c3, q = c1 / c3;
+    pf_real r = PF_SQRT(PF_R(0.25) * p * p - q);
+    pf_real z2 = PF_R(-0.5) * p - r;
+    pf_real z3 = PF_R(-0.5) * p + r;
+    pf_real far = zf > z3 ? PF_R(1.0) : PF_R(0.0);
+    pf_real u = zf > z3 ? z2 : zf;
+    pf_real span = zf > z3 ? zf - z3 : z3 - z2;
+    pf_real w = (u * z3 - b1 * (u + z3) + b2) / (span * (zf - z2));
+    pf_real three = zf > z2 ? far + (PF_R(1.0) - PF_R(2.0) * far) * w : PF_R(0.0);
+    /* the four-atom solution */
+    pf_real n0 = b1 - b2, n1 = b2 - b3, n2 = b3 - b4;
+    pf_real x = (zf * n1 - n2) / (zf * n0 - n1);
+    pf_real s = zf + x, t = zf * x;
+    pf_real w0 = ((b2 - s * b1 + t) - (b3 - s * b2 + t * b1)) / t;
+    pf_real wx = (n1 - zf * n0) / (x * (PF_R(1.0) - x) * (x - zf));
+    pf_real wxf = x < zf ? wx : PF_R(0.0);
+    pf_real four = w0 + wxf;
+    pf_real outside = z2 < PF_R(0.0) || z3 > PF_R(1.0) ? PF_R(1.0) : PF_R(0.0);
+    pf_real shadow = outside > PF_R(0.5) ? four : three;
+    return PF_R(1.0) - PFT_SATURATE(shadow);
+}
+
+/* Hamburger 4MSM of a 64-bit texel as engines decode it (Peters & Klein 2015 sec. 4.3): the
+   filtered UNORM values q back to z-moments by the inverse of the optimized quantization
+   (b = Theta^-1 (q - o), pf_shadow.h's constants), then pf_textbook_msm. */
+PF_DEF pf_real pf_textbook_msm16(pf_real q1, pf_real q2, pf_real q3, pf_real q4, pf_real d,
+                                 pf_real moment_bias, pf_real depth_bias)
+{
+    pf_real q0 = q1 - PF_R(0.035955884801);
+    pf_real m1 = PF_R(0.22277441458975106) * q0 + PF_R(0.077197286078127286) * q2 + PF_R(0.79269866365602848) * q3
+               + PF_R(0.031941755461409697) * q4;
+    pf_real m2 = PF_R(0.15496792611583607) * q0 + PF_R(0.13946294265353615) * q2 + PF_R(0.79634158378587572) * q3
+               - PF_R(0.17228231730199037) * q4;
+    pf_real m3 = PF_R(0.14519889456443683) * q0 + PF_R(0.21202021568252677) * q2 + PF_R(0.72586944638507078) * q3
+               - PF_R(0.27580148114915759) * q4;
+    pf_real m4 = PF_R(0.16312744299137799) * q0 + PF_R(0.25914322664410966) * q2 + PF_R(0.65390924967369524) * q3
+               - PF_R(0.33761317340581742) * q4;
+    return pf_textbook_msm(m1, m2, m3, m4, d, moment_bias, depth_bias);
 }
 
 /* ---------------------------------------------------------------- microfacets */

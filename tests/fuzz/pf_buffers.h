@@ -2605,6 +2605,155 @@ static void pfb_d_encode_scalar(pfc_ctx *c, int which)
         pfb_fail(PFB_VALUE, "pf_oct_hemi_encode(%a, %a, %a) = (%a, %a)", (double)d.x, (double)d.y, (double)d.z, (double)u, (double)w);
 }
 
+/* ---------------------------------------------------------------- pf_shadow.h: stored formats
+   which: 0 pf_shadow_encode_f16, 1 pf_shadow_encode_f32, 2 pf_shadow_encode_msm16,
+   3 pf_shadow_encode_msm16_moments; 4 the value helpers (pf_shadow_store_channels,
+   pf_shadow_half_from_real / _to_real, pf_shadow_decode_msm16). The outputs are 16- or 32-bit
+   words, not pf_reals: each accepted call runs twice over the same guarded mapping, first
+   filled with one canary byte, then another; a word that differs between the runs was not
+   written (a written one is the same both times), and every byte past the last word must keep
+   its canary. On rejection every byte must keep it. */
+static const char *const pfb_shadow_fn[4] = { "pf_shadow_encode_f16", "pf_shadow_encode_f32", "pf_shadow_encode_msm16",
+                                              "pf_shadow_encode_msm16_moments" };
+static int pfb_shadow_call(int which, int kind, const pf_real *z, long long n, pf_real cp, pf_real cn, void *out)
+{
+    switch (which) {
+    case 0: return pf_shadow_encode_f16(kind, z, n, cp, cn, (unsigned short *)out);
+    case 1: return pf_shadow_encode_f32(kind, z, n, cp, cn, (float *)out);
+    case 2: return pf_shadow_encode_msm16(z, n, (unsigned short *)out);
+    default: return pf_shadow_encode_msm16_moments((const pf_depth_moments4 *)(const void *)z, n, (unsigned short *)out);
+    }
+}
+static int pfb_bytes_all(const unsigned char *p, long long n, unsigned char b)
+{
+    long long i;
+    for (i = 0; i < n; ++i)
+        if (p[i] != b) return 0;
+    return 1;
+}
+static void pfb_d_shadow(pfc_ctx *c, int which)
+{
+    const char *fn = pfb_shadow_fn[which < 4 ? which : 0];
+    int n = pfb_int(c, 0, 12), null = pfb_null(c, 2), at_start = PFC_R(pfc_next(c)) < 4, rc, rc2, allowed;
+    int kind = which <= 1 ? pfb_int(c, -1, 5) : PF_SHADOW_STORE_MSM;
+    int ch = kind == PF_SHADOW_STORE_VSM || kind == PF_SHADOW_STORE_EVSM2 ? 2
+           : (kind == PF_SHADOW_STORE_EVSM4 || kind == PF_SHADOW_STORE_MSM ? 4 : 0);
+    int wbytes = which == 1 ? 4 : 2, per = which == 3 ? 4 : 1; /* output word size; reals per input item */
+    pf_real ceiling = which == 1 ? PF_EVSM_EXP_MAX_F32 : PF_EVSM_EXP_MAX_F16;
+    pf_real cp = pfb_coord(c, PF_R(0.0), PF_R(50.0)), cn = pfb_coord(c, PF_R(0.0), PF_R(50.0));
+    pfb_expect ex = { 0, 0, 0 };
+    long long nw = -1, nin, outreals, i;
+    pf_real *z, *o;
+    unsigned char *ob;
+    int bad_data = 0;
+    if (which == 4) { /* value helpers: finite decodes of every pattern, round trips */
+        unsigned short h = (unsigned short)(pfc_next(c) & 0xFFFFu), t[4];
+        pf_real v = pf_shadow_half_to_real(h);
+        pf_depth_moments4 m;
+        pfb_setcall("pf_shadow_half_to_real(0x%04x) / pf_shadow_decode_msm16", (unsigned)h);
+        if (!pfb_finite(v)) pfb_fail(PFB_NONFINITE, "pf_shadow_half_to_real(0x%04x) = %a", (unsigned)h, (double)v);
+        if (((h >> 10) & 31u) != 31u && pf_shadow_half_from_real(v) != h && (h & 0x7FFFu) != 0)
+            pfb_fail(PFB_VALUE, "half 0x%04x does not round-trip", (unsigned)h);
+        for (i = 0; i < 4; ++i) t[i] = (unsigned short)(pfc_next(c) & 0xFFFFu);
+        m = pf_shadow_decode_msm16(t);
+        if (!(pfb_finite(m.m1) && pfb_finite(m.m2) && pfb_finite(m.m3) && pfb_finite(m.m4)))
+            pfb_fail(PFB_NONFINITE, "pf_shadow_decode_msm16 of {%u %u %u %u}", t[0], t[1], t[2], t[3]);
+        if (pf_shadow_store_channels(kind) != ch) pfb_fail(PFB_VALUE, "pf_shadow_store_channels(%d)", kind);
+        (void)pf_shadow_half_from_real(pfb_coord(c, PF_R(-70000.0), PF_R(70000.0))); /* any real: no trap */
+        return;
+    }
+    pfb_setcall("%s(kind %d, %s, %d, c %a %a, %s)", fn, kind, null == 1 ? "NULL" : "in", n, (double)cp, (double)cn,
+                null == 2 ? "NULL" : "out");
+    if (null) ex.arg = 1;
+    if (n < 0 || ch == 0) ex.small = 1;
+    /* NaN by its bits: -ffast-math would fold the comparison */
+    if ((which <= 1) && (kind == PF_SHADOW_STORE_EVSM2 || kind == PF_SHADOW_STORE_EVSM4) && (pfb_isnan(cp) || !(cp > 0 && cp <= ceiling)))
+        ex.arg = 1;
+    if ((which <= 1) && kind == PF_SHADOW_STORE_EVSM4 && (pfb_isnan(cn) || !(cn > 0 && cn <= ceiling))) ex.arg = 1;
+    if (!ex.small) {
+        nw = pfb_mul(n, ch);
+        if (nw < 0) ex.size = 1;
+    }
+    allowed = pfb_allowed(ex);
+    if (!(allowed & PFB_A_OK)) {
+        pf_real *b[2];
+        b[0] = null == 1 ? 0 : pfb_small();
+        b[1] = null == 2 ? 0 : pfb_small();
+        if (b[0]) for (i = 0; i < PFB_SMALL; ++i) b[0][i] = PF_R(0.5); /* valid data: only the arguments are bad */
+        rc = pfb_shadow_call(which, kind, b[0], n, cp, cn, b[1]);
+        /* under -ffast-math a NaN or infinite exponent may pass the library's comparisons:
+           then only memory safety is checked */
+        if (!(PFB_FAST && pfb_nonfinite_input)) pfb_rc_check(rc, allowed, fn);
+        if (b[1] && (pfb_count_changed(b[1], PFB_SMALL) || !pfb_pool_page_ok(b[1]))) pfb_fail(PFB_WROTE, "output written");
+        return;
+    }
+    nin = (long long)n * per;
+    outreals = (nw * wbytes + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    if (nin > pfb_work_cap || outreals > pfb_work_cap) return;
+    z = pfb_map(nin, at_start);
+    o = pfb_map(outreals, !at_start);
+    if (!z || !o) return;
+    ob = (unsigned char *)(void *)o;
+    for (i = 0; i < nin; ++i) { /* depths in [0, 1], or moments of one; 1 in 8 draws a bad value */
+        pfc_u32 u = pfc_next(c), b = PFC_B(u);
+        if (PFC_R(u) == 0) {
+            z[i] = pfb_coord(c, PF_R(-2.0), PF_R(3.0));
+            bad_data |= pfb_isnan(z[i]) || (which == 3 ? !(z[i] >= PF_R(-1.0) && z[i] <= PF_R(2.0)) : !(z[i] >= PF_R(0.0) && z[i] <= PF_R(1.0)));
+        } else {
+            z[i] = pfc_unif(b);
+        }
+    }
+    memset(ob, 0xA5, (size_t)(outreals * (long long)sizeof(pf_real)));
+    if (pfb_t) pfb_t->run += 1;
+    rc = pfb_shadow_call(which, kind, z, n, cp, cn, o);
+    if (PFB_FAST && pfb_nonfinite_input) { /* see above: memory safety only */
+        if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+        if (rc == PF_OK && !pfb_bytes_all(ob + nw * wbytes, outreals * (long long)sizeof(pf_real) - nw * wbytes, 0xA5))
+            pfb_fail(PFB_OOB, "bytes past the %lld output words changed", nw);
+        return;
+    }
+    if (bad_data) {
+        if (rc != PF_ERR_ARG) pfb_fail(PFB_RC, "%s: bad data returned %d, want PF_ERR_ARG", fn, rc);
+        if (!pfb_bytes_all(ob, outreals * (long long)sizeof(pf_real), 0xA5)) pfb_fail(PFB_WROTE, "written on bad data");
+        return;
+    }
+    if (!pfb_rc_check(rc, PFB_A_OK, fn)) return;
+    if (!pfb_bytes_all(ob + nw * wbytes, outreals * (long long)sizeof(pf_real) - nw * wbytes, 0xA5))
+        pfb_fail(PFB_OOB, "bytes past the %lld output words changed", nw);
+    {   /* the second run, another canary: every word must come out the same */
+        unsigned char *copy = (unsigned char *)malloc((size_t)(nw * wbytes) + 1);
+        if (!copy) return;
+        memcpy(copy, ob, (size_t)(nw * wbytes));
+        memset(ob, 0x5A, (size_t)(outreals * (long long)sizeof(pf_real)));
+        rc2 = pfb_shadow_call(which, kind, z, n, cp, cn, o);
+        if (rc2 != PF_OK || memcmp(copy, ob, (size_t)(nw * wbytes)) != 0) pfb_fail(PFB_VALUE, "%s: an output word not written", fn);
+        free(copy);
+    }
+    for (i = 0; i < nw; ++i) { /* values: finite, in range */
+        if (which == 1) {
+            float f;
+            memcpy(&f, ob + i * 4, 4);
+            if (!(f - f == 0.0f)) { pfb_fail(PFB_NONFINITE, "out[%lld] = %a", i, (double)f); break; }
+        } else {
+            unsigned short h;
+            memcpy(&h, ob + i * 2, 2);
+            if (which == 0 && ((h >> 10) & 31u) == 31u) { pfb_fail(PFB_NONFINITE, "out[%lld] = 0x%04x", i, (unsigned)h); break; }
+        }
+    }
+    if (which == 2) /* 64-bit MSM: the decoded moments within the UNORM16 error of u^k */
+        for (i = 0; i < n; ++i) {
+            unsigned short t[4];
+            pf_depth_moments4 m;
+            long double u = 1.0L - (long double)z[i], e;
+            memcpy(t, ob + i * 8, 8);
+            m = pf_shadow_decode_msm16(t);
+            e = fabsl((long double)m.m1 - u) + fabsl((long double)m.m2 - u * u) + fabsl((long double)m.m3 - u * u * u)
+              + fabsl((long double)m.m4 - u * u * u * u);
+            if (!(e <= 4 * 1.2e-5L)) { pfb_fail(PFB_VALUE, "decoded moments of z = %a off by %Lg", (double)z[i], e); break; }
+        }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
 static const pfb_entry pfb_table[] = {
     { "pf_size_mul pf_size_mul3 pf_size_side_ok", "core", pfb_w_core, 0 },
     { "pf_floor_index", "core", pfb_d_floor_index, 0 },
@@ -2668,6 +2817,11 @@ static const pfb_entry pfb_table[] = {
     { "pf_half_from_real pf_real_from_half pf_oct_hemi_encode pf_encode_bytes", "encode", pfb_d_encode_scalar, 0 },
     { "pf_specaa_bake", "specaa", pfb_d_specaa, 0 },
     { "pf_specaa_bake_scratch_reals", "specaa", pfb_d_specaa, 1 },
+    { "pf_shadow_encode_f16", "shadow", pfb_d_shadow, 0 },
+    { "pf_shadow_encode_f32", "shadow", pfb_d_shadow, 1 },
+    { "pf_shadow_encode_msm16", "shadow", pfb_d_shadow, 2 },
+    { "pf_shadow_encode_msm16_moments", "shadow", pfb_d_shadow, 3 },
+    { "pf_shadow_store_channels pf_shadow_half_from_real pf_shadow_half_to_real pf_shadow_decode_msm16", "shadow", pfb_d_shadow, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 

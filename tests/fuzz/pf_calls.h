@@ -1245,6 +1245,30 @@ static void pfc_f_pf_shadow_msm(pfc_ctx *c)
     pf_real d = pfc_u01(c), a = pfc_u01(c), db = pfc_sym(c, -4);
     pfc_01(c, pf_shadow_msm(m, d, a, db));
 }
+static void pfc_f_pf_shadow_msm_hausdorff(pfc_ctx *c)
+{
+    pf_depth_moments4 m = pfc_d4(c);
+    pf_real d = pfc_u01(c), a = pfc_u01(c), db = pfc_sym(c, -4);
+    pfc_01(c, pf_shadow_msm_hausdorff(m, d, a, db));
+}
+/* 64-bit MSM: the stored values of the same moments (q = Theta b + o), as the sampler returns them */
+static void pfc_f_pf_msm_quantize_moments(pfc_ctx *c) { pfc_out_d4(c, pf_msm_quantize_moments(pfc_d4(c))); }
+static void pfc_f_pf_msm_dequantize_moments(pfc_ctx *c)
+{
+    pfc_out_d4(c, pf_msm_dequantize_moments(pf_msm_quantize_moments(pfc_d4(c))));
+}
+static void pfc_f_pf_shadow_msm16(pfc_ctx *c)
+{
+    pf_depth_moments4 q = pf_msm_quantize_moments(pfc_d4(c));
+    pf_real d = pfc_u01(c), a = pfc_u01(c), db = pfc_sym(c, -4);
+    pfc_01(c, pf_shadow_msm16(q, d, a, db));
+}
+static void pfc_f_pf_shadow_msm16_hausdorff(pfc_ctx *c)
+{
+    pf_depth_moments4 q = pf_msm_quantize_moments(pfc_d4(c));
+    pf_real d = pfc_u01(c), a = pfc_u01(c), db = pfc_sym(c, -4);
+    pfc_01(c, pf_shadow_msm16_hausdorff(q, d, a, db));
+}
 
 /* ---- CSM (helper L, issue 16): pf_moments.h pairs, pf_shadow.h series */
 /* The pair j of a two-depth mixture (all zero in 1 of 16 regimes: an empty footprint). */
@@ -2238,6 +2262,11 @@ static const pfc_entry pfc_table[] = {
     PFC_E(shadow, pf_shadow_evsm4, PFC_WIDE, "as evsm2, both warps", "as evsm2"),
     PFC_E(shadow, pf_shadow_msm_bounds, PFC_WIDE, "moments of 2 depths (+ rounding, all-zero), d, bias in [0, 1], depth_bias +-1/16", "singular Hankel matrix (point mass, two atoms, depths 0/1): pivots floored, roots clamped to 1e4, divisions clamped"),
     PFC_E(shadow, pf_shadow_msm, PFC_WIDE, "as msm_bounds", "as msm_bounds"),
+    PFC_E(shadow, pf_shadow_msm_hausdorff, PFC_WIDE, "as msm_bounds", "as msm_bounds; the four-atom form's denominators floored, min with the Hamburger bound"),
+    PFC_E(shadow, pf_msm_quantize_moments, 0, "as msm_bounds (moments)", "affine: coefficients up to 82, so finite below ~PF_REAL_MAX/400"),
+    PFC_E(shadow, pf_msm_dequantize_moments, 0, "the quantized moments of msm_bounds' moments", "affine: finite below ~PF_REAL_MAX/4"),
+    PFC_E(shadow, pf_shadow_msm16, PFC_WIDE, "the quantized moments of msm_bounds' moments, d, bias, depth_bias as msm_bounds", "as msm_bounds, floors for UNORM16 noise"),
+    PFC_E(shadow, pf_shadow_msm16_hausdorff, PFC_WIDE, "as msm16", "as msm_hausdorff"),
     PFC_E(moments, pf_csm_pair_make, 0, "CSM pair of a two-depth mixture (or all zero)", "stores its arguments"),
     PFC_E(moments, pf_csm_pair_from_depth, 0, "z in [0, 1], pair -1 .. 40", "cos/sin of (4j + 1) pi z, (4j + 3) pi z: in [-1, 1]"),
     PFC_E(moments, pf_csm_pair_add, 0, PFC_LIN " (CSM: [-1, 1])", PFC_LINREG),

@@ -124,7 +124,7 @@ static int parse_domain(const char *s, domain *d)
     d->a = a;
     d->b = n == 3 ? b : a;
     if (!strcmp(k, "n")) { d->b = a; d->a = 0.0; }
-    return !strcmp(k, "mom") || !strcmp(k, "u") || !strcmp(k, "lu") || !strcmp(k, "slu") || !strcmp(k, "n") || !strcmp(k, "i") ||
+    return !strcmp(k, "mom") || !strcmp(k, "qm") || !strcmp(k, "u") || !strcmp(k, "lu") || !strcmp(k, "slu") || !strcmp(k, "n") || !strcmp(k, "i") ||
            !strcmp(k, "c");
 }
 
@@ -228,10 +228,27 @@ static void new_sample(void)
     for (i = 0; i < 3; i++) { mix_z[i] = rnd(); mix_w[i] = 0.05 + rnd(); t += mix_w[i]; }
     for (i = 0; i < 3; i++) mix_w[i] /= t;
 }
+/* qm(k): component k of the same moments as a 64-bit MSM texel stores them, Theta b + o
+   (Peters & Klein 2015's optimized quantization, pf_msm_quantize_moments), unrounded */
+static double mix_mom(int k)
+{
+    return mix_w[0] * pow(mix_z[0], k) + mix_w[1] * pow(mix_z[1], k) + mix_w[2] * pow(mix_z[2], k);
+}
 static float draw(domain d)
 {
     if (!strcmp(d.kind, "mom"))
         return (float)(mix_w[0] * pow(mix_z[0], d.a) + mix_w[1] * pow(mix_z[1], d.a) + mix_w[2] * pow(mix_z[2], d.a));
+    if (!strcmp(d.kind, "qm")) {
+        static const double theta[4][4] = { { -2.07224649, 32.23703778, -68.571074599, 39.3703274134 },
+                                            { 13.7948857237, -59.4683975703, 82.0359750338, -35.364903257 },
+                                            { 0.105877704, -1.9077466311, 9.3496555107, -6.6543490743 },
+                                            { 9.7924062118, -33.7652110555, 47.9456096605, -23.9728048165 } };
+        int r = (int)d.a - 1, j;
+        double q = r == 0 ? 0.035955884801 : 0.0;
+        if (r < 0 || r > 3) return 0.0f;
+        for (j = 0; j < 4; j++) q += theta[r][j] * mix_mom(j + 1);
+        return (float)q;
+    }
     if (!strcmp(d.kind, "u")) return (float)(d.a + (d.b - d.a) * rnd());
     if (!strcmp(d.kind, "lu")) return (float)exp(log(d.a) + (log(d.b) - log(d.a)) * rnd());
     if (!strcmp(d.kind, "slu")) return (float)((rnd() < 0.5 ? -1.0 : 1.0) * exp(log(d.a) + (log(d.b) - log(d.a)) * rnd()));
