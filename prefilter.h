@@ -717,6 +717,66 @@ PF_CPU_DEF long long pf_floor_index(pf_real x, long long lo, long long hi)
     i = (long long)PF_FLOOR(x);
     return i < lo ? lo : (i > hi ? hi : i);
 }
+
+/* IEEE binary16 (half float) storage, shared by the encoders of pf_encode.h and pf_shadow.h. */
+/* x rounded to the nearest integer, ties to even, for 0 <= x <= 2^24 (no libm rint). */
+PF_CPU_DEF long pf_round_even(pf_real x)
+{
+    long q = (long)x;
+    pf_real f = x - (pf_real)q;
+    if (f > PF_R(0.5) || (f == PF_R(0.5) && (q & 1L))) ++q;
+    return q;
+}
+
+/* 2^k for -40 <= k <= 40 by repeated exact scaling (no libm ldexp). */
+PF_CPU_DEF pf_real pfi_core_pow2(int k)
+{
+    pf_real r = PF_R(1.0);
+    for (; k > 0; --k) r *= PF_R(2.0);
+    for (; k < 0; ++k) r *= PF_R(0.5);
+    return r;
+}
+
+/* IEEE binary16 bits of x, rounded to nearest even; |x| >= 65520 (also inf) gives +-inf, NaN
+   a quiet NaN. Encoders (pf_encode.h, pf_shadow.h) reject those before calling it. Exact in float and
+   double: only scaling by powers of two and one rounding. */
+PF_CPU_DEF unsigned short pf_half_from_real(pf_real x)
+{
+    unsigned short sign = (unsigned short)(x < PF_R(0.0) ? 0x8000u : 0u); /* -0 stored as +0 */
+    pf_real a = PF_FABS(x), p = PF_R(1.220703125e-04); /* 2^(e + 1) */
+    int e;
+    long m;
+    if (!(a == a)) return (unsigned short)0x7e00u;
+    if (a >= PF_R(65520.0)) return (unsigned short)(sign | 0x7c00u);
+    if (a < PF_R(6.103515625e-05)) { /* below 2^-14: subnormal, units of 2^-24 (may round up to 2^-14) */
+        m = pf_round_even(a * PF_R(16777216.0));
+        return (unsigned short)(sign | (unsigned short)m);
+    }
+    e = -14;
+    while (e < 15 && a >= p) {
+        ++e;
+        p *= PF_R(2.0);
+    }
+    m = pf_round_even(a * pfi_core_pow2(10 - e)); /* in [1024, 2048] */
+    if (m == 2048) {
+        m = 1024;
+        ++e;
+    }
+    if (e > 15) return (unsigned short)(sign | 0x7c00u);
+    return (unsigned short)(sign | (unsigned short)((e + 15) << 10) | (unsigned short)(m - 1024));
+}
+
+/* The value of binary16 bits h; finite for every pattern: +-inf gives +-65504, NaN 0. */
+PF_CPU_DEF pf_real pf_real_from_half(unsigned short h)
+{
+    int e = (h >> 10) & 31;
+    long m = h & 1023;
+    pf_real v;
+    if (e == 31) v = m ? PF_R(0.0) : PF_R(65504.0);
+    else if (e == 0) v = (pf_real)m * PF_R(5.9604644775390625e-08); /* 2^-24 */
+    else v = (pf_real)(1024 + m) * pfi_core_pow2(e - 25);
+    return (h & 0x8000u) ? -v : v;
+}
 #endif /* !PF_GLSL */
 
 #endif /* PF_CORE_H */
@@ -3159,64 +3219,6 @@ PF_CPU_DEF int pf_encode_bytes(int format)
 /* 1 when x is finite (not NaN, not +-inf). */
 PF_CPU_DEF int pfi_enc_finite(pf_real x) { return x == x && x <= PF_REAL_MAX && x >= -PF_REAL_MAX; }
 
-/* x rounded to the nearest integer, ties to even, for 0 <= x <= 2^24 (no libm rint). */
-PF_CPU_DEF long pfi_enc_round_even(pf_real x)
-{
-    long q = (long)x;
-    pf_real f = x - (pf_real)q;
-    if (f > PF_R(0.5) || (f == PF_R(0.5) && (q & 1L))) ++q;
-    return q;
-}
-
-/* 2^k for -40 <= k <= 40 by repeated exact scaling (no libm ldexp). */
-PF_CPU_DEF pf_real pfi_enc_pow2(int k)
-{
-    pf_real r = PF_R(1.0);
-    for (; k > 0; --k) r *= PF_R(2.0);
-    for (; k < 0; ++k) r *= PF_R(0.5);
-    return r;
-}
-
-/* IEEE binary16 bits of x, rounded to nearest even; |x| >= 65520 (also inf) gives +-inf, NaN
-   a quiet NaN. The encoders reject those before calling it. */
-PF_CPU_DEF unsigned short pf_half_from_real(pf_real x)
-{
-    unsigned short sign = (unsigned short)(x < PF_R(0.0) ? 0x8000u : 0u); /* -0 stored as +0 */
-    pf_real a = PF_FABS(x), p = PF_R(1.220703125e-04); /* 2^(e + 1) */
-    int e;
-    long m;
-    if (!(a == a)) return (unsigned short)0x7e00u;
-    if (a >= PF_R(65520.0)) return (unsigned short)(sign | 0x7c00u);
-    if (a < PF_R(6.103515625e-05)) { /* below 2^-14: subnormal, units of 2^-24 (may round up to 2^-14) */
-        m = pfi_enc_round_even(a * PF_R(16777216.0));
-        return (unsigned short)(sign | (unsigned short)m);
-    }
-    e = -14;
-    while (e < 15 && a >= p) {
-        ++e;
-        p *= PF_R(2.0);
-    }
-    m = pfi_enc_round_even(a * pfi_enc_pow2(10 - e)); /* in [1024, 2048] */
-    if (m == 2048) {
-        m = 1024;
-        ++e;
-    }
-    if (e > 15) return (unsigned short)(sign | 0x7c00u);
-    return (unsigned short)(sign | (unsigned short)((e + 15) << 10) | (unsigned short)(m - 1024));
-}
-
-/* The value of binary16 bits h; finite for every pattern: +-inf gives +-65504, NaN 0. */
-PF_CPU_DEF pf_real pf_real_from_half(unsigned short h)
-{
-    int e = (h >> 10) & 31;
-    long m = h & 1023;
-    pf_real v;
-    if (e == 31) v = m ? PF_R(0.0) : PF_R(65504.0);
-    else if (e == 0) v = (pf_real)m * PF_R(5.9604644775390625e-08); /* 2^-24 */
-    else v = (pf_real)(1024 + m) * pfi_enc_pow2(e - 25);
-    return (h & 0x8000u) ? -v : v;
-}
-
 /* Octahedral coordinates (u, v) in [-1, 1] of a direction of the upper hemisphere (d.z < 0 is
    taken as 0; the zero vector and NaN give (0, 0), the pole). Inverse of pf_oct_hemi_decode
    with su = (u + 1)/2, sv = (v + 1)/2. */
@@ -3242,7 +3244,7 @@ PF_CPU_DEF long pfi_enc_code(pf_real x, pf_real offset, pf_real scale, long leve
     if (!(scale > PF_R(0.0))) return 0;
     t = (x - offset) / scale; /* x - offset may overflow to +-inf: clamped below */
     t = t == t ? t : PF_R(0.0);
-    return pfi_enc_round_even(pf_clamp(t, PF_R(0.0), PF_R(1.0)) * (pf_real)levels);
+    return pf_round_even(pf_clamp(t, PF_R(0.0), PF_R(1.0)) * (pf_real)levels);
 }
 
 /* Store x at index i of out in format f (checked by the caller). */
@@ -7684,7 +7686,7 @@ PF_CPU_DEF pf_mask pf_masks_table_fetch(const int *table, int n_theta, int n_v, 
    All are pure, pointer-free and branch only on values: they paste into GLSL, HLSL, CUDA.
    CPU only (caller buffers, library return codes): pf_shadow_encode_f32 / _f16 (VSM, EVSM-2,
    EVSM-4, MSM texels in fp32 / fp16 with the exponent ceilings), pf_shadow_encode_msm16 /
-   _msm16_moments (64-bit MSM texels), pf_shadow_half_from_real / _to_real,
+   _msm16_moments (64-bit MSM texels), pf_half_from_real / pf_real_from_half (pf_core.h),
    pf_shadow_decode_msm16; see "16- and 32-bit float storage" and "CPU encoders" below.
 
    ROBUSTNESS
@@ -8289,7 +8291,7 @@ PF_DEF pf_real pf_shadow_msm16_hausdorff(pf_depth_moments4 q, pf_real d, pf_real
    that is not finite, not positive or above the format's ceiling (PF_EVSM_EXP_MAX_F16 for
    fp16, PF_EVSM_EXP_MAX_F32 for fp32; c_neg only checked for EVSM4); PF_ERR_SIZE when
    the output would exceed PF_MAX_REALS values. c_pos, c_neg are ignored by VSM and MSM.
-   Decoders: pf_shadow_half_to_real(h) returns a finite value for every bit pattern (an
+   Decoders: pf_real_from_half(h) returns a finite value for every bit pattern (an
    infinity reads as +-65504, a NaN as 0; what a GPU sampler returns for those is its own);
    pf_shadow_decode_msm16(t) the moments of u from 4 UNORM16 values (any values: finite). */
 #define PF_SHADOW_STORE_VSM 0
@@ -8301,46 +8303,6 @@ PF_CPU_DEF int pf_shadow_store_channels(int kind)
 {
     return kind == PF_SHADOW_STORE_VSM || kind == PF_SHADOW_STORE_EVSM2 ? 2
          : (kind == PF_SHADOW_STORE_EVSM4 || kind == PF_SHADOW_STORE_MSM ? 4 : 0);
-}
-
-/* 2^e for |e| <= 64, exact */
-PF_CPU_DEF double pfi_shadow_pow2(int e)
-{
-    double p = 1.0, f = e < 0 ? 0.5 : 2.0;
-    int k = e < 0 ? -e : e;
-    while (k-- > 0) p *= f;
-    return p;
-}
-
-/* fp16 bits of v, round to nearest even; |v| >= 65520 gives the infinity, NaN a quiet NaN
-   (the encoders never pass those). Exact in float and double: scaling by powers of two. */
-PF_CPU_DEF unsigned short pf_shadow_half_from_real(pf_real v)
-{
-    unsigned short sign = (unsigned short)(v < PF_R(0.0) ? 0x8000u : 0u);
-    double a = v < PF_R(0.0) ? -(double)v : (double)v, s;
-    long long r;
-    int e = -14;
-    if (v != v) return (unsigned short)0x7e00u;
-    if (a >= 65520.0) return (unsigned short)(sign | 0x7c00u);
-    while (e < 15 && a >= 2.0 * pfi_shadow_pow2(e)) ++e; /* a in [2^e, 2^(e+1)), or below 2^-14 */
-    s = a * pfi_shadow_pow2(10 - e);                     /* exact: in [0, 2048) */
-    r = (long long)s;
-    if (s - (double)r > 0.5 || (s - (double)r == 0.5 && (r & 1))) ++r;
-    if (r < 1024) return (unsigned short)(sign | (unsigned short)r); /* subnormal (e = -14) or zero */
-    if (r == 2048) { r = 1024; ++e; }
-    if (e > 15) return (unsigned short)(sign | 0x7c00u);
-    return (unsigned short)(sign | (unsigned short)((e + 15) << 10) | (unsigned short)(r - 1024));
-}
-
-/* The value of fp16 bits h; finite for every h (inf -> +-65504, NaN -> 0). */
-PF_CPU_DEF pf_real pf_shadow_half_to_real(unsigned short h)
-{
-    int ex = (h >> 10) & 31, mant = h & 1023;
-    double v;
-    if (ex == 31) v = mant ? 0.0 : 65504.0;
-    else if (ex == 0) v = (double)mant * pfi_shadow_pow2(-24);
-    else v = (double)(mant + 1024) * pfi_shadow_pow2(ex - 25);
-    return (pf_real)((h & 0x8000u) ? -v : v);
 }
 
 PF_CPU_DEF int pfi_shadow_exponent_ok(pf_real c, pf_real ceiling)
@@ -8405,7 +8367,7 @@ PF_CPU_DEF int pf_shadow_encode_f16(int kind, const pf_real *depth, long long n,
         double v[4];
         pfi_shadow_store_values(kind, depth[i], c_pos, c_neg, v);
         /* through pf_real: exact for the fp16 values, and double's extra bits only matter at ties */
-        for (k = 0; k < ch; ++k) out[i * ch + k] = pf_shadow_half_from_real((pf_real)v[k]);
+        for (k = 0; k < ch; ++k) out[i * ch + k] = pf_half_from_real((pf_real)v[k]);
     }
     return PF_OK;
 }

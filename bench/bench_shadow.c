@@ -236,7 +236,7 @@ PFB_METHOD(tb_msm, tb_msm(g_msm_z[IDX(y)], x, PF_SHADOW_MSM_MOMENT_BIAS_DEFAULT,
    without the quantization 8 bytes), then decoded to what a sampler returns and box-filtered
    over the footprint in long double (rounded to pf_real: the filter's output). A second model,
    "filtered then stored", encodes the footprint's fp32 mean instead (a blurred map or a mip
-   level written in the format): pf_shadow_encode_msm16_moments, pf_shadow_half_from_real.
+   level written in the format): pf_shadow_encode_msm16_moments, pf_half_from_real.
    The textbook 64-bit baseline stores z-moments as engines do: pf_shadow_encode_msm16 of
    1 - z gives Theta (z, z^2, z^3, z^4) + o. */
 static pf_depth_moments4 *g_msm16, *g_msm16_z, *g_msm16_f, *g_msm_h;
@@ -289,10 +289,10 @@ static void storage_fill(void)
                     for (k = 0; k < 4; ++k) {
                         aq[k] += (long double)q[4 * o + (size_t)k] / 65535.0L;
                         az[k] += (long double)qz[4 * o + (size_t)k] / 65535.0L;
-                        ae[k] += (long double)pf_shadow_half_to_real(he[4 * o + (size_t)k]);
-                        am[k] += (long double)pf_shadow_half_to_real(hm[4 * o + (size_t)k]);
+                        ae[k] += (long double)pf_real_from_half(he[4 * o + (size_t)k]);
+                        am[k] += (long double)pf_real_from_half(hm[4 * o + (size_t)k]);
                     }
-                    for (k = 0; k < 2; ++k) av[k] += (long double)pf_shadow_half_to_real(hv[2 * o + (size_t)k]);
+                    for (k = 0; k < 2; ++k) av[k] += (long double)pf_real_from_half(hv[2 * o + (size_t)k]);
                     a32[0] += (long double)e.pos1, a32[1] += (long double)e.pos2, a32[2] += (long double)e.neg1, a32[3] += (long double)e.neg2;
                 }
             g_msm16[i] = pf_depth_moments4_make((pf_real)(aq[0] / n), (pf_real)(aq[1] / n), (pf_real)(aq[2] / n), (pf_real)(aq[3] / n));
@@ -307,8 +307,8 @@ static void storage_fill(void)
             if (pf_shadow_encode_msm16_moments(&L->msm, 1, t) != PF_OK) exit(1);
             g_msm16_f[i] = pf_depth_moments4_make((pf_real)t[0] / PF_R(65535.0), (pf_real)t[1] / PF_R(65535.0),
                                                   (pf_real)t[2] / PF_R(65535.0), (pf_real)t[3] / PF_R(65535.0));
-            g_vsm_hf[i] = pf_depth_moments2_make(pf_shadow_half_to_real(pf_shadow_half_from_real(L->vsm.m1)),
-                                                 pf_shadow_half_to_real(pf_shadow_half_from_real(L->vsm.m2)));
+            g_vsm_hf[i] = pf_depth_moments2_make(pf_real_from_half(pf_half_from_real(L->vsm.m1)),
+                                                 pf_real_from_half(pf_half_from_real(L->vsm.m2)));
         }
     }
     free(zd); free(z); free(zr); free(q); free(qz); free(hv); free(he); free(hm);

@@ -207,64 +207,6 @@ PF_CPU_DEF int pf_encode_bytes(int format)
 /* 1 when x is finite (not NaN, not +-inf). */
 PF_CPU_DEF int pfi_enc_finite(pf_real x) { return x == x && x <= PF_REAL_MAX && x >= -PF_REAL_MAX; }
 
-/* x rounded to the nearest integer, ties to even, for 0 <= x <= 2^24 (no libm rint). */
-PF_CPU_DEF long pfi_enc_round_even(pf_real x)
-{
-    long q = (long)x;
-    pf_real f = x - (pf_real)q;
-    if (f > PF_R(0.5) || (f == PF_R(0.5) && (q & 1L))) ++q;
-    return q;
-}
-
-/* 2^k for -40 <= k <= 40 by repeated exact scaling (no libm ldexp). */
-PF_CPU_DEF pf_real pfi_enc_pow2(int k)
-{
-    pf_real r = PF_R(1.0);
-    for (; k > 0; --k) r *= PF_R(2.0);
-    for (; k < 0; ++k) r *= PF_R(0.5);
-    return r;
-}
-
-/* IEEE binary16 bits of x, rounded to nearest even; |x| >= 65520 (also inf) gives +-inf, NaN
-   a quiet NaN. The encoders reject those before calling it. */
-PF_CPU_DEF unsigned short pf_half_from_real(pf_real x)
-{
-    unsigned short sign = (unsigned short)(x < PF_R(0.0) ? 0x8000u : 0u); /* -0 stored as +0 */
-    pf_real a = PF_FABS(x), p = PF_R(1.220703125e-04); /* 2^(e + 1) */
-    int e;
-    long m;
-    if (!(a == a)) return (unsigned short)0x7e00u;
-    if (a >= PF_R(65520.0)) return (unsigned short)(sign | 0x7c00u);
-    if (a < PF_R(6.103515625e-05)) { /* below 2^-14: subnormal, units of 2^-24 (may round up to 2^-14) */
-        m = pfi_enc_round_even(a * PF_R(16777216.0));
-        return (unsigned short)(sign | (unsigned short)m);
-    }
-    e = -14;
-    while (e < 15 && a >= p) {
-        ++e;
-        p *= PF_R(2.0);
-    }
-    m = pfi_enc_round_even(a * pfi_enc_pow2(10 - e)); /* in [1024, 2048] */
-    if (m == 2048) {
-        m = 1024;
-        ++e;
-    }
-    if (e > 15) return (unsigned short)(sign | 0x7c00u);
-    return (unsigned short)(sign | (unsigned short)((e + 15) << 10) | (unsigned short)(m - 1024));
-}
-
-/* The value of binary16 bits h; finite for every pattern: +-inf gives +-65504, NaN 0. */
-PF_CPU_DEF pf_real pf_real_from_half(unsigned short h)
-{
-    int e = (h >> 10) & 31;
-    long m = h & 1023;
-    pf_real v;
-    if (e == 31) v = m ? PF_R(0.0) : PF_R(65504.0);
-    else if (e == 0) v = (pf_real)m * PF_R(5.9604644775390625e-08); /* 2^-24 */
-    else v = (pf_real)(1024 + m) * pfi_enc_pow2(e - 25);
-    return (h & 0x8000u) ? -v : v;
-}
-
 /* Octahedral coordinates (u, v) in [-1, 1] of a direction of the upper hemisphere (d.z < 0 is
    taken as 0; the zero vector and NaN give (0, 0), the pole). Inverse of pf_oct_hemi_decode
    with su = (u + 1)/2, sv = (v + 1)/2. */
@@ -290,7 +232,7 @@ PF_CPU_DEF long pfi_enc_code(pf_real x, pf_real offset, pf_real scale, long leve
     if (!(scale > PF_R(0.0))) return 0;
     t = (x - offset) / scale; /* x - offset may overflow to +-inf: clamped below */
     t = t == t ? t : PF_R(0.0);
-    return pfi_enc_round_even(pf_clamp(t, PF_R(0.0), PF_R(1.0)) * (pf_real)levels);
+    return pf_round_even(pf_clamp(t, PF_R(0.0), PF_R(1.0)) * (pf_real)levels);
 }
 
 /* Store x at index i of out in format f (checked by the caller). */

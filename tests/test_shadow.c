@@ -1401,19 +1401,19 @@ static void test_half_conversion(void)
     long bad = 0;
     unsigned h;
     for (h = 0; h < 65536u; ++h) {
-        pf_real v = pf_shadow_half_to_real((unsigned short)h);
+        pf_real v = pf_real_from_half((unsigned short)h);
         int ex = (int)((h >> 10) & 31u);
         if (!(v - v == PF_R(0.0))) bad++;
-        if (ex != 31 && pf_shadow_half_from_real(v) != (unsigned short)h && !(v == PF_R(0.0) && (h & 0x7fffu) == 0)) bad++;
+        if (ex != 31 && pf_half_from_real(v) != (unsigned short)h && !(v == PF_R(0.0) && (h & 0x7fffu) == 0)) bad++;
         if (ex < 30 && (h & 0x7fffu) != 0x7bffu) {
-            pf_real next = pf_shadow_half_to_real((unsigned short)(h + 1u));
+            pf_real next = pf_real_from_half((unsigned short)(h + 1u));
             pf_real mid = (v + next) * PF_R(0.5);
             unsigned short want = (unsigned short)((h & 1u) ? h + 1u : h); /* ties to even */
-            if ((h & 0x8000u) == 0 && pf_shadow_half_from_real(mid) != want) bad++;
+            if ((h & 0x8000u) == 0 && pf_half_from_real(mid) != want) bad++;
         }
     }
-    bad += pf_shadow_half_from_real(PF_R(65519.0)) != 0x7bffu;
-    bad += pf_shadow_half_from_real(PF_R(65520.0)) != 0x7c00u;
+    bad += pf_half_from_real(PF_R(65519.0)) != 0x7bffu;
+    bad += pf_half_from_real(PF_R(65520.0)) != 0x7c00u;
     pf_test_note("65536 fp16 patterns: %ld round-trip, midpoint or finiteness failures", bad);
     PF_CHECK(bad == 0, "%ld fp16 conversion failures", bad);
 }
@@ -1430,7 +1430,7 @@ static void test_f16_no_overflow(void)
     int i, rc, rc_above, rc32, rc32_above, inf = 0;
     rc = pf_shadow_encode_f16(PF_SHADOW_STORE_EVSM4, z, 5, c, c, h);
     for (i = 0; i < 20; ++i) {
-        pf_real v = pf_shadow_half_to_real(h[i]);
+        pf_real v = pf_real_from_half(h[i]);
         inf += ((h[i] >> 10) & 31u) == 31u;
         if (PF_FABS(v) > largest) largest = PF_FABS(v);
     }
@@ -1506,7 +1506,7 @@ static void test_shadow_encode_bad_input(void)
 /* Any stored bit pattern decodes to finite values and a lit fraction in [0, 1]: the 64-bit MSM
    texel over every combination of {0, 1, 32767, 32768, 65534, 65535} per channel and 50000
    random patterns; fp16 VSM/EVSM texels over random patterns (infinities and NaN included,
-   through pf_shadow_half_to_real). Also under -ffast-math. */
+   through pf_real_from_half). Also under -ffast-math. */
 static void edge_shadow_decode_any_bits(void)
 {
     static const unsigned short sp[6] = { 0, 1, 32767, 32768, 65534, 65535 };
@@ -1528,8 +1528,8 @@ static void edge_shadow_decode_any_bits(void)
         v1 = pf_shadow_msm(b, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
         v2 = pf_shadow_msm_hausdorff(b, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
         v3 = pf_shadow_msm16(q, d, PF_SHADOW_MSM16_MOMENT_BIAS_DEFAULT, PF_R(0.0));
-        e = pf_evsm_moments_make(pf_shadow_half_to_real(t[0]), pf_shadow_half_to_real(t[1]), pf_shadow_half_to_real(t[2]),
-                                 pf_shadow_half_to_real(t[3]));
+        e = pf_evsm_moments_make(pf_real_from_half(t[0]), pf_real_from_half(t[1]), pf_real_from_half(t[2]),
+                                 pf_real_from_half(t[3]));
         v4 = pf_shadow_evsm4(e, d, PF_SHADOW_EVSM16_POS_DEFAULT, PF_SHADOW_EVSM16_NEG_DEFAULT,
                              PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
         v5 = pf_shadow_vsm(pf_depth_moments2_make(e.pos1, e.pos2), d, PF_SHADOW_VSM16_MIN_VARIANCE_DEFAULT, PF_R(0.0));
@@ -1585,7 +1585,7 @@ static void test_stored_formats_scenes(void)
                     pf_evsm_moments e = pf_evsm_moments_from_depth(z[y * SHS_N + x], c16, c16);
                     for (k = 0; k < 4; ++k) {
                         acc[k] += (long double)m16[4 * (y * SHS_N + x) + k] / 65535.0L;
-                        ae[k] += (long double)pf_shadow_half_to_real(e16[4 * (y * SHS_N + x) + k]);
+                        ae[k] += (long double)pf_real_from_half(e16[4 * (y * SHS_N + x) + k]);
                     }
                     a32[0] += (long double)e.pos1, a32[1] += (long double)e.pos2, a32[2] += (long double)e.neg1, a32[3] += (long double)e.neg2;
                 }

@@ -2608,7 +2608,7 @@ static void pfb_d_encode_scalar(pfc_ctx *c, int which)
 /* ---------------------------------------------------------------- pf_shadow.h: stored formats
    which: 0 pf_shadow_encode_f16, 1 pf_shadow_encode_f32, 2 pf_shadow_encode_msm16,
    3 pf_shadow_encode_msm16_moments; 4 the value helpers (pf_shadow_store_channels,
-   pf_shadow_half_from_real / _to_real, pf_shadow_decode_msm16). The outputs are 16- or 32-bit
+   pf_half_from_real / pf_real_from_half of pf_core.h, pf_shadow_decode_msm16). The outputs are 16- or 32-bit
    words, not pf_reals: each accepted call runs twice over the same guarded mapping, first
    filled with one canary byte, then another; a word that differs between the runs was not
    written (a written one is the same both times), and every byte past the last word must keep
@@ -2648,18 +2648,18 @@ static void pfb_d_shadow(pfc_ctx *c, int which)
     int bad_data = 0;
     if (which == 4) { /* value helpers: finite decodes of every pattern, round trips */
         unsigned short h = (unsigned short)(pfc_next(c) & 0xFFFFu), t[4];
-        pf_real v = pf_shadow_half_to_real(h);
+        pf_real v = pf_real_from_half(h);
         pf_depth_moments4 m;
-        pfb_setcall("pf_shadow_half_to_real(0x%04x) / pf_shadow_decode_msm16", (unsigned)h);
-        if (!pfb_finite(v)) pfb_fail(PFB_NONFINITE, "pf_shadow_half_to_real(0x%04x) = %a", (unsigned)h, (double)v);
-        if (((h >> 10) & 31u) != 31u && pf_shadow_half_from_real(v) != h && (h & 0x7FFFu) != 0)
+        pfb_setcall("pf_real_from_half(0x%04x) / pf_shadow_decode_msm16", (unsigned)h);
+        if (!pfb_finite(v)) pfb_fail(PFB_NONFINITE, "pf_real_from_half(0x%04x) = %a", (unsigned)h, (double)v);
+        if (((h >> 10) & 31u) != 31u && pf_half_from_real(v) != h && (h & 0x7FFFu) != 0)
             pfb_fail(PFB_VALUE, "half 0x%04x does not round-trip", (unsigned)h);
         for (i = 0; i < 4; ++i) t[i] = (unsigned short)(pfc_next(c) & 0xFFFFu);
         m = pf_shadow_decode_msm16(t);
         if (!(pfb_finite(m.m1) && pfb_finite(m.m2) && pfb_finite(m.m3) && pfb_finite(m.m4)))
             pfb_fail(PFB_NONFINITE, "pf_shadow_decode_msm16 of {%u %u %u %u}", t[0], t[1], t[2], t[3]);
         if (pf_shadow_store_channels(kind) != ch) pfb_fail(PFB_VALUE, "pf_shadow_store_channels(%d)", kind);
-        (void)pf_shadow_half_from_real(pfb_coord(c, PF_R(-70000.0), PF_R(70000.0))); /* any real: no trap */
+        (void)pf_half_from_real(pfb_coord(c, PF_R(-70000.0), PF_R(70000.0))); /* any real: no trap */
         return;
     }
     pfb_setcall("%s(kind %d, %s, %d, c %a %a, %s)", fn, kind, null == 1 ? "NULL" : "in", n, (double)cp, (double)cn,
@@ -2814,14 +2814,15 @@ static const pfb_entry pfb_table[] = {
     { "pf_encode_ranges pf_encode_channels pf_encode_bytes", "encode", pfb_d_encode, 0 },
     { "pf_slope_encoding_find pf_slope_moments_encode", "encode", pfb_d_encode, 1 },
     { "pf_vmf_encoding_find pf_vmf_lobes_encode", "encode", pfb_d_encode, 2 },
-    { "pf_half_from_real pf_real_from_half pf_oct_hemi_encode pf_encode_bytes", "encode", pfb_d_encode_scalar, 0 },
+    { "pf_oct_hemi_encode pf_encode_bytes", "encode", pfb_d_encode_scalar, 0 },
+    { "pf_half_from_real pf_real_from_half pf_round_even", "core", pfb_d_encode_scalar, 0 },
     { "pf_specaa_bake", "specaa", pfb_d_specaa, 0 },
     { "pf_specaa_bake_scratch_reals", "specaa", pfb_d_specaa, 1 },
     { "pf_shadow_encode_f16", "shadow", pfb_d_shadow, 0 },
     { "pf_shadow_encode_f32", "shadow", pfb_d_shadow, 1 },
     { "pf_shadow_encode_msm16", "shadow", pfb_d_shadow, 2 },
     { "pf_shadow_encode_msm16_moments", "shadow", pfb_d_shadow, 3 },
-    { "pf_shadow_store_channels pf_shadow_half_from_real pf_shadow_half_to_real pf_shadow_decode_msm16", "shadow", pfb_d_shadow, 4 },
+    { "pf_shadow_store_channels pf_shadow_decode_msm16", "shadow", pfb_d_shadow, 4 },
 };
 #define PFB_COUNT ((int)(sizeof pfb_table / sizeof pfb_table[0]))
 
