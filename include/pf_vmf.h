@@ -603,6 +603,41 @@ PF_DEF pf_vmf_sum pf_vmf_sum_add_masking(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo
     return s;
 }
 
+/* One lobe's share of Smith's numerator toward d (pfi_vmf_excess_stats) from its closed-form
+   slope statistics (pfi_vmf_sum_add_slope: mean -s, Sigma = c I + w s s^T): with ps = d.xy . s,
+   a = d.z + ps (the lobe's area per unit amp), 2 var = 2 (c |d.xy|^2 + w ps^2),
+   nu = a / sqrt(2 var), and e(nu) = pf_smith_nu_over_g1(|nu|) - max(nu, 0) (e(nu) = nu / G1(nu)
+   - nu for nu >= 0, e(-nu) = e(nu) + nu), so the exact e(nu)'s erfc and exp (pfi_vmf_excess:
+   two branches and an erfc per direction) become the G1 fit of pf_smith.h, branch-free. Float:
+   the fit's 4.7e-7 (relative, in G1) is an absolute error of ~5e-7 |nu| in e, i.e. of ~5e-7 in
+   Lambda = sum excess / sum area: G2 to 1e-6 (tests/test_vmf.c), while Lambda itself loses
+   relative accuracy where it is tiny (nu > 2). Double: pf_smith_nu_over_g1's exp and K form. */
+PF_DEF pf_real pfi_vmf_excess_fast(pf_real amp, pf_real sx, pf_real sy, pf_real c, pf_real w, pf_vec3 d)
+{
+    pf_real ps = d.x * sx + d.y * sy;
+    pf_real rs = pfi_vmf_rsqrt(pf_clamp_nan_lo(PF_R(2.0) * (c * (d.x * d.x + d.y * d.y) + w * (ps * ps)), PF_REAL_MIN,
+                                               PF_R(0.25) * PF_REAL_MAX));
+    pf_real nu = (d.z + ps) * rs;
+    return amp * (pf_smith_nu_over_g1(pf_max(PF_FABS(nu), PF_R(1.0e-20))) - pf_max(nu, PF_R(0.0))) / rs;
+}
+
+/* pf_vmf_sum_add_texel and the lobe's Smith excesses toward wo and wi (what
+   pf_vmf_sum_add_masking adds), for pf_vmf_sum_specular_mixture: the mixture's exact Smith
+   Lambda with each excess from the G1 fit (pfi_vmf_excess_fast) instead of erfc. The shader
+   path of the mixture form: one texel, branch-free, ~100 SPIR-V ops per lobe against ~650
+   (docs/vmf.md). */
+PF_DEF pf_vmf_sum pf_vmf_sum_add_texel_mixture(pf_vmf_sum s, pf_vmf_pixel p, pf_vec3 wo, pf_vec3 wi, pf_real amp,
+                                               pf_real mu_x, pf_real mu_y, pf_real kappa)
+{
+    pf_real z2 = pf_max(PF_R(1.0) - (mu_x * mu_x + mu_y * mu_y), PF_R(1.0e-6));
+    pf_real v = pfi_vmf_tangent_variance_lean(kappa), iz = pfi_vmf_rsqrt(z2);
+    pf_real w = v * (iz * iz), c = w + p.base_var;
+    s = pfi_vmf_sum_add_slope(s, p, amp, mu_x, mu_y, z2, v);
+    s.excess_o += pfi_vmf_excess_fast(amp, mu_x * iz, mu_y * iz, c, w, wo);
+    s.excess_i += pfi_vmf_excess_fast(amp, mu_x * iz, mu_y * iz, c, w, wi);
+    return s;
+}
+
 /* The mixture's slope mean and covariance (sum of the lobes' moments over sum amp; base_var
    included). An empty sum gives zero statistics. */
 PF_DEF pf_slope_stats pf_vmf_sum_stats(pf_vmf_sum s)

@@ -179,4 +179,30 @@ PF_DEF pf_real pf_pixel_vmf_texel_m16(pf_real a0, pf_real x0, pf_real y0, pf_rea
     return pf_vmf_sum_specular(s, wo, wi, f0);
 }
 
+PF_DEF pf_real pf_pixel_vmf_texel_mixture_m4(pf_real a0, pf_real x0, pf_real y0, pf_real k0, pf_real a1, pf_real x1, pf_real y1, pf_real k1, pf_real a2, pf_real x2, pf_real y2, pf_real k2, pf_real a3, pf_real x3, pf_real y3, pf_real k3, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0)
+{
+    pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, base_var);
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a0, x0, y0, k0);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a1, x1, y1, k1);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a2, x2, y2, k2);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a3, x3, y3, k3);
+    return pf_vmf_sum_specular_mixture(s, wo, wi, f0);
+}
+
+PF_DEF pf_real pf_pixel_vmf_texel_mixture_m8(pf_real a0, pf_real x0, pf_real y0, pf_real k0, pf_real a1, pf_real x1, pf_real y1, pf_real k1, pf_real a2, pf_real x2, pf_real y2, pf_real k2, pf_real a3, pf_real x3, pf_real y3, pf_real k3, pf_real a4, pf_real x4, pf_real y4, pf_real k4, pf_real a5, pf_real x5, pf_real y5, pf_real k5, pf_real a6, pf_real x6, pf_real y6, pf_real k6, pf_real a7, pf_real x7, pf_real y7, pf_real k7, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0)
+{
+    pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, base_var);
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a0, x0, y0, k0);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a1, x1, y1, k1);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a2, x2, y2, k2);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a3, x3, y3, k3);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a4, x4, y4, k4);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a5, x5, y5, k5);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a6, x6, y6, k6);
+    s = pf_vmf_sum_add_texel_mixture(s, p, wo, wi, a7, x7, y7, k7);
+    return pf_vmf_sum_specular_mixture(s, wo, wi, f0);
+}
+
 #endif /* PF_PIXEL_H */
