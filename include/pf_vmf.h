@@ -45,13 +45,18 @@
                  of a vMF (A3 = coth kappa - 1/kappa), t the unit azimuth of mu_k (the slope
                  map's Jacobian at mu_k). G = 1/(1 + Lambda(wo) + Lambda(wi)) (LEADR eq. 13).
 
-   USAGE
+   USAGE (a shader; the CPU the same)
+     pf_vmf_pixel px = pf_vmf_pixel_make(wo, wi, sigma_b * sigma_b);   -- once per pixel
      pf_vmf_sum s = pf_vmf_sum_zero();
      for (k = 0; k < 4; ++k) {                      -- m = 4 RGBA fetches of the lobe pyramid
          vec4 t = texel k;                           -- (mu.x, mu.y, kappa, amp)
-         s = pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b * sigma_b);
+         s = pf_vmf_sum_add_texel(s, px, t.w, t.x, t.y, t.z);
      }
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
+     (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
+     Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
+     adds the same sums (to 3.3e-4) and repairs a texel outside the fit's contract (NaN, an
+     axis past the horizon, a negative amplitude), at 1.5x the instructions per lobe.
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
@@ -64,6 +69,7 @@
                  pf_vmf_lobe_make, pf_vmf_lobe_density, pf_vmf_lobe_ndf (vMF form),
                  pf_vmf_lobe_ndf_slope (slope form), pf_vmf_lobe_area, pf_vmf_lobe_excess,
                  pf_vmf_lambda
+     shader path pf_vmf_pixel_make, pf_vmf_sum_add_texel, pf_vmf_sum_add_texel_mixture
      BRDF        pf_vmf_sum_zero, pf_vmf_sum_add (slope form), pf_vmf_sum_add_vmf (vMF form),
                  pf_vmf_sum_add_masking, pf_vmf_sum_stats, pf_vmf_sum_g2 (one Gaussian),
                  pf_vmf_sum_g2_mixture, pf_vmf_sum_g1_mixture (exact mixture Smith),
@@ -91,9 +97,16 @@
      3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
      Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
      corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
-     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
-     pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
-     512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
+     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82). Fit of a 512 x 512 pyramid:
+     2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
+     Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
+     spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
+     the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
+     m = 1, 4, 8, 16: 175 / 179, 331 / 350, 539 / 578, 955 / 1034, i.e. 1.5, 2.9, 4.6, 8.2x
+     pf_leadr_specular's 116 / 129 SPIR-V (52 ops per lobe, 123 per pixel, 3 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 500 / 521, 908 / 965. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 649 / 595 (m = 4), 1189 / 1079 (m = 8). CPU, callgrind
+     instructions per pixel: see docs/vmf.md.
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering

@@ -122,6 +122,17 @@ gen_unit() {
     [ "$2" = textbook.h ] && { cat "$TB"; echo; }
     [ "$2" = pixel.h ] && { cat "$PX"; echo; }
     awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" "$PX" > "$W/gen.$1.$2.out" || return 1
+    # gen.awk reads inputs modulo 16 (in[k % 16]): m lobes of 4 texel values would repeat
+    # after 4 lobes and a compiler could merge them (nvcc did). pixel.h's wrappers read
+    # distinct inputs instead: the indices renumbered 0, 1, 2, ... per wrapper.
+    if [ "$2" = pixel.h ]; then
+        awk '/^(__device__ )?(pf_real|float) pfp_pf_/ { n = 0 }
+             { out = ""; s = $0
+               while (match(s, /(pfp_in\.v|in)\[[0-9]+\]/)) {
+                   t = substr(s, RSTART, RLENGTH); sub(/\[[0-9]+\]/, "[" n++ "]", t)
+                   out = out substr(s, 1, RSTART - 1) t; s = substr(s, RSTART + RLENGTH) }
+               print out s }' "$W/gen.$1.$2.out" > "$W/gen.$1.$2.renum" && mv "$W/gen.$1.$2.renum" "$W/gen.$1.$2.out"
+    fi
     awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.$1.$2.out"
 }
 
