@@ -102,10 +102,10 @@
      Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
      spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
      the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
-     m = 1, 4, 8, 16: 175 / 179, 331 / 350, 539 / 578, 955 / 1034, i.e. 1.5, 2.9, 4.6, 8.2x
-     pf_leadr_specular's 116 / 129 SPIR-V (52 ops per lobe, 123 per pixel, 3 branches); the
-     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 500 / 521, 908 / 965. Through
-     pf_vmf_lobe_make + pf_vmf_sum_add: 649 / 595 (m = 4), 1189 / 1079 (m = 8). CPU (callgrind,
+     m = 1, 4, 8, 16: 174 / 179, 330 / 350, 538 / 578, 954 / 1034, i.e. 1.5, 2.8, 4.6, 8.2x
+     pf_leadr_specular's 116 / 129 SPIR-V (52 ops per lobe, 122 per pixel, 2 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 499 / 521, 907 / 965. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 615 / 562 (m = 4), 1111 / 1002 (m = 8). CPU (callgrind,
      float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 497, 1152,
      2014, 3735, mixture m = 4, 8: 1580, 2978, against pf_leadr_specular's 277 (docs/vmf.md).
 
@@ -512,8 +512,9 @@ PF_DEF pf_vmf_pixel pf_vmf_pixel_make(pf_vec3 wo, pf_vec3 wi, pf_real base_var)
 {
     pf_vmf_pixel p;
     pf_vec3 h = pf_vec3_add(wo, wi);
-    /* 1/h.z, 0 when h.z <= 0 (then q = 0: dn = 0 below) */
-    pf_real iz = h.z > PF_R(0.0) ? PF_R(1.0) / h.z : PF_R(0.0);
+    /* 1/h.z with h.z floored at 1e-30: gx, gy finite for every pair (|h.xy| <= 2); q is then
+       >= 1e12, inf or NaN (h = 0) wherever h.z <= 1e-6 |h|, and dn = 0 there */
+    pf_real iz = PF_R(1.0) / pf_max(h.z, PF_R(1.0e-30));
     pf_real q = pf_vec3_dot(h, h) * (iz * iz); /* 1 / cos^2 of h */
     p.gx = h.x * iz;
     p.gy = h.y * iz;
