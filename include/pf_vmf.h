@@ -56,7 +56,7 @@
      (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
      Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
      adds the same sums (to 3.3e-4) and repairs a texel outside the fit's contract (NaN, an
-     axis past the horizon, a negative amplitude), at 1.5x the instructions per lobe.
+     axis past the horizon, a negative amplitude), at 2.4x the SPIR-V ops per lobe.
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
