@@ -16,7 +16,9 @@
                         mixture (the corpus's typical tilts and kappas) shaded by
                         vmf_m4 = pf_vmf_sum_add x 4 + pf_vmf_sum_specular (one-Gaussian Smith),
                         vmf_m4_mix_smith (pf_vmf_sum_add_masking too, exact mixture Smith),
-                        vmf_m1 (one lobe), against pf_leadr_specular (BASELINE, the footprint's
+                        vmf_m1 (one lobe), vmf_m4_texel and vmf_m4_texel_mix_smith (the shader
+                        path: pf_vmf_pixel_make, pf_vmf_sum_add_texel(_mixture) x 4, the same
+                        specular), against pf_leadr_specular (BASELINE, the footprint's
                         one Gaussian, no lobes). Reference for vmf_m4: its formula (slope form,
                         one-Gaussian Smith) re-evaluated in long double with the oracle's
                         Lambda (tests/reference/pf_oracle.h): the row's error is the rounding of the
@@ -132,6 +134,22 @@ static pf_real spec_leadr(pf_real to, pf_real ti, pf_real ph)
 {
     return pf_leadr_specular(dir_of(to, PF_R(0.0)), dir_of(ti, ph), leadr_stats, PF_R(1.0));
 }
+/* the shader path: pf_vmf_pixel_make once, pf_vmf_sum_add_texel (_mixture) per lobe */
+static pf_real spec_texel(int m, int mix, pf_real to, pf_real ti, pf_real ph)
+{
+    pf_vec3 wo = dir_of(to, PF_R(0.0)), wi = dir_of(ti, ph);
+    pf_vmf_pixel px = pf_vmf_pixel_make(wo, wi, PF_R(BVAR));
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    int k;
+    for (k = 0; k < m; ++k) {
+        pf_real a = m == 1 ? PF_R(1.0) : (pf_real)lobe_a[k];
+        s = mix ? pf_vmf_sum_add_texel_mixture(s, px, wo, wi, a, (pf_real)lobe_x[k], (pf_real)lobe_y[k], (pf_real)lobe_k[k])
+                : pf_vmf_sum_add_texel(s, px, a, (pf_real)lobe_x[k], (pf_real)lobe_y[k], (pf_real)lobe_k[k]);
+    }
+    return mix ? pf_vmf_sum_specular_mixture(s, wo, wi, PF_R(1.0)) : pf_vmf_sum_specular(s, wo, wi, PF_R(1.0));
+}
+PFB_METHOD(spec_m4_texel, spec_texel(4, 0, x, y, z))
+PFB_METHOD(spec_m4_texel_mix, spec_texel(4, 1, x, y, z))
 PFB_METHOD(spec_m4, spec_m(4, 0, x, y, z))
 PFB_METHOD(spec_m4_mix, spec_m(4, 1, x, y, z))
 PFB_METHOD(spec_m1, spec_m(1, 0, x, y, z))
@@ -237,9 +255,10 @@ static const pfb_family families[] = {
       "inputs theta_o, theta_i uniform in [0, 1.3], relative azimuth uniform in [0, 2 pi); a fixed 4-lobe mixture, base slope variance 0.01, f0 = 1\n"
       "accuracy grid: theta_o, theta_i = 0.17 i, i = 0..7; azimuth 0.785 k, k = 0..7\n"
       "reference: vmf_m4's formula (slope form, one-Gaussian Smith) in long double with the oracle's Lambda; the other rows measure their distance from it",
-      gen_spec, grid_spec, 4,
+      gen_spec, grid_spec, 6,
       { PFB_ENTRY("vmf_m4", spec_m4, ref_spec, 0), PFB_ENTRY("vmf_m4_mix_smith", spec_m4_mix, ref_spec, 0),
-        PFB_ENTRY("vmf_m1", spec_m1, ref_spec, 0), PFB_ENTRY("pf_leadr_specular", spec_leadr, ref_spec, 0) } },
+        PFB_ENTRY("vmf_m1", spec_m1, ref_spec, 0), PFB_ENTRY("pf_leadr_specular", spec_leadr, ref_spec, 0),
+        PFB_ENTRY("vmf_m4_texel", spec_m4_texel, ref_spec, 0), PFB_ENTRY("vmf_m4_texel_mix_smith", spec_m4_texel_mix, ref_spec, 0) } },
 };
 
 /* ------------------------------------------------------------------ scaling function (helper J)

@@ -70,13 +70,17 @@ else
     [ -n "$storage" ] &&
         echo "Stored: the smallest pyramid format (unorm8, then unorm16, then half; docs/encode.md) in which the chosen method still meets the target in the regime (\`microsurface_storage.csv\`; float32 when none does)."
     [ -f "$out/gpu_methods.csv" ] &&
-        echo "GPU: the SPIR-V ops (after spirv-opt -O) of the method's library evaluators, fetches not included ([GPU cost](#gpu-cost), \`gpu_methods.csv\`), where the shader generator can count them."
+        echo "GPU: per pixel, the SPIR-V ops (after spirv-opt -O) and PTX instructions (nvcc -O3 --use_fast_math; n/a without nvcc) of the method's library evaluators, texel fetches not included and counted apart (RGBA texels read per pixel, one level, no trilinear) ([GPU cost](#gpu-cost), \`gpu_methods.csv\`, bench/gpu/methods.txt), where the shader generator can count them; - where it cannot."
     awk -F, -v costf="$cost" -v mode="$mode" -v gpuf="$out/gpu_methods.csv" '
         function fmt(e) { return (e >= 0.1) ? sprintf("%.2f", e) : (e >= 0.001 ? sprintf("%.3f", e) : sprintf("%.1e", e)) }
         function gpu(m) { return (m in gops && gops[m] != "n/a") ? sprintf("; GPU %s ops", gops[m]) : "" }
+        function gcol(a, m) { return (m in a && a[m] != "" && a[m] != "n/a") ? a[m] : "-" }
         BEGIN {
-            # GPU cost (bench/gpu/cost.sh): method -> SPIR-V ops
-            while ((getline line < gpuf) > 0) { split(line, c, ","); if (c[1] != "method") gops[c[1]] = c[2] }
+            # GPU cost (bench/gpu/cost.sh): method -> SPIR-V ops, PTX instructions, texel fetches
+            while ((getline line < gpuf) > 0) {
+                split(line, c, ",")
+                if (c[1] != "method") { gops[c[1]] = c[2]; gptx[c[1]] = c[3]; gfet[c[1]] = c[4] }
+            }
             # cost of each method at its largest measured footprint
             while ((getline line < costf) > 0) {
                 split(line, c, ",")
@@ -182,16 +186,17 @@ else
                 # every candidate of the task: its error in each regime and its cost
                 printf "\nEvery shader method of the task (relative L2 error per regime, same columns; cost as above):\n\n| method |"
                 for (r = 1; r <= nreg; r++) printf " %s |", rname[r]
-                printf " ns | x LEADR |\n|---|"
+                printf " ns | x LEADR | GPU SPIR-V | GPU PTX | fetches |\n|---|"
                 for (r = 1; r <= nreg; r++) printf "--:|"
-                printf "--:|--:|\n"
+                printf "--:|--:|--:|--:|--:|\n"
                 for (i = 1; i <= n; i++) {
                     printf "| `%s` |", ms[i]
                     for (r = 1; r <= nreg; r++) {
                         k = task SUBSEP ms[i] SUBSEP r
                         if (k in ssr && ssr[k] > 0) printf " %s |", fmt(sqrt(sse[k] / ssr[k])); else printf " - |"
                     }
-                    if (ms[i] in cns) printf " %.0f | %.2f |\n", cns[ms[i]], cx[ms[i]]; else printf " - | - |\n"
+                    if (ms[i] in cns) printf " %.0f | %.2f |", cns[ms[i]], cx[ms[i]]; else printf " - | - |"
+                    printf " %s | %s | %s |\n", gcol(gops, ms[i]), gcol(gptx, ms[i]), gcol(gfet, ms[i])
                 }
             }
         }' "$err" $storage

@@ -850,6 +850,280 @@ static void edge_safety_specular_mixture_tiny(void)
 }
 /* ================================================================== end of SAFETY */
 
+/* ------------------------------------------------------------------ the shader path
+   pf_vmf_sum_add's closed form (pfi_vmf_sum_add_slope: Sigma = c I + w s s^T, Sherman-Morrison)
+   against the long-standing slope-statistics route it replaced, pf_vmf_lobe_slope_stats +
+   pfi_vmf_ndf_stats (the Beckmann lobe of a 2x2 covariance, LEADR eq. 10) + the moments: every
+   field of the sum, random lobes (axes to 80 degrees, kappa 1e-2 .. 1e5, amp 0.05 .. 1) and
+   directions (0 - 85 degrees). ndf relative to the larger of the two (exponents to 80 amplify
+   the rounding of q), the moments relative to sum amp (a lobe's moment can cancel). */
+static pf_vmf_sum sum_add_stats_route(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real base_var)
+{
+    pf_slope_stats st = pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var);
+    s.ndf += pfi_vmf_ndf_stats(l.amp, st, pfi_vmf_half(wo, wi));
+    return pfi_vmf_sum_moments(s, l.amp, st);
+}
+static double urand(unsigned long long *st, double a, double b)
+{
+    *st = *st * 6364136223846793005ULL + 1442695040888963407ULL;
+    return a + (b - a) * (double)(*st >> 11) * (1.0 / 9007199254740992.0);
+}
+static pf_vec3 rand_dir(unsigned long long *st, double max_deg)
+{
+    double w[3];
+    dir_deg(urand(st, 0.0, max_deg), urand(st, 0.0, 360.0), w);
+    return V(w);
+}
+static void test_sum_add_closed_form(void)
+{
+    unsigned long long st = 12345;
+    long double worst_ndf = 0.0L, worst_mom = 0.0L;
+    int i;
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 mu = rand_dir(&st, 80.0), wo = rand_dir(&st, 85.0), wi = rand_dir(&st, 85.0);
+        pf_vmf_lobe l = pf_vmf_lobe_make((pf_real)urand(&st, 0.05, 1.0), mu.x, mu.y, (pf_real)pow(10.0, urand(&st, -2.0, 5.0)));
+        pf_real bv = (pf_real)urand(&st, 0.0, 0.04);
+        pf_vmf_sum a = pf_vmf_sum_add(pf_vmf_sum_zero(), l, wo, wi, bv);
+        pf_vmf_sum b = sum_add_stats_route(pf_vmf_sum_zero(), l, wo, wi, bv);
+        long double m = (long double)b.amp * (1.0L + fabsl((long double)b.exx) + fabsl((long double)b.eyy)), d;
+        if (fmaxl(fabsl((long double)a.ndf), fabsl((long double)b.ndf)) > 0.0L)
+            worst_ndf = fmaxl(worst_ndf, fabsl((long double)a.ndf - (long double)b.ndf) /
+                                             fmaxl(fabsl((long double)a.ndf), fabsl((long double)b.ndf)));
+        d = fabsl((long double)a.amp - (long double)b.amp) + fabsl((long double)a.ex - (long double)b.ex) + fabsl((long double)a.ey - (long double)b.ey) +
+            fabsl((long double)a.exx - (long double)b.exx) + fabsl((long double)a.eyy - (long double)b.eyy) + fabsl((long double)a.exy - (long double)b.exy);
+        worst_mom = fmaxl(worst_mom, d / m);
+    }
+    pf_test_note("closed form vs slope statistics, 20000 lobes: ndf max rel %.2Le, moments %.2Le", worst_ndf, worst_mom);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_ndf <= 1e-11L && worst_mom <= 1e-13L, "ndf %.3Le moments %.3Le", worst_ndf, worst_mom);
+#else
+    PF_CHECK(worst_ndf <= 2e-4L && worst_mom <= 2e-5L, "ndf %.3Le moments %.3Le", worst_ndf, worst_mom);
+#endif
+}
+
+/* pfi_vmf_tangent_variance_lean (branch-free, one exp) against pf_vmf_tangent_variance over
+   the clamp range; pf_vmf_sum_add_texel against pf_vmf_sum_add of pf_vmf_lobe_make of the
+   same texel (kappa >= 1/2, where the two variances agree to rounding: every field; below,
+   the stated 3.3e-4 of the variance). */
+static void test_sum_add_texel(void)
+{
+    unsigned long long st = 777;
+    long double worst_v = 0.0L, worst_ndf = 0.0L, worst_mom = 0.0L, worst_spec = 0.0L;
+    int i;
+    for (i = 0; i <= 4000; ++i) {
+        pf_real k = (pf_real)pow(10.0, -4.0 + 9.0 * i / 4000.0);
+        worst_v = fmaxl(worst_v, pf_test_rel_error((long double)pfi_vmf_tangent_variance_lean(k),
+                                                   (long double)pf_vmf_tangent_variance(k)));
+    }
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 mu = rand_dir(&st, 80.0), wo = rand_dir(&st, 85.0), wi = rand_dir(&st, 85.0);
+        pf_real amp = (pf_real)urand(&st, 0.05, 1.0), kappa = (pf_real)pow(10.0, urand(&st, -0.3, 5.0));
+        pf_real bv = (pf_real)urand(&st, 0.0, 0.04);
+        pf_vmf_sum a = pf_vmf_sum_add_texel(pf_vmf_sum_zero(), pf_vmf_pixel_make(wo, wi, bv), amp, mu.x, mu.y, kappa);
+        pf_vmf_sum b = pf_vmf_sum_add(pf_vmf_sum_zero(), pf_vmf_lobe_make(amp, mu.x, mu.y, kappa), wo, wi, bv);
+        long double m = (long double)b.amp * (1.0L + fabsl((long double)b.exx) + fabsl((long double)b.eyy)), d;
+        if (fmaxl(fabsl((long double)a.ndf), fabsl((long double)b.ndf)) > 0.0L)
+            worst_ndf = fmaxl(worst_ndf, fabsl((long double)a.ndf - (long double)b.ndf) /
+                                             fmaxl(fabsl((long double)a.ndf), fabsl((long double)b.ndf)));
+        d = fabsl((long double)a.amp - (long double)b.amp) + fabsl((long double)a.ex - (long double)b.ex) + fabsl((long double)a.ey - (long double)b.ey) +
+            fabsl((long double)a.exx - (long double)b.exx) + fabsl((long double)a.eyy - (long double)b.eyy) + fabsl((long double)a.exy - (long double)b.exy);
+        worst_mom = fmaxl(worst_mom, d / m);
+        {
+            long double sa = (long double)pf_vmf_sum_specular(a, wo, wi, PF_R(0.04));
+            long double sb = (long double)pf_vmf_sum_specular(b, wo, wi, PF_R(0.04));
+            if (fmaxl(sa, sb) > 0.0L) worst_spec = fmaxl(worst_spec, fabsl(sa - sb) / fmaxl(sa, sb));
+        }
+    }
+    pf_test_note("lean tangent variance vs pf_vmf_tangent_variance (kappa 1e-4 .. 1e5): max rel %.2Le; texel path vs "
+                 "pf_vmf_sum_add of pf_vmf_lobe_make, 20000 lobes (kappa 0.5 .. 1e5): ndf %.2Le, moments %.2Le, "
+                 "specular %.2Le",
+                 worst_v, worst_ndf, worst_mom, worst_spec);
+    PF_CHECK(worst_v <= 4e-4L, "tangent variance rel %.3Le", worst_v);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_ndf <= 1e-9L && worst_mom <= 1e-12L && worst_spec <= 1e-9L, "ndf %.3Le moments %.3Le spec %.3Le",
+             worst_ndf, worst_mom, worst_spec);
+#else
+    PF_CHECK(worst_ndf <= 2e-4L && worst_mom <= 5e-5L && worst_spec <= 2e-4L, "ndf %.3Le moments %.3Le spec %.3Le",
+             worst_ndf, worst_mom, worst_spec);
+#endif
+}
+
+/* pf_vmf_sum_specular (G / A_o in pf_leadr_specular's form, once per pixel) against the
+   exact one-Gaussian form it replaced: P_o = pf_beckmann_facing_area (exact at every nu) and
+   Lambda_i' = pf_beckmann_light_lambda_stats of pf_vmf_sum_stats, on random 4-lobe sums,
+   views with nu_o >= -1.5 and lights 0.01 off the mean plane (pf_beckmann.h: the G1 form of P_o below the mean plane is 2e-4
+   at -1.5 in float, 3% at -2.5, 0 past -3.3). */
+#define LD(x) ((long double)(x))
+static void test_specular_vs_facing_area(void)
+{
+    unsigned long long st = 4242;
+    long double worst = 0.0L;
+    int i, n = 0;
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 wo = rand_dir(&st, 85.0), wi = rand_dir(&st, 85.0);
+        pf_vmf_sum s = pf_vmf_sum_zero();
+        pf_slope_stats ss;
+        long double ref, got, den, nu;
+        int k;
+        for (k = 0; k < 4; ++k) {
+            pf_vec3 mu = rand_dir(&st, 50.0);
+            s = pf_vmf_sum_add(s, pf_vmf_lobe_make((pf_real)urand(&st, 0.05, 1.0), mu.x, mu.y, (pf_real)pow(10.0, urand(&st, 0.5, 4.0))),
+                               wo, wi, PF_R(0.01));
+        }
+        ss = pf_vmf_sum_stats(s);
+        nu = (LD(wo.z) - LD(ss.mean_x) * LD(wo.x) - LD(ss.mean_y) * LD(wo.y)) /
+             sqrtl(2.0L * (LD(wo.x) * LD(wo.x) * LD(ss.var_x) + LD(wo.y) * LD(wo.y) * LD(ss.var_y) +
+                           2.0L * LD(wo.x) * LD(wo.y) * LD(ss.cov_xy)));
+        /* and a light off the mean plane: at area_i -> 0 Lambda_i grows as 1 / area_i, and the
+           result inherits the rounding of area_i's cancellation (either form's) */
+        if (!(nu >= -1.5L) ||
+            !(fabsl(LD(wi.z) - LD(ss.mean_x) * LD(wi.x) - LD(ss.mean_y) * LD(wi.y)) >= 0.01L))
+            continue;
+        den = (long double)s.amp * ((long double)pf_beckmann_facing_area(wo, ss) +
+                                    fmaxl(LD(wo.z) - LD(ss.mean_x) * LD(wo.x) - LD(ss.mean_y) * LD(wo.y), 0.0L) *
+                                        (long double)pf_beckmann_light_lambda_stats(wi, ss));
+        if (!(den > 0.0L)) continue;
+        ref = (long double)s.ndf / den * (long double)pf_fresnel_schlick(PF_R(0.04), pf_vec3_dot(pfi_vmf_half(wo, wi), wi)) * 0.25L;
+        got = (long double)pf_vmf_sum_specular(s, wo, wi, PF_R(0.04));
+        if (ref > 0.0L) {
+            worst = fmaxl(worst, pf_test_rel_error(got, ref));
+            ++n;
+        }
+    }
+    pf_test_note("vs the exact facing-area form, %d random 4-lobe configurations (nu_o >= -1.5, |area_i| >= 0.01): max rel %.2Le", n, worst);
+    PF_CHECK(n > 10000, "only %d configurations", n);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-9L, "rel %.3Le", worst);
+#else
+    PF_CHECK(worst <= 2e-4L, "rel %.3Le", worst);
+#endif
+}
+
+#undef LD
+
+/* pf_vmf_sum_add_texel_mixture (the excesses from the G1 fit) against pf_vmf_sum_add +
+   pf_vmf_sum_add_masking (erfc), random 4-lobe texels, views and lights 0-85 degrees: the
+   mixture's G2 (absolute) and pf_vmf_sum_specular_mixture (relative, where the exact one is
+   above 1e-6 of its largest value and both directions are 0.01 off the mean plane, where
+   the light's Lambda grows as 1 / area_i). */
+static void test_sum_add_texel_mixture(void)
+{
+    unsigned long long st = 2024;
+    long double worst_g = 0.0L, worst_spec = 0.0L;
+    int i;
+    for (i = 0; i < 20000; ++i) {
+        pf_vec3 wo = rand_dir(&st, 85.0), wi = rand_dir(&st, 85.0);
+        pf_real bv = (pf_real)urand(&st, 1e-4, 0.04);
+        pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, bv);
+        pf_vmf_sum a = pf_vmf_sum_zero(), b = pf_vmf_sum_zero();
+        long double sa, sb;
+        int k;
+        for (k = 0; k < 4; ++k) {
+            pf_vec3 mu = rand_dir(&st, 60.0);
+            pf_real amp = (pf_real)urand(&st, 0.05, 1.0), kappa = (pf_real)pow(10.0, urand(&st, 0.0, 4.0));
+            pf_vmf_lobe l = pf_vmf_lobe_make(amp, mu.x, mu.y, kappa);
+            a = pf_vmf_sum_add_texel_mixture(a, p, wo, wi, amp, mu.x, mu.y, kappa);
+            b = pf_vmf_sum_add_masking(pf_vmf_sum_add(b, l, wo, wi, bv), l, wo, wi, bv);
+        }
+        worst_g = fmaxl(worst_g, fabsl((long double)pf_vmf_sum_g2_mixture(a, wo, wi) - (long double)pf_vmf_sum_g2_mixture(b, wo, wi)));
+        if (!(fabsl((long double)pfi_vmf_sum_area(b, wi)) >= 0.01L * (long double)b.amp) ||
+            !(fabsl((long double)pfi_vmf_sum_area(b, wo)) >= 0.01L * (long double)b.amp))
+            continue;
+        sa = (long double)pf_vmf_sum_specular_mixture(a, wo, wi, PF_R(0.04));
+        sb = (long double)pf_vmf_sum_specular_mixture(b, wo, wi, PF_R(0.04));
+        if (sb > 1e-6L) worst_spec = fmaxl(worst_spec, pf_test_rel_error(sa, sb));
+    }
+    pf_test_note("texel mixture path (G1 fit) vs erfc excesses, 20000 4-lobe sums: G2 max abs %.2Le, specular max rel %.2Le",
+                 worst_g, worst_spec);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst_g <= 1e-12L && worst_spec <= 1e-10L, "G2 %.3Le spec %.3Le", worst_g, worst_spec);
+#else
+    PF_CHECK(worst_g <= 3e-6L && worst_spec <= 1e-4L, "G2 %.3Le spec %.3Le", worst_g, worst_spec);
+#endif
+}
+
+/* No result hangs on a subnormal intermediate: the same calls with the x86 SSE flush-to-zero
+   and denormals-are-zero bits set (what a GPU does to float subnormals) give the same result
+   (relative 1e-3, or both below 1e-20). The first five inputs are the shape lavapipe found
+   (one lobe, a view far below its plane: a facing area of ~1e-42 once multiplied by sum amp,
+   flushed to 0, and 0 returned where C returned 1e7-1e11); then 20000 random one- and
+   four-lobe sums of both specular forms. x86 with SSE only (elsewhere: skipped, noted). */
+#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+#  include <xmmintrin.h>
+#  define PFT_HAVE_MXCSR 1
+#endif
+static void test_specular_flush_to_zero(void)
+{
+#ifdef PFT_HAVE_MXCSR
+    static const float found[5][12] = {
+        { 0.874065757f, 0.0344291963f, -0.970340371f, 5156.98389f, 0.48473987f, 0.871045351f, 0.0794185326f,
+          -0.836752176f, -0.260483086f, 0.481657952f, 0.0162908621f, 0 },
+        { 0.916218162f, -0.781468451f, -0.263345301f, 3689.33252f, 0.37058571f, 0.924687147f, 0.0872922987f,
+          0.0082967421f, 0.326942086f, 0.94500798f, 0.00238912948f, 0 },
+        { 0.899283528f, 0.656804144f, 0.714311481f, 7268.2085f, -0.778445721f, -0.381918818f, 0.498156905f,
+          -0.34752515f, 0.561151803f, 0.751222312f, 0.0218648948f, 0 },
+        { 0.822264612f, 0.243884578f, -0.94005841f, 6979.5415f, -0.490761846f, 0.793464661f, 0.359953672f,
+          -0.00491072377f, 0.00652577123f, 0.999966621f, 0.0333872922f, 0 },
+        { 0.76322037f, -0.94850111f, 0.0498804636f, 4437.08447f, 0.991222262f, -0.126464427f, 0.0385387018f,
+          -0.829222322f, 0.505488813f, 0.23847729f, 0.0289577842f, 0 },
+    };
+    const unsigned int csr = _mm_getcsr();
+    unsigned long long st = 99;
+    int i, bad = 0, n = 0, bad_found = 0;
+    long double first = 0.0L, first_ftz = 0.0L;
+    for (i = 0; i < 20005; ++i) {
+        pf_vmf_lobe l[4];
+        pf_vec3 wo, wi;
+        pf_real bv, r[2][2];
+        int k, m = 1, f;
+        if (i < 5) {
+            const float *t = found[i];
+            l[0] = pf_vmf_lobe_make((pf_real)t[0], (pf_real)t[1], (pf_real)t[2], (pf_real)t[3]);
+            wo = pf_vec3_make((pf_real)t[4], (pf_real)t[5], (pf_real)t[6]);
+            wi = pf_vec3_make((pf_real)t[7], (pf_real)t[8], (pf_real)t[9]);
+            bv = (pf_real)t[10];
+        } else {
+            m = (i & 1) ? 4 : 1;
+            for (k = 0; k < m; ++k) {
+                pf_vec3 mu = rand_dir(&st, 86.0);
+                l[k] = pf_vmf_lobe_make((pf_real)urand(&st, 0.05, 1.0), mu.x, mu.y, (pf_real)pow(10.0, urand(&st, 0.0, 4.5)));
+            }
+            wo = rand_dir(&st, 89.0);
+            wi = rand_dir(&st, 89.0);
+            bv = (pf_real)urand(&st, 1e-4, 0.04);
+        }
+        for (f = 0; f < 2; ++f) {
+            pf_vmf_sum s = pf_vmf_sum_zero();
+            if (f) _mm_setcsr(csr | 0x8040u); /* FTZ | DAZ */
+            for (k = 0; k < m; ++k) {
+                s = pf_vmf_sum_add(s, l[k], wo, wi, bv);
+                s = pf_vmf_sum_add_masking(s, l[k], wo, wi, bv);
+            }
+            r[f][0] = pf_vmf_sum_specular(s, wo, wi, PF_R(0.04));
+            r[f][1] = pf_vmf_sum_specular_mixture(s, wo, wi, PF_R(0.04));
+            _mm_setcsr(csr);
+        }
+        for (k = 0; k < 2; ++k) {
+            long double a = (long double)r[0][k], b = (long double)r[1][k];
+            int wrong = !(fabsl(a - b) <= 1e-3L * fmaxl(a, b) || fmaxl(a, b) <= 1e-20L);
+            bad += wrong;
+            if (i < 5) bad_found += wrong;
+            if (wrong && first == 0.0L) {
+                first = a;
+                first_ftz = b;
+            }
+            ++n;
+        }
+    }
+    pf_test_note("%d results with and without flush-to-zero: %d differ (%d of the 10 found), first %.3Le vs %.3Le", n, bad,
+                 bad_found, first, first_ftz);
+    PF_CHECK(bad == 0, "%d of %d results change under flush-to-zero (first %.3Le, flushed %.3Le)", bad, n, first, first_ftz);
+#else
+    pf_test_note("no x86 MXCSR: flush-to-zero not emulated, skipped");
+#endif
+}
+
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -870,5 +1144,10 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_lobe_make_nan);
     PF_TEST_RUN(edge_evaluators_finite);
     PF_TEST_RUN(edge_safety_specular_mixture_tiny);
+    PF_TEST_RUN(test_sum_add_closed_form);
+    PF_TEST_RUN(test_sum_add_texel);
+    PF_TEST_RUN(test_specular_vs_facing_area);
+    PF_TEST_RUN(test_sum_add_texel_mixture);
+    PF_TEST_RUN(test_specular_flush_to_zero);
     return PF_TEST_END();
 }

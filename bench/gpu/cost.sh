@@ -170,8 +170,8 @@ rm -f "$dat" "$out/gpu_chart.log"
 
 # Methods of bench/choosing.sh: the sum of their evaluators' counts.
 {
-    echo "method,spirv_ops,ptx"
-    grep -v '^#' "$dir/methods.txt" | while read -r meth fns; do
+    echo "method,spirv_ops,ptx,fetches"
+    grep -v '^#' "$dir/methods.txt" | while read -r meth fns fetches; do
         [ -n "$meth" ] || continue
         so=0; sp=0
         for f in $(echo "$fns" | tr '+' ' '); do
@@ -179,7 +179,7 @@ rm -f "$dat" "$out/gpu_chart.log"
             case $o in n/a|"") so=n/a ;; *) [ "$so" = n/a ] || so=$((so + o)) ;; esac
             case $p in n/a|"") sp=n/a ;; *) [ "$sp" = n/a ] || sp=$((sp + p)) ;; esac
         done
-        echo "$meth,$so,$sp"
+        echo "$meth,$so,$sp,${fetches:-n/a}"
     done
 } > "$out/gpu_methods.csv"
 echo "bench: gpu cost: $(awk -F, 'NR > 1' "$csv" | wc -l | tr -d ' ') functions counted ($secs s); wrote gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv"

@@ -38,6 +38,7 @@ cd "$ROOT" || exit 2
 INC=include
 GEN=tests/portability/gen.awk
 TB=bench/gpu/textbook.h
+PX=bench/gpu/pixel.h   # one shaded pixel of the multi-lobe methods (m lobes, fetches excluded)
 
 # spirv_count SPV: "ops branches" of main after spirv-opt -O (bench/gpu/spirv_ops.awk).
 spirv_count() {
@@ -108,13 +109,30 @@ HEADERS=$(cd "$INC" && ls pf_*.h | tr '\n' ' ')
 
 # Units: each header (pasted after the headers it includes) with the wrappers of its public
 # functions, and bench/gpu/textbook.h after pf_core.h. gen.awk's own main/kernel is cut off.
-# gen_unit MODE UNIT > file; UNIT = a header basename or textbook.h.
+# bench/gpu/pixel.h after pf_vmf.h and its includes.
+# gen_unit MODE UNIT > file; UNIT = a header basename, textbook.h or pixel.h.
 gen_unit() {
     if [ "$1" = glsl ]; then printf '#version 450\n#define PF_GLSL 1\n'; fi
-    if [ "$2" = textbook.h ]; then chain=pf_core.h; else chain=$(deps_rec "$2" | awk '!seen[$0]++'); fi
+    case $2 in
+        textbook.h) chain=pf_core.h ;;
+        pixel.h) chain=$(deps_rec pf_vmf.h | awk '!seen[$0]++') ;;
+        *) chain=$(deps_rec "$2" | awk '!seen[$0]++') ;;
+    esac
     for h in $chain; do cat "$INC/$h"; echo; done
     [ "$2" = textbook.h ] && { cat "$TB"; echo; }
-    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" > "$W/gen.$1.$2.out" || return 1
+    [ "$2" = pixel.h ] && { cat "$PX"; echo; }
+    awk -v mode="$1" -v targets="$2" -v includes="" -f "$GEN" "$INC"/pf_*.h "$TB" "$PX" > "$W/gen.$1.$2.out" || return 1
+    # gen.awk reads inputs modulo 16 (in[k % 16]): m lobes of 4 texel values would repeat
+    # after 4 lobes and a compiler could merge them (nvcc did). pixel.h's wrappers read
+    # distinct inputs instead: the indices renumbered 0, 1, 2, ... per wrapper.
+    if [ "$2" = pixel.h ]; then
+        awk '/^(__device__ )?(pf_real|float) pfp_pf_/ { n = 0 }
+             { out = ""; s = $0
+               while (match(s, /(pfp_in\.v|in)\[[0-9]+\]/)) {
+                   t = substr(s, RSTART, RLENGTH); sub(/\[[0-9]+\]/, "[" n++ "]", t)
+                   out = out substr(s, 1, RSTART - 1) t; s = substr(s, RSTART + RLENGTH) }
+               print out s }' "$W/gen.$1.$2.out" > "$W/gen.$1.$2.renum" && mv "$W/gen.$1.$2.renum" "$W/gen.$1.$2.out"
+    fi
     awk '/^void main\(\)$/ || /^__global__ void pfp_kernel/ { exit } { print }' "$W/gen.$1.$2.out"
 }
 
@@ -182,7 +200,7 @@ if [ "${1:-}" = "--cuda-unit" ]; then
     exit 0
 fi
 
-UNITS="$HEADERS textbook.h"
+UNITS="$HEADERS textbook.h pixel.h"
 jobs=${PF_GPU_JOBS:-${PFB_THREADS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}}
 # the units' shader sources, PF_GPU_JOBS at a time (each in its own scratch file)
 if [ "${1:-}" = "--gen-unit" ]; then
@@ -272,7 +290,7 @@ for f in $fns; do
     if [ $ptx_ok = 1 ]; then
         ptx=$(lookup "$W/ptx.txt" "$f"); sass=$(lookup "$W/sass.txt" "$f"); regs=$(lookup "$W/regs.txt" "$f")
     fi
-    case $f in pf_textbook_*) kind=textbook ;; *) kind=library ;; esac
+    case $f in pf_textbook_*) kind=textbook ;; pf_pixel_*) kind=pixel ;; *) kind=library ;; esac
     printf '%-36s %9s %8s %6s %6s %5s\n' "$f" "$ops" "$br" "$ptx" "$sass" "$regs"
     [ -n "$csv" ] && echo "$kind,$f,${u:-n/a}${u:+.h},$ops,$br,$ptx,$sass,$regs" >> "$csv"
 done

@@ -1973,6 +1973,42 @@ static void pfc_f_pf_vmf_sum_g1_mixture(pfc_ctx *c)
     pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
     pfc_01(c, pf_vmf_sum_g1_mixture(pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 0), wo));
 }
+/* the shader path: the pixel's shared terms, and lobes added from their texels (drawn as
+   pfc_vmf_lobe's packed form, so the texel is one the fit could write) */
+static void pfc_f_pf_vmf_pixel_make(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, pfc_var(c, 0));
+    pfc_out(c, p.gx); pfc_out(c, p.gy); pfc_out(c, p.ngx); pfc_ge0(c, p.dn); pfc_ge0(c, p.base_var);
+}
+static pf_vmf_sum pfc_vmf_sum_texel(pfc_ctx *c, pf_vec3 wo, pf_vec3 wi, pf_real bv, int mixture)
+{
+    pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, bv);
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    int n = pfc_int(c, 1, 4), k;
+    for (k = 0; k < n; ++k) {
+        pf_vmf_lobe l = pfc_vmf_lobe(c);
+        s = mixture ? pf_vmf_sum_add_texel_mixture(s, p, wo, wi, l.amp, l.mu.x, l.mu.y, l.kappa)
+                    : pf_vmf_sum_add_texel(s, p, l.amp, l.mu.x, l.mu.y, l.kappa);
+    }
+    return s;
+}
+static void pfc_f_pf_vmf_sum_add_texel(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_sum s = pfc_vmf_sum_texel(c, wo, wi, pfc_var(c, 0), 0);
+    pfc_out_vmf_sum(c, s);
+    pfc_ge0(c, pf_vmf_sum_specular(s, wo, wi, pfc_u01(c)));
+}
+static void pfc_f_pf_vmf_sum_add_texel_mixture(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_vmf_sum s = pfc_vmf_sum_texel(c, wo, wi, pfc_var(c, 0), 1);
+    pfc_out_vmf_sum(c, s);
+    pfc_ge0(c, s.excess_o); pfc_ge0(c, s.excess_i);
+    pfc_ge0(c, pf_vmf_sum_specular_mixture(s, wo, wi, pfc_u01(c)));
+    pfc_01(c, pf_vmf_sum_g2_mixture(s, wo, wi));
+}
 static void pfc_f_pf_vmf_sum_specular(pfc_ctx *c)
 {
     pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
@@ -2398,6 +2434,9 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_sum_g2, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g2_mixture, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g1_mixture, 0, "sums of 1-4 lobes, direction", "in [0, 1]"),
+    PFC_E(vmf, pf_vmf_pixel_make, 0, "directions (grazing, below), base variance", "finite; dn >= 0"),
+    PFC_E(vmf, pf_vmf_sum_add_texel, 0, "1-4 texels as the fit writes them, directions, base variance", "sums; specular >= 0"),
+    PFC_E(vmf, pf_vmf_sum_add_texel_mixture, 0, "1-4 texels as the fit writes them, directions, base variance", "sums, excesses >= 0; G2 in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the macrosurface"),
     PFC_E(vmf, pf_vmf_sum_specular_mixture, 0, "sums of 1-4 lobes (vMF form), directions, f0", ">= 0"),
     PFC_E(vmf, pf_vmf_sum_specular_unmasked, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the mesosurface"),
