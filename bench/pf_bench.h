@@ -110,7 +110,16 @@ __attribute__((constructor)) static void pfb_instr_stop_at_start(void) { CALLGRI
 #  define PFB_REPS 101    /* timed repetitions; odd, so the median is one sample */
 #endif
 #ifndef PFB_WARMUP
-#  define PFB_WARMUP 5    /* untimed repetitions first */
+#  define PFB_WARMUP 5    /* untimed runs of each method first (at most; see PFB_WARMUP_MS) */
+#endif
+#ifndef PFB_WARMUP_MS
+#  define PFB_WARMUP_MS 20.0 /* ... or fewer once they took this long (at least one run) */
+#endif
+#ifndef PFB_MIN_REPS
+#  define PFB_MIN_REPS 5  /* timed repetitions of a method at least, whatever the budget */
+#endif
+#ifndef PFB_BUDGET_MS
+#  define PFB_BUDGET_MS 250.0 /* measured ms per method and input order (pairs with the baseline) */
 #endif
 #define PFB_MAX_METHODS 12
 #define PFB_SEED 0x5eed2024u
@@ -407,50 +416,95 @@ PFB_FN void *pfb_alloc(size_t bytes)
 
 typedef struct pfb_timing {
     double ns, ratio, q1, q3;
+    int reps; /* repetitions behind the medians (the time budget's choice) */
 } pfb_timing;
+
+/* Repetitions that spend about budget_ms when one costs pair_ns: clamped to
+   [min(PFB_MIN_REPS, reps), reps], odd below reps (the median is then one sample). */
+PFB_FN int pfb_budget_reps(double pair_ns, double budget_ms, int reps)
+{
+    int lo = reps < PFB_MIN_REPS ? reps : PFB_MIN_REPS, n;
+    double want = pair_ns > 0.0 ? budget_ms * 1e6 / pair_ns : (double)reps;
+    n = want >= (double)reps ? reps : (want <= (double)lo ? lo : (int)want);
+    if (n < reps && !(n & 1)) ++n;
+    return n;
+}
 
 /* Times every method of f (and, as slot n_methods, the A/A copy of the baseline) over the
    inputs a, b, c. In every repetition each slot, in rotating order, is timed back to back with
    the baseline as a pair (which goes first alternates), so the ratio of a pair sees one
-   machine state. t, tbase: (n_methods + 1) * reps scratch; tmp: reps scratch. */
-PFB_FN void pfb_time_set(const pfb_family *f, int reps, const pf_real *a, const pf_real *b,
-                         const pf_real *c, pf_real *out, double *t, double *tbase, double *tmp,
-                         pfb_timing *res, pfb_progress *progress, long long *done)
+   machine state.
+   TIME BUDGET. Warm-up first: each slot runs untimed until it has run PFB_WARMUP times or for
+   PFB_WARMUP_MS (at least once); the fastest warm-up run of each slot is its calibration. A
+   slot then gets reps_i = budget_ms / (calibrated time of its pair) repetitions, clamped to
+   [PFB_MIN_REPS, reps] (the baseline slot: its own time alone), so every median uses about the
+   same measured time: a 0.1 ms loop gets the full `reps`, a 600 ms quadrature PFB_MIN_REPS.
+   Every pair is still timed side by side in the same rotating schedule; a slot whose
+   repetitions are done leaves the rotation. t, tbase: (n_methods + 1) * reps scratch; tmp:
+   reps scratch. */
+PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const pf_real *a,
+                         const pf_real *b, const pf_real *c, pf_real *out, double *t,
+                         double *tbase, double *tmp, pfb_timing *res, pfb_progress *progress,
+                         long long done0)
 {
-    int nm = f->n_methods, i, r, k;
+    int nm = f->n_methods, i, r, k, w, r_max = 0;
+    int n_rep[PFB_MAX_METHODS + 1];
+    double cal[PFB_MAX_METHODS + 1], planned = 0.0, spent = 0.0;
     pfb_kernel base = f->m[f->baseline].kernel;
     pf_real check = PF_R(0.0);
 #define PFB_SLOT_(i) ((i) < nm ? f->m[(i)].kernel : f->m[f->baseline].kernel_copy)
-    for (r = 0; r < PFB_WARMUP; ++r)
-        for (i = 0; i <= nm; ++i) (void)pfb_time_once(PFB_SLOT_(i), a, b, c, out);
-    for (r = 0; r < reps; ++r) {
+    for (i = 0; i <= nm; ++i) {
+        double used = 0.0;
+        cal[i] = 1e300;
+        for (w = 0; w < PFB_WARMUP && (w == 0 || used < PFB_WARMUP_MS * 1e6); ++w) {
+            double tw = pfb_time_once(PFB_SLOT_(i), a, b, c, out);
+            used += tw * (double)PFB_PASSES * (double)PFB_N;
+            if (tw < cal[i]) cal[i] = tw;
+        }
+    }
+    for (i = 0; i <= nm; ++i) {
+        /* ns of the pair per repetition (the baseline slot: one timing) */
+        double pair = (i == f->baseline ? cal[i] : cal[i] + cal[f->baseline]) *
+                      (double)PFB_PASSES * (double)PFB_N;
+        n_rep[i] = pfb_budget_reps(pair, budget_ms, reps);
+        if (n_rep[i] > r_max) r_max = n_rep[i];
+        planned += pair * n_rep[i];
+    }
+    for (r = 0; r < r_max; ++r) {
         for (k = 0; k <= nm; ++k) {
             double tm, tb;
             i = (r + k) % (nm + 1);
+            if (r >= n_rep[i]) continue;
             if (i == f->baseline) {
                 tm = tb = pfb_time_once(base, a, b, c, out);
+                spent += cal[i];
             } else if (r & 1) {
                 tb = pfb_time_once(base, a, b, c, out);
                 tm = pfb_time_once(PFB_SLOT_(i), a, b, c, out);
+                spent += cal[i] + cal[f->baseline];
             } else {
                 tm = pfb_time_once(PFB_SLOT_(i), a, b, c, out);
                 tb = pfb_time_once(base, a, b, c, out);
+                spent += cal[i] + cal[f->baseline];
             }
             t[i * reps + r] = tm;
             tbase[i * reps + r] = tb;
             check += out[(size_t)r % PFB_N];
         }
-        pfb_progress_update(progress, ++*done);
+        pfb_progress_update(progress, done0 + (long long)(1000.0 * spent * (double)PFB_PASSES *
+                                                          (double)PFB_N / planned));
     }
 #undef PFB_SLOT_
     pfb_sink = check;
     for (i = 0; i <= nm; ++i) {
-        for (r = 0; r < reps; ++r) tmp[r] = t[i * reps + r] / tbase[i * reps + r];
-        res[i].ratio = pfb_quantile(tmp, reps, 0.5);
-        res[i].q1 = pfb_quantile(tmp, reps, 0.25);
-        res[i].q3 = pfb_quantile(tmp, reps, 0.75);
-        for (r = 0; r < reps; ++r) tmp[r] = t[i * reps + r];
-        res[i].ns = pfb_quantile(tmp, reps, 0.5);
+        int n = n_rep[i];
+        for (r = 0; r < n; ++r) tmp[r] = t[i * reps + r] / tbase[i * reps + r];
+        res[i].ratio = pfb_quantile(tmp, n, 0.5);
+        res[i].q1 = pfb_quantile(tmp, n, 0.25);
+        res[i].q3 = pfb_quantile(tmp, n, 0.75);
+        for (r = 0; r < n; ++r) tmp[r] = t[i * reps + r];
+        res[i].ns = pfb_quantile(tmp, n, 0.5);
+        res[i].reps = n;
     }
 }
 
@@ -602,8 +656,8 @@ PFB_FN void pfb_accuracy_free(pfb_fam_acc *A)
 /* ---------------------------------------------------------------- timing, alone on one core
    After the accuracy threads have ended: one thread, nothing else of the bench running
    (bench/run.sh runs the timing binaries one at a time, after every parallel step). */
-PFB_FN void pfb_timing_family(const pfb_family *f, int reps, pfb_timing *tr, pfb_timing *ts,
-                              pfb_progress *progress, long long *done)
+PFB_FN void pfb_timing_family(const pfb_family *f, int reps, double budget_ms, pfb_timing *tr,
+                              pfb_timing *ts, pfb_progress *progress, long long done0)
 {
     pf_real *a = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
     pf_real *b = (pf_real *)pfb_alloc(PFB_N * sizeof(pf_real));
@@ -618,9 +672,9 @@ PFB_FN void pfb_timing_family(const pfb_family *f, int reps, pfb_timing *tr, pfb
     rng.s = PFB_SEED;
     f->gen(&rng, a, b, c, PFB_N);
     /* random order (the headline), then the same inputs sorted */
-    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, tr, progress, done);
+    pfb_time_set(f, reps, budget_ms, a, b, c, out, t, tbase, ratio, tr, progress, done0);
     pfb_sort_inputs(a, b, c, PFB_N);
-    pfb_time_set(f, reps, a, b, c, out, t, tbase, ratio, ts, progress, done);
+    pfb_time_set(f, reps, budget_ms, a, b, c, out, t, tbase, ratio, ts, progress, done0 + 1000);
     free(a); free(b); free(c); free(out); free(t); free(tbase); free(ratio);
 }
 
@@ -629,6 +683,7 @@ PFB_FN void pfb_report_family(const pfb_family *f, pfb_fam_acc *A, const pfb_tim
                               const pfb_timing *ts, FILE *csv, FILE *notes, const char *instr_file)
 {
     int nm = f->n_methods, i;
+    char reps[(PFB_MAX_METHODS + 1) * 16];
     pfb_result *res = A->res;
     for (i = 0; i < nm; ++i) {
         res[i].ns = tr[i].ns;
@@ -643,11 +698,19 @@ PFB_FN void pfb_report_family(const pfb_family *f, pfb_fam_acc *A, const pfb_tim
     printf("  A/A check: a second copy of the baseline loop times %.3f [%.3f,%.3f] x the baseline "
            "(sorted inputs: %.3f [%.3f,%.3f])\n", tr[nm].ratio, tr[nm].q1, tr[nm].q3, ts[nm].ratio,
            ts[nm].q1, ts[nm].q3);
+    /* the time budget's repetitions per method (random/sorted), in table order, A/A copy last */
+    reps[0] = '\0';
+    for (i = 0; i <= nm; ++i) {
+        size_t len = strlen(reps);
+        snprintf(reps + len, sizeof reps - len, "%s%d/%d", i ? " " : "", tr[i].reps, ts[i].reps);
+    }
+    printf("  repetitions per method (random/sorted inputs; A/A copy last): %s\n", reps);
     if (csv) pfb_write_csv(csv, f, res, A->n_grid);
     if (notes)
         fprintf(notes, "%s\tA/A check (%s build): a second copy of the baseline loop timed %.3f x "
-                "the baseline (quartiles %.3f-%.3f); sorted inputs %.3f (%.3f-%.3f)\n", f->name,
-                PFB_BUILD, tr[nm].ratio, tr[nm].q1, tr[nm].q3, ts[nm].ratio, ts[nm].q1, ts[nm].q3);
+                "the baseline (quartiles %.3f-%.3f); sorted inputs %.3f (%.3f-%.3f); repetitions "
+                "per method, random/sorted: %s\n", f->name, PFB_BUILD, tr[nm].ratio, tr[nm].q1,
+                tr[nm].q3, ts[nm].ratio, ts[nm].q1, ts[nm].q3, reps);
     if (notes && f->notes) {
         const char *s = f->notes;
         while (*s) {
@@ -674,6 +737,7 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
 {
     const char *csv_file = NULL, *notes_file = NULL, *instr_file = NULL, *only = NULL;
     int reps = PFB_REPS, list = 0, i, k;
+    double budget_ms = PFB_BUDGET_MS;
     FILE *csv = NULL, *notes = NULL;
     double t0 = pfb_now_ns();
 
@@ -687,10 +751,12 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         else if (strcmp(a, "--instr") == 0) instr_file = v;
         else if (strcmp(a, "--only") == 0) only = v;
         else if (strcmp(a, "--reps") == 0) reps = atoi(v);
+        else if (strcmp(a, "--budget-ms") == 0) budget_ms = atof(v);
         else { fprintf(stderr, "%s: unknown option %s\n", argv[0], a); return 2; }
         ++i;
     }
     if (reps < 1) reps = 1;
+    if (!(budget_ms > 0.0)) budget_ms = 1e-3; /* 0: every method at PFB_MIN_REPS */
 
     if (list) {
         for (i = 0; i < n_fam; ++i)
@@ -746,11 +812,15 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         if (!notes) { perror(notes_file); return 2; }
     }
 
-    printf("\n#### bench_%s, %s build: %d inputs x %d passes, median of %d repetitions",
-           module, PFB_BUILD, PFB_N, PFB_PASSES, reps);
+    printf("\n#### bench_%s, %s build: %d inputs x %d passes, medians of %d to %d repetitions "
+           "(time budget %.0f ms per method and input order)", module, PFB_BUILD, PFB_N, PFB_PASSES,
+           reps < PFB_MIN_REPS ? reps : PFB_MIN_REPS, reps, budget_ms);
     if (notes)
-        fprintf(notes, "*\t%d seeded random inputs per pass (passes per timing: %d), %d repetitions "
-                "after %d warm-up ones\n", PFB_N, PFB_PASSES, reps, PFB_WARMUP);
+        fprintf(notes, "*\t%d seeded random inputs per pass (passes per timing: %d), each method timed "
+                "for a budget of about %.0f ms per input order (its pairs with the baseline; "
+                "repetitions from a warm-up calibration: %d at most, %d at least, per family in the "
+                "A/A notes) after up to %d warm-up runs\n", PFB_N, PFB_PASSES, budget_ms, reps,
+                reps < PFB_MIN_REPS ? reps : PFB_MIN_REPS, PFB_WARMUP);
 #if defined(__VERSION__)
     printf(", compiler %s", __VERSION__);
 #endif
@@ -761,16 +831,16 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         pfb_fam_acc *acc = (pfb_fam_acc *)pfb_alloc((size_t)n_fam * sizeof *acc);
         pfb_timing *tr = (pfb_timing *)pfb_alloc((size_t)n_fam * (PFB_MAX_METHODS + 1) * sizeof *tr);
         pfb_timing *ts = (pfb_timing *)pfb_alloc((size_t)n_fam * (PFB_MAX_METHODS + 1) * sizeof *ts);
-        long long done = 0;
         char label[160];
         pfb_progress progress;
         pfb_accuracy_all(module, fam, n_fam, acc);
-        snprintf(label, sizeof label, "bench_%s (%s): timing, repetitions", module, PFB_BUILD);
-        progress = pfb_progress_start(label, 2LL * n_fam * reps);
+        /* progress in thousandths of each family's two input orders (of its planned time) */
+        snprintf(label, sizeof label, "bench_%s (%s): timing", module, PFB_BUILD);
+        progress = pfb_progress_start(label, 2000LL * n_fam);
         pfb_spin(0.25); /* let the clock frequency settle before the first timing */
         for (i = 0; i < n_fam; ++i)
-            pfb_timing_family(&fam[i], reps, tr + (size_t)i * (PFB_MAX_METHODS + 1),
-                              ts + (size_t)i * (PFB_MAX_METHODS + 1), &progress, &done);
+            pfb_timing_family(&fam[i], reps, budget_ms, tr + (size_t)i * (PFB_MAX_METHODS + 1),
+                              ts + (size_t)i * (PFB_MAX_METHODS + 1), &progress, 2000LL * i);
         pfb_progress_end(&progress);
         for (i = 0; i < n_fam; ++i) {
             pfb_report_family(&fam[i], &acc[i], tr + (size_t)i * (PFB_MAX_METHODS + 1),

@@ -124,7 +124,7 @@ stage() {
 quick=""
 case "${BENCH_QUICK:-0}" in
     ""|0|no|NO) ;;
-    *) quick="--reps 9"; echo "bench: BENCH_QUICK set, 9 repetitions (smoke run; do not publish these timings)" ;;
+    *) quick="--reps 9 --budget-ms 50"; echo "bench: BENCH_QUICK set, at most 9 repetitions and a 50 ms budget per method (smoke run; do not publish these timings)" ;;
 esac
 echo "bench: $threads threads per stage (PFB_THREADS to change), output in $out/"
 
