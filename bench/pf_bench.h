@@ -847,7 +847,9 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         /* progress in thousandths of each family's two input orders (of its planned time) */
         snprintf(label, sizeof label, "bench_%s (%s): timing", module, PFB_BUILD);
         progress = pfb_progress_start(label, 2000LL * n_fam);
-        pfb_spin(0.25); /* let the clock frequency settle before the first timing */
+        /* let the clock frequency settle before the first timing: 0.25 s, or the budget of one
+           method when that is shorter (the quick run's 50 ms; the accuracy threads just ran) */
+        pfb_spin(budget_ms < 250.0 ? budget_ms * 1e-3 : 0.25);
         for (i = 0; i < n_fam; ++i)
             pfb_timing_family(&fam[i], reps, budget_ms, tr + (size_t)i * (PFB_MAX_METHODS + 1),
                               ts + (size_t)i * (PFB_MAX_METHODS + 1), &progress, 2000LL * i);

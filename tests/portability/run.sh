@@ -692,11 +692,15 @@ echo "portability: $NHEAD headers: $(echo $HEADERS)"
 find_nvcc
 mkdir -p "$OUT/jobs"
 plan_cells
-# the cells first (the longest jobs: whole test suites), then the groups
+# longest first, so that no long job starts last: the cells that run the whole suite (under
+# the sanitizers first, then qemu-arm), then the groups, then the edge_ and compile-only cells
+touch "$OUT/cells/todo.txt"
 {
-    [ -s "$OUT/cells/todo.txt" ] && sed 's/^/cell /' "$OUT/cells/todo.txt"
-    for g in $GROUPS; do echo "group $g"; done
-} > "$OUT/jobs/list.txt"
+    awk '$2 == "full" && / -fsanitize=/' "$OUT/cells/todo.txt"
+    awk '$2 == "full" && !/ -fsanitize=/' "$OUT/cells/todo.txt"
+} | sed 's/^/cell /' > "$OUT/jobs/list.txt"
+for g in $GROUPS; do echo "group $g"; done >> "$OUT/jobs/list.txt"
+awk '$2 != "full"' "$OUT/cells/todo.txt" | sed 's/^/cell /' >> "$OUT/jobs/list.txt"
 njobs=${PORT_JOBS:-$(nproc 2>/dev/null || echo 2)}
 echo "portability: $(grep -c . "$OUT/jobs/list.txt") jobs, $njobs at once" >&2
 xargs -P "$njobs" -L 1 sh "$P/run.sh" --job "$BUILD" < "$OUT/jobs/list.txt"
