@@ -429,6 +429,11 @@ typedef struct pfb_timing {
     int reps; /* repetitions behind the medians (the time budget's choice) */
 } pfb_timing;
 
+/* Nanoseconds of timed loops run so far (warm-up included), and what the fixed schedule this
+   budget replaced (PFB_WARMUP warm-up runs and `reps` repetitions of every slot) would have
+   run, from the same calibration: the saving, measured on the machine of the run. */
+static double pfb_loops_ns, pfb_fixed_ns;
+
 /* Repetitions that spend about budget_ms when one costs pair_ns: clamped to
    [min(PFB_MIN_REPS, reps), reps], odd below reps (the median is then one sample). */
 PFB_FN int pfb_budget_reps(double pair_ns, double budget_ms, int reps)
@@ -471,6 +476,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
             used += tw * (double)PFB_PASSES * (double)PFB_N;
             if (tw < cal[i]) cal[i] = tw;
         }
+        pfb_loops_ns += used;
     }
     for (i = 0; i <= nm; ++i) {
         /* ns of the pair per repetition (the baseline slot: one timing) */
@@ -478,6 +484,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
                       (double)PFB_PASSES * (double)PFB_N;
         n_rep[i] = pfb_budget_reps(pair, budget_ms, reps);
         if (n_rep[i] > r_max) r_max = n_rep[i];
+        pfb_fixed_ns += pair * reps + cal[i] * PFB_WARMUP * (double)PFB_PASSES * (double)PFB_N;
         planned += pair * n_rep[i];
     }
     for (r = 0; r < r_max; ++r) {
@@ -499,6 +506,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
             }
             t[i * reps + r] = tm;
             tbase[i * reps + r] = tb;
+            pfb_loops_ns += (i == f->baseline ? tm : tm + tb) * (double)PFB_PASSES * (double)PFB_N;
             check += out[(size_t)r % PFB_N];
         }
         pfb_progress_update(progress, done0 + (long long)(1000.0 * spent * (double)PFB_PASSES *
@@ -843,7 +851,9 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         pfb_timing *ts = (pfb_timing *)pfb_alloc((size_t)n_fam * (PFB_MAX_METHODS + 1) * sizeof *ts);
         char label[160];
         pfb_progress progress;
+        double c0 = (double)clock(), c1, c2;
         pfb_accuracy_all(module, fam, n_fam, acc);
+        c1 = (double)clock();
         /* progress in thousandths of each family's two input orders (of its planned time) */
         snprintf(label, sizeof label, "bench_%s (%s): timing", module, PFB_BUILD);
         progress = pfb_progress_start(label, 2000LL * n_fam);
@@ -854,6 +864,12 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
             pfb_timing_family(&fam[i], reps, budget_ms, tr + (size_t)i * (PFB_MAX_METHODS + 1),
                               ts + (size_t)i * (PFB_MAX_METHODS + 1), &progress, 2000LL * i);
         pfb_progress_end(&progress);
+        c2 = (double)clock();
+        /* process CPU seconds of each phase (every thread): what a busy machine inflates least */
+        fprintf(stderr, "bench_%s (%s): CPU: accuracy %.2f s (%d threads), timing %.2f s (one thread); "
+                "timed loops %.2f s, %.2f s with %d repetitions of every method\n", module, PFB_BUILD,
+                (c1 - c0) / CLOCKS_PER_SEC, pfb_thread_count(), (c2 - c1) / CLOCKS_PER_SEC,
+                pfb_loops_ns * 1e-9, pfb_fixed_ns * 1e-9, reps);
         for (i = 0; i < n_fam; ++i) {
             pfb_report_family(&fam[i], &acc[i], tr + (size_t)i * (PFB_MAX_METHODS + 1),
                               ts + (size_t)i * (PFB_MAX_METHODS + 1), csv, notes, instr_file);
