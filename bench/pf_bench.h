@@ -429,10 +429,11 @@ typedef struct pfb_timing {
     int reps; /* repetitions behind the medians (the time budget's choice) */
 } pfb_timing;
 
-/* Nanoseconds of timed loops run so far (warm-up included), and what the fixed schedule this
-   budget replaced (PFB_WARMUP warm-up runs and `reps` repetitions of every slot) would have
-   run, from the same calibration: the saving, measured on the machine of the run. */
-static double pfb_loops_ns, pfb_fixed_ns;
+/* Nanoseconds of timed loops: measured so far (warm-up included; wall clock, so a busy machine
+   inflates it), planned by the budget from the calibration, and what the fixed schedule the
+   budget replaced (PFB_WARMUP warm-up runs and `reps` repetitions of every slot) would take
+   from the same calibration: planned / fixed is the saving, independent of the load. */
+static double pfb_loops_ns, pfb_planned_ns, pfb_fixed_ns;
 
 /* Repetitions that spend about budget_ms when one costs pair_ns: clamped to
    [min(PFB_MIN_REPS, reps), reps], odd below reps (the median is then one sample). */
@@ -463,7 +464,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
                          long long done0)
 {
     int nm = f->n_methods, i, r, k, w, r_max = 0;
-    int n_rep[PFB_MAX_METHODS + 1];
+    int n_rep[PFB_MAX_METHODS + 1], warm[PFB_MAX_METHODS + 1];
     double cal[PFB_MAX_METHODS + 1], planned = 0.0, spent = 0.0;
     pfb_kernel base = f->m[f->baseline].kernel;
     pf_real check = PF_R(0.0);
@@ -476,6 +477,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
             used += tw * (double)PFB_PASSES * (double)PFB_N;
             if (tw < cal[i]) cal[i] = tw;
         }
+        warm[i] = w;
         pfb_loops_ns += used;
     }
     for (i = 0; i <= nm; ++i) {
@@ -485,6 +487,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
         n_rep[i] = pfb_budget_reps(pair, budget_ms, reps);
         if (n_rep[i] > r_max) r_max = n_rep[i];
         pfb_fixed_ns += pair * reps + cal[i] * PFB_WARMUP * (double)PFB_PASSES * (double)PFB_N;
+        pfb_planned_ns += pair * n_rep[i] + cal[i] * (double)warm[i] * (double)PFB_PASSES * (double)PFB_N;
         planned += pair * n_rep[i];
     }
     for (r = 0; r < r_max; ++r) {
@@ -867,9 +870,10 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         c2 = (double)clock();
         /* process CPU seconds of each phase (every thread): what a busy machine inflates least */
         fprintf(stderr, "bench_%s (%s): CPU: accuracy %.2f s (%d threads), timing %.2f s (one thread); "
-                "timed loops %.2f s, %.2f s with %d repetitions of every method\n", module, PFB_BUILD,
+                "timed loops %.2f s measured, %.2f s planned; %.2f s with %d repetitions and %d warm-up "
+                "runs of every method (from the same calibration)\n", module, PFB_BUILD,
                 (c1 - c0) / CLOCKS_PER_SEC, pfb_thread_count(), (c2 - c1) / CLOCKS_PER_SEC,
-                pfb_loops_ns * 1e-9, pfb_fixed_ns * 1e-9, reps);
+                pfb_loops_ns * 1e-9, pfb_planned_ns * 1e-9, pfb_fixed_ns * 1e-9, reps, PFB_WARMUP);
         for (i = 0; i < n_fam; ++i) {
             pfb_report_family(&fam[i], &acc[i], tr + (size_t)i * (PFB_MAX_METHODS + 1),
                               ts + (size_t)i * (PFB_MAX_METHODS + 1), csv, notes, instr_file);
