@@ -176,7 +176,10 @@ static double time_job(pyr_fn fn, const pyr_job *j)
     return pfb_now_ns() - t0;
 }
 
-static void run_pyramids(int reps, FILE *csv, FILE *notes)
+/* Each method timed back to back with the memcpy (pairs, which goes first alternating), after one
+   untimed run of each; repetitions from that run's time for a budget of about budget_ms of
+   pairs per method (pfb_budget_reps: PFB_MIN_REPS at least, reps at most). */
+static void run_pyramids(int reps, double budget_ms, FILE *csv, FILE *notes)
 {
     const int w = PYR_SIZE, h = PYR_SIZE;
     size_t texels = (size_t)w * (size_t)h, total = (size_t)pf_mip_texel_count(w, h), i;
@@ -188,7 +191,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
     pfb_rng rng;
     pyr_job job;
     pfb_progress progress;
-    int m, r;
+    int m, r, n = reps;
     rng.s = PFB_SEED;
     for (i = 0; i < texels; ++i) in[i] = (pf_real)pfb_unif(&rng); /* heights and depths in [0, 1) */
     memcpy_bytes = total * 5 * sizeof(pf_real);
@@ -202,17 +205,18 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
     job.w = w;
     job.h = h;
     printf("\n== pyramid (%s)   baseline: memcpy of %.1f MB (the 5-moment pyramid's bytes)   %d x %d "
-           "base, %d repetitions\n", PFB_BUILD, (double)memcpy_bytes * 1e-6, w, h, reps);
-    printf("  %-32s %10s %9s %15s %10s %10s\n", "method", "ms", "x memcpy", "[q1,q3]", "GB/s", "memcpy GB/s");
+           "base, at most %d repetitions (time budget %.0f ms per method)\n", PFB_BUILD,
+           (double)memcpy_bytes * 1e-6, w, h, reps, budget_ms);
+    printf("  %-32s %10s %9s %15s %10s %10s %5s\n", "method", "ms", "x memcpy", "[q1,q3]", "GB/s", "memcpy GB/s",
+           "reps");
     progress = pfb_progress_start("bench_moments (" PFB_BUILD "): pyramid timings", (long long)N_PYR * reps);
     for (m = 0; m < N_PYR; ++m) {
         const pyr_method *pm = &pyr_methods[m];
         double bytes = (double)total * (double)pm->channels * (double)sizeof(pf_real);
         double ms, q1, q3, med, base, gbs, mgbs;
         run_slope(&job); /* leave a valid 5-channel level 0 for pf_mip_build, warm up */
-        (void)time_job(pm->fn, &job);
-        (void)time_memcpy();
-        for (r = 0; r < reps; ++r) {
+        n = pfb_budget_reps(time_job(pm->fn, &job) + time_memcpy(), budget_ms, reps);
+        for (r = 0; r < n; ++r) {
             if (r & 1) {
                 tb[r] = time_memcpy();
                 tm[r] = time_job(pm->fn, &job);
@@ -221,16 +225,16 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
                 tb[r] = time_memcpy();
             }
             ratio[r] = tm[r] / tb[r];
-            pfb_progress_update(&progress, (long long)m * reps + r + 1); /* between timings */
+            pfb_progress_update(&progress, (long long)m * reps + (long long)(r + 1) * reps / n);
         }
-        med = pfb_quantile(ratio, reps, 0.5);
-        q1 = pfb_quantile(ratio, reps, 0.25);
-        q3 = pfb_quantile(ratio, reps, 0.75);
-        ms = pfb_quantile(tm, reps, 0.5) * 1e-6;
-        base = pfb_quantile(tb, reps, 0.5) * 1e-6;
+        med = pfb_quantile(ratio, n, 0.5);
+        q1 = pfb_quantile(ratio, n, 0.25);
+        q3 = pfb_quantile(ratio, n, 0.75);
+        ms = pfb_quantile(tm, n, 0.5) * 1e-6;
+        base = pfb_quantile(tb, n, 0.5) * 1e-6;
         gbs = bytes / (ms * 1e6);
         mgbs = (double)memcpy_bytes / (base * 1e6);
-        printf("  %-32s %10.2f %9.3f [%6.3f,%6.3f] %10.2f %10.2f\n", pm->name, ms, med, q1, q3, gbs, mgbs);
+        printf("  %-32s %10.2f %9.3f [%6.3f,%6.3f] %10.2f %10.2f %5d\n", pm->name, ms, med, q1, q3, gbs, mgbs, n);
         if (csv)
             fprintf(csv, "pyramid,%s,%s,%.4f,%.4f,memcpy,,,,,,,%.4f,%.4f,,\n", pm->name, PFB_BUILD,
                     ms * 1e6 / (double)texels, med, q1, q3);
@@ -242,7 +246,7 @@ static void run_pyramids(int reps, FILE *csv, FILE *notes)
     }
     pfb_progress_end(&progress);
     if (csv) fprintf(csv, "pyramid,memcpy,%s,%.4f,1.0000,memcpy,,,,,,,1.0000,1.0000,,\n", PFB_BUILD,
-                     pfb_quantile(tb, reps, 0.5) / (double)texels);
+                     pfb_quantile(tb, n, 0.5) / (double)texels);
     if (notes) {
         fprintf(notes, "pyramid\tbase %d x %d (%s build), heights/depths uniform in [0, 1); ns/eval is per base "
                 "texel, x baseline = time / time of memcpy of the 5-moment pyramid's bytes (pairs, median)\n",
@@ -263,6 +267,7 @@ int main(int argc, char **argv)
 {
     const char *csv_file = NULL, *notes_file = NULL;
     int reps = PYR_REPS, i, rc;
+    double budget_ms = PFB_BUDGET_MS;
     FILE *csv = NULL, *notes = NULL;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--list") == 0 || strcmp(argv[i], "--only") == 0)
@@ -270,12 +275,13 @@ int main(int argc, char **argv)
         if (i + 1 < argc && strcmp(argv[i], "--csv") == 0) csv_file = argv[i + 1];
         if (i + 1 < argc && strcmp(argv[i], "--notes") == 0) notes_file = argv[i + 1];
         if (i + 1 < argc && strcmp(argv[i], "--reps") == 0) reps = atoi(argv[i + 1]) < 3 ? 3 : (atoi(argv[i + 1]) > PYR_REPS ? PYR_REPS : atoi(argv[i + 1]));
+        if (i + 1 < argc && strcmp(argv[i], "--budget-ms") == 0) budget_ms = atof(argv[i + 1]);
     }
     rc = pfb_main(argc, argv, "moments", families, (int)(sizeof families / sizeof families[0]));
     if (rc) return rc;
     if (csv_file && !(csv = fopen(csv_file, "a"))) { perror(csv_file); return 2; }
     if (notes_file && !(notes = fopen(notes_file, "a"))) { perror(notes_file); return 2; }
-    run_pyramids(reps, csv, notes);
+    run_pyramids(reps, budget_ms, csv, notes);
     if (csv) fclose(csv);
     if (notes) fclose(notes);
     return 0;

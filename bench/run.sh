@@ -27,8 +27,8 @@
 # Every stage prints its start and end with the time of day and its wall time; steps longer than
 # a few seconds print progress with the time left on stderr (in place on a terminal).
 #
-# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 9
-# repetitions, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
+# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: at
+# most 9 repetitions per timing and a 50 ms budget per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
 # valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
 # PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
 #
@@ -124,7 +124,7 @@ stage() {
 quick=""
 case "${BENCH_QUICK:-0}" in
     ""|0|no|NO) ;;
-    *) quick="--reps 9"; echo "bench: BENCH_QUICK set, 9 repetitions (smoke run; do not publish these timings)" ;;
+    *) quick="--reps 9 --budget-ms 50"; echo "bench: BENCH_QUICK set, at most 9 repetitions and a 50 ms budget per method (smoke run; do not publish these timings)" ;;
 esac
 echo "bench: $threads threads per stage (PFB_THREADS to change), output in $out/"
 
@@ -312,7 +312,7 @@ timing=$(cat "$out"/*.notes | awk -F'\t' '$1 == "*" { print $2; exit }')
     else
         echo "- instructions: not measured (BENCH_QUICK run or valgrind missing; \`make bench CALLGRIND=1\` forces it)"
     fi
-    echo "- timing: each method in its own loop with the method inlined, over $timing; ns/eval = median; in each repetition every method is timed back to back with the baseline (alternating which goes first, methods in rotating order); x baseline = median over repetitions of method/baseline of the pair (quartiles in the CSV)"
+    echo "- timing: each method in its own loop with the method inlined, over $timing; ns/eval = median; in each repetition every method is timed back to back with the baseline (alternating which goes first, methods in rotating order); x baseline = median over repetitions of method/baseline of the pair (quartiles in the CSV); slow methods get fewer repetitions (the time budget; each family's counts are in its A/A line)"
     echo "- two input orders: the headline columns use the random inputs as generated (branches on the input unpredictable, like incoherent rays; the buffer is large so the branch predictor cannot learn it); the sorted columns use the same inputs sorted ascending (branches predictable, like neighbouring pixels). Branchy methods (Walter: nu >= 1.6 test) differ a lot between the two"
     echo "- timing loops vectorized by the compiler at these flags: $vec"
     echo "- accuracy: dense deterministic grid per family (below) against a long double reference; max rel only where the reference is a normal number of the build's type; worst input = where the max ulp (erfc/erf) or max rel error (others) occurs"

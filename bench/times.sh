@@ -4,7 +4,8 @@
 # about the sum of the times it measures.
 #
 # usage: sh bench/times.sh [WHAT...]      WHAT: quick full map ci (default: quick full map)
-# Each bench command runs with PFB_THREADS=1, 2 and every core (duplicates dropped), after one
+# Each bench command runs with PFB_THREADS=1, 2 and every core (duplicates dropped: on a 2-core
+# machine 1 and 2), after one
 # untimed build (`make bench-build`), so the times are the runs' own; `ci` runs `bash .ci/run`
 # once (it builds everything itself, on every core). Prints the README's table rows (markdown)
 # on stdout and each run's log under bench/out/times/.
@@ -43,11 +44,18 @@ EOF
         "$logs/mkmap" "$map" || { echo "times: could not write the test map" >&2; exit 1; }
 fi
 
+# run LABEL THREADS COMMAND...: prints the wall seconds (the table's cell); on stderr also the
+# CPU seconds (user + system of the command and its children, the shell's `times` in the
+# $(...) subshell that runs it), which a busy machine inflates far less than the wall time
 run() { # label threads command...
     l=$1; t=$2; shift 2
     t0=$(date +%s)
     if PFB_THREADS=$t "$@" > "$logs/$l-$t.log" 2>&1; then
-        echo "$(($(date +%s) - t0))"
+        el=$(($(date +%s) - t0))
+        times > "$logs/times.tmp" # not in a pipe: a pipe's subshell has no children
+        cpu=$(awk 'NR == 2 { split($1, u, /[ms]/); split($2, s, /[ms]/); printf "%.0f", u[1] * 60 + u[2] + s[1] * 60 + s[2] }' "$logs/times.tmp")
+        echo "times: $l, PFB_THREADS=$t: $el s wall, $cpu s CPU (user + system)" >&2
+        echo "$el"
     else
         echo "failed ($logs/$l-$t.log)"
     fi

@@ -39,7 +39,9 @@
 #                  nvcc host, tcc; every cell compiles every test, runs the full suite or the
 #                  edge_ cases (cell_list below; docs/porting.md has the table)
 # PF_PORT_ONLY="name ..." runs only the checks whose names start with one of the words
-# (`make matrix`, `make arm`, `make consumers`). Cells run in parallel (nproc jobs).
+# (`make matrix`, `make arm`, `make consumers`). Every cell and every group of checks is a job
+# of one pool, PORT_JOBS at once (default nproc); each job's lines are kept in its own file and
+# printed whole, in the order above, once all have ended (stderr says when each job ends).
 # Prints one line per check (ok / FAIL / SKIP (reason)), the M4F code-size table (also written to
 # BUILD_DIR/portability/sizes.md), and exits 1 on any FAIL. Logs: BUILD_DIR/portability/<check>/.
 # Installs nothing. Environment: NVCC (nvcc path), PF_NVCC_ARCH (default sm_75, else the oldest
@@ -48,11 +50,14 @@
 set -u
 ROOT=$(cd "$(dirname "$0")/../.." && pwd) || exit 2
 cd "$ROOT" || exit 2
-BUILD=${1:-build}
+# Internal: sh run.sh --job BUILD_DIR group NAME | cell CELL-LINE... runs one job of the pool
+# (below) and prints its lines; the parent prints every job's output, in order, at the end.
+JOB=""
+if [ "${1:-}" = --job ]; then BUILD=$2; JOB=$3; shift 3; else BUILD=${1:-build}; fi
 OUT=$BUILD/portability
 P=tests/portability
 INC=include
-rm -rf "$OUT" && mkdir -p "$OUT" || exit 2
+[ -n "$JOB" ] || { rm -rf "$OUT" && mkdir -p "$OUT"; } || exit 2
 
 HEADERS=$(cd "$INC" && ls pf_*.h 2>/dev/null)
 NHEAD=$(echo $HEADERS | wc -w | tr -d ' ')
@@ -556,7 +561,9 @@ cell_list() {
         echo "x86-32-clang-san-double full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32 -DPF_DOUBLE"
     fi
 }
-check_cells() {
+# plan_cells: the cells to run (cells/todo.txt, one cell.sh argument line each) and the plan
+# (cells/plan.txt: "NAME run" or "NAME missing TOOL"); report_cells: their lines, in plan order.
+plan_cells() {
     d=$OUT/cells; mkdir -p "$d"
     PF_HAVE_FMA=0
     grep -qw fma /proc/cpuinfo 2>/dev/null && PF_HAVE_FMA=1
@@ -572,8 +579,9 @@ check_cells() {
         else echo "$cname $rest" >> "$d/todo.txt"; echo "$cname run"
         fi
     done > "$d/plan.txt"
-    [ -s "$d/todo.txt" ] &&
-        xargs -P "$(nproc 2>/dev/null || echo 2)" -L 1 sh "$P/cell.sh" "$d" < "$d/todo.txt"
+}
+report_cells() {
+    d=$OUT/cells
     while read -r cname what tool; do
         if [ "$what" = missing ]; then
             case $tool in
@@ -639,26 +647,73 @@ selected() {
     done
     return 1
 }
+# The checks run as jobs of one pool, PORT_JOBS at once (default: the online cores): each
+# matrix cell, and each group below (checks that read another's files share a group). A job's
+# lines go to its own file, printed whole, in this order, when every job has ended; a line on
+# stderr says when each job ends.
+run_group() {
+    case $1 in
+    selftest) selected gen-selftest && check_selftest ;;
+    tcc) selected tcc-float && check_tcc float
+         selected tcc-double && check_tcc double ;;
+    nvcc) selected nvcc-float && check_nvcc float
+          selected nvcc-double && check_nvcc double ;;
+    glsl-include) # the spirv-* checks read glsl-include's SPIR-V
+        { selected glsl-include || selected spirv-; } && check_glsl include
+        selected spirv-hlsl50 && check_cross spirv-hlsl50 --hlsl --shader-model 50
+        selected spirv-hlsl60 && check_cross spirv-hlsl60 --hlsl --shader-model 60
+        selected spirv-msl && check_cross spirv-msl --msl ;;
+    glsl-paste) selected glsl-paste && check_glsl paste ;;
+    m4f-float) # m4f-link links m4f-float's objects
+        { selected m4f-float || selected m4f-link; } && check_m4f float
+        selected m4f-link && check_m4f_link ;;
+    m4f-double) selected m4f-double && check_m4f double ;;
+    m4f-nolibm) selected m4f-nolibm && check_m4f_nolibm ;;
+    amalgam) selected amalgam && check_amalgam ;;
+    consumer) selected consumer- && check_consumers ;;
+    gpu) selected gpu-lavapipe && check_gpu ;;
+    esac
+    return 0
+}
+GROUPS="selftest tcc nvcc glsl-include glsl-paste m4f-float m4f-double m4f-nolibm amalgam consumer gpu"
+
+if [ -n "$JOB" ]; then
+    t0_=$(date +%s)
+    case $JOB in
+    group) find_nvcc; run_group "$1" > "$OUT/jobs/group-$1.out" 2>&1 ;;
+    cell) sh "$P/cell.sh" "$OUT/cells" "$@" ;;
+    esac
+    echo "$1" >> "$OUT/jobs/done.txt"
+    echo "portability: $1 done in $(($(date +%s) - t0_)) s ($(grep -c . "$OUT/jobs/done.txt")/$(grep -c . "$OUT/jobs/list.txt") jobs)" >&2
+    exit 0
+fi
+
 echo "portability: $NHEAD headers: $(echo $HEADERS)"
 find_nvcc
-selected gen-selftest && check_selftest
-selected tcc-float && check_tcc float
-selected tcc-double && check_tcc double
-selected nvcc-float && check_nvcc float
-selected nvcc-double && check_nvcc double
-{ selected glsl-include || selected spirv-; } && check_glsl include
-selected glsl-paste && check_glsl paste
-selected spirv-hlsl50 && check_cross spirv-hlsl50 --hlsl --shader-model 50
-selected spirv-hlsl60 && check_cross spirv-hlsl60 --hlsl --shader-model 60
-selected spirv-msl && check_cross spirv-msl --msl
-{ selected m4f-float || selected m4f-link; } && check_m4f float
-selected m4f-double && check_m4f double
-selected m4f-link && check_m4f_link
-selected m4f-nolibm && check_m4f_nolibm
-selected amalgam && check_amalgam
-selected consumer- && check_consumers
-selected gpu-lavapipe && check_gpu
-check_cells
+mkdir -p "$OUT/jobs"
+plan_cells
+# longest first, so that no long job starts last: the cells that run the whole suite (under
+# the sanitizers first, then qemu-arm), then the groups, then the edge_ and compile-only cells
+touch "$OUT/cells/todo.txt"
+{
+    awk '$2 == "full" && / -fsanitize=/' "$OUT/cells/todo.txt"
+    awk '$2 == "full" && !/ -fsanitize=/' "$OUT/cells/todo.txt"
+} | sed 's/^/cell /' > "$OUT/jobs/list.txt"
+for g in $GROUPS; do echo "group $g"; done >> "$OUT/jobs/list.txt"
+awk '$2 != "full"' "$OUT/cells/todo.txt" | sed 's/^/cell /' >> "$OUT/jobs/list.txt"
+njobs=${PORT_JOBS:-$(nproc 2>/dev/null || echo 2)}
+echo "portability: $(grep -c . "$OUT/jobs/list.txt") jobs, $njobs at once" >&2
+xargs -P "$njobs" -L 1 sh "$P/run.sh" --job "$BUILD" < "$OUT/jobs/list.txt"
+# every group's lines, in order; its ok/FAIL/SKIP lines counted as report() counts them
+for g in $GROUPS; do
+    f=$OUT/jobs/group-$g.out
+    [ -f "$f" ] || { report FAIL "$g" "the job wrote nothing"; continue; }
+    cat "$f"
+    nok=$((nok + $(grep -c '^ok   ' "$f")))
+    nfail=$((nfail + $(grep -c '^FAIL ' "$f")))
+    nskip=$((nskip + $(grep -c '^SKIP ' "$f")))
+done
+report_cells
 size_table
 echo
 echo "portability: $nok ok, $nfail FAIL, $nskip SKIP"
