@@ -409,30 +409,53 @@ static void scale_texel_item(void *ctx, long long i)
 /* S and the prior per lobe count at the scaled levels (pf_vmf_scale_fit_level: VS_TRAIN evenly
    spaced training patches of the level), and the training patches' T; every other texel's T
    NaN (scale_T_fill computes them) */
+/* one level's fit of the scaling function: the levels are independent (each writes its own S,
+   prior and T slice), so they run in parallel; each level's result does not depend on the
+   thread count */
+typedef struct {
+    lib_maps *L;
+    pf_vmf_scale_desc d;
+    int status[NSIZE];
+} scale_level_job;
+
+static void scale_level_item(void *ctx, long long item)
+{
+    scale_level_job *J = (scale_level_job *)ctx;
+    lib_maps *L = J->L;
+    const int si = sc_max_level - (int)item; /* the largest patches first */
+    const long long len = pf_vmf_scale_scratch_size(&J->d, si);
+    pf_real *scratch, *s_out[NSCALE], *t_level[NSCALE];
+    int j;
+    if (len <= 0) { J->status[si] = PF_ERR_ARG; return; }
+    scratch = (pf_real *)pfb_xcalloc((size_t)len, sizeof(pf_real));
+    for (j = 0; j < NSCALE; ++j) {
+        s_out[j] = L->sc_S[si][j];
+        t_level[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
+    }
+    J->status[si] = pf_vmf_scale_fit_level(&J->d, si, s_out, L->sc_prior[si], t_level, scratch, len);
+    free(scratch);
+}
+
 static void scale_build(lib_maps *L, const char *kind_name)
 {
-    const pf_vmf_scale_desc d = scale_desc(L);
+    scale_level_job J;
     long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
     int si, j;
     double t0 = pfb_now_ns();
-    (void)kind_name;
+    char label[96];
+    J.L = L;
+    J.d = scale_desc(L);
     for (j = 0; j < NSCALE; ++j) {
         L->sc_T[j] = (pf_real *)pfb_xcalloc((size_t)tc, sizeof(pf_real));
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
     }
+    for (si = 0; si < NSIZE; ++si) J.status[si] = PF_OK;
+    snprintf(label, sizeof label, "%s: scaling function fit", kind_name);
+    pfb_parallel_for(sc_max_level - sc_min_level + 1, scale_level_item, &J, label);
     L->sc_patches = 0;
     for (si = sc_min_level; si <= sc_max_level; ++si) {
-        const long long gp = (long long)(L->w >> si) * (L->h >> si), len = pf_vmf_scale_scratch_size(&d, si);
-        pf_real *scratch, *s_out[NSCALE], *t_level[NSCALE];
-        if (len <= 0) fatal("the scaling function's fit failed");
-        scratch = (pf_real *)pfb_xcalloc((size_t)len, sizeof(pf_real));
-        for (j = 0; j < NSCALE; ++j) {
-            s_out[j] = L->sc_S[si][j];
-            t_level[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
-        }
-        if (pf_vmf_scale_fit_level(&d, si, s_out, L->sc_prior[si], t_level, scratch, len) != PF_OK)
-            fatal("the scaling function's fit failed");
-        free(scratch);
+        const long long gp = (long long)(L->w >> si) * (L->h >> si);
+        if (J.status[si] != PF_OK) fatal("the scaling function's fit failed");
         L->sc_patches += gp < VS_TRAIN ? (int)gp : VS_TRAIN;
     }
     L->sc_seconds = (pfb_now_ns() - t0) * 1e-9;
