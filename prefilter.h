@@ -22,13 +22,13 @@
      pf_beckmann.h - noncentered anisotropic Beckmann distribution from five linear slope
      pf_gaussgrid.h - deterministic slope sampling of a Gaussian (Beckmann) footprint: LEADR's
      pf_height.h - Gaussian height fields seen through Smith visibility: the visibility of a
+     pf_vmf.h - footprint NDFs as mixtures of von Mises-Fisher lobes (Wu et al. 2019), their
      pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
      pf_horizon.h - horizon maps pre-filtered as horizon distribution functions (HDF): the
      pf_map_downsample.h - CPU baking of a coarse height map that keeps the fine map's mean
      pf_masks.h - sub-pixel occlusion masks: which part of a pixel (a cone element) a plane cover
      pf_shadow.h - pre-filterable shadow-map tests: Chebyshev (VSM), exponential (ESM),
      pf_toksvig.h - Toksvig's normal-variance estimate and the lobe widening it drives: filtered
-     pf_vmf.h - footprint NDFs as mixtures of von Mises-Fisher lobes (Wu et al. 2019), their
      pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's
      pf_vmf_scale.h - CPU baking of the scaling function of Wu et al. 2019 (eqs. 6-8, 12-14,
 
@@ -3953,6 +3953,714 @@ PF_CPU_DEF int pf_colormap_table_lookup(const pf_colormap_table *t, pf_real mean
 
 #endif /* PF_HEIGHT_H */
 
+/* ================================================================= include/pf_vmf.h ====== */
+/* pf_vmf.h - footprint NDFs as mixtures of von Mises-Fisher lobes (Wu et al. 2019), their
+   specular BRDF with a narrow base lobe, and Smith masking-shadowing of the mixture.
+
+   One Gaussian of slopes (LEADR) cannot describe a footprint whose slopes cluster on a few
+   values (tiles, craters on flat ground, ridges): the bench's in-footprint reference puts the
+   one-lobe error at 0.3-0.8 there. This module describes the footprint's micro-normals as
+   m <= 16 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
+   spherical EM, stored per texel of a pyramid, and shaded with the multi-lobe BRDF of
+   Wu et al. 2019 eq. 5 in the projected-area form of LEADR (Dupuy et al. 2013 eqs. 2-3, 17).
+
+   DEFINITIONS
+     lobe        g(w; kappa, mu) = C(kappa) exp(kappa (mu.w - 1)),   unit w, mu, kappa > 0,
+                 C(kappa) = kappa / (2 pi (1 - exp(-2 kappa))),  integral over the sphere = 1.
+                 This is Wu et al.'s kappa / (4 pi sinh kappa) exp(kappa mu.w) with exp(kappa)
+                 taken out, so nothing overflows at large kappa; the exponent is evaluated as
+                 -kappa |w - mu|^2 / 2 (equal for unit vectors, no cancellation near mu).
+     mixture     p(w) = sum_k a_k g(w; kappa_k, mu_k), sum_k a_k = 1 (the fit's amplitudes):
+                 the distribution of the footprint's micro-normals PER UNIT MACROSURFACE AREA
+                 (every texel counts once). CONVENTION: the NDF is D(w) = p(w) / w.z, so that
+                 integral D(w) (w.z) dw = 1 (Wu et al. eq. 3; LEADR eq. 10's normalization).
+                 Wu et al. eq. 4 fits D itself (normals weighted by 1/cos); both agree for
+                 point masses, ours keeps eq. 3 exact and its fit has unit weights.
+     convolution with a base lobe (the micro-BRDF's own NDF, rotated to each micro-normal,
+                 Wu et al. eq. 5): a vMF lobe convolved with a vMF base lobe of kappa_b is
+                 approximated by ONE vMF lobe of
+                     kappa' = kappa kappa_b / (kappa + kappa_b)          (1/kappa' = 1/k + 1/k_b)
+                 (exact for the small-angle Gaussian limit: angular variances add). A Beckmann
+                 base lobe of slope deviation sigma per axis is read as kappa_b = 1/sigma^2
+                 (the same curvature at its peak). Measured error: see ACCURACY.
+     specular    (Wu et al. eq. 5 with a microfacet base BRDF, in LEADR eq. 17's form)
+                     I = F(h.wi) D'(h) G / (4 A_o),    h = (wo + wi)/|wo + wi|,
+                     D'(h) = sum_k a_k g(h; kappa'_k, mu_k) / h.z,
+                     A_o  = sum_k a_k (wo.z - wo.xy . s_k),  s_k = -mu_k.xy / mu_k.z,
+                 the radiance toward wo per unit radiance from wi, light cosine included (as
+                 pf_leadr_specular).
+     masking     Smith's Lambda is linear in the slope density (pf_smith.h eq. 1 times the
+                 projected area), so the Lambda of a mixture of Gaussian-slope lobes is exact:
+                     Lambda(w) = sum_k a_k E_k(w) / A(w),   A(w) = sum_k a_k (w.z - w.xy . s_k),
+                     E_k(w) = sigma_k(w) sqrt(2) e(nu_k),   nu_k = (w.z - w.xy . s_k)/(sqrt(2) sigma_k(w)),
+                     e(nu) = exp(-nu^2)/(2 sqrt(pi)) - nu erfc(nu)/2      (= nu Lambda_Beckmann(nu)),
+                 sigma_k(w)^2 = w.xy^T Sigma_k w.xy the lobe's slope variance along w (times
+                 |w.xy|^2). A lobe's slopes are taken Gaussian with mean s_k and covariance
+                     Sigma_k = v_k (t t^T / mu.z^4 + (I - t t^T) / mu.z^2) + base_var I,
+                 v_k = A3(kappa_k)/kappa_k the per-axis variance of the tangent-plane projection
+                 of a vMF (A3 = coth kappa - 1/kappa), t the unit azimuth of mu_k (the slope
+                 map's Jacobian at mu_k). G = 1/(1 + Lambda(wo) + Lambda(wi)) (LEADR eq. 13).
+
+   USAGE
+     pf_vmf_sum s = pf_vmf_sum_zero();
+     for (k = 0; k < 4; ++k) {                      -- m = 4 RGBA fetches of the lobe pyramid
+         vec4 t = texel k;                           -- (mu.x, mu.y, kappa, amp)
+         s = pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b * sigma_b);
+     }
+     pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
+     The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
+     pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
+
+   FUNCTIONS
+     lobes       pf_vmf_normalization, pf_vmf_mean_cosine, pf_vmf_tangent_variance,
+                 pf_vmf_kappa_from_tangent_variance, pf_vmf_lobe_eval,
+                 pf_vmf_kappa_from_mean_length, pf_vmf_convolve_kappa, pf_vmf_kappa_from_sigma,
+                 pf_vmf_lobe_slope_stats
+     one lobe of a mixture
+                 pf_vmf_lobe_make, pf_vmf_lobe_density, pf_vmf_lobe_ndf (vMF form),
+                 pf_vmf_lobe_ndf_slope (slope form), pf_vmf_lobe_area, pf_vmf_lobe_excess,
+                 pf_vmf_lambda
+     BRDF        pf_vmf_sum_zero, pf_vmf_sum_add (slope form), pf_vmf_sum_add_vmf (vMF form),
+                 pf_vmf_sum_add_masking, pf_vmf_sum_stats, pf_vmf_sum_g2 (one Gaussian),
+                 pf_vmf_sum_g2_mixture, pf_vmf_sum_g1_mixture (exact mixture Smith),
+                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked
+     scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
+                 pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
+     facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
+     CPU baking  pf_vmf_fit.h (EM fit, lobe pyramid), pf_vmf_scale.h (scaling-function fit);
+                 pf_map_downsample.h (slope-preserving downsampling of the height map)
+
+   CONVENTIONS
+     Tangent frame of the macrosurface, +z up; directions and lobe axes unit vectors (lobe axes
+     on the upper hemisphere: a height field has no normal facing down; the packed form stores
+     mu.x, mu.y and rebuilds mu.z = sqrt(1 - x^2 - y^2)). kappa is clamped to
+     [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; a NaN kappa reads as PF_VMF_KAPPA_MIN. A mixture is
+     shaded lobe by lobe (pf_vmf_sum_add): no arrays in structs, so the same source is GLSL;
+     the fit returns at most PF_VMF_MAX_LOBES = 16 lobes. Evaluators return finite values >= 0
+     for finite inputs; 0 when a direction is on or below the macrosurface (a view or a light
+     below the mixture's mesosurface sees or lights the facets facing it, as in
+     pf_leadr_specular); G in [0, 1].
+
+   ACCURACY AND COST (tests/test_vmf.c, bench/bench_vmf.c, bench/microsurface.c; docs/vmf.md)
+     C(kappa) within 2 eps of quadrature (kappa 1e-4 .. 1e5, float and double); A3 and the
+     tangent variance within 6 (float) / 35 (double) eps. One-lobe convolution rule: within
+     3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
+     Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
+     corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
+     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
+     pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
+     512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
+
+   SOURCES
+     Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
+     displacement-mapped surfaces) eqs. 2-5, 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun 2007 (frequency
+     domain normal map filtering: vMF mixtures, spherical EM); Banerjee, Dhillon, Ghosh, Sra
+     2005 (kappa ~ r (3 - r^2)/(1 - r^2)); Dupuy et al. 2013 (LEADR) eqs. 1-3, 10, 13-17;
+     Smith 1967. */
+#ifndef PF_VMF_H
+#define PF_VMF_H
+
+#ifndef PF_GLSL
+/* pf_core.h: above in this file */
+/* pf_smith.h: above in this file */
+/* pf_beckmann.h: above in this file */
+#endif
+
+#define PF_VMF_MAX_LOBES 16
+#define PF_VMF_KAPPA_MIN PF_R(1.0e-4)
+#define PF_VMF_KAPPA_MAX PF_R(1.0e5)
+
+/* Cap on the exponents the module passes to PF_EXP: exp(-80) = 1.8e-35 is still a normal float,
+   so exp never underflows (libm's underflow path, which sets errno, made a far lobe cost 10x a
+   near one in the bench), and a value this far down the tail is 0 to the shading. */
+#define PF_VMF_EXP_CAP PF_R(80.0)
+
+/* ---------------------------------------------------------------- one lobe */
+/* kappa clamped to [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; NaN reads as PF_VMF_KAPPA_MIN (the
+   CONVENTIONS' clamp, applied by every function that takes a kappa). */
+PF_DEF pf_real pf_vmf_kappa_clamp(pf_real kappa)
+{
+    if (!(kappa > PF_VMF_KAPPA_MIN)) return PF_VMF_KAPPA_MIN; /* NaN too */
+    return pf_min(kappa, PF_VMF_KAPPA_MAX);
+}
+
+/* 1 - exp(-x) for x >= 0 without cancellation near 0. Above 1/2, 1 - exp(-x) directly (at most
+   one bit lost to the subtraction). At and below 1/2 the Taylor series x (1 - x/2 (1 - x/3 (1 -
+   ...))), plain arithmetic with no exp or log: Kahan's (1 - u) x / (-log u), u = exp(-x), used
+   here before, needs log accurate RELATIVE to log u near u = 1, and GLSL promises log only an
+   absolute 2^-21 on [1/2, 2] (docs/gpu.md: a relative 2^-21 / x, 5e-4 at x = 1e-3). Truncation
+   after x^9 (float) resp. x^16 (double): the first omitted term, relative, is x^9/10! = 5.4e-10
+   resp. x^16/17! = 4.3e-20 at x = 1/2, well below half an ulp; every factor x/k < 1/2, so the
+   nested form does not amplify rounding (tests/test_vmf.c: against expm1l). */
+PF_DEF pf_real pfi_vmf_one_minus_exp_neg(pf_real x)
+{
+    pf_real r = PF_R(1.0);
+    if (x > PF_R(0.5)) return PF_R(1.0) - PF_EXP(-x);
+#ifdef PF_DOUBLE
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(16.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(15.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(14.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(13.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(12.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(11.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(10.0)) * r;
+#endif
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(9.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(8.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(7.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(6.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(5.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(4.0)) * r;
+    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(3.0)) * r;
+    r = PF_R(1.0) - x * PF_R(0.5) * r;
+    return x * r;
+}
+
+/* C(kappa) = kappa / (2 pi (1 - exp(-2 kappa))): the constant that makes
+   C exp(kappa (mu.w - 1)) integrate to 1 over the sphere (Wu et al. 2019 eq. 4 with exp(kappa)
+   factored out). 1/(4 pi) as kappa -> 0, kappa/(2 pi) for large kappa. */
+PF_DEF pf_real pf_vmf_normalization(pf_real kappa)
+{
+    pf_real k = pf_vmf_kappa_clamp(kappa);
+    return k * (PF_R(0.5) * PF_INV_PI) / pfi_vmf_one_minus_exp_neg(PF_R(2.0) * k);
+}
+
+/* Mean cosine A3(kappa) = E[mu.w] = coth kappa - 1/kappa (the mean resultant length of a vMF).
+   Series below the threshold (the difference cancels there), closed form above. */
+PF_DEF pf_real pf_vmf_mean_cosine(pf_real kappa)
+{
+    pf_real k = pf_vmf_kappa_clamp(kappa), k2, e;
+#ifdef PF_DOUBLE
+    const pf_real series_below = PF_R(0.1);
+#else
+    const pf_real series_below = PF_R(0.5);
+#endif
+    if (k < series_below) {
+        k2 = k * k;
+        /* coth k - 1/k = k/3 - k^3/45 + 2k^5/945 - k^7/4725 + 2k^9/93555 - ... */
+        return k * (PF_R(1.0) / PF_R(3.0) +
+                    k2 * (PF_R(-1.0) / PF_R(45.0) +
+                          k2 * (PF_R(2.0) / PF_R(945.0) + k2 * (PF_R(-1.0) / PF_R(4725.0) + k2 * (PF_R(2.0) / PF_R(93555.0))))));
+    }
+    e = PF_EXP(-PF_R(2.0) * k);
+    /* coth k = (1 + e)/(1 - e) = 1 + 2e/(1 - e) */
+    return PF_R(1.0) + PF_R(2.0) * e / pfi_vmf_one_minus_exp_neg(PF_R(2.0) * k) - PF_R(1.0) / k;
+}
+
+/* Per-axis variance of the tangent-plane projection of a vMF lobe, E[|w - (mu.w) mu|^2]/2 =
+   A3(kappa)/kappa (E[(mu.w)^2] = 1 - 2 A3/kappa). ~1/kappa for large kappa, 1/3 at 0. */
+PF_DEF pf_real pf_vmf_tangent_variance(pf_real kappa)
+{
+    pf_real k = pf_vmf_kappa_clamp(kappa);
+    /* coth k = 1 + 2 e^(-2k) + ...: below rounding past k = 10 (float) / 20 (double), and then
+       A3/k = (1 - 1/k)/k with no exp or log (the shading path's common case) */
+#ifdef PF_DOUBLE
+    if (k > PF_R(20.0)) return (PF_R(1.0) - PF_R(1.0) / k) / k;
+#else
+    if (k > PF_R(10.0)) return (PF_R(1.0) - PF_R(1.0) / k) / k;
+#endif
+    return pf_vmf_mean_cosine(k) / k;
+}
+
+/* The inverse of pf_vmf_tangent_variance: the kappa whose per-axis tangent variance is v
+   (48 bisection steps on log kappa over [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]: the map is
+   monotone; constant loop bound). v >= 1/3 gives PF_VMF_KAPPA_MIN, v <= 0 or NaN
+   PF_VMF_KAPPA_MAX. */
+PF_DEF pf_real pf_vmf_kappa_from_tangent_variance(pf_real v)
+{
+    pf_real lo = PF_LOG(PF_VMF_KAPPA_MIN), hi = PF_LOG(PF_VMF_KAPPA_MAX), mid;
+    int i;
+    if (!(v > pf_vmf_tangent_variance(PF_VMF_KAPPA_MAX))) return PF_VMF_KAPPA_MAX;
+    if (!(v < pf_vmf_tangent_variance(PF_VMF_KAPPA_MIN))) return PF_VMF_KAPPA_MIN;
+    for (i = 0; i < 48; ++i) {
+        mid = PF_R(0.5) * (lo + hi);
+        if (pf_vmf_tangent_variance(PF_EXP(mid)) > v) lo = mid;
+        else hi = mid;
+    }
+    return pf_vmf_kappa_clamp(PF_EXP(PF_R(0.5) * (lo + hi)));
+}
+
+/* g(w; kappa, mu) = C(kappa) exp(-kappa |w - mu|^2 / 2) for unit w and mu (= exp(kappa (mu.w
+   - 1)), no cancellation near the peak, no overflow at large kappa). Per unit solid angle. */
+PF_DEF pf_real pf_vmf_lobe_eval(pf_vec3 mu, pf_real kappa, pf_vec3 w)
+{
+    pf_real k = pf_vmf_kappa_clamp(kappa);
+    pf_vec3 d = pf_vec3_sub(w, mu);
+    pf_real q = pf_min(PF_R(0.5) * k * pf_vec3_dot(d, d), PF_VMF_EXP_CAP);
+    return pf_vmf_normalization(k) * PF_EXP(-q);
+}
+
+/* Banerjee et al. 2005: kappa from the mean resultant length r = |E[w]| of a sample,
+   kappa ~ r (3 - r^2) / (1 - r^2), clamped to [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; r >= 1
+   gives PF_VMF_KAPPA_MAX. (The fit uses the cancellation-free 1 - r^2 it accumulates.) */
+PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
+{
+    pf_real rr = pf_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
+    pf_real one_minus = (PF_R(1.0) - rr) * (PF_R(1.0) + rr);
+    if (!(one_minus * PF_VMF_KAPPA_MAX > rr * (PF_R(3.0) - rr * rr))) return PF_VMF_KAPPA_MAX;
+    return pf_vmf_kappa_clamp(rr * (PF_R(3.0) - rr * rr) / one_minus);
+}
+
+/* The one-lobe approximation of a vMF of kappa convolved with a vMF base lobe of kappa_b
+   (Wu et al. 2019 eq. 5's integral for one lobe): kappa kappa_b / (kappa + kappa_b), the
+   small-angle rule 1/kappa' = 1/kappa + 1/kappa_b (angular variances add). */
+PF_DEF pf_real pf_vmf_convolve_kappa(pf_real kappa, pf_real kappa_b)
+{
+    pf_real a = pf_vmf_kappa_clamp(kappa), b = pf_vmf_kappa_clamp(kappa_b);
+    return pf_vmf_kappa_clamp(a * (b / (a + b)));
+}
+
+/* kappa of the vMF lobe matching a Beckmann lobe of slope deviation sigma per axis (Beckmann
+   roughness alpha = sqrt(2) sigma) at its peak: exp(-tan^2 t / (2 sigma^2)) ~ exp(-t^2 /
+   (2 sigma^2)) and exp(kappa (cos t - 1)) ~ exp(-kappa t^2 / 2), so kappa = 1/sigma^2. */
+PF_DEF pf_real pf_vmf_kappa_from_sigma(pf_real sigma)
+{
+    pf_real s2 = sigma * sigma;
+    if (!(s2 * PF_VMF_KAPPA_MAX > PF_R(1.0))) return PF_VMF_KAPPA_MAX;
+    return pf_vmf_kappa_clamp(PF_R(1.0) / s2);
+}
+
+/* Gaussian slope statistics of a lobe (see DEFINITIONS, masking): mean -mu.xy/mu.z, covariance
+   v (t t^T / mu.z^4 + (I - t t^T) / mu.z^2) + base_var I with v = pf_vmf_tangent_variance.
+   mu.z is floored at 1e-3 (a lobe axis within 0.06 degrees of the horizon). */
+PF_DEF pf_slope_stats pf_vmf_lobe_slope_stats(pf_vec3 mu, pf_real kappa, pf_real base_var)
+{
+    pf_real z = pf_max(mu.z, PF_R(1.0e-3)), iz2 = PF_R(1.0) / (z * z);
+    pf_real v = pf_vmf_tangent_variance(kappa), b = pf_max(base_var, PF_R(0.0));
+    pf_real r2 = mu.x * mu.x + mu.y * mu.y, c2 = PF_R(1.0), s2 = PF_R(0.0), cs = PF_R(0.0);
+    pf_real v_along = v * iz2 * iz2, v_across = v * iz2;
+    if (r2 > PF_R(0.0)) {
+        c2 = mu.x * mu.x / r2;
+        s2 = mu.y * mu.y / r2;
+        cs = mu.x * mu.y / r2;
+    }
+    return pf_slope_stats_make(-mu.x / z, -mu.y / z, c2 * v_along + s2 * v_across + b,
+                               s2 * v_along + c2 * v_across + b, cs * (v_along - v_across));
+}
+
+/* ---------------------------------------------------------------- lobes of a mixture
+   A mixture is shaded one lobe at a time (a shader fetches m RGBA texels and loops): each
+   lobe's terms are added into a pf_vmf_sum, which then gives G and the BRDF. No arrays in
+   structs, constant work per lobe, any m. */
+PF_STRUCT_BEGIN(pf_vmf_lobe)
+    pf_real amp;
+    pf_vec3 mu;
+    pf_real kappa;
+PF_STRUCT_END(pf_vmf_lobe)
+
+/* The lobe (amp, mu = (mu_x, mu_y, sqrt(1 - mu_x^2 - mu_y^2)), kappa): the packed texel form,
+   4 reals. An axis with mu_x^2 + mu_y^2 > 1 is rescaled onto the horizon; NaN axis components
+   read as 0, a negative or NaN amplitude as 0, kappa clamped (pf_vmf_kappa_clamp). */
+PF_DEF pf_vmf_lobe pf_vmf_lobe_make(pf_real amp, pf_real mu_x, pf_real mu_y, pf_real kappa)
+{
+    pf_vmf_lobe l;
+    pf_real x = mu_x == mu_x ? mu_x : PF_R(0.0), y = mu_y == mu_y ? mu_y : PF_R(0.0);
+    pf_real r2 = x * x + y * y, z2 = PF_R(1.0) - r2;
+    if (!(r2 <= PF_R(1.0))) { /* also inf */
+        pf_real s = r2 < PF_REAL_MAX ? PF_R(1.0) / PF_SQRT(r2) : PF_R(0.0);
+        x = x * s;
+        y = y * s;
+        if (!(r2 < PF_REAL_MAX)) { /* an infinite component: the horizon along the x axis */
+            x = PF_R(1.0);
+            y = PF_R(0.0);
+        }
+        z2 = PF_R(0.0);
+    }
+    l.amp = pf_max(amp, PF_R(0.0));
+    l.mu = pf_vec3_make(x, y, PF_SQRT(pf_max(z2, PF_R(0.0))));
+    l.kappa = pf_vmf_kappa_clamp(kappa);
+    return l;
+}
+
+/* amp g(w; kappa, mu), unit w: the lobe's share of the area-weighted normal density p(w). */
+PF_DEF pf_real pf_vmf_lobe_density(pf_vmf_lobe l, pf_vec3 w)
+{
+    return l.amp * pf_vmf_lobe_eval(l.mu, l.kappa, w);
+}
+
+/* The lobe's NDF term in the vMF form, convolved with a vMF base lobe of kappa_b
+   (pf_vmf_convolve_kappa; kappa_b >= PF_VMF_KAPPA_MAX: no base lobe): amp g(w; kappa', mu) / w.z,
+   unit w; 0 for w.z <= 0. Summed over the lobes: D'(w), integral D' (w.z) dw = sum amp
+   (Wu et al. eq. 3; the mass the lobes put below the horizon excepted). */
+PF_DEF pf_real pf_vmf_lobe_ndf(pf_vmf_lobe l, pf_vec3 w, pf_real kappa_b)
+{
+    pf_real k = kappa_b >= PF_VMF_KAPPA_MAX ? l.kappa : pf_vmf_convolve_kappa(l.kappa, kappa_b);
+    if (!(w.z > PF_R(0.0))) return PF_R(0.0);
+    return l.amp * pf_vmf_lobe_eval(l.mu, k, w) / pf_max(w.z, PF_R(1.0e-6));
+}
+
+/* The lobe's NDF term in the slope form: amp times the Beckmann NDF (LEADR eq. 10: the slope
+   density P22 over cos^4) of pf_vmf_lobe_slope_stats(mu, kappa, base_var): the lobe convolved
+   with a Beckmann base lobe of slope variance base_var per axis, exactly in slope space
+   (Gaussian variances add). Written here rather than through pf_beckmann_d so that its
+   exponent is capped at PF_VMF_EXP_CAP (no libm underflow path) and its determinant floored
+   at 1e-12 (base_var = 0 and a sharp lobe). Unit w; 0 for w.z <= 0. */
+PF_DEF pf_real pfi_vmf_ndf_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
+{
+    pf_real iz, dx, dy, det, q, iz2;
+    if (!(w.z > PF_R(1.0e-6))) return PF_R(0.0);
+    iz = PF_R(1.0) / w.z;
+    dx = -w.x * iz - s.mean_x;
+    dy = -w.y * iz - s.mean_y;
+    det = pf_max(s.var_x * s.var_y - s.cov_xy * s.cov_xy, PF_R(1.0e-12));
+    q = pf_max(s.var_y * dx * dx - PF_R(2.0) * s.cov_xy * dx * dy + s.var_x * dy * dy, PF_R(0.0));
+    iz2 = iz * iz;
+    return amp * PF_EXP(-pf_min(PF_R(0.5) * q / det, PF_VMF_EXP_CAP)) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det) *
+           (iz2 * iz2);
+}
+
+PF_DEF pf_real pf_vmf_lobe_ndf_slope(pf_vmf_lobe l, pf_vec3 w, pf_real base_var)
+{
+    return pfi_vmf_ndf_stats(l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var), w);
+}
+
+/* amp (w.z - w.xy . s), s = -mu.xy / mu.z: the lobe's share of the mesosurface projected area
+   toward w per unit macrosurface area (LEADR eq. 1). Can be negative. */
+PF_DEF pf_real pf_vmf_lobe_area(pf_vmf_lobe l, pf_vec3 w)
+{
+    return l.amp * pf_vec3_dot(w, l.mu) / pf_max(l.mu.z, PF_R(1.0e-3));
+}
+
+/* e(nu) = exp(-nu^2)/(2 sqrt(pi)) - nu erfc(nu)/2 = E[(X - c)+] / (sqrt(2) sigma) for X
+   Gaussian of mean mu, deviation sigma, nu = (c - mu)/(sqrt 2 sigma); every real nu.
+   nu >= 0.5: nu Lambda(nu) (pf_lambda_beckmann, cancellation-free); below, both terms are
+   of one sign or comparable and the direct form is accurate. */
+PF_DEF pf_real pfi_vmf_excess(pf_real nu)
+{
+    /* the tails, where exp(-nu^2) would underflow (libm's slow path): e(nu) < 1e-37 past 9;
+       e(nu) = -nu + exp(-nu^2)/(2 sqrt(pi) nu^2) (1 + O(1/nu^2)) below -6, -nu to 1e-17 */
+    if (nu > PF_R(9.0)) return PF_R(0.0);
+    if (nu < PF_R(-6.0)) return -nu;
+    if (nu >= PF_R(0.5)) return nu * pf_lambda_beckmann(nu);
+    return pf_exp_neg_sq(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) - PF_R(0.5) * nu * pf_erfc(nu);
+}
+
+/* The lobe's share of Smith's numerator toward w: amp |w.xy| E[(q - cot t)+] for the lobe's
+   Gaussian slopes q along w (pf_vmf_lobe_slope_stats with base_var), = amp sigma_w sqrt(2)
+   e(nu), nu = (w.z - w.xy . s)/(sqrt(2) sigma_w), sigma_w^2 = w.xy^T Sigma w.xy. With the
+   lobe areas: Lambda(w) = sum excess / sum area (pf_vmf_lambda). w need not be unit. */
+PF_DEF pf_real pfi_vmf_excess_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
+{
+    pf_real a = w.z - w.x * s.mean_x - w.y * s.mean_y;
+    pf_real var = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
+    pf_real sd = PF_SQRT(PF_R(2.0) * pf_min(pf_max(var, PF_R(0.0)), PF_R(0.25) * PF_REAL_MAX));
+    /* sd -> 0: E[(X - c)+] -> (mu - c)+, i.e. max(-a, 0) */
+    if (sd > PF_R(1.0e-12) * PF_FABS(a)) return amp * sd * pfi_vmf_excess(a / sd);
+    return amp * pf_max(-a, PF_R(0.0));
+}
+
+PF_DEF pf_real pf_vmf_lobe_excess(pf_vmf_lobe l, pf_vec3 w, pf_real base_var)
+{
+    return pfi_vmf_excess_stats(l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var), w);
+}
+
+/* Smith's Lambda of a mixture from its summed excesses and areas (pf_smith.h eq. 1 is linear in
+   the slope density, so this is exact for Gaussian-slope lobes): excess / area, PF_LAMBDA_MAX
+   when area <= 0 (a direction on or below the mixture's mesosurface) or the ratio exceeds it. */
+PF_DEF pf_real pf_vmf_lambda(pf_real excess_sum, pf_real area_sum)
+{
+    pf_real lam;
+    if (!(area_sum > PF_R(0.0))) return PF_LAMBDA_MAX;
+    lam = pf_max(excess_sum, PF_R(0.0)) / area_sum;
+    return lam < PF_LAMBDA_MAX ? lam : PF_LAMBDA_MAX;
+}
+
+/* ---------------------------------------------------------------- the multi-lobe specular BRDF
+   I = F(h.wi) D'(h) G / (4 A_o) (DEFINITIONS, specular; Wu et al. 2019 eq. 5 with a
+   microfacet base lobe, LEADR eq. 17's projected-area normalization), radiance toward wo per
+   unit radiance from wi, light cosine included. A mixture is summed lobe by lobe into a
+   pf_vmf_sum (USE below); D' and A_o are divided by sum amp at the end.
+   D', two forms of the convolved lobes:
+     slope form (pf_vmf_sum_add): each lobe as the Beckmann lobe of its Gaussian slope
+       statistics with the base lobe's slope variance base_var added (pf_vmf_lobe_ndf_slope:
+       in slope space the convolution of Gaussians is exact). A one-texel footprint (kappa =
+       PF_VMF_KAPPA_MAX) is then LEADR's own base lobe to 0.5%.
+     vMF form (pf_vmf_sum_add_vmf): amp g(h; kappa', mu)/h.z with kappa' =
+       pf_vmf_convolve_kappa(kappa, kappa_b), Wu et al.'s and Han et al.'s spherical
+       convolution. A Beckmann base lobe is not rotation-invariant (its angular width shrinks
+       as mu.z^2 along the tilt), so this form was off by 0.24-0.50 at a 1-texel footprint of
+       the bench's corpus (docs/vmf.md); kept for vMF base lobes.
+   G, two masking-shadowing terms:
+     pf_vmf_sum_g2: Smith for ONE Gaussian with the mixture's slope mean and covariance (the
+       sum's moments; base_var included through each lobe): LEADR's G (eq. 13) of the
+       footprint, what the bench's oracle_histogram_smith uses; cost of one LEADR G.
+     pf_vmf_sum_g2_mixture: the exact Smith Lambda of the Gaussian-slope lobes (DEFINITIONS,
+       masking), from the excesses pf_vmf_sum_add_masking adds (two Lambdas per lobe).
+   USE: s = pf_vmf_sum_zero();
+        for each lobe: s = pf_vmf_sum_add(s, lobe, wo, wi, base_var);
+                       [s = pf_vmf_sum_add_masking(s, lobe, wo, wi, base_var);]
+        I = pf_vmf_sum_specular(s, wo, wi, f0)      (or pf_vmf_sum_specular_mixture). */
+PF_STRUCT_BEGIN(pf_vmf_sum)
+    pf_real amp;      /* sum amp */
+    pf_real ndf;      /* sum of the lobes' D'(h) terms */
+    pf_real ex;       /* sum amp E[x], E[y], E[x^2], E[y^2], E[xy] of the lobes' slopes */
+    pf_real ey;
+    pf_real exx;
+    pf_real eyy;
+    pf_real exy;
+    pf_real excess_o; /* sum pf_vmf_lobe_excess(wo) (pf_vmf_sum_add_masking) */
+    pf_real excess_i; /* sum pf_vmf_lobe_excess(wi) */
+PF_STRUCT_END(pf_vmf_sum)
+
+PF_DEF pf_vmf_sum pf_vmf_sum_zero(void)
+{
+    pf_vmf_sum s;
+    s.amp = s.ndf = s.ex = s.ey = s.exx = s.eyy = s.exy = s.excess_o = s.excess_i = PF_R(0.0);
+    return s;
+}
+
+/* the half vector of wo, wi (wo + wi when it cannot be normalized: every term is then 0) */
+PF_DEF pf_vec3 pfi_vmf_half(pf_vec3 wo, pf_vec3 wi)
+{
+    pf_vec3 h = pf_vec3_add(wo, wi);
+    pf_real l = pf_vec3_length(h);
+    return l > PF_R(0.0) ? pf_vec3_scale(h, PF_R(1.0) / l) : h;
+}
+
+/* the lobe's amplitude and slope moments, from its slope statistics st */
+PF_DEF pf_vmf_sum pfi_vmf_sum_moments(pf_vmf_sum s, pf_real amp, pf_slope_stats st)
+{
+    s.amp += amp;
+    s.ex += amp * st.mean_x;
+    s.ey += amp * st.mean_y;
+    s.exx += amp * (st.var_x + st.mean_x * st.mean_x);
+    s.eyy += amp * (st.var_y + st.mean_y * st.mean_y);
+    s.exy += amp * (st.cov_xy + st.mean_x * st.mean_y);
+    return s;
+}
+
+/* Adds one lobe, slope form (see above). */
+PF_DEF pf_vmf_sum pf_vmf_sum_add(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real base_var)
+{
+    pf_slope_stats st = pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var);
+    s.ndf += pfi_vmf_ndf_stats(l.amp, st, pfi_vmf_half(wo, wi));
+    return pfi_vmf_sum_moments(s, l.amp, st);
+}
+
+/* Adds one lobe, vMF form: convolved with a vMF base lobe of kappa_b (pf_vmf_kappa_from_sigma
+   for a Beckmann base of slope deviation sigma). See above. */
+PF_DEF pf_vmf_sum pf_vmf_sum_add_vmf(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real kappa_b,
+                                     pf_real base_var)
+{
+    s.ndf += pf_vmf_lobe_ndf(l, pfi_vmf_half(wo, wi), kappa_b);
+    return pfi_vmf_sum_moments(s, l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var));
+}
+
+/* Adds one lobe's Smith excesses toward wo and wi (for pf_vmf_sum_g2_mixture and
+   pf_vmf_sum_specular_mixture); call it with the same lobe as the add. */
+PF_DEF pf_vmf_sum pf_vmf_sum_add_masking(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real base_var)
+{
+    pf_slope_stats st = pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var);
+    s.excess_o += pfi_vmf_excess_stats(l.amp, st, wo);
+    s.excess_i += pfi_vmf_excess_stats(l.amp, st, wi);
+    return s;
+}
+
+/* The mixture's slope mean and covariance (sum of the lobes' moments over sum amp; base_var
+   included). An empty sum gives zero statistics. */
+PF_DEF pf_slope_stats pf_vmf_sum_stats(pf_vmf_sum s)
+{
+    /* divisions, not times 1/amp: a subnormal sum amp has an infinite reciprocal, while each
+       moment is at most amp times a bounded lobe moment */
+    pf_real a = s.amp > PF_R(0.0) ? s.amp : PF_R(1.0);
+    return pf_slope_stats_from_moments(s.ex / a, s.ey / a, s.exx / a, s.eyy / a, s.exy / a);
+}
+
+/* Joint masking-shadowing of the mixture as one Gaussian (its slope mean and covariance):
+   1/(1 + Lambda(wo) + Lambda(wi)) (LEADR eq. 13); 0 when a direction is on or below the
+   mesosurface. In [0, 1]. */
+PF_DEF pf_real pf_vmf_sum_g2(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi)
+{
+    return pf_beckmann_masking_shadowing(wo, wi, pf_vmf_sum_stats(s));
+}
+
+/* the mixture's mesosurface projected area toward w times sum amp (LEADR eq. 1) */
+PF_DEF pf_real pfi_vmf_sum_area(pf_vmf_sum s, pf_vec3 w)
+{
+    return w.z * s.amp - w.x * s.ex - w.y * s.ey;
+}
+
+/* Joint masking-shadowing from the mixture's exact Smith Lambda (pf_vmf_sum_add_masking must
+   have been called for every lobe); 0 when a direction is on or below the mesosurface. */
+PF_DEF pf_real pf_vmf_sum_g2_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi)
+{
+    pf_real lo = pf_vmf_lambda(s.excess_o, pfi_vmf_sum_area(s, wo));
+    pf_real li = pf_vmf_lambda(s.excess_i, pfi_vmf_sum_area(s, wi));
+    if (!(lo < PF_LAMBDA_MAX) || !(li < PF_LAMBDA_MAX)) return PF_R(0.0);
+    return PF_R(1.0) / (PF_R(1.0) + lo + li);
+}
+
+/* Masking G1 = 1/(1 + Lambda(wo)) from the mixture's exact Smith Lambda (the wo excesses of
+   pf_vmf_sum_add_masking). 0 on or below the mesosurface. */
+PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
+{
+    pf_real lo = pf_vmf_lambda(s.excess_o, pfi_vmf_sum_area(s, wo));
+    if (!(lo < PF_LAMBDA_MAX)) return PF_R(0.0);
+    return PF_R(1.0) / (PF_R(1.0) + lo);
+}
+
+/* G / A_o as pf_leadr_specular has it (see the comment above pf_leadr_specular in
+   pf_beckmann.h): 1 / (P_o + max(A_o, 0) Lambda_i), P_o the projected area toward wo of the
+   facets that face it, so that a view below the mesosurface (A_o <= 0) but above the
+   macrosurface sees those facets instead of 0. Times sum amp:
+     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pf_beckmann_facing_area, amp A_o =
+       area_o, Lambda_i = pf_beckmann_lambda;
+     mixture: each lobe's area + excess is amp E[(a - Y)+] = its facing area (>= 0), so
+       amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
+       Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
+       so its relative error grows as P_o / |area_o| shrinks.
+   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
+   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
+   (pf_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
+   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
+   (pf_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
+   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
+PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
+{
+    pf_real area_o, area_i, den, f;
+    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
+    area_o = pfi_vmf_sum_area(s, wo);
+    area_i = pfi_vmf_sum_area(s, wi);
+    if (mixture_smith != 0) {
+        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
+           mixture's own facing area P_i = (area_i + excess_i) / amp */
+        /* P_i / wi.z with P_i divided by amp first (amp is normal, wi.z amp may be
+           subnormal, which -ffast-math flushes to 0: 0 / 0) */
+        den = area_o + s.excess_o +
+              pf_max(area_o, PF_R(0.0)) *
+                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
+                                      : pf_max((area_i + s.excess_i) / s.amp, wi.z) / wi.z - PF_R(1.0));
+    } else {
+        pf_slope_stats st = pf_vmf_sum_stats(s);
+        den = s.amp * (pf_beckmann_facing_area(wo, st) +
+                       pf_max(area_o / s.amp, PF_R(0.0)) *
+                           pf_beckmann_light_lambda_stats(wi, st));
+    }
+    if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
+    f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
+    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den; ndf / den first: both scale with
+       amp, and F ndf alone is subnormal (0 under -ffast-math) for an amp near PF_REAL_MIN */
+    return (s.ndf / den) * (f * PF_R(0.25));
+}
+
+/* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
+   of the mixture as one Gaussian (pf_vmf_sum_g2). 0 when either direction is on or below
+   the macrosurface or the sum is empty; a view below the mesosurface sees the facets facing
+   it, a light below it lights them (pfi_vmf_sum_specular). Finite and >= 0 for
+   finite inputs. */
+PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
+{
+    return pfi_vmf_sum_specular(s, wo, wi, f0, 0);
+}
+
+/* The same with the mixture's exact Smith G (pf_vmf_sum_g2_mixture; needs
+   pf_vmf_sum_add_masking for every lobe). */
+PF_DEF pf_real pf_vmf_sum_specular_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
+{
+    return pfi_vmf_sum_specular(s, wo, wi, f0, 1);
+}
+
+/* ================================================================ scaling function: shader side
+   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction of T and S is pf_vmf_scale.h's). The filtered specular f of a footprint is multiplied by
+   T(x) S(wi, wo): T one value per patch (a 2D texture), S a table over
+   (theta_i, theta_o, phi_d) of nt x nt x np NODES (a 3D texture): theta_k = k theta_max /
+   (nt - 1), phi_d,k = k pi / (np - 1) (phi_d the azimuth between wi and wo), so that the
+   mirror configurations (theta_i = theta_o, phi_d = pi) and the normal are nodes; linear
+   between nodes, clamped beyond theta_max. Index (k_ti * nt + k_to) * np + k_pd.
+   Shader use (no sampler needed; with a GL_LINEAR, CLAMP_TO_EDGE 3D texture, sample it at
+   (pos + 0.5) / n per axis instead):
+     pf_vec3 c = pf_vmf_scale_coords(wo, wi, theta_max);
+     pf_real pi = pf_vmf_scale_texel_pos(c.x, nt), po = ...(c.y, nt), pd = ...(c.z, np);
+     i0 = floor(pos), i1 = min(i0 + 1, n - 1), frac = pos - i0  -- 8 fetches of S
+     pf_real S = pf_vmf_scale_trilinear(s000, s100, s010, s110, s001, s101, s011, s111, frac);
+     I = pf_vmf_scale_apply(T, S, pf_vmf_sum_specular(...));  */
+
+/* x clamped to [0, 1], NaN to 0 (whatever pf_clamp's build does with NaN) */
+PF_DEF pf_real pfi_vmf_unit(pf_real x) { return x > PF_R(0.0) ? (x < PF_R(1.0) ? x : PF_R(1.0)) : PF_R(0.0); }
+
+/* Normalized table coordinates of (wo, wi): (theta_i / theta_max, theta_o / theta_max,
+   phi_d / pi), each clamped to [0, 1]; node k of an n-node axis is at k / (n - 1). phi_d is 0
+   when either direction is along the normal.
+   theta_max <= 0 or NaN reads as pi/2. */
+PF_DEF pf_vec3 pf_vmf_scale_coords(pf_vec3 wo, pf_vec3 wi, pf_real theta_max)
+{
+    pf_real tm = theta_max > PF_R(0.0) ? theta_max : PF_R(0.5) * PF_PI;
+    pf_real ro = PF_SQRT(wo.x * wo.x + wo.y * wo.y), ri = PF_SQRT(wi.x * wi.x + wi.y * wi.y);
+    pf_real to = PF_ATAN2(ro, wo.z), ti = PF_ATAN2(ri, wi.z), pd = PF_R(0.0);
+    if (ro > PF_R(0.0) && ri > PF_R(0.0))
+        pd = PF_ATAN2(PF_FABS(wo.x * wi.y - wo.y * wi.x), wo.x * wi.x + wo.y * wi.y);
+    return pf_vec3_make(pfi_vmf_unit(ti / tm), pfi_vmf_unit(to / tm), pfi_vmf_unit(pd * PF_INV_PI));
+}
+
+/* The continuous node position of a normalized coordinate u on an n-node axis: u (n - 1)
+   clamped to [0, n - 1] (node k's value sits at k; 0 for n <= 1). */
+PF_DEF pf_real pf_vmf_scale_texel_pos(pf_real u, int n)
+{
+    pf_real hi = n > 1 ? PF_R(n - 1) : PF_R(0.0);
+    return pfi_vmf_unit(u) * hi;
+}
+
+PF_DEF pf_real pfi_vmf_lerp(pf_real a, pf_real b, pf_real t) { return a + (b - a) * t; }
+
+/* Trilinear blend of the 8 fetched cells (s_abc: a along theta_i, b theta_o, c phi_d; 0 the
+   lower cell, 1 the upper) with fractions f in [0, 1]^3. */
+PF_DEF pf_real pf_vmf_scale_trilinear(pf_real s000, pf_real s100, pf_real s010, pf_real s110, pf_real s001,
+                                      pf_real s101, pf_real s011, pf_real s111, pf_vec3 f)
+{
+    pf_real a0 = pfi_vmf_lerp(pfi_vmf_lerp(s000, s100, f.x), pfi_vmf_lerp(s010, s110, f.x), f.y);
+    pf_real a1 = pfi_vmf_lerp(pfi_vmf_lerp(s001, s101, f.x), pfi_vmf_lerp(s011, s111, f.x), f.y);
+    return pfi_vmf_lerp(a0, a1, f.z);
+}
+
+/* The scaled BRDF T S f (Wu et al. 2019 eqs. 13-14); a negative or NaN product gives 0, an
+   overflow PF_REAL_MAX. */
+PF_DEF pf_real pf_vmf_scale_apply(pf_real t, pf_real s, pf_real f)
+{
+    pf_real v = t * s * f;
+    return v > PF_R(0.0) ? (v < PF_REAL_MAX ? v : PF_REAL_MAX) : PF_R(0.0);
+}
+
+/* The multi-lobe specular of Wu et al. 2019 eq. 5 as written, with NO masking-shadowing
+   (G = 1): F D' / (4 A_o); the denominator of R when the scaling function is to carry all of
+   the masking. 0 on or below the macrosurface or mesosurface, or for an empty sum. */
+PF_DEF pf_real pf_vmf_sum_specular_unmasked(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
+{
+    pf_real area_o;
+    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
+    area_o = pfi_vmf_sum_area(s, wo);
+    if (!(area_o > PF_R(0.0)) || !(pfi_vmf_sum_area(s, wi) > PF_R(0.0))) return PF_R(0.0);
+    return pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi)) * s.ndf / (PF_R(4.0) * area_o);
+}
+
+/* The base BRDF of one facet of slope (sx, sy): F(h.wi) D(h) G2 / 4 of a Beckmann lobe of slope
+   variance base_var about the slope (LEADR eqs. 10, 13, 16; h = (wo + wi)/|wo + wi|, G2 the
+   lobe's own Smith term 1/(1 + Lambda(wo) + Lambda(wi))), radiance toward wo per unit
+   radiance from wi with the light cosine included (as pf_vmf_sum_specular); 0 when a
+   direction is on or below the macrosurface or the facet, and when the half vector's slope
+   lies more than sqrt(80 base_var) from the facet's (D below 4e-18 of its peak). The facet
+   term of the scaling function's effective BRDF (pf_vmf_scale.h, Wu et al. 2019 eq. 6). */
+PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, pf_vec3 wo, pf_vec3 wi, pf_real f0)
+{
+    pf_slope_stats st = pf_slope_stats_make(sx, sy, base_var, base_var, PF_R(0.0));
+    pf_real ao = wo.z - sx * wo.x - sy * wo.y, ai = wi.z - sx * wi.x - sy * wi.y, lo, li;
+    pf_vec3 hv;
+    if (!(ao > PF_R(0.0)) || !(ai > PF_R(0.0)) || !(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
+    hv = pfi_vmf_half(wo, wi);
+    {
+        /* the lobe's exponent first: past 40 (D below 4e-18 of its peak) the facet adds nothing
+           the sum can hold, and the two Lambdas (erfc) are skipped: most facets of a patch are
+           that far from a narrow lobe's half vector */
+        pf_real ex = -hv.x / pf_max(hv.z, PF_R(1.0e-6)) - sx, ey = -hv.y / pf_max(hv.z, PF_R(1.0e-6)) - sy;
+        if (ex * ex + ey * ey > PF_R(80.0) * base_var) return PF_R(0.0);
+    }
+    lo = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wo), ao);
+    li = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wi), ai);
+    return pf_fresnel_schlick(f0, pf_vec3_dot(hv, wi)) * pfi_vmf_ndf_stats(PF_R(1.0), st, hv) /
+           (PF_R(4.0) * (PF_R(1.0) + lo + li));
+}
+
+#endif /* PF_VMF_H */
+
 /* ================================================================= include/pf_map.h ====== */
 /* pf_map.h - CPU baking of maps: the one pyramid layout, border rule, height stencil and
    height-field march of the library, the pyramids of linear moments (slope, scalar, depth,
@@ -4737,6 +5445,11 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      pf_horizon_visibility_given_slope  V toward w of the facets of one slope (conditional HDF)
      pf_horizon_diffuse_directional  LEADR's slope grid with that visibility per facet, eq. 28
      pf_horizon_diffuse_lod          that faded to pf_gg_diffuse_directional by mip level
+   and the specular of the facets that reflect (see SPECULAR):
+     pf_horizon_specular_visibility  V toward wo and wi of the facets of the half vector's slope
+     pf_horizon_leadr_specular, _lod LEADR's eq. 17 with that visibility instead of Smith's G
+     pf_horizon_vmf_specular, _lod   pf_vmf.h's lobes with that visibility instead of Smith's G
+     pf_horizon_texel_stats          slope statistics less the base lobe's variance
 
    COMBINING WITH SMITH (measured: docs/horizon.md, bench/bench_horizon.c --masking).
    The bench's masking reference is the visible fraction of the footprint's front-facing
@@ -4792,6 +5505,20 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    mixture), so pf_horizon_diffuse_lod fades it to pf_gg_diffuse_directional with the same
    weight.
 
+   SPECULAR (pf_horizon_specular_visibility, pf_horizon_leadr_specular, pf_horizon_vmf_specular,
+   _lod; measured: docs/horizon.md). A narrow base lobe reflects wi into wo only on the facets
+   whose slope is the half vector's, s_h = (-h.x/h.z, -h.y/h.z). Smith's G (LEADR eq. 13)
+   takes their visibility from the footprint's own slopes; below 16-texel footprints the
+   shadows and masking are cast by bumps outside the footprint, which it cannot see. The
+   diffuse's conditioning does: V_o(s_h) and V_i(s_h) from the HDF of the texels that share
+   the facet's slope (T | S = s_h), joined by Tan et al.'s eq. 28, replace G in eq. 17:
+       I = F D(h) V_o B(V_i, V_o) / (4 A_o).
+   For the vMF lobes the same V_h multiplies the sum: every lobe's reflecting facets have the
+   slope s_h and the HDF conditions on the slope alone, so the per-lobe visibilities are equal.
+   The conditioning uses the slope-moment texel's statistics (the texels' own slopes), not the
+   lobes'. Faded to the unshadowed method by mip level as the masking (the same bias of a
+   wide mixture's conditional Gaussians at large footprints).
+
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
      (columns) toward +y (rows), the frame of pf_map.h's height maps; azimuth phi is the
@@ -4830,7 +5557,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      pf_horizon_legendre_coeff; pf_hdf_legendre_make, _coeff, _lerp;
      pf_horizon_bidir_product, _tan, _ashikhmin; pf_horizon_visible_area, pf_horizon_masking,
      pf_horizon_lod_weight, pf_horizon_masking_lod; pf_horizon_visibility_given_slope,
-     pf_horizon_diffuse_directional, pf_horizon_diffuse_lod
+     pf_horizon_diffuse_directional, pf_horizon_diffuse_lod; pf_horizon_specular_visibility,
+     pf_horizon_texel_stats, pf_horizon_leadr_specular, _lod, pf_horizon_vmf_specular, _lod
    FUNCTIONS (CPU only, PF_CPU_DEF; compiled out under PF_GLSL)
      pf_horizon_channels, pf_horizon_map, pf_horizon_pyramid
 
@@ -4873,6 +5601,7 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
 #ifndef PF_GLSL
 /* pf_beckmann.h: above in this file */
 /* pf_gaussgrid.h: above in this file */
+/* pf_vmf.h: above in this file */
 /* pf_map.h: above in this file */
 #endif
 
@@ -5204,7 +5933,10 @@ PF_DEF pfi_horizon_cond pfi_horizon_cond_make(pf_vec3 w, pf_hdf_moments m, pf_sl
     c.beta = PF_R(0.0);
     vc = pf_max(var, PF_R(0.0));
     if (vs > PF_R(1e-12)) {
-        cov = m.ms - c.es * m.m1;
+        /* |Cov(S, T)| <= sigma_S sigma_T (Cauchy-Schwarz): statistics of S from another source
+           than the HDF's stencil (a lobe fit, a base variance taken off) can break it, and a
+           tiny Var(S) then turns the excess into a huge shift of the conditional mean */
+        cov = pf_clamp(m.ms - c.es * m.m1, -PF_SQRT(vc * vs), PF_SQRT(vc * vs));
         c.beta = cov / vs;
         vc = pf_max(vc - cov * c.beta, PF_R(0.0));
     }
@@ -5288,6 +6020,113 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
     pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
     pf_real h = k > PF_R(0.0) ? pf_horizon_diffuse_directional(g, wi, m_o, m_i) : PF_R(0.0);
     pf_real l = k < PF_R(1.0) ? pf_gg_diffuse_directional(g, wi) : PF_R(0.0);
+    return k * h + (PF_R(1.0) - k) * l;
+}
+
+/* ---------------------------------------------------------------- specular: the reflecting facets' horizon
+   (see SPECULAR above; measured: docs/horizon.md)
+   Visibility of the facets that reflect wi into wo: those whose slope is the half vector's,
+   s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi (the base lobe is narrow: its reflecting facets are
+   within its deviation of s_h). Their HDF toward wo and toward wi is T | S = s_h along each
+   direction's azimuth (pf_horizon_visibility_given_slope), and visible-and-lit is joined by
+   Tan et al.'s eq. 28:
+       V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi)
+   s: the footprint's own slope statistics, WITHOUT the base lobe's variance (the HDF's E[S T]
+   is over the texels' slopes). In [0, 1]; 0 for a half vector at or below the macrosurface
+   (wo + wi with z <= 0), NaN moments or slopes. pf_erfc_fast (the shader tier) inside. */
+PF_DEF pf_real pf_horizon_specular_visibility(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i,
+                                              pf_slope_stats s)
+{
+    pf_vec3 h = pf_vec3_add(wo, wi);
+    pf_real iz = h.z > PF_R(0.0) ? PF_R(1.0) / h.z : PF_R(0.0);
+    pf_real sx = -h.x * iz, sy = -h.y * iz;
+    pf_real vo = pfi_horizon_cond_vis(pfi_horizon_cond_make(wo, m_o, s), sx, sy, 1);
+    pf_real vi = pfi_horizon_cond_vis(pfi_horizon_cond_make(wi, m_i, s), sx, sy, 1);
+    return h.z > PF_R(0.0) ? vo * pf_horizon_bidir_tan(vi, vo, pf_vec3_dot(wo, wi)) : PF_R(0.0);
+}
+
+/* The statistics s with base_var taken off both variances (floored at 0; a negative or NaN
+   base_var counts as 0): the texels' own slopes, from statistics that had the base lobe's
+   variance added (pf_slope_moments_stats(m, base_var)). */
+PF_DEF pf_slope_stats pf_horizon_texel_stats(pf_slope_stats s, pf_real base_var)
+{
+    pf_real b = pf_max(base_var, PF_R(0.0));
+    s.var_x = pf_max(s.var_x - b, PF_R(0.0));
+    s.var_y = pf_max(s.var_y - b, PF_R(0.0));
+    return s;
+}
+
+/* LEADR's specular (pf_leadr_specular, Dupuy et al. 2013 eq. 17) with Smith's G replaced by the
+   reflecting facets' horizon visibility (pf_horizon_specular_visibility):
+       I = F(h.wi) D(h) V_h / (4 A_o),   A_o = wo.z - E[x] wo.x - E[y] wo.y  (eq. 1),
+   radiance toward wo per unit radiance from wi, light cosine included, as pf_leadr_specular.
+   s: the footprint's slope statistics with the base lobe's variance base_var added (what
+   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); base_var is taken off again
+   for the HDF's conditioning. m_o, m_i: the HDF moments toward wo and wi (the two stored
+   azimuths around each, pf_hdf_moments_lerp). No Smith factor is left: the horizon holds the
+   footprint's own occluders as well as its neighbours' (the march starts one texel from the
+   node). 0 when either direction is on or below the macrosurface or A_o <= 0 (the view at or
+   below the mean plane: use pf_leadr_specular there, or the _lod form, whose weight the caller
+   may set to 0). f0 as pf_fresnel_schlick (1: Fresnel off). */
+PF_DEF pf_real pf_horizon_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real base_var,
+                                         pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
+{
+    pf_real ao = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
+    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
+    pf_real r = f * pf_beckmann_d(pf_vec3_add(wo, wi), s) * v * PF_R(0.25) / pf_max(ao, PF_REAL_MIN);
+    return (ao > PF_R(0.0) && wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? pf_min(r, PF_REAL_MAX) : PF_R(0.0);
+}
+
+/* pf_horizon_leadr_specular faded to pf_leadr_specular by mip level (pf_horizon_lod_weight, as
+   pf_horizon_masking_lod): k I_horizon + (1 - k) I_leadr; each side evaluated only when its
+   weight is not 0, so k = 1 and k = 0 are the two functions exactly. */
+PF_DEF pf_real pf_horizon_leadr_specular_lod(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real base_var,
+                                             pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0, pf_real lod,
+                                             pf_real lod_full, pf_real lod_smith)
+{
+    pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
+    pf_real h = k > PF_R(0.0) ? pf_horizon_leadr_specular(wo, wi, s, base_var, m_o, m_i, f0) : PF_R(0.0);
+    pf_real l = k < PF_R(1.0) ? pf_leadr_specular(wo, wi, s, f0) : PF_R(0.0);
+    return k * h + (PF_R(1.0) - k) * l;
+}
+
+/* The multi-lobe specular of pf_vmf.h (a pf_vmf_sum of the texel's lobes, slope form:
+   pf_vmf_sum_add with base_var) with the mixture's Smith G replaced by the reflecting facets'
+   horizon visibility:
+       I = F(h.wi) (ndf / amp) V_h / (4 A_o),   amp A_o = wo.z amp - wo.x sum amp E[x] - wo.y sum amp E[y],
+   V_h = pf_horizon_specular_visibility conditioned on the footprint's slope statistics s (the
+   LEADR slope-moment texel: pf_slope_moments_stats(m, base_var), base_var taken off inside as
+   in pf_horizon_leadr_specular). Why not the lobes' own mixture statistics: at small footprints
+   their variance is the lobes' spread (kappa), not the texels', and the HDF's slope-horizon
+   covariance, mixed over two stored azimuths, then shifts the conditional horizon by noise
+   (measured: 1-texel footprints 0.18 against 0.13 with the slope moments; docs/horizon.md).
+   Every lobe's reflecting facets have the half vector's slope, and the HDF's conditioning is on
+   the slope alone (one E[S T] per azimuth for the whole footprint), so the per-lobe visibility
+   is the same V_h for each lobe and factors out of the sum: one pair of conditional
+   visibilities for any lobe count. 0 when either direction is on or below the macrosurface,
+   the sum is empty, or A_o <= 0. */
+PF_DEF pf_real pf_horizon_vmf_specular(pf_vmf_sum sum, pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real base_var,
+                                       pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
+{
+    pf_real area = wo.z * sum.amp - wo.x * sum.ex - wo.y * sum.ey; /* amp A_o (LEADR eq. 1) */
+    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
+    /* (ndf / amp) / (area / amp) = ndf / area: the sum's amplitude cancels */
+    pf_real r = (sum.ndf / pf_max(area, PF_REAL_MIN)) * f * v * PF_R(0.25);
+    return (area > PF_R(0.0) && sum.amp > PF_R(0.0) && wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? pf_min(r, PF_REAL_MAX)
+                                                                                          : PF_R(0.0);
+}
+
+/* pf_horizon_vmf_specular faded to pf_vmf_sum_specular by mip level (as
+   pf_horizon_leadr_specular_lod). */
+PF_DEF pf_real pf_horizon_vmf_specular_lod(pf_vmf_sum sum, pf_vec3 wo, pf_vec3 wi, pf_slope_stats s,
+                                           pf_real base_var, pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0,
+                                           pf_real lod, pf_real lod_full, pf_real lod_smith)
+{
+    pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
+    pf_real h = k > PF_R(0.0) ? pf_horizon_vmf_specular(sum, wo, wi, s, base_var, m_o, m_i, f0) : PF_R(0.0);
+    pf_real l = k < PF_R(1.0) ? pf_vmf_sum_specular(sum, wo, wi, f0) : PF_R(0.0);
     return k * h + (PF_R(1.0) - k) * l;
 }
 
@@ -7086,714 +7925,6 @@ PF_DEF pf_real pf_beckmann_to_blinn_phong(pf_real m)
 }
 
 #endif /* PF_TOKSVIG_H */
-
-/* ================================================================= include/pf_vmf.h ====== */
-/* pf_vmf.h - footprint NDFs as mixtures of von Mises-Fisher lobes (Wu et al. 2019), their
-   specular BRDF with a narrow base lobe, and Smith masking-shadowing of the mixture.
-
-   One Gaussian of slopes (LEADR) cannot describe a footprint whose slopes cluster on a few
-   values (tiles, craters on flat ground, ridges): the bench's in-footprint reference puts the
-   one-lobe error at 0.3-0.8 there. This module describes the footprint's micro-normals as
-   m <= 16 vMF lobes (Wu et al. 2019 eq. 4, after Han et al. 2007), fitted on the CPU by
-   spherical EM, stored per texel of a pyramid, and shaded with the multi-lobe BRDF of
-   Wu et al. 2019 eq. 5 in the projected-area form of LEADR (Dupuy et al. 2013 eqs. 2-3, 17).
-
-   DEFINITIONS
-     lobe        g(w; kappa, mu) = C(kappa) exp(kappa (mu.w - 1)),   unit w, mu, kappa > 0,
-                 C(kappa) = kappa / (2 pi (1 - exp(-2 kappa))),  integral over the sphere = 1.
-                 This is Wu et al.'s kappa / (4 pi sinh kappa) exp(kappa mu.w) with exp(kappa)
-                 taken out, so nothing overflows at large kappa; the exponent is evaluated as
-                 -kappa |w - mu|^2 / 2 (equal for unit vectors, no cancellation near mu).
-     mixture     p(w) = sum_k a_k g(w; kappa_k, mu_k), sum_k a_k = 1 (the fit's amplitudes):
-                 the distribution of the footprint's micro-normals PER UNIT MACROSURFACE AREA
-                 (every texel counts once). CONVENTION: the NDF is D(w) = p(w) / w.z, so that
-                 integral D(w) (w.z) dw = 1 (Wu et al. eq. 3; LEADR eq. 10's normalization).
-                 Wu et al. eq. 4 fits D itself (normals weighted by 1/cos); both agree for
-                 point masses, ours keeps eq. 3 exact and its fit has unit weights.
-     convolution with a base lobe (the micro-BRDF's own NDF, rotated to each micro-normal,
-                 Wu et al. eq. 5): a vMF lobe convolved with a vMF base lobe of kappa_b is
-                 approximated by ONE vMF lobe of
-                     kappa' = kappa kappa_b / (kappa + kappa_b)          (1/kappa' = 1/k + 1/k_b)
-                 (exact for the small-angle Gaussian limit: angular variances add). A Beckmann
-                 base lobe of slope deviation sigma per axis is read as kappa_b = 1/sigma^2
-                 (the same curvature at its peak). Measured error: see ACCURACY.
-     specular    (Wu et al. eq. 5 with a microfacet base BRDF, in LEADR eq. 17's form)
-                     I = F(h.wi) D'(h) G / (4 A_o),    h = (wo + wi)/|wo + wi|,
-                     D'(h) = sum_k a_k g(h; kappa'_k, mu_k) / h.z,
-                     A_o  = sum_k a_k (wo.z - wo.xy . s_k),  s_k = -mu_k.xy / mu_k.z,
-                 the radiance toward wo per unit radiance from wi, light cosine included (as
-                 pf_leadr_specular).
-     masking     Smith's Lambda is linear in the slope density (pf_smith.h eq. 1 times the
-                 projected area), so the Lambda of a mixture of Gaussian-slope lobes is exact:
-                     Lambda(w) = sum_k a_k E_k(w) / A(w),   A(w) = sum_k a_k (w.z - w.xy . s_k),
-                     E_k(w) = sigma_k(w) sqrt(2) e(nu_k),   nu_k = (w.z - w.xy . s_k)/(sqrt(2) sigma_k(w)),
-                     e(nu) = exp(-nu^2)/(2 sqrt(pi)) - nu erfc(nu)/2      (= nu Lambda_Beckmann(nu)),
-                 sigma_k(w)^2 = w.xy^T Sigma_k w.xy the lobe's slope variance along w (times
-                 |w.xy|^2). A lobe's slopes are taken Gaussian with mean s_k and covariance
-                     Sigma_k = v_k (t t^T / mu.z^4 + (I - t t^T) / mu.z^2) + base_var I,
-                 v_k = A3(kappa_k)/kappa_k the per-axis variance of the tangent-plane projection
-                 of a vMF (A3 = coth kappa - 1/kappa), t the unit azimuth of mu_k (the slope
-                 map's Jacobian at mu_k). G = 1/(1 + Lambda(wo) + Lambda(wi)) (LEADR eq. 13).
-
-   USAGE
-     pf_vmf_sum s = pf_vmf_sum_zero();
-     for (k = 0; k < 4; ++k) {                      -- m = 4 RGBA fetches of the lobe pyramid
-         vec4 t = texel k;                           -- (mu.x, mu.y, kappa, amp)
-         s = pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b * sigma_b);
-     }
-     pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
-     The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
-     pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
-
-   FUNCTIONS
-     lobes       pf_vmf_normalization, pf_vmf_mean_cosine, pf_vmf_tangent_variance,
-                 pf_vmf_kappa_from_tangent_variance, pf_vmf_lobe_eval,
-                 pf_vmf_kappa_from_mean_length, pf_vmf_convolve_kappa, pf_vmf_kappa_from_sigma,
-                 pf_vmf_lobe_slope_stats
-     one lobe of a mixture
-                 pf_vmf_lobe_make, pf_vmf_lobe_density, pf_vmf_lobe_ndf (vMF form),
-                 pf_vmf_lobe_ndf_slope (slope form), pf_vmf_lobe_area, pf_vmf_lobe_excess,
-                 pf_vmf_lambda
-     BRDF        pf_vmf_sum_zero, pf_vmf_sum_add (slope form), pf_vmf_sum_add_vmf (vMF form),
-                 pf_vmf_sum_add_masking, pf_vmf_sum_stats, pf_vmf_sum_g2 (one Gaussian),
-                 pf_vmf_sum_g2_mixture, pf_vmf_sum_g1_mixture (exact mixture Smith),
-                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked
-     scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
-                 pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
-     facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
-     CPU baking  pf_vmf_fit.h (EM fit, lobe pyramid), pf_vmf_scale.h (scaling-function fit);
-                 pf_map_downsample.h (slope-preserving downsampling of the height map)
-
-   CONVENTIONS
-     Tangent frame of the macrosurface, +z up; directions and lobe axes unit vectors (lobe axes
-     on the upper hemisphere: a height field has no normal facing down; the packed form stores
-     mu.x, mu.y and rebuilds mu.z = sqrt(1 - x^2 - y^2)). kappa is clamped to
-     [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; a NaN kappa reads as PF_VMF_KAPPA_MIN. A mixture is
-     shaded lobe by lobe (pf_vmf_sum_add): no arrays in structs, so the same source is GLSL;
-     the fit returns at most PF_VMF_MAX_LOBES = 16 lobes. Evaluators return finite values >= 0
-     for finite inputs; 0 when a direction is on or below the macrosurface (a view or a light
-     below the mixture's mesosurface sees or lights the facets facing it, as in
-     pf_leadr_specular); G in [0, 1].
-
-   ACCURACY AND COST (tests/test_vmf.c, bench/bench_vmf.c, bench/microsurface.c; docs/vmf.md)
-     C(kappa) within 2 eps of quadrature (kappa 1e-4 .. 1e5, float and double); A3 and the
-     tangent variance within 6 (float) / 35 (double) eps. One-lobe convolution rule: within
-     3.1e-3 of the exact convolution's peak (kappa_b = 100). Mixture Lambda: exact for
-     Gaussian-slope lobes (6e-7 float, 2e-15 double against quadrature). On the bench's
-     corpus (in-footprint reference, 4096 texels, views 0-75 pooled) m = 8 lobes are within
-     0.10-0.18 and m = 16 within 0.09-0.14 (LEADR: 0.12-0.82), at 1.2-1.5x
-     pf_leadr_specular's cost for m = 4 and 1.7-2.8x for m = 8, fetches included. Fit of a
-     512 x 512 pyramid: 2.1-2.8 s CPU at m = 4, 3.8-9.4 s at m = 16.
-
-   SOURCES
-     Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
-     displacement-mapped surfaces) eqs. 2-5, 6-8, 12-14, 21-24; Han, Sun, Ramamoorthi, Grinspun 2007 (frequency
-     domain normal map filtering: vMF mixtures, spherical EM); Banerjee, Dhillon, Ghosh, Sra
-     2005 (kappa ~ r (3 - r^2)/(1 - r^2)); Dupuy et al. 2013 (LEADR) eqs. 1-3, 10, 13-17;
-     Smith 1967. */
-#ifndef PF_VMF_H
-#define PF_VMF_H
-
-#ifndef PF_GLSL
-/* pf_core.h: above in this file */
-/* pf_smith.h: above in this file */
-/* pf_beckmann.h: above in this file */
-#endif
-
-#define PF_VMF_MAX_LOBES 16
-#define PF_VMF_KAPPA_MIN PF_R(1.0e-4)
-#define PF_VMF_KAPPA_MAX PF_R(1.0e5)
-
-/* Cap on the exponents the module passes to PF_EXP: exp(-80) = 1.8e-35 is still a normal float,
-   so exp never underflows (libm's underflow path, which sets errno, made a far lobe cost 10x a
-   near one in the bench), and a value this far down the tail is 0 to the shading. */
-#define PF_VMF_EXP_CAP PF_R(80.0)
-
-/* ---------------------------------------------------------------- one lobe */
-/* kappa clamped to [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; NaN reads as PF_VMF_KAPPA_MIN (the
-   CONVENTIONS' clamp, applied by every function that takes a kappa). */
-PF_DEF pf_real pf_vmf_kappa_clamp(pf_real kappa)
-{
-    if (!(kappa > PF_VMF_KAPPA_MIN)) return PF_VMF_KAPPA_MIN; /* NaN too */
-    return pf_min(kappa, PF_VMF_KAPPA_MAX);
-}
-
-/* 1 - exp(-x) for x >= 0 without cancellation near 0. Above 1/2, 1 - exp(-x) directly (at most
-   one bit lost to the subtraction). At and below 1/2 the Taylor series x (1 - x/2 (1 - x/3 (1 -
-   ...))), plain arithmetic with no exp or log: Kahan's (1 - u) x / (-log u), u = exp(-x), used
-   here before, needs log accurate RELATIVE to log u near u = 1, and GLSL promises log only an
-   absolute 2^-21 on [1/2, 2] (docs/gpu.md: a relative 2^-21 / x, 5e-4 at x = 1e-3). Truncation
-   after x^9 (float) resp. x^16 (double): the first omitted term, relative, is x^9/10! = 5.4e-10
-   resp. x^16/17! = 4.3e-20 at x = 1/2, well below half an ulp; every factor x/k < 1/2, so the
-   nested form does not amplify rounding (tests/test_vmf.c: against expm1l). */
-PF_DEF pf_real pfi_vmf_one_minus_exp_neg(pf_real x)
-{
-    pf_real r = PF_R(1.0);
-    if (x > PF_R(0.5)) return PF_R(1.0) - PF_EXP(-x);
-#ifdef PF_DOUBLE
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(16.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(15.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(14.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(13.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(12.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(11.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(10.0)) * r;
-#endif
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(9.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(8.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(7.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(6.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(5.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(4.0)) * r;
-    r = PF_R(1.0) - x * (PF_R(1.0) / PF_R(3.0)) * r;
-    r = PF_R(1.0) - x * PF_R(0.5) * r;
-    return x * r;
-}
-
-/* C(kappa) = kappa / (2 pi (1 - exp(-2 kappa))): the constant that makes
-   C exp(kappa (mu.w - 1)) integrate to 1 over the sphere (Wu et al. 2019 eq. 4 with exp(kappa)
-   factored out). 1/(4 pi) as kappa -> 0, kappa/(2 pi) for large kappa. */
-PF_DEF pf_real pf_vmf_normalization(pf_real kappa)
-{
-    pf_real k = pf_vmf_kappa_clamp(kappa);
-    return k * (PF_R(0.5) * PF_INV_PI) / pfi_vmf_one_minus_exp_neg(PF_R(2.0) * k);
-}
-
-/* Mean cosine A3(kappa) = E[mu.w] = coth kappa - 1/kappa (the mean resultant length of a vMF).
-   Series below the threshold (the difference cancels there), closed form above. */
-PF_DEF pf_real pf_vmf_mean_cosine(pf_real kappa)
-{
-    pf_real k = pf_vmf_kappa_clamp(kappa), k2, e;
-#ifdef PF_DOUBLE
-    const pf_real series_below = PF_R(0.1);
-#else
-    const pf_real series_below = PF_R(0.5);
-#endif
-    if (k < series_below) {
-        k2 = k * k;
-        /* coth k - 1/k = k/3 - k^3/45 + 2k^5/945 - k^7/4725 + 2k^9/93555 - ... */
-        return k * (PF_R(1.0) / PF_R(3.0) +
-                    k2 * (PF_R(-1.0) / PF_R(45.0) +
-                          k2 * (PF_R(2.0) / PF_R(945.0) + k2 * (PF_R(-1.0) / PF_R(4725.0) + k2 * (PF_R(2.0) / PF_R(93555.0))))));
-    }
-    e = PF_EXP(-PF_R(2.0) * k);
-    /* coth k = (1 + e)/(1 - e) = 1 + 2e/(1 - e) */
-    return PF_R(1.0) + PF_R(2.0) * e / pfi_vmf_one_minus_exp_neg(PF_R(2.0) * k) - PF_R(1.0) / k;
-}
-
-/* Per-axis variance of the tangent-plane projection of a vMF lobe, E[|w - (mu.w) mu|^2]/2 =
-   A3(kappa)/kappa (E[(mu.w)^2] = 1 - 2 A3/kappa). ~1/kappa for large kappa, 1/3 at 0. */
-PF_DEF pf_real pf_vmf_tangent_variance(pf_real kappa)
-{
-    pf_real k = pf_vmf_kappa_clamp(kappa);
-    /* coth k = 1 + 2 e^(-2k) + ...: below rounding past k = 10 (float) / 20 (double), and then
-       A3/k = (1 - 1/k)/k with no exp or log (the shading path's common case) */
-#ifdef PF_DOUBLE
-    if (k > PF_R(20.0)) return (PF_R(1.0) - PF_R(1.0) / k) / k;
-#else
-    if (k > PF_R(10.0)) return (PF_R(1.0) - PF_R(1.0) / k) / k;
-#endif
-    return pf_vmf_mean_cosine(k) / k;
-}
-
-/* The inverse of pf_vmf_tangent_variance: the kappa whose per-axis tangent variance is v
-   (48 bisection steps on log kappa over [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]: the map is
-   monotone; constant loop bound). v >= 1/3 gives PF_VMF_KAPPA_MIN, v <= 0 or NaN
-   PF_VMF_KAPPA_MAX. */
-PF_DEF pf_real pf_vmf_kappa_from_tangent_variance(pf_real v)
-{
-    pf_real lo = PF_LOG(PF_VMF_KAPPA_MIN), hi = PF_LOG(PF_VMF_KAPPA_MAX), mid;
-    int i;
-    if (!(v > pf_vmf_tangent_variance(PF_VMF_KAPPA_MAX))) return PF_VMF_KAPPA_MAX;
-    if (!(v < pf_vmf_tangent_variance(PF_VMF_KAPPA_MIN))) return PF_VMF_KAPPA_MIN;
-    for (i = 0; i < 48; ++i) {
-        mid = PF_R(0.5) * (lo + hi);
-        if (pf_vmf_tangent_variance(PF_EXP(mid)) > v) lo = mid;
-        else hi = mid;
-    }
-    return pf_vmf_kappa_clamp(PF_EXP(PF_R(0.5) * (lo + hi)));
-}
-
-/* g(w; kappa, mu) = C(kappa) exp(-kappa |w - mu|^2 / 2) for unit w and mu (= exp(kappa (mu.w
-   - 1)), no cancellation near the peak, no overflow at large kappa). Per unit solid angle. */
-PF_DEF pf_real pf_vmf_lobe_eval(pf_vec3 mu, pf_real kappa, pf_vec3 w)
-{
-    pf_real k = pf_vmf_kappa_clamp(kappa);
-    pf_vec3 d = pf_vec3_sub(w, mu);
-    pf_real q = pf_min(PF_R(0.5) * k * pf_vec3_dot(d, d), PF_VMF_EXP_CAP);
-    return pf_vmf_normalization(k) * PF_EXP(-q);
-}
-
-/* Banerjee et al. 2005: kappa from the mean resultant length r = |E[w]| of a sample,
-   kappa ~ r (3 - r^2) / (1 - r^2), clamped to [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX]; r >= 1
-   gives PF_VMF_KAPPA_MAX. (The fit uses the cancellation-free 1 - r^2 it accumulates.) */
-PF_DEF pf_real pf_vmf_kappa_from_mean_length(pf_real r)
-{
-    pf_real rr = pf_clamp_nan_lo(r, PF_R(0.0), PF_R(1.0)); /* NaN -> 0 (pf_clamp keeps NaN in C) */
-    pf_real one_minus = (PF_R(1.0) - rr) * (PF_R(1.0) + rr);
-    if (!(one_minus * PF_VMF_KAPPA_MAX > rr * (PF_R(3.0) - rr * rr))) return PF_VMF_KAPPA_MAX;
-    return pf_vmf_kappa_clamp(rr * (PF_R(3.0) - rr * rr) / one_minus);
-}
-
-/* The one-lobe approximation of a vMF of kappa convolved with a vMF base lobe of kappa_b
-   (Wu et al. 2019 eq. 5's integral for one lobe): kappa kappa_b / (kappa + kappa_b), the
-   small-angle rule 1/kappa' = 1/kappa + 1/kappa_b (angular variances add). */
-PF_DEF pf_real pf_vmf_convolve_kappa(pf_real kappa, pf_real kappa_b)
-{
-    pf_real a = pf_vmf_kappa_clamp(kappa), b = pf_vmf_kappa_clamp(kappa_b);
-    return pf_vmf_kappa_clamp(a * (b / (a + b)));
-}
-
-/* kappa of the vMF lobe matching a Beckmann lobe of slope deviation sigma per axis (Beckmann
-   roughness alpha = sqrt(2) sigma) at its peak: exp(-tan^2 t / (2 sigma^2)) ~ exp(-t^2 /
-   (2 sigma^2)) and exp(kappa (cos t - 1)) ~ exp(-kappa t^2 / 2), so kappa = 1/sigma^2. */
-PF_DEF pf_real pf_vmf_kappa_from_sigma(pf_real sigma)
-{
-    pf_real s2 = sigma * sigma;
-    if (!(s2 * PF_VMF_KAPPA_MAX > PF_R(1.0))) return PF_VMF_KAPPA_MAX;
-    return pf_vmf_kappa_clamp(PF_R(1.0) / s2);
-}
-
-/* Gaussian slope statistics of a lobe (see DEFINITIONS, masking): mean -mu.xy/mu.z, covariance
-   v (t t^T / mu.z^4 + (I - t t^T) / mu.z^2) + base_var I with v = pf_vmf_tangent_variance.
-   mu.z is floored at 1e-3 (a lobe axis within 0.06 degrees of the horizon). */
-PF_DEF pf_slope_stats pf_vmf_lobe_slope_stats(pf_vec3 mu, pf_real kappa, pf_real base_var)
-{
-    pf_real z = pf_max(mu.z, PF_R(1.0e-3)), iz2 = PF_R(1.0) / (z * z);
-    pf_real v = pf_vmf_tangent_variance(kappa), b = pf_max(base_var, PF_R(0.0));
-    pf_real r2 = mu.x * mu.x + mu.y * mu.y, c2 = PF_R(1.0), s2 = PF_R(0.0), cs = PF_R(0.0);
-    pf_real v_along = v * iz2 * iz2, v_across = v * iz2;
-    if (r2 > PF_R(0.0)) {
-        c2 = mu.x * mu.x / r2;
-        s2 = mu.y * mu.y / r2;
-        cs = mu.x * mu.y / r2;
-    }
-    return pf_slope_stats_make(-mu.x / z, -mu.y / z, c2 * v_along + s2 * v_across + b,
-                               s2 * v_along + c2 * v_across + b, cs * (v_along - v_across));
-}
-
-/* ---------------------------------------------------------------- lobes of a mixture
-   A mixture is shaded one lobe at a time (a shader fetches m RGBA texels and loops): each
-   lobe's terms are added into a pf_vmf_sum, which then gives G and the BRDF. No arrays in
-   structs, constant work per lobe, any m. */
-PF_STRUCT_BEGIN(pf_vmf_lobe)
-    pf_real amp;
-    pf_vec3 mu;
-    pf_real kappa;
-PF_STRUCT_END(pf_vmf_lobe)
-
-/* The lobe (amp, mu = (mu_x, mu_y, sqrt(1 - mu_x^2 - mu_y^2)), kappa): the packed texel form,
-   4 reals. An axis with mu_x^2 + mu_y^2 > 1 is rescaled onto the horizon; NaN axis components
-   read as 0, a negative or NaN amplitude as 0, kappa clamped (pf_vmf_kappa_clamp). */
-PF_DEF pf_vmf_lobe pf_vmf_lobe_make(pf_real amp, pf_real mu_x, pf_real mu_y, pf_real kappa)
-{
-    pf_vmf_lobe l;
-    pf_real x = mu_x == mu_x ? mu_x : PF_R(0.0), y = mu_y == mu_y ? mu_y : PF_R(0.0);
-    pf_real r2 = x * x + y * y, z2 = PF_R(1.0) - r2;
-    if (!(r2 <= PF_R(1.0))) { /* also inf */
-        pf_real s = r2 < PF_REAL_MAX ? PF_R(1.0) / PF_SQRT(r2) : PF_R(0.0);
-        x = x * s;
-        y = y * s;
-        if (!(r2 < PF_REAL_MAX)) { /* an infinite component: the horizon along the x axis */
-            x = PF_R(1.0);
-            y = PF_R(0.0);
-        }
-        z2 = PF_R(0.0);
-    }
-    l.amp = pf_max(amp, PF_R(0.0));
-    l.mu = pf_vec3_make(x, y, PF_SQRT(pf_max(z2, PF_R(0.0))));
-    l.kappa = pf_vmf_kappa_clamp(kappa);
-    return l;
-}
-
-/* amp g(w; kappa, mu), unit w: the lobe's share of the area-weighted normal density p(w). */
-PF_DEF pf_real pf_vmf_lobe_density(pf_vmf_lobe l, pf_vec3 w)
-{
-    return l.amp * pf_vmf_lobe_eval(l.mu, l.kappa, w);
-}
-
-/* The lobe's NDF term in the vMF form, convolved with a vMF base lobe of kappa_b
-   (pf_vmf_convolve_kappa; kappa_b >= PF_VMF_KAPPA_MAX: no base lobe): amp g(w; kappa', mu) / w.z,
-   unit w; 0 for w.z <= 0. Summed over the lobes: D'(w), integral D' (w.z) dw = sum amp
-   (Wu et al. eq. 3; the mass the lobes put below the horizon excepted). */
-PF_DEF pf_real pf_vmf_lobe_ndf(pf_vmf_lobe l, pf_vec3 w, pf_real kappa_b)
-{
-    pf_real k = kappa_b >= PF_VMF_KAPPA_MAX ? l.kappa : pf_vmf_convolve_kappa(l.kappa, kappa_b);
-    if (!(w.z > PF_R(0.0))) return PF_R(0.0);
-    return l.amp * pf_vmf_lobe_eval(l.mu, k, w) / pf_max(w.z, PF_R(1.0e-6));
-}
-
-/* The lobe's NDF term in the slope form: amp times the Beckmann NDF (LEADR eq. 10: the slope
-   density P22 over cos^4) of pf_vmf_lobe_slope_stats(mu, kappa, base_var): the lobe convolved
-   with a Beckmann base lobe of slope variance base_var per axis, exactly in slope space
-   (Gaussian variances add). Written here rather than through pf_beckmann_d so that its
-   exponent is capped at PF_VMF_EXP_CAP (no libm underflow path) and its determinant floored
-   at 1e-12 (base_var = 0 and a sharp lobe). Unit w; 0 for w.z <= 0. */
-PF_DEF pf_real pfi_vmf_ndf_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
-{
-    pf_real iz, dx, dy, det, q, iz2;
-    if (!(w.z > PF_R(1.0e-6))) return PF_R(0.0);
-    iz = PF_R(1.0) / w.z;
-    dx = -w.x * iz - s.mean_x;
-    dy = -w.y * iz - s.mean_y;
-    det = pf_max(s.var_x * s.var_y - s.cov_xy * s.cov_xy, PF_R(1.0e-12));
-    q = pf_max(s.var_y * dx * dx - PF_R(2.0) * s.cov_xy * dx * dy + s.var_x * dy * dy, PF_R(0.0));
-    iz2 = iz * iz;
-    return amp * PF_EXP(-pf_min(PF_R(0.5) * q / det, PF_VMF_EXP_CAP)) * (PF_R(0.5) * PF_INV_PI) / PF_SQRT(det) *
-           (iz2 * iz2);
-}
-
-PF_DEF pf_real pf_vmf_lobe_ndf_slope(pf_vmf_lobe l, pf_vec3 w, pf_real base_var)
-{
-    return pfi_vmf_ndf_stats(l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var), w);
-}
-
-/* amp (w.z - w.xy . s), s = -mu.xy / mu.z: the lobe's share of the mesosurface projected area
-   toward w per unit macrosurface area (LEADR eq. 1). Can be negative. */
-PF_DEF pf_real pf_vmf_lobe_area(pf_vmf_lobe l, pf_vec3 w)
-{
-    return l.amp * pf_vec3_dot(w, l.mu) / pf_max(l.mu.z, PF_R(1.0e-3));
-}
-
-/* e(nu) = exp(-nu^2)/(2 sqrt(pi)) - nu erfc(nu)/2 = E[(X - c)+] / (sqrt(2) sigma) for X
-   Gaussian of mean mu, deviation sigma, nu = (c - mu)/(sqrt 2 sigma); every real nu.
-   nu >= 0.5: nu Lambda(nu) (pf_lambda_beckmann, cancellation-free); below, both terms are
-   of one sign or comparable and the direct form is accurate. */
-PF_DEF pf_real pfi_vmf_excess(pf_real nu)
-{
-    /* the tails, where exp(-nu^2) would underflow (libm's slow path): e(nu) < 1e-37 past 9;
-       e(nu) = -nu + exp(-nu^2)/(2 sqrt(pi) nu^2) (1 + O(1/nu^2)) below -6, -nu to 1e-17 */
-    if (nu > PF_R(9.0)) return PF_R(0.0);
-    if (nu < PF_R(-6.0)) return -nu;
-    if (nu >= PF_R(0.5)) return nu * pf_lambda_beckmann(nu);
-    return pf_exp_neg_sq(nu) * (PF_R(0.5) * PF_INV_SQRT_PI) - PF_R(0.5) * nu * pf_erfc(nu);
-}
-
-/* The lobe's share of Smith's numerator toward w: amp |w.xy| E[(q - cot t)+] for the lobe's
-   Gaussian slopes q along w (pf_vmf_lobe_slope_stats with base_var), = amp sigma_w sqrt(2)
-   e(nu), nu = (w.z - w.xy . s)/(sqrt(2) sigma_w), sigma_w^2 = w.xy^T Sigma w.xy. With the
-   lobe areas: Lambda(w) = sum excess / sum area (pf_vmf_lambda). w need not be unit. */
-PF_DEF pf_real pfi_vmf_excess_stats(pf_real amp, pf_slope_stats s, pf_vec3 w)
-{
-    pf_real a = w.z - w.x * s.mean_x - w.y * s.mean_y;
-    pf_real var = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
-    pf_real sd = PF_SQRT(PF_R(2.0) * pf_min(pf_max(var, PF_R(0.0)), PF_R(0.25) * PF_REAL_MAX));
-    /* sd -> 0: E[(X - c)+] -> (mu - c)+, i.e. max(-a, 0) */
-    if (sd > PF_R(1.0e-12) * PF_FABS(a)) return amp * sd * pfi_vmf_excess(a / sd);
-    return amp * pf_max(-a, PF_R(0.0));
-}
-
-PF_DEF pf_real pf_vmf_lobe_excess(pf_vmf_lobe l, pf_vec3 w, pf_real base_var)
-{
-    return pfi_vmf_excess_stats(l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var), w);
-}
-
-/* Smith's Lambda of a mixture from its summed excesses and areas (pf_smith.h eq. 1 is linear in
-   the slope density, so this is exact for Gaussian-slope lobes): excess / area, PF_LAMBDA_MAX
-   when area <= 0 (a direction on or below the mixture's mesosurface) or the ratio exceeds it. */
-PF_DEF pf_real pf_vmf_lambda(pf_real excess_sum, pf_real area_sum)
-{
-    pf_real lam;
-    if (!(area_sum > PF_R(0.0))) return PF_LAMBDA_MAX;
-    lam = pf_max(excess_sum, PF_R(0.0)) / area_sum;
-    return lam < PF_LAMBDA_MAX ? lam : PF_LAMBDA_MAX;
-}
-
-/* ---------------------------------------------------------------- the multi-lobe specular BRDF
-   I = F(h.wi) D'(h) G / (4 A_o) (DEFINITIONS, specular; Wu et al. 2019 eq. 5 with a
-   microfacet base lobe, LEADR eq. 17's projected-area normalization), radiance toward wo per
-   unit radiance from wi, light cosine included. A mixture is summed lobe by lobe into a
-   pf_vmf_sum (USE below); D' and A_o are divided by sum amp at the end.
-   D', two forms of the convolved lobes:
-     slope form (pf_vmf_sum_add): each lobe as the Beckmann lobe of its Gaussian slope
-       statistics with the base lobe's slope variance base_var added (pf_vmf_lobe_ndf_slope:
-       in slope space the convolution of Gaussians is exact). A one-texel footprint (kappa =
-       PF_VMF_KAPPA_MAX) is then LEADR's own base lobe to 0.5%.
-     vMF form (pf_vmf_sum_add_vmf): amp g(h; kappa', mu)/h.z with kappa' =
-       pf_vmf_convolve_kappa(kappa, kappa_b), Wu et al.'s and Han et al.'s spherical
-       convolution. A Beckmann base lobe is not rotation-invariant (its angular width shrinks
-       as mu.z^2 along the tilt), so this form was off by 0.24-0.50 at a 1-texel footprint of
-       the bench's corpus (docs/vmf.md); kept for vMF base lobes.
-   G, two masking-shadowing terms:
-     pf_vmf_sum_g2: Smith for ONE Gaussian with the mixture's slope mean and covariance (the
-       sum's moments; base_var included through each lobe): LEADR's G (eq. 13) of the
-       footprint, what the bench's oracle_histogram_smith uses; cost of one LEADR G.
-     pf_vmf_sum_g2_mixture: the exact Smith Lambda of the Gaussian-slope lobes (DEFINITIONS,
-       masking), from the excesses pf_vmf_sum_add_masking adds (two Lambdas per lobe).
-   USE: s = pf_vmf_sum_zero();
-        for each lobe: s = pf_vmf_sum_add(s, lobe, wo, wi, base_var);
-                       [s = pf_vmf_sum_add_masking(s, lobe, wo, wi, base_var);]
-        I = pf_vmf_sum_specular(s, wo, wi, f0)      (or pf_vmf_sum_specular_mixture). */
-PF_STRUCT_BEGIN(pf_vmf_sum)
-    pf_real amp;      /* sum amp */
-    pf_real ndf;      /* sum of the lobes' D'(h) terms */
-    pf_real ex;       /* sum amp E[x], E[y], E[x^2], E[y^2], E[xy] of the lobes' slopes */
-    pf_real ey;
-    pf_real exx;
-    pf_real eyy;
-    pf_real exy;
-    pf_real excess_o; /* sum pf_vmf_lobe_excess(wo) (pf_vmf_sum_add_masking) */
-    pf_real excess_i; /* sum pf_vmf_lobe_excess(wi) */
-PF_STRUCT_END(pf_vmf_sum)
-
-PF_DEF pf_vmf_sum pf_vmf_sum_zero(void)
-{
-    pf_vmf_sum s;
-    s.amp = s.ndf = s.ex = s.ey = s.exx = s.eyy = s.exy = s.excess_o = s.excess_i = PF_R(0.0);
-    return s;
-}
-
-/* the half vector of wo, wi (wo + wi when it cannot be normalized: every term is then 0) */
-PF_DEF pf_vec3 pfi_vmf_half(pf_vec3 wo, pf_vec3 wi)
-{
-    pf_vec3 h = pf_vec3_add(wo, wi);
-    pf_real l = pf_vec3_length(h);
-    return l > PF_R(0.0) ? pf_vec3_scale(h, PF_R(1.0) / l) : h;
-}
-
-/* the lobe's amplitude and slope moments, from its slope statistics st */
-PF_DEF pf_vmf_sum pfi_vmf_sum_moments(pf_vmf_sum s, pf_real amp, pf_slope_stats st)
-{
-    s.amp += amp;
-    s.ex += amp * st.mean_x;
-    s.ey += amp * st.mean_y;
-    s.exx += amp * (st.var_x + st.mean_x * st.mean_x);
-    s.eyy += amp * (st.var_y + st.mean_y * st.mean_y);
-    s.exy += amp * (st.cov_xy + st.mean_x * st.mean_y);
-    return s;
-}
-
-/* Adds one lobe, slope form (see above). */
-PF_DEF pf_vmf_sum pf_vmf_sum_add(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real base_var)
-{
-    pf_slope_stats st = pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var);
-    s.ndf += pfi_vmf_ndf_stats(l.amp, st, pfi_vmf_half(wo, wi));
-    return pfi_vmf_sum_moments(s, l.amp, st);
-}
-
-/* Adds one lobe, vMF form: convolved with a vMF base lobe of kappa_b (pf_vmf_kappa_from_sigma
-   for a Beckmann base of slope deviation sigma). See above. */
-PF_DEF pf_vmf_sum pf_vmf_sum_add_vmf(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real kappa_b,
-                                     pf_real base_var)
-{
-    s.ndf += pf_vmf_lobe_ndf(l, pfi_vmf_half(wo, wi), kappa_b);
-    return pfi_vmf_sum_moments(s, l.amp, pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var));
-}
-
-/* Adds one lobe's Smith excesses toward wo and wi (for pf_vmf_sum_g2_mixture and
-   pf_vmf_sum_specular_mixture); call it with the same lobe as the add. */
-PF_DEF pf_vmf_sum pf_vmf_sum_add_masking(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec3 wi, pf_real base_var)
-{
-    pf_slope_stats st = pf_vmf_lobe_slope_stats(l.mu, l.kappa, base_var);
-    s.excess_o += pfi_vmf_excess_stats(l.amp, st, wo);
-    s.excess_i += pfi_vmf_excess_stats(l.amp, st, wi);
-    return s;
-}
-
-/* The mixture's slope mean and covariance (sum of the lobes' moments over sum amp; base_var
-   included). An empty sum gives zero statistics. */
-PF_DEF pf_slope_stats pf_vmf_sum_stats(pf_vmf_sum s)
-{
-    /* divisions, not times 1/amp: a subnormal sum amp has an infinite reciprocal, while each
-       moment is at most amp times a bounded lobe moment */
-    pf_real a = s.amp > PF_R(0.0) ? s.amp : PF_R(1.0);
-    return pf_slope_stats_from_moments(s.ex / a, s.ey / a, s.exx / a, s.eyy / a, s.exy / a);
-}
-
-/* Joint masking-shadowing of the mixture as one Gaussian (its slope mean and covariance):
-   1/(1 + Lambda(wo) + Lambda(wi)) (LEADR eq. 13); 0 when a direction is on or below the
-   mesosurface. In [0, 1]. */
-PF_DEF pf_real pf_vmf_sum_g2(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi)
-{
-    return pf_beckmann_masking_shadowing(wo, wi, pf_vmf_sum_stats(s));
-}
-
-/* the mixture's mesosurface projected area toward w times sum amp (LEADR eq. 1) */
-PF_DEF pf_real pfi_vmf_sum_area(pf_vmf_sum s, pf_vec3 w)
-{
-    return w.z * s.amp - w.x * s.ex - w.y * s.ey;
-}
-
-/* Joint masking-shadowing from the mixture's exact Smith Lambda (pf_vmf_sum_add_masking must
-   have been called for every lobe); 0 when a direction is on or below the mesosurface. */
-PF_DEF pf_real pf_vmf_sum_g2_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi)
-{
-    pf_real lo = pf_vmf_lambda(s.excess_o, pfi_vmf_sum_area(s, wo));
-    pf_real li = pf_vmf_lambda(s.excess_i, pfi_vmf_sum_area(s, wi));
-    if (!(lo < PF_LAMBDA_MAX) || !(li < PF_LAMBDA_MAX)) return PF_R(0.0);
-    return PF_R(1.0) / (PF_R(1.0) + lo + li);
-}
-
-/* Masking G1 = 1/(1 + Lambda(wo)) from the mixture's exact Smith Lambda (the wo excesses of
-   pf_vmf_sum_add_masking). 0 on or below the mesosurface. */
-PF_DEF pf_real pf_vmf_sum_g1_mixture(pf_vmf_sum s, pf_vec3 wo)
-{
-    pf_real lo = pf_vmf_lambda(s.excess_o, pfi_vmf_sum_area(s, wo));
-    if (!(lo < PF_LAMBDA_MAX)) return PF_R(0.0);
-    return PF_R(1.0) / (PF_R(1.0) + lo);
-}
-
-/* G / A_o as pf_leadr_specular has it (see the comment above pf_leadr_specular in
-   pf_beckmann.h): 1 / (P_o + max(A_o, 0) Lambda_i), P_o the projected area toward wo of the
-   facets that face it, so that a view below the mesosurface (A_o <= 0) but above the
-   macrosurface sees those facets instead of 0. Times sum amp:
-     one Gaussian (pf_vmf_sum_g2's statistics): P_o = pf_beckmann_facing_area, amp A_o =
-       area_o, Lambda_i = pf_beckmann_lambda;
-     mixture: each lobe's area + excess is amp E[(a - Y)+] = its facing area (>= 0), so
-       amp P_o = area_o + excess_o (= area_o (1 + Lambda_o) above the mesosurface) and
-       Lambda_i = pf_vmf_lambda. Below the mesosurface the sum cancels (excess_o ~ -area_o),
-       so its relative error grows as P_o / |area_o| shrinks.
-   Lambda_i as pf_leadr_specular has it: Smith's above the mesosurface; on or below it (but
-   above the macrosurface) the macrosurface's share of the light, max(P_i, wi.z) / wi.z - 1
-   (pf_beckmann_light_lambda in pf_beckmann.h), so that such a light lights the facets facing
-   it instead of giving 0: one Gaussian, P_i of the sum's statistics with A_i counted as 0
-   (pf_beckmann_light_lambda_stats); mixture, P_i = (area_i + excess_i) / amp, the mixture's
-   own facing area. The value jumps at area_i = 0 (Smith's 0 just above). */
-PF_DEF pf_real pfi_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0, int mixture_smith)
-{
-    pf_real area_o, area_i, den, f;
-    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
-    area_o = pfi_vmf_sum_area(s, wo);
-    area_i = pfi_vmf_sum_area(s, wi);
-    if (mixture_smith != 0) {
-        /* Smith's Lambda_i above the mean plane; below it max(P_i, wi.z) / wi.z - 1 with the
-           mixture's own facing area P_i = (area_i + excess_i) / amp */
-        /* P_i / wi.z with P_i divided by amp first (amp is normal, wi.z amp may be
-           subnormal, which -ffast-math flushes to 0: 0 / 0) */
-        den = area_o + s.excess_o +
-              pf_max(area_o, PF_R(0.0)) *
-                  (area_i > PF_R(0.0) ? pf_vmf_lambda(s.excess_i, area_i)
-                                      : pf_max((area_i + s.excess_i) / s.amp, wi.z) / wi.z - PF_R(1.0));
-    } else {
-        pf_slope_stats st = pf_vmf_sum_stats(s);
-        den = s.amp * (pf_beckmann_facing_area(wo, st) +
-                       pf_max(area_o / s.amp, PF_R(0.0)) *
-                           pf_beckmann_light_lambda_stats(wi, st));
-    }
-    if (!(den > PF_R(0.0))) return PF_R(0.0); /* no facet faces the view (in pf_real) */
-    f = pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi));
-    /* (ndf / amp) (G / A_o) / 4 with G / A_o = amp / den; ndf / den first: both scale with
-       amp, and F ndf alone is subnormal (0 under -ffast-math) for an amp near PF_REAL_MIN */
-    return (s.ndf / den) * (f * PF_R(0.25));
-}
-
-/* The multi-lobe specular radiance factor I = F D' G / (4 A_o) of the summed mixture with G
-   of the mixture as one Gaussian (pf_vmf_sum_g2). 0 when either direction is on or below
-   the macrosurface or the sum is empty; a view below the mesosurface sees the facets facing
-   it, a light below it lights them (pfi_vmf_sum_specular). Finite and >= 0 for
-   finite inputs. */
-PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
-{
-    return pfi_vmf_sum_specular(s, wo, wi, f0, 0);
-}
-
-/* The same with the mixture's exact Smith G (pf_vmf_sum_g2_mixture; needs
-   pf_vmf_sum_add_masking for every lobe). */
-PF_DEF pf_real pf_vmf_sum_specular_mixture(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
-{
-    return pfi_vmf_sum_specular(s, wo, wi, f0, 1);
-}
-
-/* ================================================================ scaling function: shader side
-   (Wu et al. 2019 eqs. 12-14, sec. 6; the CPU construction of T and S is pf_vmf_scale.h's). The filtered specular f of a footprint is multiplied by
-   T(x) S(wi, wo): T one value per patch (a 2D texture), S a table over
-   (theta_i, theta_o, phi_d) of nt x nt x np NODES (a 3D texture): theta_k = k theta_max /
-   (nt - 1), phi_d,k = k pi / (np - 1) (phi_d the azimuth between wi and wo), so that the
-   mirror configurations (theta_i = theta_o, phi_d = pi) and the normal are nodes; linear
-   between nodes, clamped beyond theta_max. Index (k_ti * nt + k_to) * np + k_pd.
-   Shader use (no sampler needed; with a GL_LINEAR, CLAMP_TO_EDGE 3D texture, sample it at
-   (pos + 0.5) / n per axis instead):
-     pf_vec3 c = pf_vmf_scale_coords(wo, wi, theta_max);
-     pf_real pi = pf_vmf_scale_texel_pos(c.x, nt), po = ...(c.y, nt), pd = ...(c.z, np);
-     i0 = floor(pos), i1 = min(i0 + 1, n - 1), frac = pos - i0  -- 8 fetches of S
-     pf_real S = pf_vmf_scale_trilinear(s000, s100, s010, s110, s001, s101, s011, s111, frac);
-     I = pf_vmf_scale_apply(T, S, pf_vmf_sum_specular(...));  */
-
-/* x clamped to [0, 1], NaN to 0 (whatever pf_clamp's build does with NaN) */
-PF_DEF pf_real pfi_vmf_unit(pf_real x) { return x > PF_R(0.0) ? (x < PF_R(1.0) ? x : PF_R(1.0)) : PF_R(0.0); }
-
-/* Normalized table coordinates of (wo, wi): (theta_i / theta_max, theta_o / theta_max,
-   phi_d / pi), each clamped to [0, 1]; node k of an n-node axis is at k / (n - 1). phi_d is 0
-   when either direction is along the normal.
-   theta_max <= 0 or NaN reads as pi/2. */
-PF_DEF pf_vec3 pf_vmf_scale_coords(pf_vec3 wo, pf_vec3 wi, pf_real theta_max)
-{
-    pf_real tm = theta_max > PF_R(0.0) ? theta_max : PF_R(0.5) * PF_PI;
-    pf_real ro = PF_SQRT(wo.x * wo.x + wo.y * wo.y), ri = PF_SQRT(wi.x * wi.x + wi.y * wi.y);
-    pf_real to = PF_ATAN2(ro, wo.z), ti = PF_ATAN2(ri, wi.z), pd = PF_R(0.0);
-    if (ro > PF_R(0.0) && ri > PF_R(0.0))
-        pd = PF_ATAN2(PF_FABS(wo.x * wi.y - wo.y * wi.x), wo.x * wi.x + wo.y * wi.y);
-    return pf_vec3_make(pfi_vmf_unit(ti / tm), pfi_vmf_unit(to / tm), pfi_vmf_unit(pd * PF_INV_PI));
-}
-
-/* The continuous node position of a normalized coordinate u on an n-node axis: u (n - 1)
-   clamped to [0, n - 1] (node k's value sits at k; 0 for n <= 1). */
-PF_DEF pf_real pf_vmf_scale_texel_pos(pf_real u, int n)
-{
-    pf_real hi = n > 1 ? PF_R(n - 1) : PF_R(0.0);
-    return pfi_vmf_unit(u) * hi;
-}
-
-PF_DEF pf_real pfi_vmf_lerp(pf_real a, pf_real b, pf_real t) { return a + (b - a) * t; }
-
-/* Trilinear blend of the 8 fetched cells (s_abc: a along theta_i, b theta_o, c phi_d; 0 the
-   lower cell, 1 the upper) with fractions f in [0, 1]^3. */
-PF_DEF pf_real pf_vmf_scale_trilinear(pf_real s000, pf_real s100, pf_real s010, pf_real s110, pf_real s001,
-                                      pf_real s101, pf_real s011, pf_real s111, pf_vec3 f)
-{
-    pf_real a0 = pfi_vmf_lerp(pfi_vmf_lerp(s000, s100, f.x), pfi_vmf_lerp(s010, s110, f.x), f.y);
-    pf_real a1 = pfi_vmf_lerp(pfi_vmf_lerp(s001, s101, f.x), pfi_vmf_lerp(s011, s111, f.x), f.y);
-    return pfi_vmf_lerp(a0, a1, f.z);
-}
-
-/* The scaled BRDF T S f (Wu et al. 2019 eqs. 13-14); a negative or NaN product gives 0, an
-   overflow PF_REAL_MAX. */
-PF_DEF pf_real pf_vmf_scale_apply(pf_real t, pf_real s, pf_real f)
-{
-    pf_real v = t * s * f;
-    return v > PF_R(0.0) ? (v < PF_REAL_MAX ? v : PF_REAL_MAX) : PF_R(0.0);
-}
-
-/* The multi-lobe specular of Wu et al. 2019 eq. 5 as written, with NO masking-shadowing
-   (G = 1): F D' / (4 A_o); the denominator of R when the scaling function is to carry all of
-   the masking. 0 on or below the macrosurface or mesosurface, or for an empty sum. */
-PF_DEF pf_real pf_vmf_sum_specular_unmasked(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
-{
-    pf_real area_o;
-    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0)) || !(s.amp > PF_R(0.0))) return PF_R(0.0);
-    area_o = pfi_vmf_sum_area(s, wo);
-    if (!(area_o > PF_R(0.0)) || !(pfi_vmf_sum_area(s, wi) > PF_R(0.0))) return PF_R(0.0);
-    return pf_fresnel_schlick(f0, pf_vec3_dot(pfi_vmf_half(wo, wi), wi)) * s.ndf / (PF_R(4.0) * area_o);
-}
-
-/* The base BRDF of one facet of slope (sx, sy): F(h.wi) D(h) G2 / 4 of a Beckmann lobe of slope
-   variance base_var about the slope (LEADR eqs. 10, 13, 16; h = (wo + wi)/|wo + wi|, G2 the
-   lobe's own Smith term 1/(1 + Lambda(wo) + Lambda(wi))), radiance toward wo per unit
-   radiance from wi with the light cosine included (as pf_vmf_sum_specular); 0 when a
-   direction is on or below the macrosurface or the facet, and when the half vector's slope
-   lies more than sqrt(80 base_var) from the facet's (D below 4e-18 of its peak). The facet
-   term of the scaling function's effective BRDF (pf_vmf_scale.h, Wu et al. 2019 eq. 6). */
-PF_DEF pf_real pf_vmf_facet_specular(pf_real sx, pf_real sy, pf_real base_var, pf_vec3 wo, pf_vec3 wi, pf_real f0)
-{
-    pf_slope_stats st = pf_slope_stats_make(sx, sy, base_var, base_var, PF_R(0.0));
-    pf_real ao = wo.z - sx * wo.x - sy * wo.y, ai = wi.z - sx * wi.x - sy * wi.y, lo, li;
-    pf_vec3 hv;
-    if (!(ao > PF_R(0.0)) || !(ai > PF_R(0.0)) || !(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
-    hv = pfi_vmf_half(wo, wi);
-    {
-        /* the lobe's exponent first: past 40 (D below 4e-18 of its peak) the facet adds nothing
-           the sum can hold, and the two Lambdas (erfc) are skipped: most facets of a patch are
-           that far from a narrow lobe's half vector */
-        pf_real ex = -hv.x / pf_max(hv.z, PF_R(1.0e-6)) - sx, ey = -hv.y / pf_max(hv.z, PF_R(1.0e-6)) - sy;
-        if (ex * ex + ey * ey > PF_R(80.0) * base_var) return PF_R(0.0);
-    }
-    lo = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wo), ao);
-    li = pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st, wi), ai);
-    return pf_fresnel_schlick(f0, pf_vec3_dot(hv, wi)) * pfi_vmf_ndf_stats(PF_R(1.0), st, hv) /
-           (PF_R(4.0) * (PF_R(1.0) + lo + li));
-}
-
-#endif /* PF_VMF_H */
 
 /* ================================================================= include/pf_vmf_fit.h ====== */
 /* pf_vmf_fit.h - CPU baking for pf_vmf.h: the spherical EM fit of vMF lobes to a footprint's

@@ -814,6 +814,41 @@ static double m_vmf_m16(const mctx *c) { return vmf_method(c, V16, 0, -1, 0); }
 static double m_vmf_m4_scaled(const mctx *c) { return vmf_method(c, V4, 0, SC4, 1); }
 static double m_vmf_m8_scaled(const mctx *c) { return vmf_method(c, V8, 0, SC8, 1); }
 static double m_vmf_m8_scaled_s(const mctx *c) { return vmf_method(c, V8, 0, SC8, 0); }
+/* pf_horizon.h: the specular with the reflecting facets' horizon visibility instead of Smith's
+   G (n = 32, two azimuths fetched toward wo and toward wi), alone or faded to the unshadowed
+   method by mip level (HOR_LOD_FULL .. HOR_LOD_SMITH) */
+static double m_leadr_horizon_n32(const mctx *c)
+{
+    return (double)pf_horizon_leadr_specular(c->wo, c->wi, fetch_slope_spec(c), PF_R(BASE_SIGMA * BASE_SIGMA),
+                                             ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), PF_R(F0));
+}
+static double m_leadr_horizon_lod_n32(const mctx *c)
+{
+    return (double)pf_horizon_leadr_specular_lod(c->wo, c->wi, fetch_slope_spec(c), PF_R(BASE_SIGMA * BASE_SIGMA),
+                                                 ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), PF_R(F0), ctx_lod(c),
+                                                 PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+}
+/* the texel's lobes of vMF pyramid p summed (slope form), then the horizon specular conditioned
+   on the slope-moment texel's statistics (lod: faded) */
+static double vmf_horizon_method(const mctx *c, int p, int lod)
+{
+    const lib_maps *L = c->L;
+    const int m = vmf_lobes[p], W = L->w, H = L->h;
+    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
+    const pf_real *tx = L->vmf[p] + id * 4 * m;
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
+    int j;
+    for (j = 0; j < m; ++j)
+        sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
+    pf_slope_stats st = fetch_slope_spec(c);
+    if (!lod)
+        return (double)pf_horizon_vmf_specular(sum, c->wo, c->wi, st, bv, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), PF_R(F0));
+    return (double)pf_horizon_vmf_specular_lod(sum, c->wo, c->wi, st, bv, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi),
+                                               PF_R(F0), ctx_lod(c), PF_R(HOR_LOD_FULL), PF_R(HOR_LOD_SMITH));
+}
+static double m_vmf_m16_horizon_n32(const mctx *c) { return vmf_horizon_method(c, V16, 0); }
+static double m_vmf_m16_horizon_lod_n32(const mctx *c) { return vmf_horizon_method(c, V16, 1); }
 /* diffuse */
 static double gg_diffuse(const mctx *c, int nodes, int n)
 {
@@ -918,6 +953,12 @@ static const method methods[] = {
     { TB(T_SPEC), "vmf_m4_scaled", m_vmf_m4_scaled, "4 vMF lobe texels, T, 8 nodes of S", 0 },
     { TB(T_SPEC), "vmf_m8_scaled", m_vmf_m8_scaled, "8 vMF lobe texels, T, 8 nodes of S", 0 },
     { TB(T_SPEC), "vmf_m8_scaled_s", m_vmf_m8_scaled_s, "8 vMF lobe texels, 8 nodes of S", 0 },
+    { TB(T_SPEC), "leadr_horizon_n32", m_leadr_horizon_n32, "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_SPEC), "leadr_horizon_lod_n32", m_leadr_horizon_lod_n32,
+      "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_SPEC), "vmf_m16_horizon_n32", m_vmf_m16_horizon_n32, "16 vMF lobe texels, slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    { TB(T_SPEC), "vmf_m16_horizon_lod_n32", m_vmf_m16_horizon_lod_n32,
+      "16 vMF lobe texels, slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
     { TB(T_DIFF), "leadr_gg_matched3", m_leadr_gg_matched3, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_matched5", m_leadr_gg_matched5, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_hermite3", m_leadr_gg_hermite3, "slope moments", 0 },
