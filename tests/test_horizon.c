@@ -958,7 +958,7 @@ static void test_horizon_specular_brute_force(void)
         st = pf_slope_moments_stats(pf_slope_moments_make((pf_real)m5[0], (pf_real)m5[1], (pf_real)m5[2], (pf_real)m5[3], (pf_real)m5[4]),
                                     (pf_real)(base_sigma * base_sigma));
         for (v = 0; v < 4; ++v) {
-            double phi = pf_test_uniform(&r, 0.0, 6.283), t = view_deg[v] * TPI / 180.0;
+            double phi = pf_test_uniform(&r, 0.0, 6.283), t = view_deg[v] * 3.14159265358979323846 / 180.0;
             double wo[3] = { sin(t) * cos(phi), sin(t) * sin(phi), cos(t) }, nb[3], nl, dn, wl[2][3];
             nb[0] = -m5[0]; nb[1] = -m5[1]; nb[2] = 1.0;
             nl = sqrt(nb[0] * nb[0] + nb[1] * nb[1] + 1.0);
@@ -1166,16 +1166,18 @@ static void edge_horizon_evaluators_finite(void)
                     bad += !pf_test_bits_finite(q2) || q2 < PF_R(0.0) || q2 > PF_R(1.0);
                     bad += !pf_test_bits_finite(q3) || q3 < PF_R(0.0) || q3 > PF_R(1.0);
                 }
-                /* the specular: any view, unit light, any moments and lod */
+                /* the specular: any view (LEADR's form), unit light, any moments and lod */
                 {
                     pf_slope_stats st = pf_slope_stats_make(v[a] > PF_R(2.0) ? PF_R(2.0) : v[a], PF_R(0.0), PF_R(0.11), PF_R(0.11), PF_R(0.0));
                     pf_hdf_moments hm = pf_hdf_moments_make(PF_R(0.2), PF_R(0.1), v[c]);
                     pf_vec3 wl = pf_vec3_normalize(pf_vec3_make(PF_R(-0.3), PF_R(0.2), PF_R(0.9)));
-                    pf_vmf_sum sm = pf_vmf_sum_add(pf_vmf_sum_zero(), pf_vmf_lobe_make(PF_R(1.0), PF_R(0.1), PF_R(0.0), PF_R(0.99)), w, wl,
+                    /* the lobe sum of pf_vmf.h takes unit directions (its half vector is normalized) */
+                    pf_vec3 wu = pf_vec3_normalize(w);
+                    pf_vmf_sum sm = pf_vmf_sum_add(pf_vmf_sum_zero(), pf_vmf_lobe_make(PF_R(1.0), PF_R(0.1), PF_R(0.0), PF_R(0.99)), wu, wl,
                                                    PF_R(0.01));
                     pf_real s1 = pf_horizon_leadr_specular(w, wl, st, PF_R(0.01), hm, hm, PF_R(1.0));
                     pf_real s2 = pf_horizon_leadr_specular_lod(w, wl, st, PF_R(0.01), hm, hm, PF_R(0.5), v[b], PF_R(2.0), PF_R(6.0));
-                    pf_real s3 = pf_horizon_vmf_specular_lod(sm, w, wl, st, PF_R(0.01), hm, hm, PF_R(1.0), v[b], PF_R(2.0), PF_R(6.0));
+                    pf_real s3 = pf_horizon_vmf_specular_lod(sm, wu, wl, st, PF_R(0.01), hm, hm, PF_R(1.0), v[b], PF_R(2.0), PF_R(6.0));
                     pf_real s4 = pf_horizon_specular_visibility(w, wl, hm, hm, st);
                     bad += !pf_test_bits_finite(s1) || s1 < PF_R(0.0);
                     bad += !pf_test_bits_finite(s2) || s2 < PF_R(0.0);
