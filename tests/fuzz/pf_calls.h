@@ -2126,6 +2126,53 @@ static void pfc_f_pf_specaa_leadr_specular(pfc_ctx *c)
 }
 static void pfc_f_pf_specaa_vmf_kappa(pfc_ctx *c) { pf_real k = pfc_kappa(c); pfc_ge0(c, pf_specaa_vmf_kappa(k, pfc_pos(c, 60))); }
 static void pfc_f_pf_specaa_vmf_lobe(pfc_ctx *c) { pf_vmf_lobe l = pfc_vmf_lobe(c); pfc_out_lobe(c, pf_specaa_vmf_lobe(l, pfc_pos(c, 60))); }
+/* ---- horizon: the specular (after pfc_vmf_sum, which it uses) */
+static void pfc_f_pf_horizon_specular_visibility(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pfc_01(c, pf_horizon_specular_visibility(wo, wi, mo, mi, pfc_stats(c, 0)));
+}
+static void pfc_f_pf_horizon_texel_stats(pfc_ctx *c)
+{
+    pf_slope_stats s = pf_horizon_texel_stats(pfc_stats(c, 0), pfc_var(c, 1));
+    pfc_out(c, s.mean_x); pfc_out(c, s.mean_y); pfc_ge0(c, s.var_x); pfc_ge0(c, s.var_y); pfc_out(c, s.cov_xy);
+}
+static void pfc_f_pf_horizon_leadr_specular(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_real bv = pfc_var(c, 0);
+    pfc_ge0(c, pf_horizon_leadr_specular(wo, wi, s, bv, mo, mi, pfc_u01(c)));
+}
+static void pfc_f_pf_horizon_leadr_specular_lod(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_real bv = pfc_var(c, 0), f0 = pfc_u01(c), l = pfc_sym(c, 4), a = pfc_sym(c, 4);
+    pfc_ge0(c, pf_horizon_leadr_specular_lod(wo, wi, s, bv, mo, mi, f0, l, a, pfc_sym(c, 4)));
+}
+static void pfc_f_pf_horizon_vmf_specular(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_real bv = pfc_var(c, 0);
+    pf_vmf_sum sum = pfc_vmf_sum(c, wo, wi, bv, 0);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pfc_ge0(c, pf_horizon_vmf_specular(sum, wo, wi, s, bv, mo, mi, pfc_u01(c)));
+}
+static void pfc_f_pf_horizon_vmf_specular_lod(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_real bv = pfc_var(c, 0);
+    pf_vmf_sum sum = pfc_vmf_sum(c, wo, wi, bv, 0);
+    pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_real f0 = pfc_u01(c), l = pfc_sym(c, 4), a = pfc_sym(c, 4);
+    pfc_ge0(c, pf_horizon_vmf_specular_lod(sum, wo, wi, s, bv, mo, mi, f0, l, a, pfc_sym(c, 4)));
+}
 
 static const pfc_entry pfc_table[] = {
     /* core */
@@ -2392,6 +2439,12 @@ static const pfc_entry pfc_table[] = {
     PFC_E(horizon, pf_horizon_diffuse_lod, PFC_SLOW, "grid, unit wi, HDF moments, lods +-16", ">= 0; blend of the two diffuse terms"),
     PFC_E(horizon, pf_horizon_lod_weight, PFC_WIDE, "lod and bounds +-16, any order", "in [0, 1]; NaN gives 0"),
     PFC_E(horizon, pf_horizon_masking_lod, 0, "unit directions, HDF moments, slope stats, lods +-16", "between pf_beckmann_g1 and pf_horizon_masking"),
+    PFC_E(horizon, pf_horizon_specular_visibility, 0, "unit directions, HDF moments, slope stats", "in [0, 1]; NaN moments 0"),
+    PFC_E(horizon, pf_horizon_texel_stats, 0, "slope stats, base variance (negative included)", "variances >= 0"),
+    PFC_E(horizon, pf_horizon_leadr_specular, 0, "unit directions, HDF moments, slope stats, base variance, f0", ">= 0, finite; 0 at or below the mean plane"),
+    PFC_E(horizon, pf_horizon_leadr_specular_lod, 0, "as pf_horizon_leadr_specular, lods +-16", ">= 0; blend with pf_leadr_specular"),
+    PFC_E(horizon, pf_horizon_vmf_specular, 0, "unit directions, 1-4 lobes, HDF moments, slope stats, f0", ">= 0, finite; 0 for an empty sum"),
+    PFC_E(horizon, pf_horizon_vmf_specular_lod, 0, "as pf_horizon_vmf_specular, lods +-16", ">= 0; blend with pf_vmf_sum_specular"),
     PFC_E(masks, pf_mask_params_make, PFC_WIDE, "+-2^100", "constructor"),
     PFC_E(masks, pf_mask_make, 0, "any 32-bit words", "constructor"),
     PFC_E(masks, pf_masks_v_max, 0, "shape -2..3", "unknown shapes read as the square"),
