@@ -89,8 +89,6 @@ float pfg_emu_sqrt(float x) { return (float)(sqrt((double)x) * (1.0 + emu_sign()
 /* sin, cos: absolute 2^-11 (Vulkan, inside [-pi, pi]; taken everywhere) */
 float pfg_emu_sin(float x) { return (float)(sin((double)x) + emu_sign() * ldexp(1.0, -11)); }
 float pfg_emu_cos(float x) { return (float)(cos((double)x) + emu_sign() * ldexp(1.0, -11)); }
-/* atan (two arguments too): 4096 ULP */
-float pfg_emu_atan2(float y, float x) { return (float)(atan2((double)y, (double)x) * (1.0 + emu_sign() * 4096.0 * ULP)); }
 
 /* ------------------------------------------------------------------ domains */
 typedef struct { char kind[4]; double a, b; } domain;
