@@ -109,6 +109,16 @@ static char units[32][48];
 static int nunits;
 static fnopt fnopts[256];
 static int nfnopts;
+/* `at` lines: one input (unnamed slots 0), one output's documented value (see domains.txt) */
+typedef struct {
+    char name[64];
+    int out, nslot;
+    double expect, tol;
+    char slot[12][64];
+    float val[12];
+} atcheck;
+static atcheck ats[64];
+static int nats;
 static int need_hz, need_vm; /* a domain names hz(k) / vm(k): build the pyramids */
 static int cur_pyr;           /* the current function draws from them: a record per sample */
 
@@ -151,6 +161,24 @@ static int read_domains(const char *path)
             if (!nm || !dm || nparams >= 256 || !parse_domain(dm, &params[nparams].d)) goto bad;
             snprintf(params[nparams].name, sizeof params[0].name, "%s", nm);
             nparams++;
+        } else if (!strcmp(tok, "at")) {
+            atcheck *a = &ats[nats];
+            char *nm = strtok_r(NULL, " \t\r\n", &save), *ou = strtok_r(NULL, " \t\r\n", &save);
+            char *ex = strtok_r(NULL, " \t\r\n", &save), *tl = strtok_r(NULL, " \t\r\n", &save);
+            if (!nm || !ou || !ex || !tl || nats >= 64) goto bad;
+            memset(a, 0, sizeof *a);
+            snprintf(a->name, sizeof a->name, "%s", nm);
+            a->out = atoi(ou);
+            a->expect = strtod(ex, NULL);
+            a->tol = strtod(tl, NULL);
+            while ((tok = strtok_r(NULL, " \t\r\n", &save)) != NULL) {
+                char *eq = strchr(tok, '=');
+                if (!eq || a->nslot >= 12) goto bad;
+                *eq = '\0';
+                snprintf(a->slot[a->nslot], sizeof a->slot[0], "%s", tok);
+                a->val[a->nslot++] = strtof(eq + 1, NULL);
+            }
+            nats++;
         } else if (!strcmp(tok, "fn")) {
             fnopt *o = &fnopts[nfnopts];
             char *nm = strtok_r(NULL, " \t\r\n", &save);
@@ -726,6 +754,32 @@ int main(int argc, char **argv)
                         ee_max, worst_ratio, caps, edge_fin, edge_nonfin, ok ? "ok" : "FAIL");
             }
         }
+    }
+    /* point checks: the documented value at one input, on the GPU and in the C float build */
+    for (m = 0; m < nats; m++) {
+        const atcheck *a = &ats[m];
+        const pfg_fn *ff = NULL;
+        char slots[1024], *sp, *save = NULL;
+        double cf[MAXIO], g;
+        int used = 0, ok;
+        if (only && !strstr(a->name, only)) continue;
+        for (k = 0; pfg_table_f[k].name; k++) if (!strcmp(pfg_table_f[k].name, a->name)) { ff = &pfg_table_f[k]; break; }
+        if (!ff) { if (!getenv("PFG_HEADERS")) { printf("FAIL at %s: not a GLSL-callable public function\n", a->name); failed++; } continue; }
+        memset(inp, 0, sizeof(float) * (size_t)(maxin > 0 ? maxin : 1));
+        snprintf(slots, sizeof slots, "%s", ff->slots);
+        for (j = 0, sp = strtok_r(slots, " ", &save); sp && j < ff->nin; sp = strtok_r(NULL, " ", &save), j++)
+            for (s = 0; s < a->nslot; s++) if (!strcmp(a->slot[s], sp)) { inp[j] = a->val[s]; used++; }
+        if (used != a->nslot || a->out < 0 || a->out >= ff->nout) { printf("FAIL at %s: unknown slot or output\n", a->name); failed++; continue; }
+        if (ff->nin > 0) memcpy(map_in, inp, sizeof(float) * (size_t)ff->nin);
+        memset(map_out, 0, sizeof(float) * (size_t)ff->nout);
+        gpu_run(pipeline_for(argv[2], ff->header), (uint32_t)ff->index, 1u);
+        g = (double)map_out[a->out];
+        ff->fn(inp, cf);
+        ok = fabs(g - a->expect) <= a->tol && fabs(cf[a->out] - a->expect) <= a->tol;
+        if (ok) passed++; else failed++;
+        printf("%s at %s(", ok ? "ok  " : "FAIL", a->name);
+        for (s = 0; s < a->nslot; s++) printf("%s%s=%g", s ? " " : "", a->slot[s], (double)a->val[s]);
+        printf(") out %d: GPU %.9g, C float %.9g, documented %.9g +- %g\n", a->out, g, cf[a->out], a->expect, a->tol);
     }
     clock_gettime(CLOCK_MONOTONIC, &t1);
     printf("time: shader compiles %.1f s, GPU runs %.1f s, C float and double %.1f s\n", t_compile, t_gpu, t_cpu);
