@@ -121,6 +121,8 @@ static void pyr_draw(double (*rnd)(void))
     int kind = (int)(rnd() * PFM_KIND_COUNT), level = (int)(rnd() * pyr.levels), side, i, j, n, fi, fj;
     long long off, t, t0;
     pf_vec3 wo = pyr_dir(rnd), wi = pyr_dir(rnd);
+    int pick = (int)(rnd() * PYR_LOBES); /* drawn always: the record's other fields do not depend
+                                            on which pyramids the run built */
     pf_slope_stats st;
     const pf_real *sl;
     if (kind >= PFM_KIND_COUNT) kind = PFM_KIND_COUNT - 1;
@@ -154,7 +156,7 @@ static void pyr_draw(double (*rnd)(void))
     }
     if (pyr.built_vm) {
         const pf_real *lb = pyr.vm[kind] + (size_t)4 * PYR_LOBES * (size_t)t;
-        int pick = (int)(rnd() * PYR_LOBES), q;
+        int q;
         pf_vmf_sum s = pf_vmf_sum_zero();
         pf_vmf_lobe l;
         double *r = pyr_vm_rec;
