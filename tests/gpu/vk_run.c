@@ -749,7 +749,8 @@ int main(int argc, char **argv)
             if (md) {
                 char caps[32] = "";
                 if (cap > 0.0) snprintf(caps, sizeof caps, "%g", cap);
-                else if (tight_lim > 0.0) snprintf(caps, sizeof caps, "%.2g (4x C)", tight_lim);
+                else if (tight_lim > 1e-4) snprintf(caps, sizeof caps, "4x C = %.2g", tight_lim);
+                else if (tight_lim > 0.0) snprintf(caps, sizeof caps, "1e-4");
                 fprintf(md, "| `%s` | %s | %.2g | %.2g | %.2g | %.2g | %s | %d / %d | %s |\n", ff->name, ff->header, eg_max, ec_max,
                         ee_max, worst_ratio, caps, edge_fin, edge_nonfin, ok ? "ok" : "FAIL");
             }
