@@ -12,7 +12,9 @@
      PF_SIN(x) PF_COS(x) PF_ATAN2(y,x)
                       the only libm entry points the library uses. Each defaults to the libm
                       function matching pf_real (sqrtf or sqrt, ...) and can be replaced on its
-                      own, e.g. #define PF_EXP(x) my_fast_expf(x).
+                      own, e.g. #define PF_EXP(x) my_fast_expf(x). Under PF_GLSL PF_ATAN2 is
+                      pf_atan2 (below), not the built-in atan(y, x). A replacement PF_ATAN2
+                      must return 0 at (0, 0): the callers rely on it.
      PF_GLSL          compile as GLSL 4.50 (see docs/porting.md): structs through
                       PF_STRUCT_BEGIN/END, no typedef, casts through PF_R, built-in math.
      PF_NO_MATH_H     do not include <math.h> (when every PF_ math macro is user-provided).
@@ -31,6 +33,8 @@
      pf_erfc(x), pf_erf(x)        complementary error function and error function (<= 2 ulp)
      pf_erfc_fast(x)              shader tier of erfc: A&S 7.1.26's cost, relative error 5.4e-6
      pf_exp_neg_sq(x)             exp(-x*x) without the rounding error of x*x (Gaussians)
+     pf_atan2(y, x)               atan2 that is 0 at (0, 0) on every target; float: our own
+                                  polynomial, 2 ulp (GLSL's PF_ATAN2)
      pf_min(a,b) pf_max(a,b) pf_clamp(x,lo,hi) pf_saturate(x) pf_sq(x)
      pf_vec2_make  pf_vec2_dot
      pf_vec3_make  pf_vec3_add  pf_vec3_sub  pf_vec3_scale  pf_vec3_dot  pf_vec3_cross
@@ -139,8 +143,10 @@ typedef float pf_real;
 #  ifndef PF_COS
 #    define PF_COS(x) cos(x)
 #  endif
+/* not GLSL's atan(y, x): undefined at (0, 0) (lavapipe returns +-3 pi/4 there) and allowed
+   4096 ulp (Vulkan); pf_atan2 below is the library's own, 0 at (0, 0) and within 2 ulp */
 #  ifndef PF_ATAN2
-#    define PF_ATAN2(y, x) atan(y, x)
+#    define PF_ATAN2(y, x) pf_atan2(y, x)
 #  endif
 #else
 /* PFI_LIBM(sqrt) is sqrt in double builds and sqrtf in float builds. */
@@ -231,6 +237,53 @@ PF_DEF pf_real pf_clamp_nan_lo(pf_real x, pf_real lo, pf_real hi)
 #endif
 }
 PF_DEF pf_real pf_sq(pf_real x) { return x * x; }
+
+/* atan2(y, x) in [-pi, pi], with 0 at (0, 0) for every sign of zero (C's atan2 gives +-pi for
+   x = -0; GLSL leaves atan(0, 0) undefined and lavapipe returns +-3 pi/4, outside the
+   [-pi/2, pi/2] of pf_horizon_elevation). A GPU that flushes subnormals reads a
+   subnormal pair as (0, 0) and returns 0 too. NaN in, NaN out; infinities as in C.
+   Float builds and GLSL: t = min/max of |x|, |y| in [0, 1], reduced as in Cephes' atanf to
+   u = t (t <= tan(pi/8)) or u = (t - 1)/(t + 1) from (min - max)/(min + max) (one division
+   either way), atan(u) = u + u z P(z), z = u^2, |u| <= tan(pi/8), Cephes' degree-3 P; then
+   pi/4 + ..., pi/2 - ... and pi - ... with the constants split in two floats. Error bound 2.5
+   ulp of the result; measured against long double atan2 (tests/test_core.c, 4e5 pairs over
+   60 decades of y/x): 2.1 ulp; with FMA contraction and x / y as x (1 / y), as a GPU compiles
+   it, 1.9 on 2e7 pairs in [-1, 1]^2 (glibc's atan2f: 1.5 by the same count; GLSL's atan may be
+   4096 ulp). |max| is scaled by 2^-100 or 2^100 beyond
+   2^100 or below 2^-100, so that the division stays where GLSL bounds it (2^-126 .. 2^126).
+   Double builds: libm's atan2 (PF_ATAN2) with the (0, 0) case decided first. */
+PF_DEF pf_real pf_atan2(pf_real y, pf_real x)
+{
+#ifdef PF_REAL_IS_FLOAT
+    pf_real ax = PF_FABS(x), ay = PF_FABS(y), mx = pf_max(ax, ay), mn = pf_min(ax, ay), u, z, r;
+    int big;
+    if (!(y == y) || !(x == x)) return x + y;
+    if (!(mx > PF_R(0.0))) return PF_R(0.0);
+    if (mx > PF_REAL_MAX) {                               /* an infinity: t is 1 or 0 */
+        mn = mn > PF_REAL_MAX ? PF_R(1.0) : PF_R(0.0);
+        mx = PF_R(1.0);
+    } else if (mx > PF_R(1.2676506002282294e30)) {        /* 2^100 */
+        mx *= PF_R(7.8886090522101181e-31);
+        mn *= PF_R(7.8886090522101181e-31);
+    } else if (mx < PF_R(7.8886090522101181e-31)) {
+        mx *= PF_R(1.2676506002282294e30);
+        mn *= PF_R(1.2676506002282294e30);
+    }
+    big = mn > PF_R(0.41421356237309505) * mx ? 1 : 0;    /* t > tan(pi/8) */
+    u = big != 0 ? (mn - mx) / (mn + mx) : mn / mx;
+    z = u * u;
+    r = (((PF_R(8.05374449538e-2) * z - PF_R(1.38776856032e-1)) * z + PF_R(1.99777106478e-1)) * z -
+         PF_R(3.33329491539e-1)) * z * u + u;
+    /* pi/4, pi/2, pi as float hi + lo */
+    if (big != 0) r = (r - PF_R(2.1855694143368964e-08)) + PF_R(0.78539818525314331);
+    if (ay > ax) r = PF_R(1.5707963705062866) - (r + PF_R(4.371138828673793e-08));
+    if (x < PF_R(0.0)) r = PF_R(3.1415927410125732) - (r + PF_R(8.742277657347586e-08));
+    return y < PF_R(0.0) ? -r : r;
+#else
+    if (x == PF_R(0.0) && y == PF_R(0.0)) return PF_R(0.0);
+    return PF_ATAN2(y, x);
+#endif
+}
 
 /* ---------------------------------------------------------------- erfc / erf
    PF_ERFC_BEGIN (section owned by the erfc implementation; see docs/core.md) */

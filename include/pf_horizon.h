@@ -258,12 +258,15 @@ PF_DEF pf_horizon_azimuth pf_horizon_azimuth_of(pf_vec3 w, int n)
     return a;
 }
 
-/* Elevation of w above the tangent plane, radians in [-pi/2, pi/2] (w need not be unit). */
+/* Elevation of w above the tangent plane, radians in [-pi/2, pi/2] (w need not be unit;
+   w = 0, and on a GPU that flushes them a subnormal w, gives 0). */
 PF_DEF pf_real pf_horizon_elevation(pf_vec3 w)
 {
     /* atan2 is scale-invariant: w is scaled to a largest component of 1 so that x^2 + y^2
        cannot overflow (float |w| > 1.8e19), which made sqrt(inf) and, under -ffast-math
-       (sqrt as x * rsqrt(x)), NaN; the max with PF_REAL_MIN keeps w = 0 at atan2(0, 0) = 0 */
+       (sqrt as x * rsqrt(x)), NaN, and cannot underflow (components of 1e-30 keep their
+       angle); the max with PF_REAL_MIN keeps w = 0 at PF_ATAN2(0, 0) = 0 (pf_atan2 under
+       GLSL: the built-in atan is undefined there) */
     pf_real s = PF_R(1.0) / pf_max(pf_max(PF_FABS(w.x), PF_FABS(w.y)), pf_max(PF_FABS(w.z), PF_REAL_MIN));
     pf_real x = w.x * s, y = w.y * s;
     return PF_ATAN2(w.z * s, PF_SQRT(x * x + y * y));

@@ -1,5 +1,5 @@
 /* test_core.c - tests of pf_core.h: pf_erfc / pf_erf against long double erfcl / erfl,
-   their edge cases, the scalar helpers and the small vectors (cross-checked against GLM
+   their edge cases, pf_atan2 against atan2l, the scalar helpers and the small vectors (cross-checked against GLM
    when compiled as C++).
 
    Built as C99 float, C99 double (-DPF_DOUBLE), C++11, clang sanitizers and -ffast-math
@@ -445,6 +445,93 @@ static void edge_scalar_helpers(void)
 #endif
 }
 
+/* ------------------------------------------------------------------ pf_atan2 */
+#ifdef PF_DOUBLE
+#  define ATAN2_MAX_ULP 1.0L /* libm's atan2 */
+#else
+#  define ATAN2_MAX_ULP 2.5L /* pf_core.h's bound; measured 2.09 here */
+#endif
+static long double ulp_of(long double ref)
+{
+    int e;
+    frexpl(ref, &e);
+    return ldexpl(1.0L, e - 1 - (PF_REAL_EPSILON == PF_R(2.220446049250313e-16) ? 52 : 23));
+}
+
+/* against atan2l: pairs in [-1, 1]^2, and with one side scaled by 10^-30 .. 10^30 (the
+   scaling to 2^+-100 and the reductions), in ulps of the result */
+static void test_atan2_accuracy(void)
+{
+    pf_test_rng r = pf_test_rng_seed(29);
+    pf_test_max m = pf_test_max_init();
+    long i;
+    for (i = 0; i < 400000; ++i) {
+        pf_real y = (pf_real)pf_test_uniform(&r, -1.0, 1.0), x = (pf_real)pf_test_uniform(&r, -1.0, 1.0), a;
+        long double ref, e;
+        if (i % 4 == 1) y *= (pf_real)pf_test_log_uniform(&r, 1e-30, 1e30);
+        if (i % 4 == 2) x *= (pf_real)pf_test_log_uniform(&r, 1e-30, 1e30);
+        if (i % 4 == 3) { y *= PF_R(1e-3); x *= PF_R(1e-36); }
+        if (x == PF_R(0.0) && y == PF_R(0.0)) continue;
+        a = pf_atan2(y, x);
+        ref = atan2l((long double)y, (long double)x);
+        e = fabsl((long double)a - ref) / ulp_of(ref);
+        pf_test_max_update(&m, e, (long double)i);
+    }
+    pf_test_note("pf_atan2 max %.2Lf ulp", m.err);
+    PF_CHECK(m.err <= ATAN2_MAX_ULP, "pf_atan2 max %.3Lf ulp (bound %.1Lf) at sample %.0Lf", m.err, ATAN2_MAX_ULP, m.at);
+}
+
+/* documented values: 0 at (0, 0) for every sign of zero; subnormal pairs (C keeps them; a GPU
+   that flushes reads them as (0, 0)); overflow-free near PF_REAL_MAX; infinities as in C;
+   NaN in, NaN out; the range [-pi, pi] */
+static void edge_atan2(void)
+{
+    const pf_real z = PF_R(0.0), mz = -PF_R(0.0), inf = PF_REAL_MAX * PF_R(2.0);
+    const pf_real pi4 = PF_PI * PF_R(0.25), pi2 = PF_PI * PF_R(0.5);
+    pf_real sub = PF_REAL_MIN * PF_R(0.25);
+    PF_CHECK(pf_atan2(z, z) == z && pf_atan2(mz, z) == z && pf_atan2(z, mz) == z && pf_atan2(mz, mz) == z,
+             "atan2 of zeros: %g %g %g %g", (double)pf_atan2(z, z), (double)pf_atan2(mz, z), (double)pf_atan2(z, mz),
+             (double)pf_atan2(mz, mz));
+    PF_CHECK(fabsl((long double)pf_atan2(PF_REAL_MAX, PF_REAL_MAX) - (long double)pi4) <= 2.0L * ulp_of((long double)pi4),
+             "atan2(max, max) = %.9g", (double)pf_atan2(PF_REAL_MAX, PF_REAL_MAX));
+    PF_CHECK(fabsl((long double)pf_atan2(PF_REAL_MAX, PF_REAL_MIN) - (long double)pi2) <= 1.0L * ulp_of((long double)pi2),
+             "atan2(max, min) = %.9g", (double)pf_atan2(PF_REAL_MAX, PF_REAL_MIN));
+    PF_CHECK(fabsl((long double)pf_atan2(PF_R(1.0), z) - (long double)pi2) <= 1.0L * ulp_of((long double)pi2) &&
+             fabsl((long double)pf_atan2(-PF_R(1.0), z) + (long double)pi2) <= 1.0L * ulp_of((long double)pi2),
+             "atan2(+-1, 0) = %.9g %.9g", (double)pf_atan2(PF_R(1.0), z), (double)pf_atan2(-PF_R(1.0), z));
+    PF_CHECK(fabsl((long double)pf_atan2(z, -PF_R(1.0)) - (long double)PF_PI) <= 1.0L * ulp_of((long double)PF_PI),
+             "atan2(0, -1) = %.9g", (double)pf_atan2(z, -PF_R(1.0)));
+#ifndef __FAST_MATH__ /* -ffast-math flushes subnormals (as a GPU may: then 0, the zero pair's value) */
+    PF_CHECK(fabsl((long double)pf_atan2(sub, sub) - (long double)pi4) <= 2.0L * ulp_of((long double)pi4), "atan2(sub, sub) = %.9g",
+             (double)pf_atan2(sub, sub));
+    PF_CHECK(fabsl((long double)pf_atan2(-sub, -sub) + 3.0L * (long double)pi4) <= 4.0L * ulp_of((long double)pi4), "atan2(-sub, -sub) = %.9g",
+             (double)pf_atan2(-sub, -sub));
+    PF_CHECK(fabsl((long double)pf_atan2(inf, inf) - (long double)pi4) <= 2.0L * ulp_of((long double)pi4) &&
+             fabsl((long double)pf_atan2(inf, PF_R(1.0)) - (long double)pi2) <= 1.0L * ulp_of((long double)pi2) &&
+             fabsl((long double)pf_atan2(PF_R(1.0), -inf) - (long double)PF_PI) <= 1.0L * ulp_of((long double)PF_PI) &&
+             pf_atan2(-PF_R(1.0), inf) == z,
+             "atan2 with infinities: %.9g %.9g %.9g %.9g", (double)pf_atan2(inf, inf), (double)pf_atan2(inf, PF_R(1.0)),
+             (double)pf_atan2(PF_R(1.0), -inf), (double)pf_atan2(-PF_R(1.0), inf));
+    {
+        pf_real nan = inf - inf, a = pf_atan2(nan, PF_R(1.0)), b = pf_atan2(PF_R(1.0), nan);
+        PF_CHECK(a != a && b != b, "atan2 with NaN: %g %g", (double)a, (double)b);
+    }
+#else
+    (void)inf;
+    (void)sub;
+#endif
+    {   /* the range, on a grid of the unit square's boundary scaled over 60 decades */
+        int i, j, bad = 0;
+        for (i = -30; i <= 30; i += 3)
+            for (j = 0; j < 64; ++j) {
+                pf_real t = PF_R(6.283185307179586) * PF_R(j) / PF_R(64.0), s = (pf_real)pow(10.0, (double)i);
+                pf_real a = pf_atan2(PF_SIN(t) * s, PF_COS(t) * s);
+                if (!(a >= -PF_PI && a <= PF_PI)) bad++;
+            }
+        PF_CHECK(bad == 0, "%d results outside [-pi, pi]", bad);
+    }
+}
+
 /* ------------------------------------------------------------------ vectors */
 static long double ld_len3(pf_vec3 v)
 {
@@ -715,6 +802,8 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_exp_neg_sq);
     PF_TEST_RUN(edge_exp_neg_sq);
     PF_TEST_RUN(edge_scalar_helpers);
+    PF_TEST_RUN(test_atan2_accuracy);
+    PF_TEST_RUN(edge_atan2);
     PF_TEST_RUN(test_vec_ops);
     PF_TEST_RUN(edge_vec3_normalize);
     PF_TEST_RUN(edge_vec3_normalize_extreme);

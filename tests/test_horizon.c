@@ -1191,6 +1191,45 @@ static void edge_horizon_evaluators_finite(void)
     PF_CHECK(bad == 0, "%d non-finite or out-of-range results", bad);
 }
 
+/* zero and underflowing directions give the documented values: elevation 0 for w = 0 (PF_ATAN2
+   at (0, 0) is 0: pf_core.h), the angle of the direction for components whose squares
+   underflow (pf_horizon_elevation scales w first), [-pi/2, pi/2] always; hence a zero w is at
+   the tangent plane for the conditional visibility (under a horizon at 0.1 +- 0.01: Phi(-10),
+   not 1) and sees no area (pf_horizon_visible_area: E[a] = 0 gives 0) */
+static void edge_horizon_zero_directions(void)
+{
+    const pf_real z = PF_R(0.0), t = PF_R(1e-30), q = PF_PI * PF_R(0.25);
+    pf_hdf_moments m = pf_hdf_moments_make(PF_R(0.1), PF_R(0.0101), PF_R(0.0));
+    pf_slope_stats st = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0));
+    static const pf_real v[] = { PF_R(0), PF_R(-0.0), PF_R(1e-30), PF_R(-1e-30), PF_R(1e-20), PF_R(0.5), PF_R(-1), PF_R(1e30) };
+    const int nv = (int)(sizeof v / sizeof v[0]);
+    int a, b, c, bad = 0;
+    PF_CHECK(pf_horizon_elevation(pf_vec3_make(z, z, z)) == z && pf_horizon_elevation(pf_vec3_make(-z, -z, -z)) == z,
+             "elevation of 0: %g", (double)pf_horizon_elevation(pf_vec3_make(z, z, z)));
+    PF_CHECK(pf_horizon_elevation(pf_vec3_make(t, z, z)) == z, "elevation of (1e-30, 0, 0): %g",
+             (double)pf_horizon_elevation(pf_vec3_make(t, z, z)));
+    PF_CHECK(fabsl((long double)pf_horizon_elevation(pf_vec3_make(t, z, t)) - (long double)q) <= 4.0L * (long double)PF_REAL_EPSILON &&
+             fabsl((long double)pf_horizon_elevation(pf_vec3_make(z, t, -t)) + (long double)q) <= 4.0L * (long double)PF_REAL_EPSILON,
+             "elevation of (1e-30, 0, +-1e-30): %.9g %.9g", (double)pf_horizon_elevation(pf_vec3_make(t, z, t)),
+             (double)pf_horizon_elevation(pf_vec3_make(z, t, -t)));
+    for (a = 0; a < nv; ++a)
+        for (b = 0; b < nv; ++b)
+            for (c = 0; c < nv; ++c) {
+                pf_real e = pf_horizon_elevation(pf_vec3_make(v[a], v[b], v[c]));
+                bad += !(e >= -PF_R(0.5) * PF_PI && e <= PF_R(0.5) * PF_PI);
+            }
+    PF_CHECK(bad == 0, "%d elevations outside [-pi/2, pi/2]", bad);
+    PF_CHECK(pf_horizon_visibility_given_slope(pf_vec3_make(z, z, z), m, st, z, z) <= PF_R(1e-6) &&
+             pf_horizon_visibility_given_slope(pf_vec3_make(t, z, z), m, st, z, z) <= PF_R(1e-6),
+             "visibility given slope at w = 0: %g, at (1e-30, 0, 0): %g",
+             (double)pf_horizon_visibility_given_slope(pf_vec3_make(z, z, z), m, st, z, z),
+             (double)pf_horizon_visibility_given_slope(pf_vec3_make(t, z, z), m, st, z, z));
+    PF_CHECK(pf_horizon_visible_area(pf_vec3_make(z, z, z), m, z, z) == z, "visible area at w = 0: %g",
+             (double)pf_horizon_visible_area(pf_vec3_make(z, z, z), m, z, z));
+    PF_CHECK(pf_horizon_azimuth_of(pf_vec3_make(z, z, z), 16).i0 == 0 && pf_horizon_azimuth_of(pf_vec3_make(z, z, z), 16).f == z,
+             "azimuth of w = 0");
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -1215,5 +1254,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_horizon_bad_input_writes_nothing);
     PF_TEST_RUN(test_horizon_guarded_buffers);
     PF_TEST_RUN(edge_horizon_evaluators_finite);
+    PF_TEST_RUN(edge_horizon_zero_directions);
     return PF_TEST_END();
 }

@@ -649,6 +649,24 @@ static void edge_safety_scale_contracts(void)
 
 /* ================================================================== end of SAFETY */
 
+/* pf_vmf_scale_coords at zero and underflowing directions: zenith 0 (PF_ATAN2 is 0 at (0, 0):
+   pf_core.h), so the theta coordinate 0, never 1 (GLSL's atan(0, 0) gave 3 pi/4, clamped to
+   1); phi_d 0 when either direction is along the normal. `tiny` squares to 0 in pf_real. */
+static void edge_scale_coords_zero_directions(void)
+{
+    const pf_real z = PF_R(0.0), up = PF_R(1.0), tm = PF_R(1.3089969389957472);
+    const pf_real tiny = PF_REAL_EPSILON < PF_R(1e-10) ? PF_R(1e-200) : PF_R(1e-30);
+    pf_vec3 c0 = pf_vmf_scale_coords(pf_vec3_make(z, z, z), pf_vec3_make(z, z, up), tm);
+    pf_vec3 c1 = pf_vmf_scale_coords(pf_vec3_make(tiny, tiny, z), pf_vec3_make(z, z, up), tm);
+    pf_vec3 c2 = pf_vmf_scale_coords(pf_vec3_make(z, z, up), pf_vec3_make(z, z, z), tm);
+    pf_vec3 c3 = pf_vmf_scale_coords(pf_vec3_make(tiny, z, z), pf_vec3_make(PF_R(0.6), z, PF_R(0.8)), tm);
+    PF_CHECK(c0.x == z && c0.y == z && c0.z == z, "wo = 0: (%g, %g, %g)", (double)c0.x, (double)c0.y, (double)c0.z);
+    PF_CHECK(c1.x == z && c1.y == z && c1.z == z, "wo underflowing: (%g, %g, %g)", (double)c1.x, (double)c1.y, (double)c1.z);
+    PF_CHECK(c2.x == z && c2.y == z && c2.z == z, "wi = 0: (%g, %g, %g)", (double)c2.x, (double)c2.y, (double)c2.z);
+    PF_CHECK(c3.y == z && c3.z == z && c3.x > PF_R(0.49) && c3.x < PF_R(0.50), "wo underflowing, wi at 36.9 deg: (%g, %g, %g)",
+             (double)c3.x, (double)c3.y, (double)c3.z);
+}
+
 int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
@@ -665,5 +683,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(edge_safety_scale_factor_extremes);
     PF_TEST_RUN(test_safety_effective_periodic);
     PF_TEST_RUN(edge_safety_scale_contracts);
+    PF_TEST_RUN(edge_scale_coords_zero_directions);
     return PF_TEST_END();
 }

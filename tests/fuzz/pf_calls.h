@@ -687,6 +687,11 @@ static void pfc_f_pf_clamp(pfc_ctx *c)
 static void pfc_f_pf_saturate(pfc_ctx *c) { pfc_01(c, pf_saturate(pfc_sym(c, 100))); }
 static void pfc_f_pf_sq(pfc_ctx *c) { pfc_ge0(c, pf_sq(pfc_sym(c, 60))); }
 static void pfc_f_pf_exp_neg_sq(pfc_ctx *c) { pfc_01(c, pf_exp_neg_sq(pfc_sym(c, 12))); }
+static void pfc_f_pf_atan2(pfc_ctx *c)
+{
+    pf_real y = pfc_sym(c, 100), x = pfc_sym(c, 100);
+    pfc_in(c, pf_atan2(y, x), -PF_PI, PF_PI);
+}
 static void pfc_f_pf_erfc(pfc_ctx *c) { pfc_in(c, pf_erfc(pfc_sym(c, 12)), PF_R(0.0), PF_R(2.0)); }
 static void pfc_f_pf_erfc_fast(pfc_ctx *c) { pfc_in(c, pf_erfc_fast(pfc_sym(c, 12)), PF_R(0.0), PF_R(2.0)); }
 static void pfc_f_pf_erf(pfc_ctx *c) { pfc_in(c, pf_erf(pfc_sym(c, 12)), PF_R(-1.0), PF_R(1.0)); }
@@ -2183,6 +2188,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(core, pf_saturate, 0, "+-[0, 2^100]", "range [0, 1]; NaN returns 1"),
     PFC_E(core, pf_sq, 0, "+-[0, 2^60]", "overflows past sqrt(PF_REAL_MAX)"),
     PFC_E(core, pf_exp_neg_sq, PFC_WIDE, "every finite x", "|x| clamped at 64 (result 0); range [0, 1]"),
+    PFC_E(core, pf_atan2, PFC_WIDE, "every finite y, x", "range [-pi, pi]; 0 at (0, 0)"),
     PFC_E(core, pf_erfc, PFC_WIDE, "every finite x", "range [0, 2]; underflows to 0 past x = 10.06 (f) / 27.23 (d); subnormal results lose relative accuracy"),
     PFC_E(core, pf_erfc_fast, PFC_WIDE, "every finite x", "range [0, 2]; shader tier: relative error 2e-6 + 6e-8 x^2 (float), 1.4e-6 (double)"),
     PFC_E(core, pf_erf, PFC_WIDE, "every finite x", "range [-1, 1]; relatively accurate down to subnormals"),

@@ -30,7 +30,6 @@ float pfg_emu_pow(float x, float y);
 float pfg_emu_sqrt(float x);
 float pfg_emu_sin(float x);
 float pfg_emu_cos(float x);
-float pfg_emu_atan2(float y, float x);
 
 #if defined(PFG_VARIANT) && PFG_VARIANT == 2
 #  define PF_EXP(x) pfg_emu_exp(x)
@@ -39,7 +38,9 @@ float pfg_emu_atan2(float y, float x);
 #  define PF_SQRT(x) pfg_emu_sqrt(x)
 #  define PF_SIN(x) pfg_emu_sin(x)
 #  define PF_COS(x) pfg_emu_cos(x)
-#  define PF_ATAN2(y, x) pfg_emu_atan2(y, x)
+/* GLSL's PF_ATAN2 is the library's pf_atan2 (pf_core.h), not the driver's atan: emulated as
+   that float code under the run's FTZ/DAZ, contraction and reciprocal division */
+#  define PF_ATAN2(y, x) pf_atan2(y, x)
 #  define PFG_TABLE pfg_table_emu
 #  define PFG_SKIPPED pfg_skipped_emu
 #elif defined(PFG_VARIANT) && PFG_VARIANT == 1
