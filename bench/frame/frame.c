@@ -5,7 +5,9 @@
    quad's screen-space derivatives. CPU-side bench program, not part of the library.
 
    WHAT IS MEASURED, per scene (plane toward the horizon, sphere), method (LEADR, naive
-   mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT) and sampler
+   mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT;
+   for LEADR also pf_encode.h's scaled UNORM, R16G16B16A16_UNORM + R16_UNORM and R8G8B8A8_UNORM +
+   R8_UNORM, the five moments centred on the map's mean slope, decoded in the shader) and sampler
    (trilinear, maxAnisotropy 1 and 16), over the lit pixels of bench/pictures.c's rule:
      error     |GPU - reference| / max(reference, floor), the reference being pictures.c's brute
                force for the same rays (tests/reference/pf_microsurface.h: every texel of the pixel's
@@ -73,6 +75,7 @@
 #include "pf_vmf_fit.h"
 #include "pf_map.h"
 #include "pf_microsurface.h"
+#include "pf_encode.h"
 #include "pic_scenes.h" /* bench/pictures.c's scenes, settings and brute-force reference */
 #include "pf_hist_oracle.h" /* the exact-histogram oracle, shared with bench/microsurface.c */
 #include "vk_common.h"
@@ -591,19 +594,21 @@ static VkImageView make_view(VkImage im, VkFormat fmt, uint32_t levels, uint32_t
 /* one pyramid texture: 4 channels per texel of every level, from the CPU pyramid(s) */
 typedef struct { VkImage im; VkDeviceMemory mem; VkImageView view; } fr_tex;
 
-/* uploads level data (levels x 4 channels, float) as fmt (f32 or f16); layers > 1: each level
-   holds its layers one after the other */
-static fr_tex upload_texture_layers(const float *texels, int W, int H, int levels, int layers, VkFormat fmt)
+/* uploads level data (levels x 4 channels, float) as fmt (f32 or f16), or (raw != NULL) the
+   texels already in fmt, bpp bytes each (the UNORM codes); layers > 1: each level holds its
+   layers one after the other */
+static fr_tex upload_texture_any(const float *texels, const void *raw, size_t raw_bpp, int W, int H, int levels, int layers, VkFormat fmt)
 {
     fr_tex t;
     int half = fmt == VK_FORMAT_R16G16B16A16_SFLOAT, l;
-    size_t bpp = half ? 8 : 16, total = (size_t)pf_mip_texel_count(W, H) * (size_t)layers, k;
+    size_t bpp = raw ? raw_bpp : (half ? 8 : 16), total = (size_t)pf_mip_texel_count(W, H) * (size_t)layers, k;
     VkBuffer sb;
     VkDeviceMemory sm;
     void *map;
     VkBufferImageCopy reg[PF_MIP_MAX_LEVELS];
     pfvk_host_buffer(&vk, total * bpp, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, &sb, &sm, &map);
-    if (half)
+    if (raw) memcpy(map, raw, total * bpp);
+    else if (half)
         for (k = 0; k < total * 4; ++k) ((unsigned short *)map)[k] = f2h(texels[k]);
     else memcpy(map, texels, total * 16);
     t.im = make_image(fmt, (uint32_t)W, (uint32_t)H, (uint32_t)levels, (uint32_t)layers, VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, &t.mem);
@@ -630,6 +635,10 @@ static fr_tex upload_texture_layers(const float *texels, int W, int H, int level
     vkFreeMemory(vk.dev, sm, NULL);
     t.view = make_view(t.im, fmt, (uint32_t)levels, (uint32_t)layers);
     return t;
+}
+static fr_tex upload_texture_layers(const float *texels, int W, int H, int levels, int layers, VkFormat fmt)
+{
+    return upload_texture_any(texels, NULL, 0, W, H, levels, layers, fmt);
 }
 static fr_tex upload_texture(const float *texels, int W, int H, int levels, VkFormat fmt)
 {
@@ -669,6 +678,11 @@ typedef struct {
 
 static VkDescriptorSetLayout dsl;
 static VkPipelineLayout playout;
+/* the UNORM storages' pf_slope_encoding (frame.frag's uniform block Enc, binding 5: three vec4 in
+   the struct's member order), one per map, as an engine passes a material's constants */
+static VkBuffer enc_buf;
+static VkDeviceMemory enc_mem;
+static float *enc_map;
 
 static fr_target make_target(int w, int h)
 {
@@ -847,7 +861,7 @@ static double render(const fr_target *t, VkPipeline p, VkDescriptorSet set, cons
 static void vk_setup(int levels_unused)
 {
     VkPhysicalDeviceFeatures en;
-    VkDescriptorSetLayoutBinding bind[5];
+    VkDescriptorSetLayoutBinding bind[6];
     VkDescriptorSetLayoutCreateInfo dlci;
     VkPushConstantRange pcr;
     VkPipelineLayoutCreateInfo plci;
@@ -861,15 +875,15 @@ static void vk_setup(int levels_unused)
     en.samplerAnisotropy = vk.features.samplerAnisotropy;
     pfvk_open_device(&vk, &en, VK_QUEUE_GRAPHICS_BIT);
     memset(bind, 0, sizeof bind);
-    for (k = 0; k < 5; ++k) {
+    for (k = 0; k < 6; ++k) {
         bind[k].binding = (uint32_t)k;
-        bind[k].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        bind[k].descriptorType = k == 5 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         bind[k].descriptorCount = 1;
         bind[k].stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
     }
     memset(&dlci, 0, sizeof dlci);
     dlci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    dlci.bindingCount = 5;
+    dlci.bindingCount = 6;
     dlci.pBindings = bind;
     VKC(vkCreateDescriptorSetLayout(vk.dev, &dlci, NULL, &dsl));
     pcr.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -882,6 +896,12 @@ static void vk_setup(int levels_unused)
     plci.pushConstantRangeCount = 1;
     plci.pPushConstantRanges = &pcr;
     VKC(vkCreatePipelineLayout(vk.dev, &plci, NULL, &playout));
+    {
+        void *em;
+        pfvk_host_buffer(&vk, 12 * sizeof(float), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, &enc_buf, &enc_mem, &em);
+        enc_map = (float *)em;
+        memset(enc_map, 0, 12 * sizeof(float));
+    }
     memset(&cpci, 0, sizeof cpci);
     cpci.sType = VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO;
     cpci.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -915,7 +935,8 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
     VkDescriptorSetAllocateInfo ai;
     VkDescriptorSet set;
     VkDescriptorImageInfo ii[5];
-    VkWriteDescriptorSet wr[5];
+    VkDescriptorBufferInfo bi;
+    VkWriteDescriptorSet wr[6];
     int k;
     memset(&ai, 0, sizeof ai);
     ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -936,11 +957,29 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
         wr[k].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         wr[k].pImageInfo = &ii[k];
     }
-    vkUpdateDescriptorSets(vk.dev, 5, wr, 0, NULL);
+    bi.buffer = enc_buf; /* binding 5: the encoding (read by the UNORM shaders only) */
+    bi.offset = 0;
+    bi.range = 12 * sizeof(float);
+    wr[5].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    wr[5].dstSet = set;
+    wr[5].dstBinding = 5;
+    wr[5].descriptorCount = 1;
+    wr[5].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    wr[5].pBufferInfo = &bi;
+    vkUpdateDescriptorSets(vk.dev, 6, wr, 0, NULL);
     return set;
 }
 
 /* ---------------------------------------------------------------- statistics */
+/* 100 v with `digits` decimals and a percent sign, in one of 4 rotating static buffers */
+static const char *fmt_pct(double v, int digits)
+{
+    static char buf[4][32];
+    static int n;
+    char *b = buf[n++ & 3];
+    snprintf(b, sizeof buf[0], "%.*f%%", digits, 100.0 * v);
+    return b;
+}
 static double rel(double v, double ref, double fl) { return fabs(v - ref) / (ref > fl ? ref : fl); }
 
 /* ---------------------------------------------------------------- the CPU work on every core
@@ -1136,9 +1175,11 @@ static void vmf_item(void *ctx, long long k)
 }
 
 /* ---------------------------------------------------------------- main */
-#define NSTORE 2
+#define NSTORE 4
 #define NANISO 2
-static const char *const store_name[NSTORE] = {"f32", "f16"};
+#define ST_UNORM16 2 /* pf_encode.h's scaled UNORM (LEADR only): 16 and 8 bits */
+#define ST_UNORM8  3
+static const char *const store_name[NSTORE] = {"f32", "f16", "unorm16", "unorm8"};
 static const double aniso_of[NANISO] = {1.0, MAX_ANISO};
 
 /* one table row: scene x method x storage x sampler */
@@ -1165,8 +1206,8 @@ static void rel_stats(const double *v, const double *ref, const unsigned char *u
     *p95 = quantile(scratch, n, 0.95);
 }
 
-/* SPIR-V ops of scene s, method m from OPS_FILE ("scene method ops branches" lines); -1 if absent */
-static int ops_of(const char *file, int s, int m, int *branches)
+/* SPIR-V ops of scene s, shader key from OPS_FILE ("scene method ops branches" lines); -1 if absent */
+static int ops_of_key(const char *file, int s, const char *key, int *branches)
 {
     char sc[32], me[32];
     int o, b;
@@ -1174,7 +1215,7 @@ static int ops_of(const char *file, int s, int m, int *branches)
     *branches = -1;
     if (!f) return -1;
     while (fscanf(f, "%31s %31s %d %d", sc, me, &o, &b) == 4)
-        if (!strcmp(sc, scene_key[s]) && !strcmp(me, method_key[m])) {
+        if (!strcmp(sc, scene_key[s]) && !strcmp(me, key)) {
             fclose(f);
             *branches = b;
             return o;
@@ -1182,6 +1223,7 @@ static int ops_of(const char *file, int s, int m, int *branches)
     fclose(f);
     return -1;
 }
+static int ops_of(const char *file, int s, int m, int *branches) { return ops_of_key(file, s, method_key[m], branches); }
 
 int main(int argc, char **argv)
 {
@@ -1193,6 +1235,7 @@ int main(int argc, char **argv)
     fr_maps maps;
     float *texA, *texB, *texL;
     fr_tex tex[NSTORE][2], probe, vtex[2];
+    pf_slope_encoding enc;
     double t_vmf[2];
     VkSampler samp[NANISO];
     VkDescriptorPool dpool;
@@ -1282,17 +1325,45 @@ int main(int argc, char **argv)
     /* Vulkan: device, textures, samplers, descriptor sets */
     vk_setup(levels);
     printf("frame: device %s%s\n", vk.name, vk.is_cpu ? " (a CPU device: no GPU times)" : "");
+    /* the UNORM storages (pf_encode.h): one encoding for the whole pyramid (reference = the mean
+       slope over every texel of every level, ranges of the centred channels), the same for 16
+       and 8 bits; texA = the four first centred channels, texB = the fifth (an R texture) */
+    if (pf_slope_encoding_find(maps.slope_pyr, nt, 1, &enc) != PF_OK) return 1;
+    {
+        const pf_real e[12] = {enc.ref_x, enc.ref_y, enc.off_x, enc.off_y, enc.off_xx, enc.off_yy,
+                               enc.off_xy, enc.sc_x, enc.sc_y, enc.sc_xx, enc.sc_yy, enc.sc_xy};
+        for (k = 0; k < 12; ++k) enc_map[k] = (float)e[k];
+    }
     for (st = 0; st < NSTORE; ++st) {
-        VkFormat f = st ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
-        VkFormatProperties fp;
-        vkGetPhysicalDeviceFormatProperties(vk.phys, f, &fp);
-        fmt_ok[st] = (fp.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+        static const VkFormat fa[NSTORE] = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R16G16B16A16_UNORM,
+                                            VK_FORMAT_R8G8B8A8_UNORM};
+        static const VkFormat fb[NSTORE] = {VK_FORMAT_R32G32B32A32_SFLOAT, VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R16_UNORM,
+                                            VK_FORMAT_R8_UNORM};
+        VkFormatProperties fp, fq;
+        vkGetPhysicalDeviceFormatProperties(vk.phys, fa[st], &fp);
+        vkGetPhysicalDeviceFormatProperties(vk.phys, fb[st], &fq);
+        fmt_ok[st] = (fp.optimalTilingFeatures & fq.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
         if (!fmt_ok[st]) {
             printf("frame: %s textures cannot be filtered linearly on this device: skipped\n", store_name[st]);
             continue;
         }
-        tex[st][0] = upload_texture(texA, W, H, levels, f);
-        tex[st][1] = upload_texture(texB, W, H, levels, f);
+        if (st < ST_UNORM16) {
+            tex[st][0] = upload_texture(texA, W, H, levels, fa[st]);
+            tex[st][1] = upload_texture(texB, W, H, levels, fb[st]);
+        } else {
+            int fmt = st == ST_UNORM16 ? PF_ENCODE_UNORM16 : PF_ENCODE_UNORM8;
+            size_t b = (size_t)pf_encode_bytes(fmt);
+            unsigned char *q = (unsigned char *)pfb_xmalloc(5 * b * (size_t)nt), *qa = (unsigned char *)pfb_xmalloc(4 * b * (size_t)nt);
+            unsigned char *qb = (unsigned char *)pfb_xmalloc(b * (size_t)nt);
+            if (pf_slope_moments_encode(maps.slope_pyr, nt, &enc, fmt, q) != PF_OK) return 1;
+            for (k = 0; k < nt; ++k) {
+                memcpy(qa + 4 * b * (size_t)k, q + 5 * b * (size_t)k, 4 * b);
+                memcpy(qb + b * (size_t)k, q + 5 * b * (size_t)k + 4 * b, b);
+            }
+            tex[st][0] = upload_texture_any(NULL, qa, 4 * b, W, H, levels, 1, fa[st]);
+            tex[st][1] = upload_texture_any(NULL, qb, b, W, H, levels, 1, fb[st]);
+            free(q), free(qa), free(qb);
+        }
     }
     /* the probe in f16: small integers are exact, and f16 filters linearly on every device */
     probe = upload_texture(texL, W, H, levels, VK_FORMAT_R16G16B16A16_SFLOAT);
@@ -1318,15 +1389,17 @@ int main(int argc, char **argv)
         samp[an] = make_sampler((float)aniso_used[an], levels);
     }
     {
-        VkDescriptorPoolSize ps;
+        VkDescriptorPoolSize ps[2];
         VkDescriptorPoolCreateInfo dpci;
-        ps.type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        ps.descriptorCount = 5 * NSTORE * NANISO;
+        ps[0].type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        ps[0].descriptorCount = 5 * NSTORE * NANISO;
+        ps[1].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        ps[1].descriptorCount = NSTORE * NANISO;
         memset(&dpci, 0, sizeof dpci);
         dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
         dpci.maxSets = NSTORE * NANISO;
-        dpci.poolSizeCount = 1;
-        dpci.pPoolSizes = &ps;
+        dpci.poolSizeCount = 2;
+        dpci.pPoolSizes = ps;
         VKC(vkCreateDescriptorPool(vk.dev, &dpci, NULL, &dpool));
         for (st = 0; st < NSTORE; ++st)
             for (an = 0; an < NANISO; ++an)
@@ -1412,22 +1485,28 @@ int main(int argc, char **argv)
         memset(pc.motion, 0, sizeof pc.motion);
         n_mism[s] = 0;
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
-            VkPipeline pipe;
+            VkPipeline pipe, pipe_enc = VK_NULL_HANDLE, pp;
             snprintf(path, sizeof path, "%s/frame_%s_%s.spv", spv, scene_key[s], method_key[m]);
             pipe = make_pipeline(&tg, w, h, vert, path);
+            if (m == MT_LEADR && (fmt_ok[ST_UNORM16] || fmt_ok[ST_UNORM8])) { /* LEADR decoding the UNORM moments */
+                snprintf(path, sizeof path, "%s/frame_%s_leadr_unorm.spv", spv, scene_key[s]);
+                pipe_enc = make_pipeline(&tg, w, h, vert, path);
+            }
             for (st = 0; st < NSTORE; ++st)
                 for (an = 0; an < NANISO; ++an) {
                     fr_row *rw = &rows[s][m][st][an];
                     double times[5], lod_sum = 0.0, lod_sum2 = 0.0, dummy;
                     int nl = 0;
                     if (!fmt_ok[st]) continue;
+                    if (st >= ST_UNORM16 && m != MT_LEADR) continue; /* the UNORM encodings: LEADR's moments only */
+                    pp = st >= ST_UNORM16 ? pipe_enc : pipe;
                     if (m >= MT_VMF4 && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
                     if (m == MT_LEADR_TAPS && an > 0) continue;       /* its own anisotropic filter, isotropic sampler */
                     rw->done = 1;
-                    times[0] = render(&tg, pipe, set[st][an], &pc, w, h);
+                    times[0] = render(&tg, pp, set[st][an], &pc, w, h);
                     memcpy(gpu, tg.rb_map, sizeof(float) * 8 * (size_t)npx);
                     if (have_ts) {
-                        for (k = 1; k < 5; ++k) times[k] = render(&tg, pipe, set[st][an], &pc, w, h);
+                        for (k = 1; k < 5; ++k) times[k] = render(&tg, pp, set[st][an], &pc, w, h);
                         rw->ms = quantile(times, 5, 0.5);
                     } else rw->ms = -1.0;
                     for (i = 0; i < npx; ++i) {
@@ -1495,6 +1574,7 @@ int main(int argc, char **argv)
                                rw->lod_rmin);
                 }
             vkDestroyPipeline(vk.dev, pipe, NULL);
+            if (pipe_enc != VK_NULL_HANDLE) vkDestroyPipeline(vk.dev, pipe_enc, NULL);
         }
         /* pixels in quads at the surface's edge (the shader's ray-differential fallback) */
         n_edge[s] = 0;
@@ -1772,6 +1852,12 @@ int main(int argc, char **argv)
                 "engines do for moment maps: N = min(ceil(rho_max / rho_min), 16) trilinear `textureLod` taps at the centres of N "
                 "equal segments of the major axis at lod log2(rho_max / N), the moments averaged, LEADR once (its CPU path "
                 "emulates the same taps);\n"
+                "- **storage**: f32 and f16, the two RGBA textures above; unorm16 and unorm8 (LEADR only), `pf_encode.h`'s "
+                "scaled UNORM: R16G16B16A16_UNORM + R16_UNORM (R8G8B8A8_UNORM + R8_UNORM) holding the five moments centred on "
+                "the map's mean slope, E[x - rx], E[y - ry], E[(x - rx)^2], E[(y - ry)^2] | E[(x - rx)(y - ry)], each over its "
+                "range for the whole pyramid (`pf_slope_encoding_find`, `pf_slope_moments_encode`), decoded in the shader after "
+                "the sampler's filtering by `pf_slope_moments_decode` (affine with one reference per map, so the driver's "
+                "trilinear and anisotropic blends still filter the moments; the encoding in push constants);\n"
                 "- **non-finite**: NaN or infinite pixels of the whole GPU frame; **SPIR-V ops (branches)**: the fragment shader "
                 "after `spirv-opt -O`, counted as bench/gpu/count.sh counts (the \"none\" shader, ray cast, derivatives and three "
                 "fetches, is the baseline of the others).\n\n"
@@ -1806,12 +1892,14 @@ int main(int argc, char **argv)
                 100.0 * lex_err[s][0], 100.0 * lex_p95[s][0], 100.0 * lex_err[s][1], 100.0 * lex_p95[s][1], lex_err[s][0] / oracle_err[s][0],
                 lex_err[s][1] / oracle_err[s][1], have_ts ? " - |" : "");
         for (m = MT_LEADR; m < MT_COUNT; ++m) {
-            int ops = ops_of(ops_file, s, m, &br);
+            int ops;
             for (st = 0; st < NSTORE; ++st)
                 for (an = 0; an < NANISO; ++an) {
                     const fr_row *rw = &rows[s][m][st][an];
                     char drv[64] = "-", lod[32] = "-";
                     if (!rw->done) continue;
+                    /* the UNORM rows: the decoding shader's count */
+                    ops = st >= ST_UNORM16 ? ops_of_key(ops_file, s, "leadr_unorm", &br) : ops_of(ops_file, s, m, &br);
                     if (rw->vs_drv >= 0.0) snprintf(drv, sizeof drv, "%.4f%%, %.4f%%", 100.0 * rw->vs_drv, 100.0 * rw->vs_drv_p95);
                     if (rw->lod_diff > -1e29 && an == 0) snprintf(lod, sizeof lod, "%.4f", rw->lod_diff);
                     if (rw->lod_diff > -1e29 && an > 0) snprintf(lod, sizeof lod, "%+.2f, %+.2f", rw->lod_diff, rw->lod_rmin);
@@ -1900,6 +1988,21 @@ int main(int argc, char **argv)
                     "lanes it runs together, which made black pixels where a pixel's level differed from that lane's).\n",
                 100.0 * worst32, worst32 <= 0.01 ? "met" : "NOT met", 100.0 * worst_drv);
         fprintf(md, "- within 3%% with f16 storage: worst mean %.3f%%: %s.\n", 100.0 * worst16, worst16 <= 0.03 ? "met" : "NOT met");
+        if (rows[0][MT_LEADR][ST_UNORM16][0].done && rows[1][MT_LEADR][ST_UNORM16][0].done) {
+            const fr_row *u[2][2] = {{&rows[0][MT_LEADR][ST_UNORM16][0], &rows[1][MT_LEADR][ST_UNORM16][0]},
+                                     {&rows[0][MT_LEADR][ST_UNORM8][0], &rows[1][MT_LEADR][ST_UNORM8][0]}};
+            double wu = u[0][0]->vs_cpu > u[0][1]->vs_cpu ? u[0][0]->vs_cpu : u[0][1]->vs_cpu;
+            int b0, b1, o0 = ops_of(ops_file, 0, MT_LEADR, &b0), o1 = ops_of_key(ops_file, 0, "leadr_unorm", &b1);
+            fprintf(md, "- within 3%% with 16-bit storage, LEADR from R16G16B16A16_UNORM + R16_UNORM (pf_encode.h: the five moments "
+                        "centred on the map's mean slope, one scale and offset per channel for the whole pyramid, decoded after "
+                        "the sampler's filtering by `pf_slope_moments_decode`): worst mean %.3f%%: %s (plane %.3f%%, sphere %.3f%%; "
+                        "against the CPU path at the driver's lod, storage and arithmetic alone: %.4f%%, %.4f%%). 8 bits "
+                        "(R8G8B8A8_UNORM + R8_UNORM): plane %s, sphere %s (at the driver's lod %s, %s). The decode adds %d SPIR-V "
+                        "ops to LEADR's %d (plane: uniform loads and the five multiply-adds and (1) of pf_encode.h).\n",
+                    100.0 * wu, wu <= 0.03 ? "met" : "NOT met", 100.0 * u[0][0]->vs_cpu, 100.0 * u[0][1]->vs_cpu, 100.0 * u[0][0]->vs_drv,
+                    100.0 * u[0][1]->vs_drv, u[1][0]->done ? fmt_pct(u[1][0]->vs_cpu, 3) : "-", u[1][1]->done ? fmt_pct(u[1][1]->vs_cpu, 3) : "-",
+                    u[1][0]->done ? fmt_pct(u[1][0]->vs_drv, 4) : "-", u[1][1]->done ? fmt_pct(u[1][1]->vs_drv, 4) : "-", o1 - o0, o0);
+        }
         fprintf(md, "- 16x anisotropy lowers the plane's LEADR error by at least a fifth (f32): against the box reference %.1f%% -> "
                     "%.1f%% (%s); against the pixel reference %.1f%% -> %.1f%% (%s); the CPU path with the specification's "
                     "anisotropic rule, pixel reference: %.1f%% -> %.1f%% (%s).\n",

@@ -10,9 +10,16 @@
                  shader (up to 16 textureLod taps along the major axis, isotropic sampler),
                  5 and 6 vMF m = 4 and 8 (lobe pyramids, texelFetch of the 8 texels of a
                  trilinear fetch at the driver's lod)
+     PFF_ENCODED 1 (with PFF_METHOD 1): the moments stored in scaled UNORM (pf_encode.h:
+                 16 or 8 bits, centred on the map's mean slope), decoded after the filtered
+                 fetch with pf_slope_moments_decode and the map's encoding (uniform block Enc,
+                 binding 5); the decode is affine with one reference per map, so the sampler's
+                 trilinear and anisotropic blends of the stored texels still filter the moments
    Textures (one VkImage each, the whole mip chain of the library's CPU pyramid):
      texA = (E[x], E[y], E[x^2], E[y^2]) of the micro-slopes, texB = (E[xy], E[n]) with E[n]
-     the unnormalized average unit normal (pf_normal_pyramid_from_normals); texL, the lod
+     the unnormalized average unit normal (pf_normal_pyramid_from_normals); encoded (PFF_ENCODED):
+     texA = the centred (E[x - rx], E[y - ry], E[(x - rx)^2], E[(y - ry)^2]), texB.x =
+     E[(x - rx)(y - ry)] (an R texture), the UNORM values the sampler returns; texL, the lod
      probe (level l holds l everywhere), read with the same sampler and gradients.
    The texel coordinates' screen derivatives come from the 2x2 quad (dFdxFine, dFdyFine), as in
    an engine, and go to the sampler through textureGrad, so the driver picks the level of detail
@@ -33,6 +40,13 @@
 #if PFF_METHOD >= 5
 #  include "pf_vmf.h"
 #endif
+#ifndef PFF_ENCODED
+#  define PFF_ENCODED 0
+#endif
+#if PFF_ENCODED
+#  include "pf_vmf.h" /* pf_encode.h's lobe decoder needs it; unused here, optimized out */
+#  include "pf_encode.h"
+#endif
 
 layout(push_constant) uniform PC {
     vec4 pos;   /* camera position; w: tan of half the vertical field of view */
@@ -43,6 +57,13 @@ layout(push_constant) uniform PC {
     vec4 map;   /* map width, height (texels), sphere tiles, sphere radius */
     vec4 motion; /* x: the sphere's turn about its pole (radians; the texture moves, frame and light stay) */
 } pc;
+#if PFF_ENCODED
+layout(set = 0, binding = 5) uniform Enc { /* the map's pf_slope_encoding, in its member order */
+    vec4 enc0; /* ref_x, ref_y, off_x, off_y */
+    vec4 enc1; /* off_xx, off_yy, off_xy, sc_x */
+    vec4 enc2; /* sc_y, sc_xx, sc_yy, sc_xy */
+} ue;
+#endif
 layout(set = 0, binding = 0) uniform sampler2D texA;
 layout(set = 0, binding = 1) uniform sampler2D texB;
 layout(set = 0, binding = 2) uniform sampler2D texL; /* the lod probe: every texel of level l is l */
@@ -152,7 +173,14 @@ void main()
     pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
 #if PFF_METHOD == 1
     /* LEADR (Dupuy et al. 2013 eq. 17) from the filtered moments */
+#  if PFF_ENCODED
+    /* the filtered UNORM channels decoded by the map's affine map (pf_encode.h (1)) */
+    pf_slope_encoding enc = pf_slope_encoding(ue.enc0.x, ue.enc0.y, ue.enc0.z, ue.enc0.w, ue.enc1.x, ue.enc1.y, ue.enc1.z,
+                                              ue.enc1.w, ue.enc2.x, ue.enc2.y, ue.enc2.z, ue.enc2.w);
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_decode(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), enc), base_var);
+#  else
     pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
+#  endif
     L = pf_leadr_specular(vo, vi, st, f0);
 #elif PFF_METHOD == 2
     /* the mip-mapped normal: the base lobe alone around the filtered normal */

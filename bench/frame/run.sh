@@ -43,6 +43,12 @@ for s in 0 1; do
         spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
         echo "$sn $mn $(spirv-dis "$f.opt" | awk -f bench/gpu/spirv_ops.awk)" >> "$spv/ops.txt"
     done
+    # LEADR from UNORM-encoded moments (pf_encode.h): the decode's ops are its count minus leadr's
+    f="$spv/frame_${sn}_leadr_unorm.spv"
+    glslangValidator -V --target-env vulkan1.0 -S frag -DPFF_SCENE=$s -DPFF_METHOD=1 -DPFF_ENCODED=1 -Iinclude -o "$f" \
+        bench/frame/frame.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
+    spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
+    echo "$sn leadr_unorm $(spirv-dis "$f.opt" | awk -f bench/gpu/spirv_ops.awk)" >> "$spv/ops.txt"
 done
 LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$bin" "$spv" "$out" "$spv/ops.txt" || { echo "frame: $bin failed" >&2; exit 1; }
 for s in plane sphere; do
