@@ -181,8 +181,8 @@
      pf_horizon_leadr_specular 0.156 (per kind 0.087-0.214), pf_horizon_vmf_specular with 16
      lobes 0.129 (0.065-0.174), against 0.517 and 0.499 with Smith's G. Against the long-double
      formula: visibility 6.2e-7 abs, radiance 3.3e-6 of the unshadowed lobe (float). GPU:
-     pf_horizon_leadr_specular 283 SPIR-V ops (pf_leadr_specular 116), pf_horizon_vmf_specular
-     256 (pf_vmf_sum_specular 220, plus 178 per lobe in both).
+     pf_horizon_leadr_specular 325 SPIR-V ops (pf_leadr_specular 116), pf_horizon_vmf_specular
+     298 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add lobe in both).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
@@ -671,7 +671,8 @@ PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_s
     sd = PF_SQRT(pf_max(vc - cov * beta, PF_R(0.0)));
     mu = m.m1 + beta * (sx * dx + sy * dy - es);
     z = pf_clamp_nan_lo((e - mu) / sd, PF_R(-12.0), PF_R(12.0));
-    ph = z < PF_R(12.0) ? PF_R(0.5) * pf_erfc_fast(-z * PF_INV_SQRT2) : PF_R(1.0);
+    ph = PF_R(0.5) * pf_erfc_fast(-z * PF_INV_SQRT2);
+    ph = z < PF_R(12.0) ? ph : PF_R(1.0);
     ph = z > PF_R(-12.0) ? ph : PF_R(0.0);
     ph = sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)) ? ph : (e >= mu ? PF_R(1.0) : PF_R(0.0));
     return (var == var && m.ms == m.ms && e == e) ? ph : PF_R(0.0);
