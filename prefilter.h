@@ -6352,8 +6352,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      pf_horizon_leadr_specular 0.156 (per kind 0.087-0.214), pf_horizon_vmf_specular with 16
      lobes 0.129 (0.065-0.174), against 0.517 and 0.499 with Smith's G. Against the long-double
      formula: visibility 6.2e-7 abs, radiance 3.3e-6 of the unshadowed lobe (float). GPU:
-     pf_horizon_leadr_specular 283 SPIR-V ops (pf_leadr_specular 116), pf_horizon_vmf_specular
-     256 (pf_vmf_sum_specular 220, plus 178 per lobe in both).
+     pf_horizon_leadr_specular 325 SPIR-V ops (pf_leadr_specular 116), pf_horizon_vmf_specular
+     298 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add lobe in both).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
@@ -6805,14 +6805,58 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
    s: the footprint's own slope statistics, WITHOUT the base lobe's variance (the HDF's E[S T]
    is over the texels' slopes). In [0, 1]; 0 for a half vector at or below the macrosurface
    (wo + wi with z <= 0), NaN moments or slopes. pf_erfc_fast (the shader tier) inside. */
+/* pfi_horizon_cond_make followed by pfi_horizon_cond_vis(.., 1) for one slope, written for the
+   shader: w scaled once to a largest component of 1 (shared by the azimuth and the
+   elevation), the elevation atan2(z, r) with r >= 0 taken by pf_atan2's octant reduction and
+   polynomial alone in float (no quadrant, infinity or rescaling case is left: |z|, r <= 1.42
+   after the scaling; the same 2-ulp result), and every case of the two (vertical w, zero
+   Var(S), the step, |z| >= 12, NaN moments or slopes) a select of values instead of a
+   branch. The same results as the pair up to rounding. */
+PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real sx, pf_real sy)
+{
+    pf_real k = PF_R(1.0) / pf_max(pf_max(PF_FABS(w.x), PF_FABS(w.y)), pf_max(PF_FABS(w.z), PF_REAL_MIN));
+    pf_real x = w.x * k, y = w.y * k, wz = w.z * k, r = PF_SQRT(x * x + y * y);
+    pf_real ir = r > PF_R(0.0) ? PF_R(1.0) / r : PF_R(0.0), dx = x * ir, dy = y * ir, e;
+    pf_real var = m.m2 - m.m1 * m.m1, vc = pf_max(var, PF_R(0.0)), es, vs, lim, cov, beta, mu, sd, z, ph;
+#ifdef PF_REAL_IS_FLOAT
+    {
+        pf_real az = PF_FABS(wz), mx = pf_max(pf_max(az, r), PF_REAL_MIN), mn = pf_min(az, r), u, q;
+        int big = mn > PF_R(0.41421356237309505) * mx ? 1 : 0; /* t > tan(pi/8) */
+        u = (big != 0 ? mn - mx : mn) / (big != 0 ? mn + mx : mx);
+        q = u * u;
+        e = (((PF_R(8.05374449538e-2) * q - PF_R(1.38776856032e-1)) * q + PF_R(1.99777106478e-1)) * q -
+             PF_R(3.33329491539e-1)) * q * u + u;
+        e = big != 0 ? (e - PF_R(2.1855694143368964e-08)) + PF_R(0.78539818525314331) : e;
+        e = az > r ? PF_R(1.5707963705062866) - (e + PF_R(4.371138828673793e-08)) : e;
+        e = wz < PF_R(0.0) ? -e : e;
+    }
+#else
+    e = PF_ATAN2(wz, r);
+#endif
+    es = s.mean_x * dx + s.mean_y * dy;
+    vs = s.var_x * dx * dx + s.var_y * dy * dy + PF_R(2.0) * s.cov_xy * dx * dy;
+    /* the Cauchy-Schwarz clamp of pfi_horizon_cond_make; beta = 0 for Var(S) <= 1e-12 */
+    lim = PF_SQRT(vc * pf_max(vs, PF_R(0.0)));
+    cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
+    beta = vs > PF_R(1e-12) ? cov / vs : PF_R(0.0);
+    sd = PF_SQRT(pf_max(vc - cov * beta, PF_R(0.0)));
+    mu = m.m1 + beta * (sx * dx + sy * dy - es);
+    z = pf_clamp_nan_lo((e - mu) / sd, PF_R(-12.0), PF_R(12.0));
+    ph = PF_R(0.5) * pf_erfc_fast(-z * PF_INV_SQRT2);
+    ph = z < PF_R(12.0) ? ph : PF_R(1.0);
+    ph = z > PF_R(-12.0) ? ph : PF_R(0.0);
+    ph = sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)) ? ph : (e >= mu ? PF_R(1.0) : PF_R(0.0));
+    return (var == var && m.ms == m.ms && e == e) ? ph : PF_R(0.0);
+}
+
 PF_DEF pf_real pf_horizon_specular_visibility(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i,
                                               pf_slope_stats s)
 {
     pf_vec3 h = pf_vec3_add(wo, wi);
     pf_real iz = h.z > PF_R(0.0) ? PF_R(1.0) / h.z : PF_R(0.0);
     pf_real sx = -h.x * iz, sy = -h.y * iz;
-    pf_real vo = pfi_horizon_cond_vis(pfi_horizon_cond_make(wo, m_o, s), sx, sy, 1);
-    pf_real vi = pfi_horizon_cond_vis(pfi_horizon_cond_make(wi, m_i, s), sx, sy, 1);
+    pf_real vo = pfi_horizon_spec_cond_vis(wo, m_o, s, sx, sy);
+    pf_real vi = pfi_horizon_spec_cond_vis(wi, m_i, s, sx, sy);
     return h.z > PF_R(0.0) ? vo * pf_horizon_bidir_tan(vi, vo, pf_vec3_dot(wo, wi)) : PF_R(0.0);
 }
 
