@@ -2497,6 +2497,11 @@ static void pfb_d_encode(pfc_ctx *c, int which)
                 pfb_fail(PFB_VALUE, "%s: lobe %lld decodes to kappa %a, amp %a", fn, i, (double)l.kappa, (double)l.amp);
                 return;
             }
+        }
+    }
+    if (!pfb_slack_ok()) pfb_fail(PFB_WROTE, "bytes next to a buffer changed");
+}
+
 /* ---------------------------------------------------------------- pf_specaa.h: the baker
    which: 0 pf_specaa_bake, 1 pf_specaa_bake_scratch_reals */
 static void pfb_d_specaa(pfc_ctx *c, int which)
