@@ -1047,8 +1047,9 @@ static void test_sum_add_texel_mixture(void)
    (relative 1e-3, or both below 1e-20). The first five inputs are the shape lavapipe found
    (one lobe, a view far below its plane: a facing area of ~1e-42 once multiplied by sum amp,
    flushed to 0, and 0 returned where C returned 1e7-1e11); then 20000 random one- and
-   four-lobe sums of both specular forms. x86 with SSE only (elsewhere: skipped, noted). */
-#if defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)
+   four-lobe sums of both specular forms. x86 with SSE only, not tcc (no <xmmintrin.h>; elsewhere:
+   skipped, noted). */
+#if (defined(__SSE2__) || defined(__x86_64__) || defined(_M_X64)) && !defined(__TINYC__)
 #  include <xmmintrin.h>
 #  define PFT_HAVE_MXCSR 1
 #endif
