@@ -1857,7 +1857,7 @@ int main(int argc, char **argv)
                 "the map's mean slope, E[x - rx], E[y - ry], E[(x - rx)^2], E[(y - ry)^2] | E[(x - rx)(y - ry)], each over its "
                 "range for the whole pyramid (`pf_slope_encoding_find`, `pf_slope_moments_encode`), decoded in the shader after "
                 "the sampler's filtering by `pf_slope_moments_decode` (affine with one reference per map, so the driver's "
-                "trilinear and anisotropic blends still filter the moments; the encoding in push constants);\n"
+                "trilinear and anisotropic blends still filter the moments; the encoding in a uniform buffer);\n"
                 "- **non-finite**: NaN or infinite pixels of the whole GPU frame; **SPIR-V ops (branches)**: the fragment shader "
                 "after `spirv-opt -O`, counted as bench/gpu/count.sh counts (the \"none\" shader, ray cast, derivatives and three "
                 "fetches, is the baseline of the others).\n\n"
