@@ -3092,7 +3092,7 @@ PF_DEF pf_real pfi_vmf_sum_specular_mix(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf
    plane; below it, in float, its relative error is 3e-6 at nu_o = -0.5, 2e-3 at -2, 3% at
    -2.5, and it is 0 past nu_o = -3.3, where the G1 fit rounds to 1: then I = 0, on a CPU as
    on a GPU), Lambda_i' = pf_beckmann_light_lambda (a light below the mean plane lights the
-   facets facing it). Once per pixel, branch-free (one select), whatever m: the variances
+   facets facing it). Once per pixel, without branches (one select), whatever m: the variances
    along wo and wi from the sum's second moments, no slope-statistics struct. Every sum is
    divided by sum amp first (ia), so no intermediate is the subnormal product of amp and a
    small area (a GPU flushes those to 0; a sum amp below PF_REAL_MIN is empty).
@@ -9000,8 +9000,8 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
      l.kappa = pf_specaa_vmf_kappa(l.kappa, k);                   -- each vMF lobe
    USAGE (CPU baker)
      pf_specaa_bake_desc d = { normals, NULL, w, h, PF_R(0.1), PF_SPECAA_NDF_GGX, PF_R(0.0) };
-     pf_real *scratch = malloc(pf_specaa_bake_scratch_reals(w, h) * sizeof(pf_real));
-     pf_real *alpha = malloc(pf_mip_texel_count(w, h) * sizeof(pf_real));
+     scratch: caller-owned, pf_specaa_bake_scratch_reals(w, h) reals
+     alpha:   caller-owned, pf_mip_texel_count(w, h) reals (the whole mip chain)
      if (pf_specaa_bake(&d, scratch, alpha, NULL) != PF_OK) ...   -- pf_map.h's layout
 
    FUNCTIONS (shader subset)

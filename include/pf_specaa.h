@@ -56,8 +56,8 @@
      l.kappa = pf_specaa_vmf_kappa(l.kappa, k);                   -- each vMF lobe
    USAGE (CPU baker)
      pf_specaa_bake_desc d = { normals, NULL, w, h, PF_R(0.1), PF_SPECAA_NDF_GGX, PF_R(0.0) };
-     pf_real *scratch = malloc(pf_specaa_bake_scratch_reals(w, h) * sizeof(pf_real));
-     pf_real *alpha = malloc(pf_mip_texel_count(w, h) * sizeof(pf_real));
+     scratch: caller-owned, pf_specaa_bake_scratch_reals(w, h) reals
+     alpha:   caller-owned, pf_mip_texel_count(w, h) reals (the whole mip chain)
      if (pf_specaa_bake(&d, scratch, alpha, NULL) != PF_OK) ...   -- pf_map.h's layout
 
    FUNCTIONS (shader subset)
