@@ -44,7 +44,7 @@
    THE USER'S MAP (--map PATH and pf_maps.h's --map-NAME VALUE options, what `make bench MAP=`
    runs through bench/map.sh): the corpus is replaced by that map (its slopes as
    tests/reference/pf_maps.h makes them), the same tables for the one kind "map", no sphere.
-   Usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]].
+   Usage: specaa [--quick] [--out DIR] [--sphere-only | --scenes-only] [--map PATH [--map-NAME VALUE ...]].
    PFB_THREADS as every bench program. */
 #include "pf_bench_base.h"
 #include <stdio.h>
@@ -245,7 +245,7 @@ static void run_item(void *ctx, long long it)
    sphere's total radiance over a camera path of F frames (the sphere moves by 1/F pixel per
    frame along x and 0.37/F along y), its deviation over frames relative to its mean. */
 enum { M_NONE, M_TK, M_FILAMENT, M_BOX, M_PROJ, M_TK_QUAD, NMETH };
-static const char *meth_name[NMETH] = { "no kernel", "tk2019 (sigma2 1/(2pi), kappa 0.18)", "filament (0.15, 0.2)",
+static const char *meth_name[NMETH] = { "no kernel", "tk2019 (sigma2 1/(2pi), kappa 0.18)", "filament (0.15, 0.2^2)",
                                         "box-exact (sigma2 1/24, kappa 0.18)", "projected (sigma2 1/(2pi), no clamp)",
                                         "tk2019, quad differences" };
 #define NRAD 3
@@ -328,7 +328,7 @@ static void run_sphere(void *ctx, long long job)
                 }
                 switch (m) {
                 case M_NONE: ap = a; break;
-                case M_FILAMENT: k = pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.2)); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
+                case M_FILAMENT: k = pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.04)); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
                 case M_BOX: k = pf_specaa_kernel_normal(dnx, dny, (pf_real)(1.0 / 24.0), PF_SPECAA_KAPPA); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
                 case M_PROJ: k = pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_R(1.0e30)); ap = (double)pf_specaa_alpha_projected((pf_real)a, k); break;
                 default: k = pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
@@ -344,10 +344,12 @@ static void run_sphere(void *ctx, long long job)
     for (m = 0; m <= NMETH; ++m) sph_total[job][m] = tot[m];
 }
 
+#include "specaa_scenes.h"
+
 int main(int argc, char **argv)
 {
     const char *outdir = "bench/out";
-    int quick = 0, sphere_only = 0, k, a, d, l, i;
+    int quick = 0, sphere_only = 0, scenes_only = 0, k, a, d, l, i;
     pfmap_options map_opt = pfmap_options_default();
     pfm_surface map_surf;
     pfmap_info map_info;
@@ -358,12 +360,13 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--quick")) quick = 1;
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) outdir = argv[++i];
         else if (!strcmp(argv[i], "--sphere-only")) sphere_only = 1;
+        else if (!strcmp(argv[i], "--scenes-only")) scenes_only = sphere_only = 1;
         else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
         else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
             const char *o = argv[i] + 6, *v = argv[++i];
             if (pfmap_parse_option(o, v, &map_opt, err, sizeof err) != 0) { fprintf(stderr, "specaa: %s\n", err); return 2; }
         } else {
-            fprintf(stderr, "usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]]\n");
+            fprintf(stderr, "usage: specaa [--quick] [--out DIR] [--sphere-only | --scenes-only] [--map PATH [--map-NAME VALUE ...]]\n");
             return 2;
         }
     }
@@ -584,6 +587,7 @@ int main(int argc, char **argv)
 sphere:
     if (quick) { S = 8; F = 8; }
     if (sphere_only) { snprintf(path, sizeof path, "%s/specaa.md", outdir); f = fopen(path, "w"); if (f) fclose(f); }
+    if (scenes_only) goto scenes;
     pfb_parallel_for((long long)NRAD * NSALPHA * F, run_sphere, NULL, "specaa: sphere reference");
     snprintf(path, sizeof path, "%s/specaa_sphere.csv", outdir);
     {
@@ -631,6 +635,18 @@ sphere:
                 }
                 fprintf(md, "\n");
             }
+        fclose(c);
+        fclose(md);
+    }
+scenes:
+    {   /* the curved, normal-mapped scenes (specaa_scenes.h) */
+        FILE *md, *c;
+        snprintf(path, sizeof path, "%s/specaa.md", outdir);
+        md = fopen(path, "a");
+        snprintf(path, sizeof path, "%s/specaa_scenes.csv", outdir);
+        c = fopen(path, "w");
+        if (!c || !md) { fprintf(stderr, "specaa: cannot write the scene tables\n"); return 1; }
+        sc_bench(quick, md, c);
         fclose(c);
         fclose(md);
     }

@@ -129,6 +129,13 @@
 #ifndef PF_SPECAA_SIGMA2
 #  define PF_SPECAA_SIGMA2 PF_R(0.15915494309189535)
 #endif
+/* Variance constant of the BOX pixel filter (a supersampled reference that averages the pixel
+   square, MSAA/SSAA resolves): a normal varying linearly across the unit pixel square has the
+   slope covariance (1/12)(a a^T + b b^T) (the box's per-axis variance 1/12), which
+   pf_specaa_kernel_aniso gives with sigma2 = 1/24 (its factor 2 cancels: no conservative
+   widening) and pf_specaa_kernel_normal as its trace. tests/test_specaa.c checks it by
+   quadrature over the pixel square. */
+#define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
 /* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament: 0.2). */
 #ifndef PF_SPECAA_KAPPA
 #  define PF_SPECAA_KAPPA PF_R(0.18)

@@ -3,7 +3,8 @@
    The truth is never the module's own formula:
    - the anisotropic kernel against the slope covariance of a sphere's normals over a Gaussian
      pixel filter, integrated on a grid in long double (orthographic view, sphere 20-200 px
-     across, pixels up to 70% of the radius off centre);
+     across, pixels up to 70% of the radius off centre), and with PF_SPECAA_SIGMA2_BOX over
+     the box pixel filter (the unit pixel square; spheres 16-120 px across);
    - Kaplanyan et al. 2016's half-vector kernel against central differences of the slope of
      a half-vector field;
    - the projected-space map (3) against the per-axis projected variance of a Beckmann lobe,
@@ -107,6 +108,58 @@ static void test_kernel_sphere(void)
             }
         }
     pf_test_note("kernel/2 vs sphere slope covariance: max err %.3Lg of the trace", worst);
+    PF_CHECK(worst <= 0.02L, "max %Lg", worst);
+}
+
+/* The box constant: PF_SPECAA_SIGMA2_BOX makes the anisotropic kernel (not halved) the slope
+   covariance of a sphere's normals averaged over the unit pixel square (a box-filtered
+   supersampled reference), midpoint rule on 160 x 160 points in long double. Only the
+   normal's non-linearity across the pixel separates them. */
+static void test_kernel_box(void)
+{
+    static const long double radii[] = { 8.0L, 20.0L, 60.0L };
+    static const long double offs[] = { 0.0L, 0.3L, 0.5L, 0.7L };
+    long double worst = 0.0L;
+    unsigned ri, oi;
+    PF_CHECK(fabsl((long double)PF_SPECAA_SIGMA2_BOX - 1.0L / 24.0L) <= 2.0L * PF_TEST_EPS / 24.0L, "1/24");
+    for (ri = 0; ri < sizeof radii / sizeof radii[0]; ++ri)
+        for (oi = 0; oi < sizeof offs / sizeof offs[0]; ++oi) {
+            long double R = radii[ri], x0 = offs[oi] * R, y0 = 0.35L * offs[oi] * R;
+            long double N[3], T[3], B[3], sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, exact[3], a[3], b[3];
+            int i, j, n = 160;
+            pf_specaa_kernel k;
+            sphere_n(R, x0, y0, N);
+            frame_at(N, T, B);
+            for (j = 0; j < n; ++j)
+                for (i = 0; i < n; ++i) {
+                    long double dx = (i + 0.5L) / n - 0.5L, dy = (j + 0.5L) / n - 0.5L, m[3], u, v;
+                    sphere_n(R, x0 + dx, y0 + dy, m);
+                    u = -dot3(m, T) / dot3(m, N);
+                    v = -dot3(m, B) / dot3(m, N);
+                    sx += u; sy += v; sxx += u * u; syy += v * v; sxy += u * v;
+                }
+            sx /= n * n; sy /= n * n;
+            exact[0] = sxx / (n * n) - sx * sx;
+            exact[1] = syy / (n * n) - sy * sy;
+            exact[2] = sxy / (n * n) - sx * sy;
+            {
+                long double dnx[3] = { 1.0L / R, 0.0L, -x0 / (R * R * N[2]) };
+                long double dny[3] = { 0.0L, 1.0L / R, -y0 / (R * R * N[2]) };
+                a[0] = dot3(dnx, T); a[1] = dot3(dnx, B); a[2] = dot3(dnx, N);
+                b[0] = dot3(dny, T); b[1] = dot3(dny, B); b[2] = dot3(dny, N);
+            }
+            k = pf_specaa_kernel_aniso(v3(a[0], a[1], a[2]), v3(b[0], b[1], b[2]), PF_SPECAA_SIGMA2_BOX, PF_R(1.0e30));
+            {
+                long double tr = exact[0] + exact[1];
+                long double e0 = fabsl((long double)k.var_x - exact[0]) / tr;
+                long double e1 = fabsl((long double)k.var_y - exact[1]) / tr;
+                long double e2 = fabsl((long double)k.cov_xy - exact[2]) / tr;
+                long double e = e0 > e1 ? e0 : e1;
+                if (e2 > e) e = e2;
+                if (e > worst) worst = e;
+            }
+        }
+    pf_test_note("box kernel vs sphere slope covariance over the pixel square: max err %.3Lg of the trace", worst);
     PF_CHECK(worst <= 0.02L, "max %Lg", worst);
 }
 
@@ -459,6 +512,7 @@ int main(int argc, char **argv)
 {
     PF_TEST_BEGIN(argc, argv);
     PF_TEST_RUN(test_kernel_sphere);
+    PF_TEST_RUN(test_kernel_box);
     PF_TEST_RUN(test_kernel_normal_iso);
     PF_TEST_RUN(test_kernel_halfvector);
     PF_TEST_RUN(test_projected_map);
