@@ -8961,8 +8961,14 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
        k = min(2 sigma^2 (|dn/dx|^2 + |dn/dy|^2), kappa),   alpha'^2 = saturate(alpha^2 + k) (1)
    with sigma^2 = 1/(2 pi), the variance of the Gaussian pixel filter of unit peak and unit
    integral. |dn|^2 does not depend on the frame, so world-space dFdx(n) may be passed as is.
-   Engines ship (1) with other constants: Filament's normalFiltering (sigma^2 = 0.15, kappa =
-   0.2), Unity HDRP's GeometricSpecularAA (screen-space variance and a threshold, kappa = t^2).
+   sigma^2 = 1/(2 pi) with the factor 2 is conservative: a BOX pixel filter (a supersampled
+   resolve averaging the pixel square) has the slope covariance (1) gives with sigma^2 = 1/24
+   (PF_SPECAA_SIGMA2_BOX), 3.8x narrower. Engines ship (1) with other constants (their source,
+   docs/specaa.md): Filament's normalFiltering sigma^2 = 0.15, kappa = 0.2^2 = 0.04 (the
+   material's threshold 0.2 is squared when set); Unity HDRP's GeometricNormalFiltering
+   sigma^2 = 0.1, kappa = 0.2^2 (Lit defaults); Godot's screen-space roughness limiter
+   sigma^2 = 0.25, kappa = 0.18, added to the perceptual roughness squared, that is to alpha
+   and not to alpha^2.
    Tokuyoshi & Kaplanyan 2021 ("Stable geometric specular antialiasing with projected-space NDF
    filtering", JCGT 10(2)) add the kernel in projected space instead of slope space: that
    space is bounded (|p| < 1), so a kernel as wide as the hemisphere saturates instead of
@@ -8994,6 +9000,8 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
 
    USAGE (shader)
      pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+       (PF_SPECAA_SIGMA2_BOX for a box-filtered target; pf_specaa_kernel_aniso with the
+       tangent-frame derivatives on surfaces that curve along one axis only)
      pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
      pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
      pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
@@ -9046,10 +9054,15 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
    mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): more
    accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
    GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
-   isotropic lobe. On a supersampled sphere 10-60 px across (bench/specaa.c), (1) with the
-   default constants cuts the flicker of an unfiltered narrow highlight 9-47x, stays above the
-   reference's own flicker, and over-blurs the 60 px sphere; sigma2 = 1/24 (the box pixel
-   filter's exact bandwidth) has the lowest per-pixel error there, with more flicker.
+   isotropic lobe. On curved scenes (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40
+   px across, plain and normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled
+   reference and the exact-footprint oracle over a sub-pixel camera path) LEADR with the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX keeps the per-pixel flicker within 1.08x of the
+   reference's and, without a normal map, the error within 1.0-1.8x of the oracle's; the
+   default constants over-blur (2-77x the oracle's error, flicker below the reference's), the
+   isotropic kernel over-blurs the cylinder's straight axis (2.6-12x). With a normal map the
+   mip pyramid's sampling, not the kernel, sets the error (2-9x the oracle's at alpha 0.1).
+   docs/specaa.md has the table.
 
    SOURCES
      Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
@@ -9073,6 +9086,13 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
 #ifndef PF_SPECAA_SIGMA2
 #  define PF_SPECAA_SIGMA2 PF_R(0.15915494309189535)
 #endif
+/* Variance constant of the BOX pixel filter (a supersampled reference that averages the pixel
+   square, MSAA/SSAA resolves): a normal varying linearly across the unit pixel square has the
+   slope covariance (1/12)(a a^T + b b^T) (the box's per-axis variance 1/12), which
+   pf_specaa_kernel_aniso gives with sigma2 = 1/24 (its factor 2 cancels: no conservative
+   widening) and pf_specaa_kernel_normal as its trace. tests/test_specaa.c checks it by
+   quadrature over the pixel square. */
+#define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
 /* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament: 0.2). */
 #ifndef PF_SPECAA_KAPPA
 #  define PF_SPECAA_KAPPA PF_R(0.18)

@@ -111,12 +111,14 @@
    accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
    GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
    isotropic lobe. On curved scenes (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40
-   px across, plain and normal-mapped, against a box-filtered supersampled reference and the
-   exact-footprint oracle over a sub-pixel camera path), LEADR with the anisotropic kernel at
-   PF_SPECAA_SIGMA2_BOX is the only form within 1.5x of the oracle's error and of the
-   reference's per-pixel flicker on every plain scene; the default constants over-blur
-   (errors several times the oracle's, flicker below the reference's), the isotropic kernel
-   over-blurs the cylinder's straight axis. docs/specaa.md has the table.
+   px across, plain and normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled
+   reference and the exact-footprint oracle over a sub-pixel camera path) LEADR with the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX keeps the per-pixel flicker within 1.08x of the
+   reference's and, without a normal map, the error within 1.0-1.8x of the oracle's; the
+   default constants over-blur (2-77x the oracle's error, flicker below the reference's), the
+   isotropic kernel over-blurs the cylinder's straight axis (2.6-12x). With a normal map the
+   mip pyramid's sampling, not the kernel, sets the error (2-9x the oracle's at alpha 0.1).
+   docs/specaa.md has the table.
 
    SOURCES
      Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
