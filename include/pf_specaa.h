@@ -149,7 +149,7 @@
    widening) and pf_specaa_kernel_normal as its trace. tests/test_specaa.c checks it by
    quadrature over the pixel square. */
 #define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
-/* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament: 0.2). */
+/* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament and HDRP: 0.2^2 = 0.04). */
 #ifndef PF_SPECAA_KAPPA
 #  define PF_SPECAA_KAPPA PF_R(0.18)
 #endif
