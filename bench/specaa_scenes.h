@@ -45,14 +45,18 @@ static const double sc_alpha[SC_NALPHA] = { 0.03, 0.1 };
 static double sc_diam[SC_NSIZE] = { 16.0, 40.0 };
 static int sc_S = 20, sc_F = 12;
 
-enum { SM_NONE, SM_BOX, SM_BOX_AREA, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_NONE, SM_VMF_BOX, SM_TEXEXACT, SM_ORACLE, SM_REF, SM_COUNT };
+enum { SM_NONE, SM_BOX, SM_BOX_AREA, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_NONE, SM_VMF_BOX,
+       SM_AF, SM_AF_CROSS, SM_AF_ISO_CROSS, SM_QUAD_CROSS, SM_AF_XCROSS, SM_DIAG_OMEAN0, SM_TEXEXACT, SM_TEXEXACT_CROSS, SM_ORACLE, SM_REF, SM_COUNT };
 #define SC_NMETH SM_REF /* methods and the oracle */
 static const char *sc_meth_name[SM_REF] = {
     "LEADR, no kernel", "LEADR + box kernel (aniso, sigma2 1/24)", "LEADR (area lod) + box kernel (aniso)",
     "LEADR + box kernel (iso, sigma2 1/24)",
     "LEADR + TK2019 (1/(2pi), 0.18)", "LEADR + Filament (0.15, 0.2^2)", "LEADR + HDRP (0.1, 0.2^2)",
     "LEADR + Godot limiter (0.25, 0.18 on alpha)", "vMF, no kernel", "vMF + box kernel (1/24)",
-    "exact texel moments + box kernel (aniso)", "oracle (exact footprint)"
+    "LEADR (aniso fetch) + box kernel (aniso)", "LEADR (aniso fetch) + box kernel + cross term",
+    "LEADR (aniso fetch) + box kernel (iso) + cross term", "LEADR (4 quadrant aniso fetches) + box kernel + cross term",
+    "aniso fetch + box kernel + exact cross term", "diag: oracle covariance, mean of the texture only",
+    "exact texel moments + box kernel (aniso)", "exact texel moments + box kernel + exact cross term", "oracle (exact footprint)"
 };
 
 static double *sc_slope;   /* level 0: SC_N^2 x 2 slopes */
@@ -179,6 +183,33 @@ static long long sc_img_stride, sc_dev_stride;
 /* the sphere table's old flicker: the deviation over frames of the image's total, / its mean */
 static double sc_total_flk[SC_NSCENE * SC_NSIZE * SC_NALPHA][SM_COUNT];
 
+/* The moment pyramid read as a GPU's anisotropic filter reads a texture (EXT_texture_filter_anisotropic's
+   rule): the footprint's axes d(s,t)/dx and d(s,t)/dy in texels, N = min(ceil(major/minor), 16)
+   trilinear taps spread evenly over the major axis at the lod log2(major/N), averaged (the moments
+   are linear). (ox, oy): an offset of the pixel in pixels (the neighbour a dFdx would read). */
+static pf_slope_moments sc_fetch_aniso(double s, double t, double dst[2][2], double ox, double oy, double scale)
+{
+    double lx = scale * sqrt(dst[0][0] * dst[0][0] + dst[0][1] * dst[0][1]), ly = scale * sqrt(dst[1][0] * dst[1][0] + dst[1][1] * dst[1][1]);
+    double pmax = fmax(lx, ly), pmin = fmax(fmin(lx, ly), 1e-9), lod, w;
+    const double *ax = lx >= ly ? dst[0] : dst[1];
+    double sum[5] = { 0, 0, 0, 0, 0 };
+    int n = (int)ceil(pmax / pmin - 1e-9), i;
+    if (n > 16) n = 16;
+    if (n < 1) n = 1;
+    lod = pmax / n > 1.0 ? log2(pmax / n) : 0.0;
+    s += ox * dst[0][0] + oy * dst[1][0];
+    t += ox * dst[0][1] + oy * dst[1][1];
+    for (i = 0; i < n; ++i) {
+        double o = (i + 0.5) / n - 0.5;
+        pf_slope_moments m = pf_slope_moments_sample(sc_pyr, SC_N, SC_N, (pf_real)lod, (pf_real)((s + scale * o * ax[0]) / SC_N),
+                                                     (pf_real)((t + scale * o * ax[1]) / SC_N), PF_BORDER_WRAP);
+        sum[0] += (double)m.ex; sum[1] += (double)m.ey; sum[2] += (double)m.exx; sum[3] += (double)m.eyy; sum[4] += (double)m.exy;
+    }
+    w = 1.0 / n;
+    return pf_slope_moments_make((pf_real)(sum[0] * w), (pf_real)(sum[1] * w), (pf_real)(sum[2] * w), (pf_real)(sum[3] * w),
+                                 (pf_real)(sum[4] * w));
+}
+
 static long long sc_njobs(void) { return (long long)SC_NSCENE * SC_NSIZE * SC_NALPHA * sc_F; }
 
 static void sc_run(void *ctx, long long job)
@@ -195,6 +226,7 @@ static void sc_run(void *ctx, long long job)
         for (px = 0; px < W; ++px) {
             long long p = (long long)py * W + px;
             double x = px + 0.5, y = py + 0.5, h = 1e-4, sum = 0, sum2 = 0, o[5] = { 0, 0, 0, 0, 0 }, q[5] = { 0, 0, 0, 0, 0 };
+            double c[6] = { 0, 0, 0, 0, 0, 0 }; /* sub-pixel offset moments: E[ox], E[oy], E[ox sx], E[ox sy], E[oy sx], E[oy sy] */
             double dN[2][3], dst[2][2], res[SM_COUNT];
             sc_geo g, gp, gm;
             int hits = 0, i, j, d;
@@ -216,12 +248,14 @@ static void sc_run(void *ctx, long long job)
             for (j = 0; j < sc_S; ++j)
                 for (i = 0; i < sc_S; ++i) {
                     unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x5ce);
-                    double u1, u2, n[3], sx, sy, f, nz, qx, qy;
+                    double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
                     sc_geo gr;
                     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
                     u1 = (double)(z >> 40) / 16777216.0;
                     u2 = (double)(z & 0xFFFFFF) / 16777216.0;
-                    if (!sc_eval(scene, R, cx, cy, px + (i + u1) / sc_S, py + (j + u2) / sc_S, &gr)) continue;
+                    ox = (i + u1) / sc_S - 0.5;
+                    oy = (j + u2) / sc_S - 0.5;
+                    if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
                     sc_normal(scene, &gr, n, &sx, &sy);
                     f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
                     sum += f; sum2 += f * f; ++hits;
@@ -230,13 +264,19 @@ static void sc_run(void *ctx, long long job)
                     qx = -sc_dot(n, g.T) / nz; qy = -sc_dot(n, g.B) / nz;
                     o[0] += qx; o[1] += qy; o[2] += qx * qx; o[3] += qy * qy; o[4] += qx * qy;
                     q[0] += sx; q[1] += sy; q[2] += sx * sx; q[3] += sy * sy; q[4] += sx * sy;
+                    c[0] += ox; c[1] += oy; c[2] += ox * sx; c[3] += ox * sy; c[4] += oy * sx; c[5] += oy * sy;
                 }
             full[p] = hits == sc_S * sc_S;
             res[SM_REF] = sum / hits;
             dev2[p] = hits > 1 ? fmax(sum2 / hits - res[SM_REF] * res[SM_REF], 0.0) / (hits - 1) : 0.0;
             for (i = 0; i < 5; ++i) { o[i] /= hits; q[i] /= hits; }
+            for (i = 0; i < 6; ++i) c[i] /= hits;
             res[SM_ORACLE] = sc_shade(&g, pf_slope_moments_stats(pf_slope_moments_make((pf_real)o[0], (pf_real)o[1], (pf_real)o[2],
                                                                                        (pf_real)o[3], (pf_real)o[4]), (pf_real)bv));
+            {   /* diagnostic: the oracle's covariance around the rays' texel mean slope (the geometry's second-order mean shift removed) */
+                double cxx = o[2] - o[0] * o[0], cyy = o[3] - o[1] * o[1], cxy = o[4] - o[0] * o[1];
+                res[SM_DIAG_OMEAN0] = sc_shade(&g, pf_slope_stats_make((pf_real)q[0], (pf_real)q[1], (pf_real)(cxx + bv), (pf_real)(cyy + bv), (pf_real)cxy));
+            }
             {   /* the methods */
                 double rho = fmax(sqrt(dst[0][0] * dst[0][0] + dst[0][1] * dst[0][1]), sqrt(dst[1][0] * dst[1][0] + dst[1][1] * dst[1][1]));
                 pf_real lod = (pf_real)(rho > 1.0 ? log2(rho) : 0.0);
@@ -265,6 +305,48 @@ static void sc_run(void *ctx, long long job)
                     (pf_real)q[0], (pf_real)q[1], (pf_real)q[2], (pf_real)q[3], (pf_real)q[4]), (pf_real)bv),
                     pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA)));
                 res[SM_BOX_ISO] = sc_shade(&g, pf_specaa_slope_stats(s0, kbox));
+                {   /* the anisotropic fetch; the cross term from its mean's screen derivatives (central
+                       differences at +-1/2 px, what dFdx/dFdy of the fetched mean estimate) */
+                    pf_specaa_kernel kan = pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+                    pf_slope_moments mf = (scene & 1) ? sc_fetch_aniso(g.s, g.t, dst, 0, 0, 1.0) : pf_slope_moments_make(0, 0, 0, 0, 0);
+                    pf_slope_stats sf = pf_slope_moments_stats(mf, (pf_real)bv);
+                    pf_vec2 dmx = pf_vec2_make(0, 0), dmy = pf_vec2_make(0, 0);
+                    pf_vec3 ax0 = pf_vec3_make(ax.x, ax.y, 0), ay0 = pf_vec3_make(ay.x, ay.y, 0);
+                    if (scene & 1) {
+                        pf_slope_moments xp = sc_fetch_aniso(g.s, g.t, dst, 0.5, 0, 1.0), xm = sc_fetch_aniso(g.s, g.t, dst, -0.5, 0, 1.0);
+                        pf_slope_moments yp = sc_fetch_aniso(g.s, g.t, dst, 0, 0.5, 1.0), ym = sc_fetch_aniso(g.s, g.t, dst, 0, -0.5, 1.0);
+                        dmx = pf_vec2_make(xp.ex - xm.ex, xp.ey - xm.ey);
+                        dmy = pf_vec2_make(yp.ex - ym.ex, yp.ey - ym.ey);
+                    }
+                    res[SM_AF] = sc_shade(&g, pf_specaa_slope_stats_aniso(sf, kan));
+                    res[SM_AF_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(sf, kan, pf_specaa_kernel_cross(ax0, ay0, dmx, dmy, PF_SPECAA_SIGMA2_BOX)));
+                    res[SM_AF_ISO_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(sf, pf_specaa_kernel_make(PF_R(0.5) * kbox, PF_R(0.5) * kbox, 0),
+                                                                                     pf_specaa_kernel_cross(ax0, ay0, dmx, dmy, PF_SPECAA_SIGMA2_BOX)));
+                    {   /* four anisotropic fetches, one per quadrant of the pixel (half the footprint each):
+                           their mean, and the gradient from their differences (2 (right - left): exact for
+                           a linear texture) */
+                        pf_slope_moments t00 = pf_slope_moments_make(0, 0, 0, 0, 0), t10 = t00, t01 = t00, t11 = t00, mq;
+                        pf_vec2 qx = pf_vec2_make(0, 0), qy = pf_vec2_make(0, 0);
+                        if (scene & 1) {
+                            t00 = sc_fetch_aniso(g.s, g.t, dst, -0.25, -0.25, 0.5); t10 = sc_fetch_aniso(g.s, g.t, dst, 0.25, -0.25, 0.5);
+                            t01 = sc_fetch_aniso(g.s, g.t, dst, -0.25, 0.25, 0.5); t11 = sc_fetch_aniso(g.s, g.t, dst, 0.25, 0.25, 0.5);
+                            qx = pf_vec2_make(t10.ex + t11.ex - t00.ex - t01.ex, t10.ey + t11.ey - t00.ey - t01.ey);
+                            qy = pf_vec2_make(t01.ex + t11.ex - t00.ex - t10.ex, t01.ey + t11.ey - t00.ey - t10.ey);
+                        }
+                        mq = pf_slope_moments_scale(pf_slope_moments_add(pf_slope_moments_add(t00, t10), pf_slope_moments_add(t01, t11)), PF_R(0.25));
+                        res[SM_QUAD_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(pf_slope_moments_stats(mq, (pf_real)bv), kan,
+                                                                                       pf_specaa_kernel_cross(ax0, ay0, qx, qy, PF_SPECAA_SIGMA2_BOX)));
+                    }
+                    {   /* the exact cross term: the rays' regression of the texel slope on the sub-pixel offset
+                           (var of the offset 1/12 over the pixel square) */
+                        pf_vec2 ex = pf_vec2_make((pf_real)(12.0 * (c[2] - c[0] * q[0])), (pf_real)(12.0 * (c[3] - c[0] * q[1])));
+                        pf_vec2 ey = pf_vec2_make((pf_real)(12.0 * (c[4] - c[1] * q[0])), (pf_real)(12.0 * (c[5] - c[1] * q[1])));
+                        res[SM_AF_XCROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(sf, kan, pf_specaa_kernel_cross(ax0, ay0, ex, ey, PF_SPECAA_SIGMA2_BOX)));
+                        res[SM_TEXEXACT_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(pf_slope_moments_stats(pf_slope_moments_make(
+                            (pf_real)q[0], (pf_real)q[1], (pf_real)q[2], (pf_real)q[3], (pf_real)q[4]), (pf_real)bv), kan,
+                            pf_specaa_kernel_cross(ax0, ay0, ex, ey, PF_SPECAA_SIGMA2_BOX)));
+                    }
+                }
                 res[SM_TK] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA)));
                 res[SM_FILAMENT] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.04))));
                 res[SM_HDRP] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.1), PF_R(0.04))));
@@ -378,7 +460,7 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
                             flk[m] / flk[SM_REF], flk[m] <= 1.5 * flk[SM_REF] ? "**" : "");
                 fprintf(md, " %.2f |\n", flk[SM_ORACLE] / flk[SM_REF]);
                 for (m = 0; m < SM_REF; ++m)
-                    fprintf(csv, "%s,%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%lld,%d,%d\n", sc_scene_name[scene], sc_diam[si], sc_alpha[ai],
+                    fprintf(csv, "\"%s\",%g,%g,\"%s\",%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%lld,%d,%d\n", sc_scene_name[scene], sc_diam[si], sc_alpha[ai],
                             sc_meth_name[m], err[m], err[m] / err[SM_ORACLE], erri[SM_ORACLE] > 0 ? erri[m] / erri[SM_ORACLE] : 0.0, flk[m], flk[m] / flk[SM_REF], sqrt(dv / np) / rs,
                             sqrt(2.0 * dv / np) / rs / flk[SM_REF], np / sc_F, sc_F, sc_S * sc_S);
             }

@@ -149,6 +149,13 @@
    widening) and pf_specaa_kernel_normal as its trace. tests/test_specaa.c checks it by
    quadrature over the pixel square. */
 #define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
+/* The sigma2 of pf_specaa_leadr_specular: the box filter's (a supersampled, box-filtered
+   target: on the curved scenes of bench/specaa_scenes.h it is 1.2-27x closer to the
+   exact-footprint oracle than the papers' 1/(2 pi) with the factor 2, which over-blurs; same
+   cost). Define it as PF_SPECAA_SIGMA2 before including this header for the papers' kernel. */
+#ifndef PF_SPECAA_LEADR_SIGMA2
+#  define PF_SPECAA_LEADR_SIGMA2 PF_SPECAA_SIGMA2_BOX
+#endif
 /* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament and HDRP: 0.2^2 = 0.04). */
 #ifndef PF_SPECAA_KAPPA
 #  define PF_SPECAA_KAPPA PF_R(0.18)
@@ -281,12 +288,55 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_ke
                                s.cov_xy + k.cov_xy);
 }
 
-/* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives added to the
-   footprint's slope statistics (default sigma^2 and kappa). */
+/* The cross term of the geometry's turn and the texture's slopes inside the pixel. A ray at the
+   offset o from the pixel centre (pixels) sees, in the centre's tangent frame, the slope
+       q(o) = -(a o_x + b o_y) + t(o),   a = dndx.xy, b = dndy.xy (tangent frame, as
+   pf_specaa_kernel_aniso), t the texture's slope at the ray's texel (to first order in the
+   turn: the texel's slope rotated with its frame is second order). With t(o) = m + dm/dx o_x +
+   dm/dy o_y + residual (m the footprint's mean slope), a pixel filter of per-axis variance
+   2 sigma2 and no offset-residual correlation:
+       Cov q = Cov(-(a o_x + b o_y)) + Cov t + C,
+       C_ij = -2 sigma2 (a_i dm_j/dx + b_i dm_j/dy + a_j dm_i/dx + b_j dm_i/dy)              (4)
+   the first term pf_specaa_kernel_aniso's kernel (2 sigma2 (a a^T + b b^T)), the second the
+   texture's (LEADR's footprint moments). In a shader dm/dx, dm/dy are dFdx, dFdy of the
+   fetched mean slope (pf_slope_moments' ex, ey, or the stats' mean_x, mean_y). (4) is exact
+   for a box filter (sigma2 = PF_SPECAA_SIGMA2_BOX) and linear fields (tests/test_specaa.c by
+   brute force). Unlike the kernel it may be negative (a texture that leans against the curve
+   flattens the pixel's normals); pf_specaa_slope_stats_cross keeps the sum a covariance. NaN
+   or inf derivatives give NaN or inf here; pf_specaa_slope_stats_cross drops such a term. */
+PF_DEF pf_specaa_kernel pf_specaa_kernel_cross(pf_vec3 dndx, pf_vec3 dndy, pf_vec2 dmdx, pf_vec2 dmdy,
+                                               pf_real sigma2)
+{
+    pf_real s = PF_R(-2.0) * sigma2;
+    pf_real xx = dndx.x * dmdx.x + dndy.x * dmdy.x, yy = dndx.y * dmdx.y + dndy.y * dmdy.y;
+    pf_real xy = dndx.x * dmdx.y + dndy.x * dmdy.y + dndx.y * dmdx.x + dndy.y * dmdy.x;
+    return pf_specaa_kernel_make(PF_R(2.0) * s * xx, PF_R(2.0) * s * yy, s * xy);
+}
+
+/* LEADR with the geometry kernel k (pf_specaa_kernel_aniso) and the cross term c
+   (pf_specaa_kernel_cross, same sigma2): var += k.var + c.var, cov += k.cov + c.cov. Each
+   diagonal cross term is clamped to |c| <= 2 sqrt(k.var s.var) (Cauchy-Schwarz: the variance of
+   a sum of two parts of variances k.var and s.var), so the variances stay >= 0; a NaN or
+   infinite cross term reads as 0 on its axis (NaN derivatives: the kernel alone). The
+   covariance is left to pf_leadr_specular's determinant floor. */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_kernel k, pf_specaa_kernel c)
+{
+    pf_real bx = PF_R(2.0) * PF_SQRT(pf_max(k.var_x, PF_R(0.0)) * pf_max(s.var_x, PF_R(0.0)));
+    pf_real by = PF_R(2.0) * PF_SQRT(pf_max(k.var_y, PF_R(0.0)) * pf_max(s.var_y, PF_R(0.0)));
+    pf_real cx = c.var_x - c.var_x == PF_R(0.0) ? pf_clamp_nan_lo(c.var_x, -bx, bx) : PF_R(0.0);
+    pf_real cy = c.var_y - c.var_y == PF_R(0.0) ? pf_clamp_nan_lo(c.var_y, -by, by) : PF_R(0.0);
+    pf_real cxy = c.cov_xy - c.cov_xy == PF_R(0.0) ? c.cov_xy : PF_R(0.0);
+    return pf_slope_stats_make(s.mean_x, s.mean_y, s.var_x + k.var_x + cx, s.var_y + k.var_y + cy,
+                               s.cov_xy + k.cov_xy + cxy);
+}
+
+/* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives (any frame) added
+   to the footprint's slope statistics, at PF_SPECAA_LEADR_SIGMA2 (the box filter's 1/24 unless
+   defined otherwise) and PF_SPECAA_KAPPA. */
 PF_DEF pf_real pf_specaa_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
                                         pf_vec3 dndx, pf_vec3 dndy)
 {
-    pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+    pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_LEADR_SIGMA2, PF_SPECAA_KAPPA);
     return pf_leadr_specular(wo, wi, pf_specaa_slope_stats(s, k), f0);
 }
 
