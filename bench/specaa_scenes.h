@@ -46,7 +46,7 @@ static double sc_diam[SC_NSIZE] = { 16.0, 40.0 };
 static int sc_S = 20, sc_F = 12;
 
 enum { SM_NONE, SM_BOX, SM_BOX_AREA, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_NONE, SM_VMF_BOX,
-       SM_AF, SM_AF_CROSS, SM_AF_ISO_CROSS, SM_QUAD_CROSS, SM_AF_XCROSS, SM_DIAG_OMEAN0, SM_TEXEXACT, SM_TEXEXACT_CROSS, SM_ORACLE, SM_REF, SM_COUNT };
+       SM_AF, SM_AF_CROSS, SM_QUAD_CROSS, SM_AF_XCROSS, SM_DIAG_OMEAN0, SM_TEXEXACT, SM_TEXEXACT_CROSS, SM_ORACLE, SM_REF, SM_COUNT };
 #define SC_NMETH SM_REF /* methods and the oracle */
 static const char *sc_meth_name[SM_REF] = {
     "LEADR, no kernel", "LEADR + box kernel (aniso, sigma2 1/24)", "LEADR (area lod) + box kernel (aniso)",
@@ -54,7 +54,7 @@ static const char *sc_meth_name[SM_REF] = {
     "LEADR + TK2019 (1/(2pi), 0.18)", "LEADR + Filament (0.15, 0.2^2)", "LEADR + HDRP (0.1, 0.2^2)",
     "LEADR + Godot limiter (0.25, 0.18 on alpha)", "vMF, no kernel", "vMF + box kernel (1/24)",
     "LEADR (aniso fetch) + box kernel (aniso)", "LEADR (aniso fetch) + box kernel + cross term",
-    "LEADR (aniso fetch) + box kernel (iso) + cross term", "LEADR (4 quadrant aniso fetches) + box kernel + cross term",
+    "LEADR (4 quadrant aniso fetches) + box kernel + cross term",
     "aniso fetch + box kernel + exact cross term", "diag: oracle covariance, mean of the texture only",
     "exact texel moments + box kernel (aniso)", "exact texel moments + box kernel + exact cross term", "oracle (exact footprint)"
 };
@@ -320,22 +320,16 @@ static void sc_run(void *ctx, long long job)
                     }
                     res[SM_AF] = sc_shade(&g, pf_specaa_slope_stats_aniso(sf, kan));
                     res[SM_AF_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(sf, kan, pf_specaa_kernel_cross(ax0, ay0, dmx, dmy, PF_SPECAA_SIGMA2_BOX)));
-                    res[SM_AF_ISO_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(sf, pf_specaa_kernel_make(PF_R(0.5) * kbox, PF_R(0.5) * kbox, 0),
-                                                                                     pf_specaa_kernel_cross(ax0, ay0, dmx, dmy, PF_SPECAA_SIGMA2_BOX)));
                     {   /* four anisotropic fetches, one per quadrant of the pixel (half the footprint each):
                            their mean, and the gradient from their differences (2 (right - left): exact for
                            a linear texture) */
-                        pf_slope_moments t00 = pf_slope_moments_make(0, 0, 0, 0, 0), t10 = t00, t01 = t00, t11 = t00, mq;
-                        pf_vec2 qx = pf_vec2_make(0, 0), qy = pf_vec2_make(0, 0);
+                        pf_slope_moments t00 = pf_slope_moments_make(0, 0, 0, 0, 0), t10 = t00, t01 = t00, t11 = t00;
                         if (scene & 1) {
                             t00 = sc_fetch_aniso(g.s, g.t, dst, -0.25, -0.25, 0.5); t10 = sc_fetch_aniso(g.s, g.t, dst, 0.25, -0.25, 0.5);
                             t01 = sc_fetch_aniso(g.s, g.t, dst, -0.25, 0.25, 0.5); t11 = sc_fetch_aniso(g.s, g.t, dst, 0.25, 0.25, 0.5);
-                            qx = pf_vec2_make(t10.ex + t11.ex - t00.ex - t01.ex, t10.ey + t11.ey - t00.ey - t01.ey);
-                            qy = pf_vec2_make(t01.ex + t11.ex - t00.ex - t10.ex, t01.ey + t11.ey - t00.ey - t10.ey);
                         }
-                        mq = pf_slope_moments_scale(pf_slope_moments_add(pf_slope_moments_add(t00, t10), pf_slope_moments_add(t01, t11)), PF_R(0.25));
-                        res[SM_QUAD_CROSS] = sc_shade(&g, pf_specaa_slope_stats_cross(pf_slope_moments_stats(mq, (pf_real)bv), kan,
-                                                                                       pf_specaa_kernel_cross(ax0, ay0, qx, qy, PF_SPECAA_SIGMA2_BOX)));
+                        res[SM_QUAD_CROSS] = sc_shade(&g, pf_specaa_slope_stats_quad(t00, t10, t01, t11, (pf_real)bv, ax0, ay0,
+                                                                                     PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA));
                     }
                     {   /* the exact cross term: the rays' regression of the texel slope on the sub-pixel offset
                            (var of the offset 1/12 over the pixel square) */

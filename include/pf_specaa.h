@@ -330,6 +330,29 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_ke
                                s.cov_xy + k.cov_xy + cxy);
 }
 
+/* The pixel's slope statistics from four reads of the moment pyramid, one per quadrant of the
+   pixel (m00: -x -y, m10: +x -y, m01: -x +y, m11: +x +y; each read at the quadrant's centre,
+   the pixel centre -+ 1/4 of d(uv)/dx and d(uv)/dy, with half the pixel's footprint, e.g.
+   textureGrad(pyramid, uv -+ 0.25 duvdx -+ 0.25 duvdy, 0.5 duvdx, 0.5 duvdy) on anisotropic
+   hardware): their mean is the pixel's moments, their differences the texture's mean-slope
+   gradient (dm/dx = (m10 + m11 - m00 - m01)/2 / (1/2 px), exact for a linear texture), composed
+   with the geometry kernel (pf_specaa_kernel_aniso, tangent-frame dndx, dndy) and the cross
+   term (4) through pf_specaa_slope_stats_cross; base_var as pf_slope_moments_stats. On the
+   curved normal-mapped scenes of bench/specaa_scenes.h this is within 1.2x of the
+   exact-footprint oracle's error where one isotropic trilinear read and no cross term are
+   2-9x (docs/specaa.md). */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_quad(pf_slope_moments m00, pf_slope_moments m10, pf_slope_moments m01,
+                                                 pf_slope_moments m11, pf_real base_var, pf_vec3 dndx, pf_vec3 dndy,
+                                                 pf_real sigma2, pf_real kappa)
+{
+    pf_slope_moments m = pf_slope_moments_scale(pf_slope_moments_add(pf_slope_moments_add(m00, m10),
+                                                                     pf_slope_moments_add(m01, m11)), PF_R(0.25));
+    pf_vec2 dmdx = pf_vec2_make(m10.ex + m11.ex - m00.ex - m01.ex, m10.ey + m11.ey - m00.ey - m01.ey);
+    pf_vec2 dmdy = pf_vec2_make(m01.ex + m11.ex - m00.ex - m10.ex, m01.ey + m11.ey - m00.ey - m10.ey);
+    return pf_specaa_slope_stats_cross(pf_slope_moments_stats(m, base_var), pf_specaa_kernel_aniso(dndx, dndy, sigma2, kappa),
+                                       pf_specaa_kernel_cross(dndx, dndy, dmdx, dmdy, sigma2));
+}
+
 /* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives (any frame) added
    to the footprint's slope statistics, at PF_SPECAA_LEADR_SIGMA2 (the box filter's 1/24 unless
    defined otherwise) and PF_SPECAA_KAPPA. */

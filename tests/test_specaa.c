@@ -313,25 +313,34 @@ static void test_compose(void)
 /* The cross term (4) by brute force over the unit pixel square (midpoint rule, 200 x 200 points,
    long double): a ray at offset o sees q(o) = -(a o_x + b o_y) + t(o) with a linear texture
    t(o) = m + dm/dx o_x + dm/dy o_y. The kernel (PF_SPECAA_SIGMA2_BOX) + the texture's own
-   covariance + (4) must equal the covariance of q; without (4) they do not (checked too). */
+   covariance + (4) must equal the covariance of q; without (4) they do not (checked too).
+   pf_specaa_slope_stats_quad, fed the four quadrants' texture moments (the same points), must
+   give the same covariance and the texture's mean. */
 static void test_kernel_cross(void)
 {
     long double worst = 0.0L, worst_nocross = 0.0L;
     int trial;
     for (trial = 0; trial < 40; ++trial) {
         long double a[2], b[2], gx[2], gy[2], mq[2] = { 0, 0 }, cq[3] = { 0, 0, 0 }, mt[2] = { 0, 0 }, ct[3] = { 0, 0, 0 };
-        long double tot[3], no[3], ex[3], sc, e, w = 1.0L / (200.0L * 200.0L);
-        int i, j, n = 200;
+        long double tot[3], no[3], ex[3], sc, e, w = 1.0L / (200.0L * 200.0L), qm[4][5];
+        int i, j, n = 200, qd;
+        pf_slope_moments mq4[4];
+        pf_slope_stats rq;
         pf_specaa_kernel k, c;
         pf_slope_stats t0, r;
         a[0] = 0.3L * (urand() - 0.5L); a[1] = 0.3L * (urand() - 0.5L);
         b[0] = 0.3L * (urand() - 0.5L); b[1] = 0.3L * (urand() - 0.5L);
         gx[0] = 0.4L * (urand() - 0.5L); gx[1] = 0.4L * (urand() - 0.5L);
         gy[0] = 0.4L * (urand() - 0.5L); gy[1] = 0.4L * (urand() - 0.5L);
+        for (qd = 0; qd < 4; ++qd)
+            for (i = 0; i < 5; ++i) qm[qd][i] = 0.0L;
         for (j = 0; j < n; ++j)
             for (i = 0; i < n; ++i) {
                 long double ox = (i + 0.5L) / n - 0.5L, oy = (j + 0.5L) / n - 0.5L;
                 long double tx = 0.05L + gx[0] * ox + gy[0] * oy, ty = -0.02L + gx[1] * ox + gy[1] * oy;
+                qd = (ox > 0.0L) + 2 * (oy > 0.0L); /* m00, m10, m01, m11 */
+                qm[qd][0] += 4.0L * w * tx; qm[qd][1] += 4.0L * w * ty; qm[qd][2] += 4.0L * w * tx * tx;
+                qm[qd][3] += 4.0L * w * ty * ty; qm[qd][4] += 4.0L * w * tx * ty;
                 long double qx = tx - (a[0] * ox + b[0] * oy), qy = ty - (a[1] * ox + b[1] * oy);
                 mq[0] += w * qx; mq[1] += w * qy; cq[0] += w * qx * qx; cq[1] += w * qy * qy; cq[2] += w * qx * qy;
                 mt[0] += w * tx; mt[1] += w * ty; ct[0] += w * tx * tx; ct[1] += w * ty * ty; ct[2] += w * tx * ty;
@@ -355,6 +364,14 @@ static void test_kernel_cross(void)
         e = (fabsl(no[0] - ex[0]) + fabsl(no[1] - ex[1]) + fabsl(no[2] - ex[2])) / sc;
         if (e > worst_nocross) worst_nocross = e;
         PF_CHECK(r.mean_x == t0.mean_x && r.mean_y == t0.mean_y, "mean kept");
+        for (qd = 0; qd < 4; ++qd)
+            mq4[qd] = pf_slope_moments_make((pf_real)qm[qd][0], (pf_real)qm[qd][1], (pf_real)qm[qd][2], (pf_real)qm[qd][3], (pf_real)qm[qd][4]);
+        rq = pf_specaa_slope_stats_quad(mq4[0], mq4[1], mq4[2], mq4[3], PF_R(1e-6), v3(a[0], a[1], 0.0L), v3(b[0], b[1], 0.0L),
+                                        PF_SPECAA_SIGMA2_BOX, PF_R(1.0e30));
+        e = (fabsl((long double)rq.var_x - 1e-6L - ex[0]) + fabsl((long double)rq.var_y - 1e-6L - ex[1]) +
+             fabsl((long double)rq.cov_xy - ex[2])) / sc;
+        if (e > worst) worst = e;
+        PF_CHECK(fabsl((long double)rq.mean_x - mt[0]) <= 1e-6L && fabsl((long double)rq.mean_y - mt[1]) <= 1e-6L, "quad mean");
     }
     pf_test_note("cross term: max rel err %.3Lg (without it %.3Lg)", worst, worst_nocross);
     PF_CHECK(worst <= 1e-3L, "%Lg", worst);
