@@ -29,7 +29,18 @@
                 exact screen derivatives of the macro-normal (central differences), composed
                 as pf_specaa.h says (LEADR: covariances add; vMF: pf_specaa_vmf_kappa on the
                 lobe of the mip's averaged unit normal, shaded through pf_vmf_lobe_slope_stats);
-                the engines' geometry kernels on the same LEADR texture part.
+                the engines' geometry kernels on the same LEADR texture part. The pyramid read
+                as GPUs read an anisotropic footprint (sc_fetch_aniso: N = min(ceil(major/
+                minor), 16) trilinear taps along the major axis at lod log2(major/N)), alone and
+                with the cross term (4) of pf_specaa.h from the central differences of its mean
+                at +-1/2 px (what dFdx/dFdy of the fetched mean give); four such reads, one per
+                pixel quadrant with half the footprint (pf_specaa_slope_stats_quad: moments,
+                gradient, kernel, cross term);
+   diagnostics  the exact texel moments of the pixel (the rays' nearest texels) with and
+                without the exact cross term (the rays' regression of the texel slope on the
+                sub-pixel offset); the anisotropic read with that exact cross term; the oracle's
+                covariance around the texture's mean (the geometry's second-order mean shift
+                removed).
    ERROR: RMS over pixels and frames of (method - reference), relative to the mean reference;
    the table gives it divided by the oracle's. FLICKER: per pixel, the change from one frame to
    the next (pixels on the surface in both), RMS over pixels and frame pairs; the table gives it
@@ -50,7 +61,7 @@ enum { SM_NONE, SM_BOX, SM_BOX_AREA, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM
 #define SC_NMETH SM_REF /* methods and the oracle */
 static const char *sc_meth_name[SM_REF] = {
     "LEADR, no kernel", "LEADR + box kernel (aniso, sigma2 1/24)", "LEADR (area lod) + box kernel (aniso)",
-    "LEADR + box kernel (iso, sigma2 1/24)",
+    "LEADR + box kernel (iso, sigma2 1/24: pf_specaa_leadr_specular)",
     "LEADR + TK2019 (1/(2pi), 0.18)", "LEADR + Filament (0.15, 0.2^2)", "LEADR + HDRP (0.1, 0.2^2)",
     "LEADR + Godot limiter (0.25, 0.18 on alpha)", "vMF, no kernel", "vMF + box kernel (1/24)",
     "LEADR (aniso fetch) + box kernel (aniso)", "LEADR (aniso fetch) + box kernel + cross term",

@@ -31,6 +31,14 @@
    growing alpha without bound. pf_specaa_alpha_projected does that sum here with a map
    between slope and projected variances of our own (below, "projected space"), measured
    against quadrature in tests/test_specaa.c.
+   (a+b) BOTH AT ONCE. Inside one pixel the geometry's turn and the texture's slopes are not
+   independent: a ray at offset o from the centre sees the slope -(a o_x + b o_y) + t(o) (a, b
+   the normal's tangent-frame derivatives, t the texel's slope), so the pixel's covariance is
+   the kernel's plus the texture's plus twice their cross-covariance, which a linear texture
+   trend dm/dx, dm/dy across the footprint makes (4) below (pf_specaa_kernel_cross). A shader
+   reads dm/dx, dm/dy as the derivatives of the fetched mean slope, or, better, from four reads
+   of the moment pyramid, one per quadrant of the pixel (pf_specaa_slope_stats_quad), which also
+   give the pixel's moments more sharply than one trilinear read at the footprint's major axis.
    (b) The TEXTURE: the normals of a normal map spread inside a mip texel. Engines bake a
    roughness (or a variance) per mip level from the length r of the averaged normal
    (Toksvig 2005; a vMF fit, kappa = (3r - r^3)/(1 - r^2), Banerjee et al. 2005). The baker
@@ -48,19 +56,26 @@
 
    COMPOSITION. A kernel is a slope covariance; what it widens:
      LEADR     the footprint's slope covariance: var_x, var_y (and cov_xy) += the kernel's
-               (pf_specaa_slope_stats; Dupuy et al. 2013 add the micro-BRDF's variance alike);
+               (pf_specaa_slope_stats; Dupuy et al. 2013 add the micro-BRDF's variance alike),
+               and += the cross term (4) where the texture's mean-slope gradient is known
+               (pf_specaa_slope_stats_cross, pf_specaa_slope_stats_quad);
      vMF       each lobe's tangent variance ~1/kappa grows by the kernel's per-axis variance:
                kappa' = kappa / (1 + kappa k/2) (pf_vmf.h's small-angle rule);
      GGX, Beckmann roughness  alpha'^2 = alpha^2 + k (1), or the projected-space sum.
    The kernel's alpha^2 increment k is twice its per-axis slope variance (k/2 per axis).
 
    USAGE (shader)
-     pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
-       (PF_SPECAA_SIGMA2_BOX for a box-filtered target; pf_specaa_kernel_aniso with the
-       tangent-frame derivatives on surfaces that curve along one axis only)
+     pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+       (PF_SPECAA_SIGMA2, the papers' conservative constant, for a Gaussian-filtered target;
+       pf_specaa_kernel_aniso with the tangent-frame derivatives on surfaces that curve along
+       one axis more than the other)
      pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
      pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
      pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
+     -- normal-mapped curved surfaces, the most accurate form (tangent-frame dndx, dndy; the
+     -- four reads at uv -+ duvdx/4 -+ duvdy/4 with gradients duvdx/2, duvdy/2):
+     pf_slope_stats s = pf_specaa_slope_stats_quad(m00, m10, m01, m11, alpha * alpha / 2,
+                                                   dndx, dndy, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
      l.kappa = pf_specaa_vmf_kappa(l.kappa, k);                   -- each vMF lobe
    USAGE (CPU baker)
      pf_specaa_bake_desc d = { normals, NULL, w, h, PF_R(0.1), PF_SPECAA_NDF_GGX, PF_R(0.0) };
@@ -75,6 +90,8 @@
      roughness   pf_specaa_alpha (1), pf_specaa_alpha_projected (projected-space sum),
                  pf_specaa_alpha_from_variance (2) with a stored v, pf_specaa_projected_variance,
                  pf_specaa_slope_variance_from_projected
+     cross term  pf_specaa_kernel_cross (4), pf_specaa_slope_stats_cross,
+                 pf_specaa_slope_stats_quad (four quadrant reads: moments, gradient, kernel, (4))
      compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
                  pf_specaa_vmf_lobe, pf_specaa_leadr_specular
    FUNCTIONS (CPU only, PF_CPU_DEF, compiled out under PF_GLSL)
@@ -104,20 +121,25 @@
 
    ACCURACY AND COST (measured; docs/specaa.md has the tables). The kernels are a few flops;
    the geometry kernel adds 12 SPIR-V ops to pf_leadr_specular (116 -> 128) (after spirv-opt -O,
-   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). The anisotropic
-   kernel halved is the slope covariance of a sphere's normals over the Gaussian pixel filter
-   within 0.7% of its trace (spheres 20-200 px across). Baker (2), against the exact NDF of each
-   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): more
-   accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
-   GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
-   isotropic lobe. On curved scenes (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40
-   px across, plain and normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled
-   reference and the exact-footprint oracle over a sub-pixel camera path) LEADR with the
-   anisotropic kernel at PF_SPECAA_SIGMA2_BOX keeps the per-pixel flicker within 1.08x of the
-   reference's and, without a normal map, the error within 1.0-1.8x of the oracle's; the
-   default constants over-blur (2-77x the oracle's error, flicker below the reference's), the
-   isotropic kernel over-blurs the cylinder's straight axis (2.6-12x). With a normal map the
-   mip pyramid's sampling, not the kernel, sets the error (2-9x the oracle's at alpha 0.1).
+   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular); the anisotropic
+   kernel in its place adds 24 (pf_specaa_kernel_aniso, 25 ops alone, with its handling of
+   NaN and inf), above the 15 the library allows the default, so the default stays isotropic.
+   pf_specaa_kernel_cross is 13 ops, pf_specaa_slope_stats_cross 33, pf_specaa_slope_stats_quad
+   118 (the four reads not counted). The anisotropic kernel halved is the slope covariance of a
+   sphere's normals over the Gaussian pixel filter within 0.7% of its trace (spheres 20-200 px
+   across). Baker (2), against the exact NDF of each mip texel's footprint on the seven kinds of
+   the microsurface corpus (bench/specaa.c): more accurate than every engine formula (Toksvig,
+   Filament, HDRP, Godot) on all seven kinds, for GGX and for Beckmann. On curved scenes
+   (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40 px across, plain and
+   normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled reference and the
+   exact-footprint oracle over a sub-pixel camera path): without a map, LEADR with the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error (the rest
+   is the second-order shift of the pixel's mean slope, which first derivatives cannot see)
+   and its flicker within 1.03x of the reference's; the isotropic kernel is as good on the
+   sphere and over-blurs the cylinder's straight axis (2.6-12x); the papers' constant
+   over-blurs everywhere (2-77x). With a normal map, one isotropic trilinear read of the
+   pyramid and no cross term are 1.0-8.8x the oracle's error; pf_specaa_slope_stats_quad is
+   within 0.99-1.18x, its flicker 1.00-1.69x the reference's (the oracle's own: 1.02-1.56x).
    docs/specaa.md has the table.
 
    SOURCES
@@ -150,9 +172,11 @@
    quadrature over the pixel square. */
 #define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
 /* The sigma2 of pf_specaa_leadr_specular: the box filter's (a supersampled, box-filtered
-   target: on the curved scenes of bench/specaa_scenes.h it is 1.2-27x closer to the
-   exact-footprint oracle than the papers' 1/(2 pi) with the factor 2, which over-blurs; same
-   cost). Define it as PF_SPECAA_SIGMA2 before including this header for the papers' kernel. */
+   target). On the curved scenes of bench/specaa_scenes.h it is 1.7-47x closer to the
+   exact-footprint oracle than the papers' 1/(2 pi) with the factor 2 without a normal map
+   (that one over-blurs), and 0.86-1.19x as close with one (where the pyramid read, not the
+   kernel, sets the error); same cost. Define it as PF_SPECAA_SIGMA2 before including this
+   header for the papers' kernel. */
 #ifndef PF_SPECAA_LEADR_SIGMA2
 #  define PF_SPECAA_LEADR_SIGMA2 PF_SPECAA_SIGMA2_BOX
 #endif
