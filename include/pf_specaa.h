@@ -137,7 +137,7 @@
    is the second-order shift of the pixel's mean slope, which first derivatives cannot see)
    and its flicker within 1.03x of the reference's; the isotropic kernel is as good on the
    sphere and over-blurs the cylinder's straight axis (2.6-12x); the papers' constant
-   over-blurs everywhere (2-77x). With a normal map, one isotropic trilinear read of the
+   over-blurs (2-77x). With a normal map, one isotropic trilinear read of the
    pyramid and no cross term are 1.0-8.8x the oracle's error; pf_specaa_slope_stats_quad is
    within 0.99-1.18x, its flicker 1.00-1.69x the reference's (the oracle's own: 1.02-1.56x).
    docs/specaa.md has the table.
