@@ -398,7 +398,11 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
                 "%d frames of a sub-pixel camera path (1 px along x, 0.37 px along y in all). **err** = RMS error against the "
                 "reference / the oracle's; **flk** = RMS frame-to-frame change per pixel / the reference's own. Reference "
                 "noise: its sampling deviation relative to the mean, and its share of its own frame-to-frame change "
-                "(sqrt 2 x deviation / change: below 1 means the reference's flicker is resolved).%s\n\n",
+                "(sqrt 2 x deviation / change: below 1 means the reference's flicker is resolved). Texture reads: one "
+                "trilinear read at the GPU's isotropic lod unless named; \"aniso fetch\": a GPU's anisotropic rule (up to 16 "
+                "trilinear taps along the major axis at the minor axis' level); \"cross term\": (4) of pf_specaa.h from the read's "
+                "mean-slope derivatives; \"4 quadrant\": pf_specaa_slope_stats_quad; \"exact\" and \"diag\" columns are "
+                "diagnostics from the reference's rays (docs/specaa.md, section 3).%s\n\n",
             sc_diam[0], sc_diam[1], SC_N * SC_REP / (3.14159265358979323846 * sc_diam[1]),
             SC_N * SC_REP / (3.14159265358979323846 * sc_diam[0]), sc_alpha[0], sc_alpha[1], sc_S, sc_S, sc_F,
             quick ? " BENCH_QUICK: smoke run, not for publication." : "");
