@@ -9069,7 +9069,8 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
    kernel in its place adds 24 (pf_specaa_kernel_aniso, 25 ops alone, with its handling of
    NaN and inf), above the 15 the library allows the default, so the default stays isotropic.
    pf_specaa_kernel_cross is 13 ops, pf_specaa_slope_stats_cross 33, pf_specaa_slope_stats_quad
-   118 (the four reads not counted). The anisotropic kernel halved is the slope covariance of a
+   118 (the four reads not counted); the anisotropic kernel with the cross term adds 64 to
+   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The anisotropic kernel halved is the slope covariance of a
    sphere's normals over the Gaussian pixel filter within 0.7% of its trace (spheres 20-200 px
    across). Baker (2), against the exact NDF of each mip texel's footprint on the seven kinds of
    the microsurface corpus (bench/specaa.c): more accurate than every engine formula (Toksvig,
