@@ -8961,14 +8961,28 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
        k = min(2 sigma^2 (|dn/dx|^2 + |dn/dy|^2), kappa),   alpha'^2 = saturate(alpha^2 + k) (1)
    with sigma^2 = 1/(2 pi), the variance of the Gaussian pixel filter of unit peak and unit
    integral. |dn|^2 does not depend on the frame, so world-space dFdx(n) may be passed as is.
-   Engines ship (1) with other constants: Filament's normalFiltering (sigma^2 = 0.15, kappa =
-   0.2), Unity HDRP's GeometricSpecularAA (screen-space variance and a threshold, kappa = t^2).
+   sigma^2 = 1/(2 pi) with the factor 2 is conservative: a BOX pixel filter (a supersampled
+   resolve averaging the pixel square) has the slope covariance (1) gives with sigma^2 = 1/24
+   (PF_SPECAA_SIGMA2_BOX), 3.8x narrower. Engines ship (1) with other constants (their source,
+   docs/specaa.md): Filament's normalFiltering sigma^2 = 0.15, kappa = 0.2^2 = 0.04 (the
+   material's threshold 0.2 is squared when set); Unity HDRP's GeometricNormalFiltering
+   sigma^2 = 0.1, kappa = 0.2^2 (Lit defaults); Godot's screen-space roughness limiter
+   sigma^2 = 0.25, kappa = 0.18, added to the perceptual roughness squared, that is to alpha
+   and not to alpha^2.
    Tokuyoshi & Kaplanyan 2021 ("Stable geometric specular antialiasing with projected-space NDF
    filtering", JCGT 10(2)) add the kernel in projected space instead of slope space: that
    space is bounded (|p| < 1), so a kernel as wide as the hemisphere saturates instead of
    growing alpha without bound. pf_specaa_alpha_projected does that sum here with a map
    between slope and projected variances of our own (below, "projected space"), measured
    against quadrature in tests/test_specaa.c.
+   (a+b) BOTH AT ONCE. Inside one pixel the geometry's turn and the texture's slopes are not
+   independent: a ray at offset o from the centre sees the slope -(a o_x + b o_y) + t(o) (a, b
+   the normal's tangent-frame derivatives, t the texel's slope), so the pixel's covariance is
+   the kernel's plus the texture's plus twice their cross-covariance, which a linear texture
+   trend dm/dx, dm/dy across the footprint makes (4) below (pf_specaa_kernel_cross). A shader
+   reads dm/dx, dm/dy as the derivatives of the fetched mean slope, or, better, from four reads
+   of the moment pyramid, one per quadrant of the pixel (pf_specaa_slope_stats_quad), which also
+   give the pixel's moments more sharply than one trilinear read at the footprint's major axis.
    (b) The TEXTURE: the normals of a normal map spread inside a mip texel. Engines bake a
    roughness (or a variance) per mip level from the length r of the averaged normal
    (Toksvig 2005; a vMF fit, kappa = (3r - r^3)/(1 - r^2), Banerjee et al. 2005). The baker
@@ -8986,17 +9000,26 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
 
    COMPOSITION. A kernel is a slope covariance; what it widens:
      LEADR     the footprint's slope covariance: var_x, var_y (and cov_xy) += the kernel's
-               (pf_specaa_slope_stats; Dupuy et al. 2013 add the micro-BRDF's variance alike);
+               (pf_specaa_slope_stats; Dupuy et al. 2013 add the micro-BRDF's variance alike),
+               and += the cross term (4) where the texture's mean-slope gradient is known
+               (pf_specaa_slope_stats_cross, pf_specaa_slope_stats_quad);
      vMF       each lobe's tangent variance ~1/kappa grows by the kernel's per-axis variance:
                kappa' = kappa / (1 + kappa k/2) (pf_vmf.h's small-angle rule);
      GGX, Beckmann roughness  alpha'^2 = alpha^2 + k (1), or the projected-space sum.
    The kernel's alpha^2 increment k is twice its per-axis slope variance (k/2 per axis).
 
    USAGE (shader)
-     pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+     pf_real k = pf_specaa_kernel_normal(dFdx(n), dFdy(n), PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+       (PF_SPECAA_SIGMA2, the papers' conservative constant, for a Gaussian-filtered target;
+       pf_specaa_kernel_aniso with the tangent-frame derivatives on surfaces that curve along
+       one axis more than the other)
      pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
      pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
      pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
+     -- normal-mapped curved surfaces, the most accurate form (tangent-frame dndx, dndy; the
+     -- four reads at uv -+ duvdx/4 -+ duvdy/4 with gradients duvdx/2, duvdy/2):
+     pf_slope_stats s = pf_specaa_slope_stats_quad(m00, m10, m01, m11, alpha * alpha / 2,
+                                                   dndx, dndy, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
      l.kappa = pf_specaa_vmf_kappa(l.kappa, k);                   -- each vMF lobe
    USAGE (CPU baker)
      pf_specaa_bake_desc d = { normals, NULL, w, h, PF_R(0.1), PF_SPECAA_NDF_GGX, PF_R(0.0) };
@@ -9011,6 +9034,8 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
      roughness   pf_specaa_alpha (1), pf_specaa_alpha_projected (projected-space sum),
                  pf_specaa_alpha_from_variance (2) with a stored v, pf_specaa_projected_variance,
                  pf_specaa_slope_variance_from_projected
+     cross term  pf_specaa_kernel_cross (4), pf_specaa_slope_stats_cross,
+                 pf_specaa_slope_stats_quad (four quadrant reads: moments, gradient, kernel, (4))
      compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
                  pf_specaa_vmf_lobe, pf_specaa_leadr_specular
    FUNCTIONS (CPU only, PF_CPU_DEF, compiled out under PF_GLSL)
@@ -9040,16 +9065,27 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
 
    ACCURACY AND COST (measured; docs/specaa.md has the tables). The kernels are a few flops;
    the geometry kernel adds 12 SPIR-V ops to pf_leadr_specular (116 -> 128) (after spirv-opt -O,
-   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular). The anisotropic
-   kernel halved is the slope covariance of a sphere's normals over the Gaussian pixel filter
-   within 0.7% of its trace (spheres 20-200 px across). Baker (2), against the exact NDF of each
-   mip texel's footprint on the seven kinds of the microsurface corpus (bench/specaa.c): more
-   accurate than every engine formula (Toksvig, Filament, HDRP, Godot) on all seven kinds, for
-   GGX and for Beckmann; the tables (docs/specaa.md) have the numbers and the best single
-   isotropic lobe. On a supersampled sphere 10-60 px across (bench/specaa.c), (1) with the
-   default constants cuts the flicker of an unfiltered narrow highlight 9-47x, stays above the
-   reference's own flicker, and over-blurs the 60 px sphere; sigma2 = 1/24 (the box pixel
-   filter's exact bandwidth) has the lowest per-pixel error there, with more flicker.
+   bench/gpu/count.sh: pf_specaa_leadr_specular against pf_leadr_specular); the anisotropic
+   kernel in its place adds 24 (pf_specaa_kernel_aniso, 25 ops alone, with its handling of
+   NaN and inf), above the 15 the library allows the default, so the default stays isotropic.
+   pf_specaa_kernel_cross is 13 ops, pf_specaa_slope_stats_cross 33, pf_specaa_slope_stats_quad
+   118 (the four reads not counted); the anisotropic kernel with the cross term adds 64 to
+   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The anisotropic kernel halved is the slope covariance of a
+   sphere's normals over the Gaussian pixel filter within 0.7% of its trace (spheres 20-200 px
+   across). Baker (2), against the exact NDF of each mip texel's footprint on the seven kinds of
+   the microsurface corpus (bench/specaa.c): more accurate than every engine formula (Toksvig,
+   Filament, HDRP, Godot) on all seven kinds, for GGX and for Beckmann. On curved scenes
+   (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40 px across, plain and
+   normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled reference and the
+   exact-footprint oracle over a sub-pixel camera path): without a map, LEADR with the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error (the rest
+   is the second-order shift of the pixel's mean slope, which first derivatives cannot see)
+   and its flicker within 1.03x of the reference's; the isotropic kernel is as good on the
+   sphere and over-blurs the cylinder's straight axis (2.6-12x); the papers' constant
+   over-blurs (2-77x). With a normal map, one isotropic trilinear read of the
+   pyramid and no cross term are 1.0-8.8x the oracle's error; pf_specaa_slope_stats_quad is
+   within 0.99-1.18x, its flicker 1.00-1.69x the reference's (the oracle's own: 1.02-1.56x).
+   docs/specaa.md has the table.
 
    SOURCES
      Kaplanyan, Hill, Patney, Lefohn 2016, HPG (slope-domain kernel from half-vector
@@ -9073,7 +9109,23 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
 #ifndef PF_SPECAA_SIGMA2
 #  define PF_SPECAA_SIGMA2 PF_R(0.15915494309189535)
 #endif
-/* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament: 0.2). */
+/* Variance constant of the BOX pixel filter (a supersampled reference that averages the pixel
+   square, MSAA/SSAA resolves): a normal varying linearly across the unit pixel square has the
+   slope covariance (1/12)(a a^T + b b^T) (the box's per-axis variance 1/12), which
+   pf_specaa_kernel_aniso gives with sigma2 = 1/24 (its factor 2 cancels: no conservative
+   widening) and pf_specaa_kernel_normal as its trace. tests/test_specaa.c checks it by
+   quadrature over the pixel square. */
+#define PF_SPECAA_SIGMA2_BOX PF_R(0.041666666666666667)
+/* The sigma2 of pf_specaa_leadr_specular: the box filter's (a supersampled, box-filtered
+   target). On the curved scenes of bench/specaa_scenes.h it is 1.7-47x closer to the
+   exact-footprint oracle than the papers' 1/(2 pi) with the factor 2 without a normal map
+   (that one over-blurs), and 0.86-1.19x as close with one (where the pyramid read, not the
+   kernel, sets the error); same cost. Define it as PF_SPECAA_SIGMA2 before including this
+   header for the papers' kernel. */
+#ifndef PF_SPECAA_LEADR_SIGMA2
+#  define PF_SPECAA_LEADR_SIGMA2 PF_SPECAA_SIGMA2_BOX
+#endif
+/* Largest alpha^2 the kernel adds (Tokuyoshi & Kaplanyan 2019's kappa; Filament and HDRP: 0.2^2 = 0.04). */
 #ifndef PF_SPECAA_KAPPA
 #  define PF_SPECAA_KAPPA PF_R(0.18)
 #endif
@@ -9205,12 +9257,78 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_ke
                                s.cov_xy + k.cov_xy);
 }
 
-/* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives added to the
-   footprint's slope statistics (default sigma^2 and kappa). */
+/* The cross term of the geometry's turn and the texture's slopes inside the pixel. A ray at the
+   offset o from the pixel centre (pixels) sees, in the centre's tangent frame, the slope
+       q(o) = -(a o_x + b o_y) + t(o),   a = dndx.xy, b = dndy.xy (tangent frame, as
+   pf_specaa_kernel_aniso), t the texture's slope at the ray's texel (to first order in the
+   turn: the texel's slope rotated with its frame is second order). With t(o) = m + dm/dx o_x +
+   dm/dy o_y + residual (m the footprint's mean slope), a pixel filter of per-axis variance
+   2 sigma2 and no offset-residual correlation:
+       Cov q = Cov(-(a o_x + b o_y)) + Cov t + C,
+       C_ij = -2 sigma2 (a_i dm_j/dx + b_i dm_j/dy + a_j dm_i/dx + b_j dm_i/dy)              (4)
+   the first term pf_specaa_kernel_aniso's kernel (2 sigma2 (a a^T + b b^T)), the second the
+   texture's (LEADR's footprint moments). In a shader dm/dx, dm/dy are dFdx, dFdy of the
+   fetched mean slope (pf_slope_moments' ex, ey, or the stats' mean_x, mean_y). (4) is exact
+   for a box filter (sigma2 = PF_SPECAA_SIGMA2_BOX) and linear fields (tests/test_specaa.c by
+   brute force). Unlike the kernel it may be negative (a texture that leans against the curve
+   flattens the pixel's normals); pf_specaa_slope_stats_cross keeps the sum a covariance. NaN
+   or inf derivatives give NaN or inf here; pf_specaa_slope_stats_cross drops such a term. */
+PF_DEF pf_specaa_kernel pf_specaa_kernel_cross(pf_vec3 dndx, pf_vec3 dndy, pf_vec2 dmdx, pf_vec2 dmdy,
+                                               pf_real sigma2)
+{
+    pf_real s = PF_R(-2.0) * sigma2;
+    pf_real xx = dndx.x * dmdx.x + dndy.x * dmdy.x, yy = dndx.y * dmdx.y + dndy.y * dmdy.y;
+    pf_real xy = dndx.x * dmdx.y + dndy.x * dmdy.y + dndx.y * dmdx.x + dndy.y * dmdy.x;
+    return pf_specaa_kernel_make(PF_R(2.0) * s * xx, PF_R(2.0) * s * yy, s * xy);
+}
+
+/* LEADR with the geometry kernel k (pf_specaa_kernel_aniso) and the cross term c
+   (pf_specaa_kernel_cross, same sigma2): var += k.var + c.var, cov += k.cov + c.cov. Each
+   diagonal cross term is clamped to |c| <= 2 sqrt(k.var s.var) (Cauchy-Schwarz: the variance of
+   a sum of two parts of variances k.var and s.var), so the variances stay >= 0; a NaN or
+   infinite cross term reads as 0 on its axis (NaN derivatives: the kernel alone). The
+   covariance is left to pf_leadr_specular's determinant floor. */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_kernel k, pf_specaa_kernel c)
+{
+    pf_real bx = PF_R(2.0) * PF_SQRT(pf_max(k.var_x, PF_R(0.0)) * pf_max(s.var_x, PF_R(0.0)));
+    pf_real by = PF_R(2.0) * PF_SQRT(pf_max(k.var_y, PF_R(0.0)) * pf_max(s.var_y, PF_R(0.0)));
+    pf_real cx = c.var_x - c.var_x == PF_R(0.0) ? pf_clamp_nan_lo(c.var_x, -bx, bx) : PF_R(0.0);
+    pf_real cy = c.var_y - c.var_y == PF_R(0.0) ? pf_clamp_nan_lo(c.var_y, -by, by) : PF_R(0.0);
+    pf_real cxy = c.cov_xy - c.cov_xy == PF_R(0.0) ? c.cov_xy : PF_R(0.0);
+    return pf_slope_stats_make(s.mean_x, s.mean_y, s.var_x + k.var_x + cx, s.var_y + k.var_y + cy,
+                               s.cov_xy + k.cov_xy + cxy);
+}
+
+/* The pixel's slope statistics from four reads of the moment pyramid, one per quadrant of the
+   pixel (m00: -x -y, m10: +x -y, m01: -x +y, m11: +x +y; each read at the quadrant's centre,
+   the pixel centre -+ 1/4 of d(uv)/dx and d(uv)/dy, with half the pixel's footprint, e.g.
+   textureGrad(pyramid, uv -+ 0.25 duvdx -+ 0.25 duvdy, 0.5 duvdx, 0.5 duvdy) on anisotropic
+   hardware): their mean is the pixel's moments, their differences the texture's mean-slope
+   gradient (dm/dx = (m10 + m11 - m00 - m01)/2 / (1/2 px), exact for a linear texture), composed
+   with the geometry kernel (pf_specaa_kernel_aniso, tangent-frame dndx, dndy) and the cross
+   term (4) through pf_specaa_slope_stats_cross; base_var as pf_slope_moments_stats. On the
+   curved normal-mapped scenes of bench/specaa_scenes.h this is within 1.2x of the
+   exact-footprint oracle's error where one isotropic trilinear read and no cross term are
+   2-9x (docs/specaa.md). */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_quad(pf_slope_moments m00, pf_slope_moments m10, pf_slope_moments m01,
+                                                 pf_slope_moments m11, pf_real base_var, pf_vec3 dndx, pf_vec3 dndy,
+                                                 pf_real sigma2, pf_real kappa)
+{
+    pf_slope_moments m = pf_slope_moments_scale(pf_slope_moments_add(pf_slope_moments_add(m00, m10),
+                                                                     pf_slope_moments_add(m01, m11)), PF_R(0.25));
+    pf_vec2 dmdx = pf_vec2_make(m10.ex + m11.ex - m00.ex - m01.ex, m10.ey + m11.ey - m00.ey - m01.ey);
+    pf_vec2 dmdy = pf_vec2_make(m01.ex + m11.ex - m00.ex - m10.ex, m01.ey + m11.ey - m00.ey - m10.ey);
+    return pf_specaa_slope_stats_cross(pf_slope_moments_stats(m, base_var), pf_specaa_kernel_aniso(dndx, dndy, sigma2, kappa),
+                                       pf_specaa_kernel_cross(dndx, dndy, dmdx, dmdy, sigma2));
+}
+
+/* pf_leadr_specular with the geometry kernel (1) of the normal's derivatives (any frame) added
+   to the footprint's slope statistics, at PF_SPECAA_LEADR_SIGMA2 (the box filter's 1/24 unless
+   defined otherwise) and PF_SPECAA_KAPPA. */
 PF_DEF pf_real pf_specaa_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
                                         pf_vec3 dndx, pf_vec3 dndy)
 {
-    pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA);
+    pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_LEADR_SIGMA2, PF_SPECAA_KAPPA);
     return pf_leadr_specular(wo, wi, pf_specaa_slope_stats(s, k), f0);
 }
 

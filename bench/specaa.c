@@ -1,6 +1,7 @@
 /* bench/specaa.c - roughness mips baked from normal maps (pf_specaa.h's baker) against the
    engines' formulas, measured on the microsurface corpus against the exact NDF of each mip
-   texel's footprint.
+   texel's footprint; and curved, normal-mapped scenes (bench/specaa_scenes.h) for the
+   geometry kernel.
 
    THE ORACLE. A mip texel of level L covers a box of 2^L x 2^L texels of the normal map. Each
    texel t carries the base lobe of roughness alpha0 (GGX or Beckmann) around its own slope
@@ -17,14 +18,19 @@
    log alpha): what no roughness formula can beat, so a reader sees the room left.
 
    BAKERS (r = |mean of the footprint's unit normals|, kappa = (3r - r^3)/(1 - r^2), Banerjee
-   et al. 2005; every one gets the same alpha0 and the same centre):
+   et al. 2005; every one gets the same alpha0 and the same centre). The engines' as their
+   source reads (docs/specaa.md cites file and function); where an engine stores PERCEPTUAL
+   roughness p (alpha = p^2) and adds to p^2, the increment lands on alpha, not alpha^2:
      naive     alpha' = alpha0 (the roughness map's mip, no normal variance)
      toksvig   alpha'^2 = alpha0^2 + 2 (1 - r)/r                   (Toksvig 2005; pf_toksvig_ggx_alpha)
-     filament  alpha'^2 = alpha0^2 + 2/kappa                       (Filament's roughness prefilter, vMF fit)
-     hdrp      alpha'^2 = alpha0^2 + min(2 * 0.25/kappa, 0.2^2)    (Unity HDRP: variance 0.25/kappa in
-                                                                    the normal map's B channel,
-                                                                    threshold 0.2 at run time)
-     godot     alpha'^2 = alpha0^2 + min(0.75/kappa, 0.4^2)        (Godot's generate_mipmap_roughness)
+     filament  alpha' = alpha0 + min(2 x 0.25/kappa, 0.2^2)        (tools/roughness-prefilter: on the
+                                                                    perceptual roughness it writes)
+     hdrp      alpha'^2 = alpha0^2 + min(2 min(0.25/kappa, 0.03125), 0.2^2)
+                                                                   (NormalMapFilteringTexturePostprocessor's
+                                                                    variance in the B channel, NormalFiltering
+                                                                    at run time on alpha^2, threshold 0.2)
+     godot     alpha' = alpha0 + min(3 x 0.25/kappa, 0.4^2)        (Image::generate_mipmap_roughness, on
+                                                                    the perceptual roughness channel)
      library   pf_specaa_bake: alpha'^2 = E[alpha^2] + 2 g var rho, the footprint's slope variance
                corrected by its peakedness rho = 8 var^2 / E|s - E s|^4 (clamped to [0, 2]) from
                its slope moments up to the fourth (pf_map.h pyramid), g = PF_SPECAA_GAIN_GGX /
@@ -38,13 +44,14 @@
    in {0.05, 0.2}; 8 mip texels per level up to 16 x 16, 4 above (seeded; quick: 4 and 2).
 
    OUTPUT (--out DIR, default bench/out): specaa_bakers.csv (kind, ndf, alpha0, level, baker,
-   mean and max error, texels), specaa_sphere.csv (the sphere below), specaa.md (the tables;
-   docs/specaa.md's generated block). BENCH_QUICK=1 or --quick: the smoke run (256 x 256, a
-   32 x 32 slope grid, fewer texels; sphere 8 x 8 samples, 8 frames).
+   mean and max error, texels), specaa_scenes.csv (the curved scenes, bench/specaa_scenes.h),
+   specaa.md (the tables; docs/specaa.md's generated block). BENCH_QUICK=1 or --quick: the smoke
+   run (256 x 256, a 32 x 32 slope grid, fewer texels; scenes 8 x 8 rays, 6 frames, 16 and
+   24 px). --scenes-only: the curved scenes alone.
    THE USER'S MAP (--map PATH and pf_maps.h's --map-NAME VALUE options, what `make bench MAP=`
    runs through bench/map.sh): the corpus is replaced by that map (its slopes as
-   tests/reference/pf_maps.h makes them), the same tables for the one kind "map", no sphere.
-   Usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]].
+   tests/reference/pf_maps.h makes them), the same tables for the one kind "map", no scenes.
+   Usage: specaa [--quick] [--out DIR] [--scenes-only] [--map PATH [--map-NAME VALUE ...]].
    PFB_THREADS as every bench program. */
 #include "pf_bench_base.h"
 #include <stdio.h>
@@ -186,9 +193,13 @@ static void run_item(void *ctx, long long it)
     kap = kappa_of(r);
     alpha[B_NAIVE] = a0;
     alpha[B_TOKSVIG] = (double)pf_toksvig_ggx_alpha((pf_real)a0, pf_toksvig_variance((pf_real)r));
-    alpha[B_FILAMENT] = sqrt(a0 * a0 + (isinf(kap) ? 0.0 : 2.0 / kap));
+    /* Filament's roughness-prefilter tool: sqrt(r^2 + min(2 x 0.25/kappa, 0.2^2)) on the roughness it
+       stores, which Filament reads as perceptual roughness (alpha = r^2): alpha' = alpha + min(0.5/kappa, 0.04) */
+    alpha[B_FILAMENT] = a0 + (isinf(kap) ? 0.0 : fmin(0.5 / kap, 0.04));
+    /* HDRP: min(2 min(0.25/kappa, 0.03125), 0.2^2) on alpha^2; the encoder's cap 0.03125 never binds under 0.2^2 */
     alpha[B_HDRP] = sqrt(a0 * a0 + (isinf(kap) ? 0.0 : fmin(0.5 / kap, 0.04)));
-    alpha[B_GODOT] = sqrt(a0 * a0 + (isinf(kap) ? 0.0 : fmin(0.75 / kap, 0.16)));
+    /* Godot adds to the PERCEPTUAL roughness squared, which is alpha (alpha_ggx = roughness^2) */
+    alpha[B_GODOT] = a0 + (isinf(kap) ? 0.0 : fmin(0.75 / kap, 0.16));
     {
         long long off = pf_mip_level_offset(N, N, I->level);
         int lw = pf_mip_level_size(N, I->level);
@@ -231,123 +242,12 @@ static void run_item(void *ctx, long long it)
     free(ts);
 }
 
-/* ================================================================ curved geometry: a sphere
-   Orthographic view along -z of a sphere of radius R pixels (R = 5, 15, 30: 10 to 60 px
-   across), GGX alpha in {0.02, 0.05, 0.1}, f0 = 1, a directional light; shading f D G2 / (4 n.v)
-   (height-correlated Smith). REFERENCE: per pixel, S x S stratified jittered samples over the
-   pixel square (box filter), averaged over the samples that hit the sphere (the shading
-   resolve; coverage is not what is measured), pixels whose centre is on the sphere; its own
-   sampling deviation = sample deviation / sqrt(hits), reported as RMS. METHODS shade once at
-   the pixel centre with alpha widened by the geometry kernel from the exact derivatives of the
-   normal (or, "quad", from coarse 2x2 quad differences as dFdx/dFdy give them: a neighbour
-   off the sphere gives NaN, the silhouette's degenerate case). ERROR: RMS over pixels and
-   frames of (method - reference), relative to the mean reference radiance. FLICKER: the
-   sphere's total radiance over a camera path of F frames (the sphere moves by 1/F pixel per
-   frame along x and 0.37/F along y), its deviation over frames relative to its mean. */
-enum { M_NONE, M_TK, M_FILAMENT, M_BOX, M_PROJ, M_TK_QUAD, NMETH };
-static const char *meth_name[NMETH] = { "no kernel", "tk2019 (sigma2 1/(2pi), kappa 0.18)", "filament (0.15, 0.2)",
-                                        "box-exact (sigma2 1/24, kappa 0.18)", "projected (sigma2 1/(2pi), no clamp)",
-                                        "tk2019, quad differences" };
-#define NRAD 3
-#define NSALPHA 3
-static const double radii[NRAD] = { 5.0, 15.0, 30.0 };
-static const double salpha[NSALPHA] = { 0.02, 0.05, 0.1 };
-static int S = 64, F = 16;
-#define NJOB_MAX (NRAD * NSALPHA * 64)
-static double sph_err2[NJOB_MAX][NMETH], sph_dev2[NJOB_MAX], sph_total[NJOB_MAX][NMETH + 1];
-static long long sph_npix[NJOB_MAX];
-
-static double ggx_spec(const double n[3], double a)
-{
-    static const double v[3] = { 0.0, 0.0, 1.0 };
-    static const double l[3] = { 0.4082482904638631, 0.4082482904638631, 0.8164965809277261 };
-    double h[3] = { v[0] + l[0], v[1] + l[1], v[2] + l[2] }, hl, nh, nv, nl, a2 = a * a, D, lv, ll, t;
-    hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    nh = (n[0] * h[0] + n[1] * h[1] + n[2] * h[2]) / hl;
-    nv = n[2];
-    nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
-    if (!(nv > 0.0) || !(nl > 0.0) || !(nh > 0.0)) return 0.0;
-    t = nh * nh * (a2 - 1.0) + 1.0;
-    D = a2 / (3.14159265358979323846 * t * t);
-    lv = 0.5 * (-1.0 + sqrt(1.0 + a2 * (1.0 - nv * nv) / (nv * nv)));
-    ll = 0.5 * (-1.0 + sqrt(1.0 + a2 * (1.0 - nl * nl) / (nl * nl)));
-    return D / (1.0 + lv + ll) / (4.0 * nv) * nl / nl; /* radiance per unit irradiance at normal incidence */
-}
-
-/* normal at pixel coordinates (x, y) of a sphere centred at (cx, cy); 0 off the sphere */
-static int sph_normal(double R, double cx, double cy, double x, double y, double n[3])
-{
-    double dx = (x - cx) / R, dy = (y - cy) / R, r2 = dx * dx + dy * dy;
-    if (r2 >= 1.0) { n[0] = n[1] = n[2] = NAN; return 0; }
-    n[0] = dx; n[1] = dy; n[2] = sqrt(1.0 - r2);
-    return 1;
-}
-
-static void run_sphere(void *ctx, long long job)
-{
-    int ri = (int)(job / (NSALPHA * F)), ai = (int)(job / F % NSALPHA), fr = (int)(job % F);
-    (void)ai;
-    double R = radii[ri], a = salpha[ai];
-    double cx = R + 2.0 + 0.13 + (double)fr / F, cy = R + 2.0 + 0.41 + 0.37 * fr / F;
-    int W = (int)(2.0 * R + 5.0), px, py, m;
-    double tot[NMETH + 1] = { 0 };
-    (void)ctx;
-    for (py = 0; py < W; ++py)
-        for (px = 0; px < W; ++px) {
-            double x = px + 0.5, y = py + 0.5, n[3], sum = 0, sum2 = 0, ref, dev2;
-            int hits = 0, i, j;
-            if (!sph_normal(R, cx, cy, x, y, n)) continue;
-            for (j = 0; j < S; ++j)
-                for (i = 0; i < S; ++i) {
-                    unsigned long long z = (unsigned long long)(((job * 131071 + py) * 8191 + px) * 4099 + j * S + i);
-                    double u1, u2, ns[3], f;
-                    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
-                    u1 = (double)(z >> 40) / 16777216.0;
-                    u2 = (double)(z & 0xFFFFFF) / 16777216.0;
-                    if (!sph_normal(R, cx, cy, px + (i + u1) / S, py + (j + u2) / S, ns)) continue;
-                    f = ggx_spec(ns, a);
-                    sum += f; sum2 += f * f; ++hits;
-                }
-            ref = sum / hits;
-            dev2 = hits > 1 ? (sum2 / hits - ref * ref) / (hits - 1) : 0.0;
-            if (dev2 < 0) dev2 = 0;
-            for (m = 0; m < NMETH; ++m) {
-                double x1[3], y1[3], ap, f;
-                pf_vec3 dnx, dny;
-                pf_real k;
-                if (m == M_TK_QUAD) { /* 2x2 quad: even/odd pixel pairs, the partner's normal (NaN off the sphere) */
-                    int qx = px ^ 1, qy = py ^ 1;
-                    double sx = (px & 1) ? -1.0 : 1.0, sy = (py & 1) ? -1.0 : 1.0;
-                    sph_normal(R, cx, cy, qx + 0.5, y, x1);
-                    sph_normal(R, cx, cy, x, qy + 0.5, y1);
-                    dnx = pf_vec3_make((pf_real)(sx * (x1[0] - n[0])), (pf_real)(sx * (x1[1] - n[1])), (pf_real)(sx * (x1[2] - n[2])));
-                    dny = pf_vec3_make((pf_real)(sy * (y1[0] - n[0])), (pf_real)(sy * (y1[1] - n[1])), (pf_real)(sy * (y1[2] - n[2])));
-                } else { /* exact: dn/dx = (1/R, 0, -nx/(R nz)), dn/dy = (0, 1/R, -ny/(R nz)) */
-                    dnx = pf_vec3_make((pf_real)(1.0 / R), PF_R(0.0), (pf_real)(-n[0] / (R * n[2])));
-                    dny = pf_vec3_make(PF_R(0.0), (pf_real)(1.0 / R), (pf_real)(-n[1] / (R * n[2])));
-                }
-                switch (m) {
-                case M_NONE: ap = a; break;
-                case M_FILAMENT: k = pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.2)); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
-                case M_BOX: k = pf_specaa_kernel_normal(dnx, dny, (pf_real)(1.0 / 24.0), PF_SPECAA_KAPPA); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
-                case M_PROJ: k = pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_R(1.0e30)); ap = (double)pf_specaa_alpha_projected((pf_real)a, k); break;
-                default: k = pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA); ap = (double)pf_specaa_alpha((pf_real)a, k); break;
-                }
-                f = ggx_spec(n, ap);
-                sph_err2[job][m] += (f - ref) * (f - ref);
-                tot[m] += f;
-            }
-            tot[NMETH] += ref;
-            sph_dev2[job] += dev2;
-            sph_npix[job] += 1;
-        }
-    for (m = 0; m <= NMETH; ++m) sph_total[job][m] = tot[m];
-}
+#include "specaa_scenes.h"
 
 int main(int argc, char **argv)
 {
     const char *outdir = "bench/out";
-    int quick = 0, sphere_only = 0, k, a, d, l, i;
+    int quick = 0, scenes_only = 0, k, a, d, l, i;
     pfmap_options map_opt = pfmap_options_default();
     pfm_surface map_surf;
     pfmap_info map_info;
@@ -357,13 +257,13 @@ int main(int argc, char **argv)
     for (i = 1; i < argc; ++i) {
         if (!strcmp(argv[i], "--quick")) quick = 1;
         else if (!strcmp(argv[i], "--out") && i + 1 < argc) outdir = argv[++i];
-        else if (!strcmp(argv[i], "--sphere-only")) sphere_only = 1;
+        else if (!strcmp(argv[i], "--scenes-only") || !strcmp(argv[i], "--sphere-only")) scenes_only = 1;
         else if (!strcmp(argv[i], "--map") && i + 1 < argc) map_path = argv[++i];
         else if (!strncmp(argv[i], "--map-", 6) && i + 1 < argc) {
             const char *o = argv[i] + 6, *v = argv[++i];
             if (pfmap_parse_option(o, v, &map_opt, err, sizeof err) != 0) { fprintf(stderr, "specaa: %s\n", err); return 2; }
         } else {
-            fprintf(stderr, "usage: specaa [--quick] [--out DIR] [--sphere-only] [--map PATH [--map-NAME VALUE ...]]\n");
+            fprintf(stderr, "usage: specaa [--quick] [--out DIR] [--scenes-only] [--map PATH [--map-NAME VALUE ...]]\n");
             return 2;
         }
     }
@@ -379,7 +279,7 @@ int main(int argc, char **argv)
         nkinds = 1;
         N = map_surf.w;
     }
-    if (sphere_only) goto sphere;
+    if (scenes_only) goto scenes;
     /* the corpus: normals and the library's baked pyramids */
     for (k = 0; k < nkinds; ++k) {
         pfm_surface s;
@@ -477,7 +377,7 @@ int main(int argc, char **argv)
     snprintf(path, sizeof path, "%s/specaa.md", outdir);
     f = fopen(path, "w");
     if (!f) { fprintf(stderr, "specaa: cannot write %s\n", path); return 1; }
-    fprintf(f, "## Specular antialiasing: roughness bakers%s\n\n", map_path ? " on this map" : " and the sphere (pf_specaa.h)");
+    fprintf(f, "## Specular antialiasing: roughness bakers%s\n\n", map_path ? " on this map" : " and the curved scenes (pf_specaa.h)");
     if (map_path) fprintf(f, "The user's map `%s` (%s, the kept %dx%d square): its mip texels baked by every baker below. ", map_path,
                           pfmap_kind_name(map_opt.kind), N, N);
     fprintf(f, "Measured by `bench/specaa.c`%s: %dx%d texels of %s, mip levels 1-%d (footprints of 4 to %d texels), "
@@ -579,58 +479,18 @@ int main(int argc, char **argv)
         }
         fclose(f);
     }
-    if (map_path) goto done; /* the sphere has no map */
-    /* ---- the sphere */
-sphere:
-    if (quick) { S = 8; F = 8; }
-    if (sphere_only) { snprintf(path, sizeof path, "%s/specaa.md", outdir); f = fopen(path, "w"); if (f) fclose(f); }
-    pfb_parallel_for((long long)NRAD * NSALPHA * F, run_sphere, NULL, "specaa: sphere reference");
-    snprintf(path, sizeof path, "%s/specaa_sphere.csv", outdir);
-    {
-        FILE *c = fopen(path, "w");
-        FILE *md;
-        int ri, ai, m, fr;
+    if (map_path) goto done; /* the curved scenes have their own map */
+    /* ---- the curved scenes (specaa_scenes.h) */
+scenes:
+    if (scenes_only) { snprintf(path, sizeof path, "%s/specaa.md", outdir); f = fopen(path, "w"); if (f) fclose(f); }
+    {   /* the curved, normal-mapped scenes (specaa_scenes.h) */
+        FILE *md, *c;
         snprintf(path, sizeof path, "%s/specaa.md", outdir);
         md = fopen(path, "a");
-        if (!c || !md) { fprintf(stderr, "specaa: cannot write the sphere tables\n"); return 1; }
-        fprintf(c, "radius_px,alpha,method,rel_rms_err,flicker,ref_rel_dev,ref_flicker,pixels,frames,spp\n");
-        fprintf(md, "\n#### Curved geometry: a sphere 10-60 px across, geometry kernel against none\n\n"
-                    "Orthographic sphere, GGX with f0 = 1, one directional light; reference: %dx%d stratified samples per pixel "
-                    "(box filter, the shading averaged over the samples on the sphere), %d frames of a sub-pixel camera path. "
-                    "Error: RMS of (method - reference) over pixels and frames, relative to the mean reference radiance; "
-                    "flicker: deviation of the sphere's total radiance over the frames relative to its mean. The reference's "
-                    "own sampling deviation (RMS, relative) is given so that errors below it mean nothing.\n\n", S, S, F);
-        fprintf(md, "| diameter px | alpha | reference dev. | reference flicker |");
-        for (m = 0; m < NMETH; ++m) fprintf(md, " %s: error / flicker |", meth_name[m]);
-        fprintf(md, "\n| ---: | ---: | ---: | ---: |");
-        for (m = 0; m < NMETH; ++m) fprintf(md, " ---: |");
-        fprintf(md, "\n");
-        for (ri = 0; ri < NRAD; ++ri)
-            for (ai = 0; ai < NSALPHA; ++ai) {
-                double e2[NMETH] = { 0 }, d2 = 0, rs = 0, mean[NMETH + 1] = { 0 }, var[NMETH + 1] = { 0 };
-                long long np = 0;
-                for (fr = 0; fr < F; ++fr) {
-                    long long job = ((long long)ri * NSALPHA + ai) * F + fr;
-                    for (m = 0; m < NMETH; ++m) e2[m] += sph_err2[job][m];
-                    d2 += sph_dev2[job];
-                    rs += sph_total[job][NMETH];
-                    np += sph_npix[job];
-                    for (m = 0; m <= NMETH; ++m) mean[m] += sph_total[job][m] / F;
-                }
-                for (fr = 0; fr < F; ++fr) {
-                    long long job = ((long long)ri * NSALPHA + ai) * F + fr;
-                    for (m = 0; m <= NMETH; ++m) var[m] += (sph_total[job][m] - mean[m]) * (sph_total[job][m] - mean[m]) / F;
-                }
-                rs /= (double)np; /* mean reference radiance per pixel */
-                fprintf(md, "| %g | %g | %.4f | %.4f |", 2 * radii[ri], salpha[ai], sqrt(d2 / np) / rs, sqrt(var[NMETH]) / mean[NMETH]);
-                for (m = 0; m < NMETH; ++m) {
-                    fprintf(md, " %.3f / %.4f |", sqrt(e2[m] / np) / rs, sqrt(var[m]) / mean[m]);
-                    fprintf(c, "%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%lld,%d,%d\n", 2 * radii[ri], salpha[ai], meth_name[m],
-                            sqrt(e2[m] / np) / rs, sqrt(var[m]) / mean[m], sqrt(d2 / np) / rs, sqrt(var[NMETH]) / mean[NMETH],
-                            np / F, F, S * S);
-                }
-                fprintf(md, "\n");
-            }
+        snprintf(path, sizeof path, "%s/specaa_scenes.csv", outdir);
+        c = fopen(path, "w");
+        if (!c || !md) { fprintf(stderr, "specaa: cannot write the scene tables\n"); return 1; }
+        sc_bench(quick, md, c);
         fclose(c);
         fclose(md);
     }

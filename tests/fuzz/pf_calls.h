@@ -2121,6 +2121,36 @@ static void pfc_f_pf_specaa_slope_stats_aniso(pfc_ctx *c)
     pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
     pfc_out_stats(c, pf_specaa_slope_stats_aniso(s, pf_specaa_kernel_aniso(a, b, pfc_u01(c), pfc_u01(c))));
 }
+static void pfc_f_pf_specaa_kernel_cross(pfc_ctx *c)
+{
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_vec2 gx, gy;
+    pf_specaa_kernel k;
+    gx.x = pfc_sym(c, 8); gx.y = pfc_sym(c, 8); gy.x = pfc_sym(c, 8); gy.y = pfc_sym(c, 8);
+    k = pf_specaa_kernel_cross(a, b, gx, gy, pfc_u01(c));
+    pfc_out(c, k.var_x); pfc_out(c, k.var_y); pfc_out(c, k.cov_xy);
+}
+static void pfc_f_pf_specaa_slope_stats_cross(pfc_ctx *c)
+{
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_real s2 = pfc_u01(c);
+    pf_vec2 gx, gy;
+    pf_slope_stats r;
+    gx.x = pfc_sym(c, 8); gx.y = pfc_sym(c, 8); gy.x = pfc_sym(c, 8); gy.y = pfc_sym(c, 8);
+    r = pf_specaa_slope_stats_cross(s, pf_specaa_kernel_aniso(a, b, s2, pfc_u01(c)), pf_specaa_kernel_cross(a, b, gx, gy, s2));
+    pfc_out_stats(c, r);
+    pfc_in(c, r.var_x, PF_R(0.0), PF_REAL_MAX); /* Cauchy-Schwarz clamp: variances stay >= 0 */
+    pfc_in(c, r.var_y, PF_R(0.0), PF_REAL_MAX);
+}
+static void pfc_f_pf_specaa_slope_stats_quad(pfc_ctx *c)
+{
+    pf_slope_moments m00 = pfc_moments(c), m10 = pfc_moments(c), m01 = pfc_moments(c), m11 = pfc_moments(c);
+    pf_real bv = pfc_var(c, 0);
+    pf_vec3 a = pfc_deriv(c), b = pfc_deriv(c);
+    pf_real s2 = pfc_u01(c);
+    pfc_out_stats(c, pf_specaa_slope_stats_quad(m00, m10, m01, m11, bv, a, b, s2, pfc_u01(c)));
+}
 static void pfc_f_pf_specaa_leadr_specular(pfc_ctx *c)
 {
     pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
@@ -2516,6 +2546,9 @@ static const pfc_entry pfc_table[] = {
     PFC_E(specaa, pf_specaa_slope_variance_from_projected, 0, "v in +-4", "in [0, 625]"),
     PFC_E(specaa, pf_specaa_slope_stats, 0, "stats, k in [0, 1]", "finite"),
     PFC_E(specaa, pf_specaa_slope_stats_aniso, 0, "stats, kernels of pf_specaa_kernel_aniso", "finite"),
+    PFC_E(specaa, pf_specaa_kernel_cross, 0, "derivatives as above, mean-slope gradients +-2^8, sigma2 in [0, 1]", "finite"),
+    PFC_E(specaa, pf_specaa_slope_stats_cross, 0, "stats, kernels of pf_specaa_kernel_aniso and _cross", "finite, variances >= 0"),
+    PFC_E(specaa, pf_specaa_slope_stats_quad, 0, "four filtered moments, base variance, derivatives as above, sigma2, kappa in [0, 1]", "finite"),
     PFC_E(specaa, pf_specaa_leadr_specular, 0, "as pf_leadr_specular, derivatives as above", ">= 0"),
     PFC_E(specaa, pf_specaa_vmf_kappa, 0, "kappa as pf_vmf's, k in [0, 2^60]", "clamped kappa"),
     PFC_E(specaa, pf_specaa_vmf_lobe, 0, "packed lobe, k in [0, 2^60]", "as pf_vmf_lobe_make"),
