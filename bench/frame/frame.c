@@ -76,6 +76,7 @@
 #include "pf_map.h"
 #include "pf_microsurface.h"
 #include "pf_encode.h"
+#include "pf_horizon.h"
 #include "pic_scenes.h" /* bench/pictures.c's scenes, settings and brute-force reference */
 #include "pf_hist_oracle.h" /* the exact-histogram oracle, shared with bench/microsurface.c */
 #include "vk_common.h"
@@ -85,10 +86,11 @@
 #define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
 #define MOTION_FRAMES    16
 #define MOTION_SPT       2      /* the supersampled reference compared with the exact one: samples per texel per axis */
-#define MOTION_ROWS      7      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x; the oracle (CPU) */
+#define MOTION_ROWS      8      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x, horizon (plane); the oracle (CPU) */
 #define MR_LEADR16       5
 #define MOTION_SIDE_FRACTION 0.6 /* the sphere's motion frames: median footprint side / ref_max */
-#define MR_ORACLE        6
+#define MR_HORIZON       6
+#define MR_ORACLE        7
 #define PIXEL_REF_SEED   7      /* the still frames' pixel reference: texel hash seed of shade_reference_cover */
 /* FILTER BANDS: the plane's LEADR error against the pixel reference per footprint band (rho_max,
    the longer derivative, in texels: < 2, 2-4, ... , >= 64) and anisotropy band (rho_max / rho_min:
@@ -96,9 +98,10 @@
    the taps in the shader, and LEADR from the exact moments of the reference's texels */
 #define NBAND_RHO 7
 #define NBAND_AN  5
-#define NFB       5
+#define NFB       6
 static const char *const fb_name[NFB] = {"trilinear (GPU)", "16x, the driver's sampler (GPU)", "16x, the specification's filter (CPU)",
-                                         "taps in the shader (GPU)", "exact moments of the reference's texels (CPU)"};
+                                         "taps in the shader (GPU)", "exact moments of the reference's texels (CPU)",
+                                         "LEADR, horizon: trilinear (GPU)"};
 static double fb_sum[NFB][NBAND_RHO][NBAND_AN];
 static int fb_n[NBAND_RHO][NBAND_AN];
 static void band_of(const pic_sample *p, int *br, int *ba)
@@ -124,10 +127,18 @@ static void band_add(int v, const pic_sample *px, const double *val, const doubl
 #define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
 #define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator */
 
-enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_VMF8, MT_COUNT };
+enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_VMF8, MT_HORIZON, MT_COUNT };
+#define IS_VMF(m) ((m) == MT_VMF4 || (m) == MT_VMF8)
+/* the horizon method (plane only, f32, isotropic): pf_horizon_leadr_specular_lod from the HDF
+   pyramid of HOR_AZ azimuths (PF_HORIZON_MOMENTS, a HOR_STEPS-texel march, periodic), faded to
+   LEADR between levels HOR_LOD_FULL and HOR_LOD_SMITH (bench/microsurface.c's choice) */
+#define HOR_AZ        16
+#define HOR_STEPS     64
+#define HOR_LOD_FULL  2.0
+#define HOR_LOD_SMITH 6.0
 static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig",
-                                                  "LEADR, taps in the shader", "vMF m = 4", "vMF m = 8"};
-static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "leadr_taps", "vmf4", "vmf8"};
+                                                  "LEADR, taps in the shader", "vMF m = 4", "vMF m = 8", "LEADR, horizon (HDF, faded by lod)"};
+static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "leadr_taps", "vmf4", "vmf8", "leadr_horizon"};
 static const int vmf_lobes[2] = {4, 8};
 static const char *const scene_key[2] = {"plane", "sphere"};
 
@@ -381,6 +392,7 @@ typedef struct {
     int W, H;
     pf_real *slope_pyr, *normal_pyr;
     pf_real *vmf_pyr[2]; /* lobe pyramids, m = 4 and 8: (mu.x, mu.y, kappa, amp) per lobe */
+    pf_real *hdf_pyr;    /* HDF pyramid: 3 HOR_AZ channels per texel (E[T], E[T^2], E[S T] per azimuth) */
 } fr_maps;
 
 /* the method from filtered texels a = (ex, ey, exx, eyy), b = (exy, n) */
@@ -400,6 +412,27 @@ static float shade_method(int method, const float a[4], const float b[4], const 
         st = pf_slope_moments_stats(pf_slope_moments_from_normal(mu), 0.5f * m2 * m2);
     }
     return pf_leadr_specular(wo, wi, st, (float)F0);
+}
+
+/* the horizon method on the CPU: the slope moments and the HDF trilinear at (u, v) (fractions
+   of the map) and lod, the two stored azimuths around wo and around wi mixed
+   (pf_hdf_moments_lerp), pf_horizon_leadr_specular_lod at that lod */
+static float shade_horizon_cpu(const fr_maps *m, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
+{
+    pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
+    pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
+    pf_real sl[5], hd[3 * HOR_AZ];
+    pf_horizon_azimuth ao = pf_horizon_azimuth_of(wo, HOR_AZ), ai = pf_horizon_azimuth_of(wi, HOR_AZ);
+    pf_hdf_moments mo, mi;
+    float base_var = (float)(BASE_SIGMA * BASE_SIGMA), l = lod > 0.0 ? (float)lod : 0.0f;
+    pf_mip_sample_trilinear(m->slope_pyr, m->W, m->H, 5, l, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, sl);
+    pf_mip_sample_trilinear(m->hdf_pyr, m->W, m->H, 3 * HOR_AZ, l, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, hd);
+    mo = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ao.i0], hd[3 * ao.i0 + 1], hd[3 * ao.i0 + 2]),
+                             pf_hdf_moments_make(hd[3 * ao.i1], hd[3 * ao.i1 + 1], hd[3 * ao.i1 + 2]), ao.f);
+    mi = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ai.i0], hd[3 * ai.i0 + 1], hd[3 * ai.i0 + 2]),
+                             pf_hdf_moments_make(hd[3 * ai.i1], hd[3 * ai.i1 + 1], hd[3 * ai.i1 + 2]), ai.f);
+    return pf_horizon_leadr_specular_lod(wo, wi, pf_slope_moments_stats(pf_slope_moments_make(sl[0], sl[1], sl[2], sl[3], sl[4]), base_var),
+                                         base_var, mo, mi, (float)F0, l, (float)HOR_LOD_FULL, (float)HOR_LOD_SMITH);
 }
 
 /* trilinear fetch of both textures at (u, v) (fractions of the map) and lod */
@@ -893,7 +926,7 @@ static double render(const fr_target *t, VkPipeline p, VkDescriptorSet set, cons
 static void vk_setup(int levels_unused)
 {
     VkPhysicalDeviceFeatures en;
-    VkDescriptorSetLayoutBinding bind[6];
+    VkDescriptorSetLayoutBinding bind[7];
     VkDescriptorSetLayoutCreateInfo dlci;
     VkPushConstantRange pcr;
     VkPipelineLayoutCreateInfo plci;
@@ -907,7 +940,7 @@ static void vk_setup(int levels_unused)
     en.samplerAnisotropy = vk.features.samplerAnisotropy;
     pfvk_open_device(&vk, &en, VK_QUEUE_GRAPHICS_BIT);
     memset(bind, 0, sizeof bind);
-    for (k = 0; k < 6; ++k) {
+    for (k = 0; k < 7; ++k) {
         bind[k].binding = (uint32_t)k;
         bind[k].descriptorType = k == 5 ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER : VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
         bind[k].descriptorCount = 1;
@@ -915,7 +948,7 @@ static void vk_setup(int levels_unused)
     }
     memset(&dlci, 0, sizeof dlci);
     dlci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
-    dlci.bindingCount = 6;
+    dlci.bindingCount = 7;
     dlci.pBindings = bind;
     VKC(vkCreateDescriptorSetLayout(vk.dev, &dlci, NULL, &dsl));
     pcr.stageFlags = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -962,13 +995,13 @@ static void vk_setup(int levels_unused)
 /* the set of one storage and sampler: texA, texB, the lod probe, the two lobe pyramids (read by
    texelFetch: the sampler does not matter), all through sampler s */
 static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr_tex *b, const fr_tex *probe, const fr_tex *v4,
-                                const fr_tex *v8, VkSampler s)
+                                const fr_tex *v8, const fr_tex *hdf, VkSampler s)
 {
     VkDescriptorSetAllocateInfo ai;
     VkDescriptorSet set;
-    VkDescriptorImageInfo ii[5];
+    VkDescriptorImageInfo ii[6];
     VkDescriptorBufferInfo bi;
-    VkWriteDescriptorSet wr[6];
+    VkWriteDescriptorSet wr[7];
     int k;
     memset(&ai, 0, sizeof ai);
     ai.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -998,7 +1031,16 @@ static VkDescriptorSet make_set(VkDescriptorPool pool, const fr_tex *a, const fr
     wr[5].descriptorCount = 1;
     wr[5].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     wr[5].pBufferInfo = &bi;
-    vkUpdateDescriptorSets(vk.dev, 6, wr, 0, NULL);
+    ii[5].sampler = s; /* binding 6: the HDF array, read with the set's sampler */
+    ii[5].imageView = hdf->view;
+    ii[5].imageLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    wr[6].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
+    wr[6].dstSet = set;
+    wr[6].dstBinding = 6;
+    wr[6].descriptorCount = 1;
+    wr[6].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    wr[6].pImageInfo = &ii[5];
+    vkUpdateDescriptorSets(vk.dev, 7, wr, 0, NULL);
     return set;
 }
 
@@ -1105,7 +1147,11 @@ static void pic_path_row(void *ctx, long long row)
         double lod = p->fp > 1.0 ? log2(p->fp) : 0.0;
         jb->out[i] = 0.0;
         if (!jb->lit[i]) continue;
-        if (jb->method >= MT_VMF4) {
+        if (jb->method == MT_HORIZON) {
+            jb->out[i] = (double)shade_horizon_cpu(mp, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
+            continue;
+        }
+        if (IS_VMF(jb->method)) {
             jb->out[i] = (double)shade_vmf_cpu(mp, jb->method - MT_VMF4, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
             continue;
         }
@@ -1144,7 +1190,10 @@ static void gpu_path_row(void *ctx, long long row)
         if (!p->hit || !(o0[3] > 0.5f) || !(jb->lit0[i] || jb->lit1[i])) continue;
         /* the CPU float path: the specification's sampler at the GPU's coordinates and
            derivatives; isotropic also at the lod the driver reports */
-        if (m >= MT_VMF4) {
+        if (m == MT_HORIZON) {
+            double ls = rho > 0.0 ? log2(rho) : 0.0;
+            jb->vc[i] = (double)shade_horizon_cpu(mp, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
+        } else if (IS_VMF(m)) {
             double ls = rho > 0.0 ? log2(rho) : 0.0;
             jb->vc[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
         } else {
@@ -1166,7 +1215,9 @@ static void gpu_path_row(void *ctx, long long row)
         }
         if (jb->driver_lod) {
             double lod_drv = (double)o0[3] - 1.0;
-            if (m >= MT_VMF4)
+            if (m == MT_HORIZON)
+                jb->vd[i] = (double)shade_horizon_cpu(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
+            else if (IS_VMF(m))
                 jb->vd[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
             else {
                 fetch(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
@@ -1268,7 +1319,8 @@ int main(int argc, char **argv)
     float *texA, *texB, *texL;
     fr_tex tex[NSTORE][2], probe, vtex[2];
     pf_slope_encoding enc;
-    double t_vmf[2];
+    double t_vmf[2], t_hdf = 0.0;
+    fr_tex htex;
     VkSampler samp[NANISO];
     VkDescriptorPool dpool;
     VkDescriptorSet set[NSTORE][NANISO];
@@ -1289,10 +1341,11 @@ int main(int argc, char **argv)
        bench`'s budget on 2 cores */
     static const int motion_full[2][2] = {{200, 125}, {100, 100}}, motion_quick[2][2] = {{64, 40}, {48, 48}};
     static const double motion_step[2] = {PLANE_DOLLY_STEP, SPHERE_TURN_STEP};
-    static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR, MT_NONE};
+    static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR, MT_HORIZON, MT_NONE};
     static const char *const motion_name[MOTION_ROWS] = {"LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4", "vMF m = 8",
-                                                         "LEADR, 16x", "oracle (exact histogram + Smith, CPU)"};
-    static const char *const motion_key[MOTION_ROWS] = {"leadr", "naive", "toksvig", "vmf4", "vmf8", "leadr", "oracle"};
+                                                         "LEADR, 16x", "LEADR, horizon (plane)",
+                                                         "oracle (exact histogram + Smith, CPU)"};
+    static const char *const motion_key[MOTION_ROWS] = {"leadr", "naive", "toksvig", "vmf4", "vmf8", "leadr", "leadr_horizon", "oracle"};
     int motion_capped[2], motion_pxf[2]; /* sampled pixel-frames, hit pixel-frames */
     double motion_zoom[2];
     double motion_ss_dev[2], motion_ss_change[2], motion_cover_change01[2], motion_seed_dev[2]; /* the supersampled reference, frames 0 and 1 */
@@ -1329,6 +1382,12 @@ int main(int argc, char **argv)
                 pfm_normal(&surf, x, y, n);
                 for (k = 0; k < 3; ++k) nrm[3 * (y * W + x) + k] = (pf_real)n[k];
             }
+        { /* the HDF pyramid of the horizon method (texel = 1 world unit, as the slopes) */
+            double th = now_seconds();
+            maps.hdf_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * HOR_AZ * (size_t)nt);
+            if (pf_horizon_pyramid(hts, W, H, 1.0f, HOR_AZ, HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, maps.hdf_pyr) != PF_OK) return 1;
+            t_hdf = now_seconds() - th;
+        }
         if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr) != PF_OK ||
             pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr) != PF_OK)
             return 1;
@@ -1415,6 +1474,22 @@ int main(int argc, char **argv)
         vtex[k] = upload_texture_layers(lay, W, H, levels, nm, VK_FORMAT_R32G32B32A32_SFLOAT);
         free(lay);
     }
+    { /* the HDF as a 2D array image, R32G32B32A32_SFLOAT, layer j = azimuth j holding (E[T], E[T^2],
+         E[S T], 0), the whole mip chain: 16 bytes x HOR_AZ layers per texel */
+        float *lay = (float *)pfb_xcalloc(4 * (size_t)HOR_AZ * (size_t)nt, sizeof(float));
+        int j;
+        for (l = 0; l < levels; ++l) {
+            long long o = pf_mip_level_offset(W, H, l), n = pf_mip_level_offset(W, H, l + 1) - o, t;
+            for (j = 0; j < HOR_AZ; ++j)
+                for (t = 0; t < n; ++t) {
+                    const pf_real *src = maps.hdf_pyr + (size_t)(o + t) * 3 * HOR_AZ + 3 * j;
+                    float *dst = lay + 4 * (size_t)(o * HOR_AZ + j * n + t);
+                    dst[0] = src[0], dst[1] = src[1], dst[2] = src[2];
+                }
+        }
+        htex = upload_texture_layers(lay, W, H, levels, HOR_AZ, VK_FORMAT_R32G32B32A32_SFLOAT);
+        free(lay);
+    }
     for (an = 0; an < NANISO; ++an) {
         double dev_max = vk.features.samplerAnisotropy ? (double)vk.props.limits.maxSamplerAnisotropy : 1.0;
         aniso_used[an] = aniso_of[an] < dev_max ? aniso_of[an] : dev_max;
@@ -1424,7 +1499,7 @@ int main(int argc, char **argv)
         VkDescriptorPoolSize ps[2];
         VkDescriptorPoolCreateInfo dpci;
         ps[0].type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        ps[0].descriptorCount = 5 * NSTORE * NANISO;
+        ps[0].descriptorCount = 6 * NSTORE * NANISO;
         ps[1].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         ps[1].descriptorCount = NSTORE * NANISO;
         memset(&dpci, 0, sizeof dpci);
@@ -1435,7 +1510,7 @@ int main(int argc, char **argv)
         VKC(vkCreateDescriptorPool(vk.dev, &dpci, NULL, &dpool));
         for (st = 0; st < NSTORE; ++st)
             for (an = 0; an < NANISO; ++an)
-                if (fmt_ok[st]) set[st][an] = make_set(dpool, &tex[st][0], &tex[st][1], &probe, &vtex[0], &vtex[1], samp[an]);
+                if (fmt_ok[st]) set[st][an] = make_set(dpool, &tex[st][0], &tex[st][1], &probe, &vtex[0], &vtex[1], &htex, samp[an]);
     }
     snprintf(vert, sizeof vert, "%s/frame.vert.spv", spv);
 
@@ -1536,7 +1611,8 @@ int main(int argc, char **argv)
                     if (!fmt_ok[st]) continue;
                     if (st >= ST_UNORM16 && m != MT_LEADR) continue; /* the UNORM encodings: LEADR's moments only */
                     pp = st >= ST_UNORM16 ? pipe_enc : pipe;
-                    if (m >= MT_VMF4 && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
+                    if (IS_VMF(m) && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
+                    if (m == MT_HORIZON && (s != 0 || st > 0 || an > 0)) continue; /* the plane, f32, isotropic */
                     if (m == MT_LEADR_TAPS && an > 0) continue;       /* its own anisotropic filter, isotropic sampler */
                     rw->done = 1;
                     times[0] = render(&tg, pp, set[st][an], &pc, w, h);
@@ -1567,8 +1643,8 @@ int main(int argc, char **argv)
                         rel_stats(vg, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->err[r], &rw->err_p95[r]);
                         rel_stats(vc, ref[r], lit[r], floor_[s][r], npx, scratch, &rw->cpu_err[r], &dummy);
                     }
-                    if (s == 0 && st == 0 && (m == MT_LEADR || m == MT_LEADR_TAPS)) { /* FILTER BANDS */
-                        band_add(m == MT_LEADR_TAPS ? 3 : an, sc.px, vg, ref[1], lit[1], floor_[s][1], npx);
+                    if (s == 0 && st == 0 && (m == MT_LEADR || m == MT_LEADR_TAPS || m == MT_HORIZON)) { /* FILTER BANDS */
+                        band_add(m == MT_HORIZON ? 5 : (m == MT_LEADR_TAPS ? 3 : an), sc.px, vg, ref[1], lit[1], floor_[s][1], npx);
                         if (m == MT_LEADR && an == 1) band_add(2, sc.px, vc, ref[1], lit[1], floor_[s][1], npx);
                         if (m == MT_LEADR && an == 0) band_add(4, sc.px, lex[1], ref[1], lit[1], floor_[s][1], npx);
                     }
@@ -1781,6 +1857,7 @@ int main(int argc, char **argv)
             if (s == 1) pc.motion[0] = (float)(f * motion_step[s] / zoom);
             for (mr = 0; mr < MR_ORACLE; ++mr) {
                 int mm = motion_method[mr], aa = mr == MR_LEADR16 ? 1 : 0;
+                if (mm == MT_HORIZON && s != 0) continue; /* the horizon rows: the plane only */
                 render(&tg, pipes[mm], set[0][aa], &pc, w, h);
                 for (i = 0; i < npx; ++i) {
                     double v = (double)tg.rb_map[4 * (size_t)i];
@@ -1802,6 +1879,10 @@ int main(int argc, char **argv)
         for (mr = 0; mr < MOTION_ROWS; ++mr) {
             double d = 0.0, e = 0.0;
             int ne = 0;
+            if (s != 0 && mr == MR_HORIZON) { /* the plane only */
+                motion_flicker[s][mr] = motion_own[s][mr] = motion_err[s][mr] = 0.0;
+                continue;
+            }
             for (f = 0; f < MOTION_FRAMES; ++f)
                 for (i = 0; i < npx; ++i) {
                     size_t a0 = (size_t)f * npx + i, v0 = ((size_t)mr * MOTION_FRAMES + f) * npx + i;
@@ -1852,7 +1933,8 @@ int main(int argc, char **argv)
         fprintf(mc, "scene,method,max_anisotropy,frames,err_mean,change_per_frame,flicker_ratio,ref_change_per_frame,nonfinite\n");
         for (s = 0; s < 2; ++s)
             for (k = 0; k < MOTION_ROWS; ++k)
-                fprintf(mc, "%s,%s,%d,%d,%.6g,%.6g,%.6g,%.6g,%d\n", scene_key[s], motion_key[k], k == MR_LEADR16 ? 16 : 1,
+                if (!(s != 0 && k == MR_HORIZON)) /* the horizon rows: the plane only */
+                    fprintf(mc, "%s,%s,%d,%d,%.6g,%.6g,%.6g,%.6g,%d\n", scene_key[s], motion_key[k], k == MR_LEADR16 ? 16 : 1,
                         MOTION_FRAMES, motion_err[s][k], motion_own[s][k], motion_flicker[s][k], motion_ref_change[s], motion_nonfinite[s][k]);
         fclose(mc);
     }
@@ -1915,6 +1997,19 @@ int main(int argc, char **argv)
             " a grid of one sample per texel per axis would take whole texels (a footprint 0.6 texel wide, one full row) and "
             "measure that quantization, not a filter, at footprints of a few texels",
             ref_max, ref_max, quick ? " (BENCH_QUICK)" : "", VMF_ITER, t_vmf[0], t_vmf[1]);
+    fprintf(md, "The horizon row (**LEADR, horizon**, the plane only, f32, isotropic sampler) is `pf_horizon_leadr_specular_lod`: "
+                "LEADR's specular with Smith's G replaced by the reflecting facets' horizon visibility, faded to plain LEADR "
+                "between levels %.0f and %.0f (bench/microsurface.c's choice). Its HDF pyramid (`pf_horizon_pyramid`, "
+                "PF_HORIZON_MOMENTS, %d azimuths, a %d-texel march on the periodic map; %.1f s wall time, a one-off) is one "
+                "R32G32B32A32_SFLOAT 2D array image with its whole mip chain, layer j = azimuth j holding (E[T], E[T^2], E[S T], "
+                "unused): %d bytes per texel of level 0, %.1f MB for the %dx%d map's chain. The shader fetches 4 layers "
+                "(the two stored azimuths around wo and around wi) with the slope moments' sampler and gradients and mixes each "
+                "pair with `pf_hdf_moments_lerp`; its CPU path is the same from the float pyramids at the same lod. Both "
+                "references march every texel's view and light rays through the whole periodic height field (occluders "
+                "outside the footprint included): the box reference is bench/pictures.c's `full` (not its in-box variant), "
+                "the pixel reference the same marches over the pixel's footprint.\n\n",
+            HOR_LOD_FULL, HOR_LOD_SMITH, HOR_AZ, HOR_STEPS, t_hdf, 16 * HOR_AZ,
+            16.0 * HOR_AZ * (double)pf_mip_texel_count(W, H) / 1048576.0, W, H);
     for (s = 0; s < 2; ++s) {
         int br, ops0 = ops_of(ops_file, s, MT_NONE, &br);
         fprintf(md, "**%s**: %d surface pixels, lit %d (box reference) and %d (pixel reference), median footprint side %.1f "
@@ -2000,8 +2095,12 @@ int main(int argc, char **argv)
     fprintf(md, "| method | plane: error (mean over frames) | plane: change per frame | plane: flicker ratio | sphere: error | "
                 "sphere: change per frame | sphere: flicker ratio | non-finite |\n|---|---|--:|--:|---|--:|--:|--:|\n");
     for (k = 0; k < MOTION_ROWS; ++k)
-        fprintf(md, "| %s | %.1f%% | %.2f%% | %.3f | %.1f%% | %.2f%% | %.3f | %d |\n", motion_name[k], 100.0 * motion_err[0][k], 100.0 * motion_own[0][k], motion_flicker[0][k],
-                100.0 * motion_err[1][k], 100.0 * motion_own[1][k], motion_flicker[1][k], motion_nonfinite[0][k] + motion_nonfinite[1][k]);
+        if (k == MR_HORIZON)
+            fprintf(md, "| %s | %.1f%% | %.2f%% | %.3f | - | - | - | %d |\n", motion_name[k], 100.0 * motion_err[0][k], 100.0 * motion_own[0][k],
+                    motion_flicker[0][k], motion_nonfinite[0][k]);
+        else
+            fprintf(md, "| %s | %.1f%% | %.2f%% | %.3f | %.1f%% | %.2f%% | %.3f | %d |\n", motion_name[k], 100.0 * motion_err[0][k], 100.0 * motion_own[0][k], motion_flicker[0][k],
+                    100.0 * motion_err[1][k], 100.0 * motion_own[1][k], motion_flicker[1][k], motion_nonfinite[0][k] + motion_nonfinite[1][k]);
     fprintf(md, "| reference (footprint integrated over its texels) | - | %.2f%% | 1 | - | %.2f%% | 1 | - |\n", 100.0 * motion_ref_change[0],
             100.0 * motion_ref_change[1]);
     fprintf(md, "\n");
@@ -2009,7 +2108,8 @@ int main(int argc, char **argv)
         double best = 1e30;
         int bk = 0;
         for (k = 0; k < MOTION_ROWS; ++k)
-            if (k != MR_ORACLE && motion_method[k] != MT_NAIVE && motion_err[s][k] < best) best = motion_err[s][k], bk = k;
+            if (k != MR_ORACLE && motion_method[k] != MT_NAIVE && !(s != 0 && k == MR_HORIZON) && motion_err[s][k] < best)
+                best = motion_err[s][k], bk = k;
         motion_best[s] = bk;
     }
     /* the targets, as measured */
@@ -2079,6 +2179,23 @@ int main(int argc, char **argv)
                     "46.1%% / 37.9%% against the taps' 47.3%% / 38.1%% (trilinear 60.1%% / 48.2%%); a finer level (log2 rho_min "
                     "- 0.5 .. 1), more taps (cap 32, 64) or both: 47.2%% to 48.8%% / 38.0%% to 39.4%%: the taps are kept.\n",
                 100.0 * lex_err[0][1], 100.0 * oracle_err[0][1]);
+        { /* the horizon method (the plane) */
+            const fr_row *hz = &rows[0][MT_HORIZON][0][0];
+            int bh, bl, oh = ops_of(ops_file, 0, MT_HORIZON, &bh), ol = ops_of(ops_file, 0, MT_LEADR, &bl);
+            if (hz->done)
+                fprintf(md, "- the horizon method on the plane (f32, isotropic trilinear), `pf_horizon_leadr_specular_lod`: against "
+                            "the box reference %.1f%% (LEADR %.1f%%), against the pixel reference %.1f%% (LEADR %.1f%%), both "
+                            "references with every occluder of the periodic height field; %.2fx and %.2fx the oracle's; the GPU "
+                            "within %.3f%% of the CPU float path (%s; at the driver's lod %.4f%%); flicker ratio %.3f (LEADR %.3f) "
+                            "over the motion frames, error there %.1f%% (LEADR %.1f%%); non-finite pixels: %d still, %d moving; "
+                            "%d SPIR-V ops (%d branches) against LEADR's %d (%d): four HDF fetches, two azimuths, the conditional "
+                            "horizon visibility.\n",
+                        100.0 * hz->err[0], 100.0 * iso->err[0], 100.0 * hz->err[1], 100.0 * iso->err[1],
+                        oracle_err[0][0] > 0.0 ? hz->err[0] / oracle_err[0][0] : 0.0, oracle_err[0][1] > 0.0 ? hz->err[1] / oracle_err[0][1] : 0.0,
+                        100.0 * hz->vs_cpu, hz->vs_cpu <= 0.01 ? "within 1%" : "NOT within 1%", 100.0 * hz->vs_drv,
+                        motion_flicker[0][MR_HORIZON], motion_flicker[0][0], 100.0 * motion_err[0][MR_HORIZON], 100.0 * motion_err[0][0],
+                        hz->nonfinite, motion_nonfinite[0][MR_HORIZON], oh, bh, ol, bl);
+        }
         fprintf(md, "- every method's error as a ratio to the per-pixel oracle's, on both scenes: the tables' \"/ oracle's\" "
                     "column (oracle: plane %.1f%% / %.1f%%, sphere %.1f%% / %.1f%%, box / pixel reference).\n",
                 100.0 * oracle_err[0][0], 100.0 * oracle_err[0][1], 100.0 * oracle_err[1][0], 100.0 * oracle_err[1][1]);

@@ -9,7 +9,9 @@
                  2 naive mip-mapped normal, 3 Toksvig, 4 LEADR with the anisotropic filter in the
                  shader (up to 16 textureLod taps along the major axis, isotropic sampler),
                  5 and 6 vMF m = 4 and 8 (lobe pyramids, texelFetch of the 8 texels of a
-                 trilinear fetch at the driver's lod)
+                 trilinear fetch at the driver's lod), 7 LEADR with the horizon
+                 (pf_horizon_leadr_specular_lod: the HDF array texture texH, the two stored
+                 azimuths around wo and around wi, faded to LEADR by the driver's lod)
      PFF_ENCODED 1 (with PFF_METHOD 1): the moments stored in scaled UNORM (pf_encode.h:
                  16 or 8 bits, centred on the map's mean slope), decoded after the filtered
                  fetch with pf_slope_moments_decode and the map's encoding (uniform block Enc,
@@ -39,6 +41,13 @@
 #include "pf_toksvig.h"
 #if PFF_METHOD >= 5
 #  include "pf_vmf.h"
+#endif
+#if PFF_METHOD == 7
+#  include "pf_gaussgrid.h"
+#  include "pf_horizon.h"
+#  define PFF_HOR_AZ 16          /* frame.c's HOR_AZ */
+#  define PFF_HOR_LOD_FULL 2.0   /* HOR_LOD_FULL, HOR_LOD_SMITH */
+#  define PFF_HOR_LOD_SMITH 6.0
 #endif
 #ifndef PFF_ENCODED
 #  define PFF_ENCODED 0
@@ -73,6 +82,9 @@ const int PFF_LOBES = 4;
 #elif PFF_METHOD == 6
 layout(set = 0, binding = 4) uniform sampler2DArray texV; /* m = 8 */
 const int PFF_LOBES = 8;
+#elif PFF_METHOD == 7
+/* the HDF pyramid (PF_HORIZON_MOMENTS): layer j = azimuth j, (E[T], E[T^2], E[S T], unused) */
+layout(set = 0, binding = 6) uniform sampler2DArray texH;
 #endif
 layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
@@ -222,6 +234,19 @@ void main()
     b = sb / N;
     pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
     L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 7
+    /* LEADR with the reflecting facets' horizon visibility instead of Smith's G (pf_horizon.h),
+       faded to LEADR between levels PFF_HOR_LOD_FULL and PFF_HOR_LOD_SMITH: the HDF moments of
+       the two stored azimuths around each direction, filtered by the same sampler and
+       gradients as the slope moments (the HDF moments are linear: a blend of texels filters
+       them), mixed by pf_hdf_moments_lerp */
+    pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
+    pf_horizon_azimuth zo = pf_horizon_azimuth_of(vo, PFF_HOR_AZ), zi = pf_horizon_azimuth_of(vi, PFF_HOR_AZ);
+    vec4 h0 = textureGrad(texH, vec3(uv, float(zo.i0)), gx / sz, gy / sz), h1 = textureGrad(texH, vec3(uv, float(zo.i1)), gx / sz, gy / sz);
+    vec4 h2 = textureGrad(texH, vec3(uv, float(zi.i0)), gx / sz, gy / sz), h3 = textureGrad(texH, vec3(uv, float(zi.i1)), gx / sz, gy / sz);
+    pf_hdf_moments mo = pf_hdf_moments_lerp(pf_hdf_moments_make(h0.x, h0.y, h0.z), pf_hdf_moments_make(h1.x, h1.y, h1.z), zo.f);
+    pf_hdf_moments mi = pf_hdf_moments_lerp(pf_hdf_moments_make(h2.x, h2.y, h2.z), pf_hdf_moments_make(h3.x, h3.y, h3.z), zi.f);
+    L = pf_horizon_leadr_specular_lod(vo, vi, st, base_var, mo, mi, f0, lod, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
 #elif PFF_METHOD >= 5
     /* vMF lobes (Wu et al. 2019 eqs. 4-5, pf_vmf.h): a mixture is not filtered by averaging its
        parameters, so the 8 texels a trilinear fetch at the driver's lod touches are read with
