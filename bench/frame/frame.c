@@ -41,7 +41,8 @@
    method's error, its change per frame and its flicker ratio (its change / the reference's own
    change). The motion reference integrates each pixel's footprint over its texels weighted by
    the covered area (shade_reference_cover), so it moves continuously with the camera; the
-   still frames' grid-sampled pixel reference did not (its own change was mostly sampling noise).
+   grid-sampled reference did not (its own change was mostly sampling noise). The still frames'
+   pixel reference is the same area integral (PIXEL_REF_SEED).
 
    SCENES. Cameras, lights, pixel rays, footprints and the box brute force are bench/pictures.c's,
    from their one home bench/pic_scenes.h. CPU WORK (references, the CPU float path, the sampler
@@ -2064,7 +2065,7 @@ int main(int argc, char **argv)
                 "%.0f%% of the %d-texel cap: %.1f texels) and turns %.3f degree per frame about its pole (about %.1f texels at the "
                 "equator); f32 storage.\n\n"
                 "**Reference.** The first motion reference sampled the footprint on a grid attached to the screen (2 samples "
-                "per texel per axis, at most %d per axis; the still frames' pixel reference is that grid at 1 per texel): where a footprint is larger than that, its samples jump "
+                "per texel per axis, at most %d per axis): where a footprint is larger than that, its samples jump "
                 "from texel to texel as the camera moves, and on the unzoomed sphere (footprints of about 100 texels) that "
                 "sampling was most of its change per frame (BENCH_QUICK, frame 0 to 1: 11.6%% against 3.4%% for a reference "
                 "sampled on the surface). Hence the sphere's zoom, and a motion reference that integrates the pixel's footprint (the parallelogram of its neighbour rays) over the texels, each "
