@@ -5,7 +5,8 @@
    quad's screen-space derivatives. CPU-side bench program, not part of the library.
 
    WHAT IS MEASURED, per scene (plane toward the horizon, sphere), method (LEADR, naive
-   mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT;
+   mip-mapped normal, Toksvig; vMF m = 4 and 8, f32 and isotropic only: see frame.frag; on the
+   plane, f32 and isotropic, LEADR and vMF m = 4 with the horizon, pf_horizon.h), storage (R32G32B32A32_SFLOAT, R16G16B16A16_SFLOAT;
    for LEADR also pf_encode.h's scaled UNORM, R16G16B16A16_UNORM + R16_UNORM and R8G8B8A8_UNORM +
    R8_UNORM, the five moments centred on the map's mean slope, decoded in the shader) and sampler
    (trilinear, maxAnisotropy 1 and 16), over the lit pixels of bench/pictures.c's rule:
@@ -87,11 +88,13 @@
 #define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
 #define MOTION_FRAMES    16
 #define MOTION_SPT       2      /* the supersampled reference compared with the exact one: samples per texel per axis */
-#define MOTION_ROWS      8      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x, horizon (plane); the oracle (CPU) */
+#define MOTION_ROWS      9      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x, the two horizon methods (plane); the oracle (CPU) */
 #define MR_LEADR16       5
 #define MOTION_SIDE_FRACTION 0.6 /* the sphere's motion frames: median footprint side / ref_max */
 #define MR_HORIZON       6
-#define MR_ORACLE        7
+#define MR_VMF_HORIZON   7
+#define MR_ORACLE        8
+#define MR_PLANE_ONLY(k) ((k) == MR_HORIZON || (k) == MR_VMF_HORIZON)
 #define PIXEL_REF_SEED   7      /* the still frames' pixel reference: texel hash seed of shade_reference_cover */
 /* FILTER BANDS: the plane's LEADR error against the pixel reference per footprint band (rho_max,
    the longer derivative, in texels: < 2, 2-4, ... , >= 64) and anisotropy band (rho_max / rho_min:
@@ -128,8 +131,10 @@ static void band_add(int v, const pic_sample *px, const double *val, const doubl
 #define PLANE_DOLLY_STEP 0.25   /* texels the plane's camera moves forward per frame */
 #define SPHERE_TURN_STEP 0.0017453292519943296 /* 0.1 degree per frame: ~9 texels at the equator */
 
-enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_VMF8, MT_HORIZON, MT_COUNT };
-#define IS_VMF(m) ((m) == MT_VMF4 || (m) == MT_VMF8)
+enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_VMF8, MT_HORIZON, MT_VMF4_HORIZON, MT_COUNT };
+#define IS_VMF(m) ((m) == MT_VMF4 || (m) == MT_VMF8 || (m) == MT_VMF4_HORIZON)
+#define VMF_WHICH(m) ((m) == MT_VMF8 ? 1 : 0) /* vmf_lobes[] index */
+#define IS_HOR(m) ((m) == MT_HORIZON || (m) == MT_VMF4_HORIZON) /* the plane only, f32, isotropic */
 /* the horizon method (plane only, f32, isotropic): pf_horizon_leadr_specular_lod from the HDF
    pyramid of HOR_AZ azimuths (PF_HORIZON_MOMENTS, a HOR_STEPS-texel march, periodic), faded to
    LEADR between levels HOR_LOD_FULL and HOR_LOD_SMITH (bench/microsurface.c's choice) */
@@ -138,8 +143,8 @@ enum { MT_NONE = 0, MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_LEADR_TAPS, MT_VMF4, MT_V
 #define HOR_LOD_FULL  2.0
 #define HOR_LOD_SMITH 6.0
 static const char *const method_name[MT_COUNT] = {"none", "LEADR", "naive mip-mapped normal", "Toksvig",
-                                                  "LEADR, taps in the shader", "vMF m = 4", "vMF m = 8", "LEADR, horizon (HDF, faded by lod)"};
-static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "leadr_taps", "vmf4", "vmf8", "leadr_horizon"};
+                                                  "LEADR, taps in the shader", "vMF m = 4", "vMF m = 8", "LEADR, horizon (HDF, faded by lod)", "vMF m = 4, horizon (HDF, faded by lod)"};
+static const char *const method_key[MT_COUNT] = {"none", "leadr", "naive", "toksvig", "leadr_taps", "vmf4", "vmf8", "leadr_horizon", "vmf4_horizon"};
 static const int vmf_lobes[2] = {4, 8};
 static const char *const scene_key[2] = {"plane", "sphere"};
 
@@ -502,7 +507,7 @@ static void fetch_taps(const fr_maps *m, double tx, double ty, const float g[4],
 
 /* vMF m = vmf_lobes[which] at (u, v) (fractions of the map) and lod: the lobes of the 8 texels
    of a trilinear fetch, amplitudes times the trilinear weights (bench/pictures.c's shade_vmf) */
-static float shade_vmf_cpu(const fr_maps *m, int which, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
+static float shade_vmf_cpu(const fr_maps *m, int which, int horizon, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
 {
     const int W = m->W, H = m->H, nm = vmf_lobes[which], nl = pf_vmf_pyramid_level_count(W, H);
     pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
@@ -540,6 +545,20 @@ static float shade_vmf_cpu(const fr_maps *m, int which, double u, double v, doub
                 sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make((float)wt * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1], tex[4 * j + 2]), wo,
                                      wi, (float)(BASE_SIGMA * BASE_SIGMA));
         }
+    }
+    if (horizon) { /* pf_horizon_vmf_specular_lod: the slope-moment texel and the HDF at the same lod */
+        pf_real sl[5], hd[3 * HOR_AZ];
+        pf_horizon_azimuth ao = pf_horizon_azimuth_of(wo, HOR_AZ), ai = pf_horizon_azimuth_of(wi, HOR_AZ);
+        float base_var = (float)(BASE_SIGMA * BASE_SIGMA);
+        pf_mip_sample_trilinear(m->slope_pyr, W, H, 5, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, sl);
+        pf_mip_sample_trilinear(m->hdf_pyr, W, H, 3 * HOR_AZ, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, hd);
+        return pf_horizon_vmf_specular_lod(
+            sum, wo, wi, pf_slope_moments_stats(pf_slope_moments_make(sl[0], sl[1], sl[2], sl[3], sl[4]), base_var), base_var,
+            pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ao.i0], hd[3 * ao.i0 + 1], hd[3 * ao.i0 + 2]),
+                                pf_hdf_moments_make(hd[3 * ao.i1], hd[3 * ao.i1 + 1], hd[3 * ao.i1 + 2]), ao.f),
+            pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ai.i0], hd[3 * ai.i0 + 1], hd[3 * ai.i0 + 2]),
+                                pf_hdf_moments_make(hd[3 * ai.i1], hd[3 * ai.i1 + 1], hd[3 * ai.i1 + 2]), ai.f),
+            (float)F0, (float)lod, (float)HOR_LOD_FULL, (float)HOR_LOD_SMITH);
     }
     return pf_vmf_sum_specular(sum, wo, wi, (float)F0);
 }
@@ -1153,7 +1172,7 @@ static void pic_path_row(void *ctx, long long row)
             continue;
         }
         if (IS_VMF(jb->method)) {
-            jb->out[i] = (double)shade_vmf_cpu(mp, jb->method - MT_VMF4, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
+            jb->out[i] = (double)shade_vmf_cpu(mp, VMF_WHICH(jb->method), jb->method == MT_VMF4_HORIZON, p->tx / mp->W, p->ty / mp->H, lod, p->wo, p->wi);
             continue;
         }
         fetch(mp, p->tx / mp->W, p->ty / mp->H, lod, a, b);
@@ -1196,7 +1215,7 @@ static void gpu_path_row(void *ctx, long long row)
             jb->vc[i] = (double)shade_horizon_cpu(mp, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
         } else if (IS_VMF(m)) {
             double ls = rho > 0.0 ? log2(rho) : 0.0;
-            jb->vc[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
+            jb->vc[i] = (double)shade_vmf_cpu(mp, VMF_WHICH(m), m == MT_VMF4_HORIZON, (double)o0[1] / W, (double)o0[2] / H, ls, p->wo, p->wi);
         } else {
             if (m == MT_LEADR_TAPS) fetch_taps(mp, (double)o0[1], (double)o0[2], o1, a, b);
             else fetch_sampler(mp, (double)o0[1], (double)o0[2], o1, jb->aniso, a, b);
@@ -1219,7 +1238,7 @@ static void gpu_path_row(void *ctx, long long row)
             if (m == MT_HORIZON)
                 jb->vd[i] = (double)shade_horizon_cpu(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
             else if (IS_VMF(m))
-                jb->vd[i] = (double)shade_vmf_cpu(mp, m - MT_VMF4, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
+                jb->vd[i] = (double)shade_vmf_cpu(mp, VMF_WHICH(m), m == MT_VMF4_HORIZON, (double)o0[1] / W, (double)o0[2] / H, lod_drv, p->wo, p->wi);
             else {
                 fetch(mp, (double)o0[1] / W, (double)o0[2] / H, lod_drv, a, b);
                 jb->vd[i] = (double)shade_method(m, a, b, p->wo, p->wi);
@@ -1342,11 +1361,11 @@ int main(int argc, char **argv)
        bench`'s budget on 2 cores */
     static const int motion_full[2][2] = {{200, 125}, {100, 100}}, motion_quick[2][2] = {{64, 40}, {48, 48}};
     static const double motion_step[2] = {PLANE_DOLLY_STEP, SPHERE_TURN_STEP};
-    static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR, MT_HORIZON, MT_NONE};
+    static const int motion_method[MOTION_ROWS] = {MT_LEADR, MT_NAIVE, MT_TOKSVIG, MT_VMF4, MT_VMF8, MT_LEADR, MT_HORIZON, MT_VMF4_HORIZON, MT_NONE};
     static const char *const motion_name[MOTION_ROWS] = {"LEADR", "naive mip-mapped normal", "Toksvig", "vMF m = 4", "vMF m = 8",
-                                                         "LEADR, 16x", "LEADR, horizon (plane)",
+                                                         "LEADR, 16x", "LEADR, horizon (plane)", "vMF m = 4, horizon (plane)",
                                                          "oracle (exact histogram + Smith, CPU)"};
-    static const char *const motion_key[MOTION_ROWS] = {"leadr", "naive", "toksvig", "vmf4", "vmf8", "leadr", "leadr_horizon", "oracle"};
+    static const char *const motion_key[MOTION_ROWS] = {"leadr", "naive", "toksvig", "vmf4", "vmf8", "leadr", "leadr_horizon", "vmf4_horizon", "oracle"};
     int motion_capped[2], motion_pxf[2]; /* sampled pixel-frames, hit pixel-frames */
     double motion_zoom[2];
     double motion_ss_dev[2], motion_ss_change[2], motion_cover_change01[2], motion_seed_dev[2]; /* the supersampled reference, frames 0 and 1 */
@@ -1613,7 +1632,7 @@ int main(int argc, char **argv)
                     if (st >= ST_UNORM16 && m != MT_LEADR) continue; /* the UNORM encodings: LEADR's moments only */
                     pp = st >= ST_UNORM16 ? pipe_enc : pipe;
                     if (IS_VMF(m) && (st > 0 || an > 0)) continue; /* lobes: f32, filtered in the shader */
-                    if (m == MT_HORIZON && (s != 0 || st > 0 || an > 0)) continue; /* the plane, f32, isotropic */
+                    if (IS_HOR(m) && (s != 0 || st > 0 || an > 0)) continue; /* the plane, f32, isotropic */
                     if (m == MT_LEADR_TAPS && an > 0) continue;       /* its own anisotropic filter, isotropic sampler */
                     rw->done = 1;
                     times[0] = render(&tg, pp, set[st][an], &pc, w, h);
@@ -1858,7 +1877,7 @@ int main(int argc, char **argv)
             if (s == 1) pc.motion[0] = (float)(f * motion_step[s] / zoom);
             for (mr = 0; mr < MR_ORACLE; ++mr) {
                 int mm = motion_method[mr], aa = mr == MR_LEADR16 ? 1 : 0;
-                if (mm == MT_HORIZON && s != 0) continue; /* the horizon rows: the plane only */
+                if (IS_HOR(mm) && s != 0) continue; /* the horizon rows: the plane only */
                 render(&tg, pipes[mm], set[0][aa], &pc, w, h);
                 for (i = 0; i < npx; ++i) {
                     double v = (double)tg.rb_map[4 * (size_t)i];
@@ -1880,7 +1899,7 @@ int main(int argc, char **argv)
         for (mr = 0; mr < MOTION_ROWS; ++mr) {
             double d = 0.0, e = 0.0;
             int ne = 0;
-            if (s != 0 && mr == MR_HORIZON) { /* the plane only */
+            if (s != 0 && MR_PLANE_ONLY(mr)) { /* the plane only */
                 motion_flicker[s][mr] = motion_own[s][mr] = motion_err[s][mr] = 0.0;
                 continue;
             }
@@ -1934,7 +1953,7 @@ int main(int argc, char **argv)
         fprintf(mc, "scene,method,max_anisotropy,frames,err_mean,change_per_frame,flicker_ratio,ref_change_per_frame,nonfinite\n");
         for (s = 0; s < 2; ++s)
             for (k = 0; k < MOTION_ROWS; ++k)
-                if (!(s != 0 && k == MR_HORIZON)) /* the horizon rows: the plane only */
+                if (!(s != 0 && MR_PLANE_ONLY(k))) /* the horizon rows: the plane only */
                     fprintf(mc, "%s,%s,%d,%d,%.6g,%.6g,%.6g,%.6g,%d\n", scene_key[s], motion_key[k], k == MR_LEADR16 ? 16 : 1,
                         MOTION_FRAMES, motion_err[s][k], motion_own[s][k], motion_flicker[s][k], motion_ref_change[s], motion_nonfinite[s][k]);
         fclose(mc);
@@ -2096,7 +2115,7 @@ int main(int argc, char **argv)
     fprintf(md, "| method | plane: error (mean over frames) | plane: change per frame | plane: flicker ratio | sphere: error | "
                 "sphere: change per frame | sphere: flicker ratio | non-finite |\n|---|---|--:|--:|---|--:|--:|--:|\n");
     for (k = 0; k < MOTION_ROWS; ++k)
-        if (k == MR_HORIZON)
+        if (MR_PLANE_ONLY(k))
             fprintf(md, "| %s | %.1f%% | %.2f%% | %.3f | - | - | - | %d |\n", motion_name[k], 100.0 * motion_err[0][k], 100.0 * motion_own[0][k],
                     motion_flicker[0][k], motion_nonfinite[0][k]);
         else
@@ -2109,7 +2128,7 @@ int main(int argc, char **argv)
         double best = 1e30;
         int bk = 0;
         for (k = 0; k < MOTION_ROWS; ++k)
-            if (k != MR_ORACLE && motion_method[k] != MT_NAIVE && !(s != 0 && k == MR_HORIZON) && motion_err[s][k] < best)
+            if (k != MR_ORACLE && motion_method[k] != MT_NAIVE && !(s != 0 && MR_PLANE_ONLY(k)) && motion_err[s][k] < best)
                 best = motion_err[s][k], bk = k;
         motion_best[s] = bk;
     }
@@ -2196,6 +2215,19 @@ int main(int argc, char **argv)
                         100.0 * hz->vs_cpu, hz->vs_cpu <= 0.01 ? "within 1%" : "NOT within 1%", 100.0 * hz->vs_drv,
                         motion_flicker[0][MR_HORIZON], motion_flicker[0][0], 100.0 * motion_err[0][MR_HORIZON], 100.0 * motion_err[0][0],
                         hz->nonfinite, motion_nonfinite[0][MR_HORIZON], oh, bh, ol, bl);
+            hz = &rows[0][MT_VMF4_HORIZON][0][0];
+            oh = ops_of(ops_file, 0, MT_VMF4_HORIZON, &bh), ol = ops_of(ops_file, 0, MT_VMF4, &bl);
+            if (hz->done)
+                fprintf(md, "  `pf_horizon_vmf_specular_lod` (vMF m = 4, the same HDF, conditioned on the slope-moment texel): "
+                            "against the box reference %.1f%% (vMF m = 4 %.1f%%), against the pixel reference %.1f%% (%.1f%%); "
+                            "%.2fx and %.2fx the oracle's; the GPU within %.3f%% of the CPU float path (%s; at the driver's lod "
+                            "%.4f%%); flicker ratio %.3f (vMF m = 4 %.3f), error under motion %.1f%% (%.1f%%); non-finite pixels: "
+                            "%d still, %d moving; %d SPIR-V ops (%d branches) against vMF m = 4's %d (%d).\n",
+                        100.0 * hz->err[0], 100.0 * rows[0][MT_VMF4][0][0].err[0], 100.0 * hz->err[1], 100.0 * rows[0][MT_VMF4][0][0].err[1],
+                        oracle_err[0][0] > 0.0 ? hz->err[0] / oracle_err[0][0] : 0.0, oracle_err[0][1] > 0.0 ? hz->err[1] / oracle_err[0][1] : 0.0,
+                        100.0 * hz->vs_cpu, hz->vs_cpu <= 0.01 ? "within 1%" : "NOT within 1%", 100.0 * hz->vs_drv,
+                        motion_flicker[0][MR_VMF_HORIZON], motion_flicker[0][3], 100.0 * motion_err[0][MR_VMF_HORIZON], 100.0 * motion_err[0][3],
+                        hz->nonfinite, motion_nonfinite[0][MR_VMF_HORIZON], oh, bh, ol, bl);
         }
         fprintf(md, "- every method's error as a ratio to the per-pixel oracle's, on both scenes: the tables' \"/ oracle's\" "
                     "column (oracle: plane %.1f%% / %.1f%%, sphere %.1f%% / %.1f%%, box / pixel reference).\n",
