@@ -420,25 +420,35 @@ static float shade_method(int method, const float a[4], const float b[4], const 
     return pf_leadr_specular(wo, wi, st, (float)F0);
 }
 
-/* the horizon method on the CPU: the slope moments and the HDF trilinear at (u, v) (fractions
-   of the map) and lod, the two stored azimuths around wo and around wi mixed
-   (pf_hdf_moments_lerp), pf_horizon_leadr_specular_lod at that lod */
+/* the horizon methods' inputs on the CPU, as frame.frag fetches them: the slope-moment texel
+   (with the base variance) and the HDF trilinear at (u, v) (fractions of the map) and lod, the
+   two stored azimuths around wo and around wi mixed by pf_hdf_moments_lerp */
+static void horizon_inputs(const fr_maps *m, double u, double v, double lod, pf_vec3 wo, pf_vec3 wi, pf_slope_stats *st,
+                           pf_hdf_moments *mo, pf_hdf_moments *mi)
+{
+    pf_real sl[5], hd[3 * HOR_AZ];
+    pf_horizon_azimuth ao = pf_horizon_azimuth_of(wo, HOR_AZ), ai = pf_horizon_azimuth_of(wi, HOR_AZ);
+    pf_mip_sample_trilinear(m->slope_pyr, m->W, m->H, 5, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, sl);
+    pf_mip_sample_trilinear(m->hdf_pyr, m->W, m->H, 3 * HOR_AZ, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, hd);
+    *st = pf_slope_moments_stats(pf_slope_moments_make(sl[0], sl[1], sl[2], sl[3], sl[4]), (pf_real)(BASE_SIGMA * BASE_SIGMA));
+    *mo = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ao.i0], hd[3 * ao.i0 + 1], hd[3 * ao.i0 + 2]),
+                              pf_hdf_moments_make(hd[3 * ao.i1], hd[3 * ao.i1 + 1], hd[3 * ao.i1 + 2]), ao.f);
+    *mi = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ai.i0], hd[3 * ai.i0 + 1], hd[3 * ai.i0 + 2]),
+                              pf_hdf_moments_make(hd[3 * ai.i1], hd[3 * ai.i1 + 1], hd[3 * ai.i1 + 2]), ai.f);
+}
+
+/* LEADR with the horizon on the CPU at (u, v) and lod (clamped at 0, as the driver's probe):
+   pf_horizon_leadr_specular_lod */
 static float shade_horizon_cpu(const fr_maps *m, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
 {
     pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
     pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
-    pf_real sl[5], hd[3 * HOR_AZ];
-    pf_horizon_azimuth ao = pf_horizon_azimuth_of(wo, HOR_AZ), ai = pf_horizon_azimuth_of(wi, HOR_AZ);
+    pf_slope_stats st;
     pf_hdf_moments mo, mi;
-    float base_var = (float)(BASE_SIGMA * BASE_SIGMA), l = lod > 0.0 ? (float)lod : 0.0f;
-    pf_mip_sample_trilinear(m->slope_pyr, m->W, m->H, 5, l, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, sl);
-    pf_mip_sample_trilinear(m->hdf_pyr, m->W, m->H, 3 * HOR_AZ, l, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, hd);
-    mo = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ao.i0], hd[3 * ao.i0 + 1], hd[3 * ao.i0 + 2]),
-                             pf_hdf_moments_make(hd[3 * ao.i1], hd[3 * ao.i1 + 1], hd[3 * ao.i1 + 2]), ao.f);
-    mi = pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ai.i0], hd[3 * ai.i0 + 1], hd[3 * ai.i0 + 2]),
-                             pf_hdf_moments_make(hd[3 * ai.i1], hd[3 * ai.i1 + 1], hd[3 * ai.i1 + 2]), ai.f);
-    return pf_horizon_leadr_specular_lod(wo, wi, pf_slope_moments_stats(pf_slope_moments_make(sl[0], sl[1], sl[2], sl[3], sl[4]), base_var),
-                                         base_var, mo, mi, (float)F0, l, (float)HOR_LOD_FULL, (float)HOR_LOD_SMITH);
+    float l = lod > 0.0 ? (float)lod : 0.0f;
+    horizon_inputs(m, u, v, l, wo, wi, &st, &mo, &mi);
+    return pf_horizon_leadr_specular_lod(wo, wi, st, (float)(BASE_SIGMA * BASE_SIGMA), mo, mi, (float)F0, l, (float)HOR_LOD_FULL,
+                                         (float)HOR_LOD_SMITH);
 }
 
 /* trilinear fetch of both textures at (u, v) (fractions of the map) and lod */
@@ -547,18 +557,11 @@ static float shade_vmf_cpu(const fr_maps *m, int which, int horizon, double u, d
         }
     }
     if (horizon) { /* pf_horizon_vmf_specular_lod: the slope-moment texel and the HDF at the same lod */
-        pf_real sl[5], hd[3 * HOR_AZ];
-        pf_horizon_azimuth ao = pf_horizon_azimuth_of(wo, HOR_AZ), ai = pf_horizon_azimuth_of(wi, HOR_AZ);
-        float base_var = (float)(BASE_SIGMA * BASE_SIGMA);
-        pf_mip_sample_trilinear(m->slope_pyr, W, H, 5, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, sl);
-        pf_mip_sample_trilinear(m->hdf_pyr, W, H, 3 * HOR_AZ, (pf_real)lod, (pf_real)u, (pf_real)v, PF_BORDER_WRAP, hd);
-        return pf_horizon_vmf_specular_lod(
-            sum, wo, wi, pf_slope_moments_stats(pf_slope_moments_make(sl[0], sl[1], sl[2], sl[3], sl[4]), base_var), base_var,
-            pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ao.i0], hd[3 * ao.i0 + 1], hd[3 * ao.i0 + 2]),
-                                pf_hdf_moments_make(hd[3 * ao.i1], hd[3 * ao.i1 + 1], hd[3 * ao.i1 + 2]), ao.f),
-            pf_hdf_moments_lerp(pf_hdf_moments_make(hd[3 * ai.i0], hd[3 * ai.i0 + 1], hd[3 * ai.i0 + 2]),
-                                pf_hdf_moments_make(hd[3 * ai.i1], hd[3 * ai.i1 + 1], hd[3 * ai.i1 + 2]), ai.f),
-            (float)F0, (float)lod, (float)HOR_LOD_FULL, (float)HOR_LOD_SMITH);
+        pf_slope_stats st;
+        pf_hdf_moments mo, mi;
+        horizon_inputs(m, u, v, lod, wo, wi, &st, &mo, &mi);
+        return pf_horizon_vmf_specular_lod(sum, wo, wi, st, (float)(BASE_SIGMA * BASE_SIGMA), mo, mi, (float)F0, (float)lod,
+                                           (float)HOR_LOD_FULL, (float)HOR_LOD_SMITH);
     }
     return pf_vmf_sum_specular(sum, wo, wi, (float)F0);
 }
