@@ -2333,13 +2333,17 @@ int main(int argc, char **argv)
                     for (k = 0; k < MOTION_ROWS; ++k)
                         if (k != MR_ORACLE && motion_method[k] == m && (k == MR_LEADR16) == (an == 1)) mk = k;
                     for (s = 0; s < 2; ++s) {
-                        if (mk >= 0) snprintf(fl[s], sizeof fl[s], "%.2f", motion_flicker[s][mk]);
+                        if (mk >= 0 && !(s != 0 && MR_PLANE_ONLY(mk))) snprintf(fl[s], sizeof fl[s], "%.2f", motion_flicker[s][mk]);
                         else snprintf(fl[s], sizeof fl[s], "-");
                     }
-                    fprintf(g, "| %s%s | %.1f%% | %.2f | %.2f%% | %s | %.1f%% | %.2f | %.2f%% | %s | %d |\n", method_name[m],
-                            an ? ", 16x sampler" : "", 100.0 * rows[0][m][0][an].err[1], rows[0][m][0][an].err[1] / oracle_err[0][1],
-                            100.0 * rows[0][m][0][an].vs_cpu, fl[0], 100.0 * rows[1][m][0][an].err[1],
-                            rows[1][m][0][an].err[1] / oracle_err[1][1], 100.0 * rows[1][m][0][an].vs_cpu, fl[1], ops);
+                    fprintf(g, "| %s%s | %.1f%% | %.2f | %.2f%% | %s |", method_name[m], an ? ", 16x sampler" : "",
+                            100.0 * rows[0][m][0][an].err[1], rows[0][m][0][an].err[1] / oracle_err[0][1], 100.0 * rows[0][m][0][an].vs_cpu,
+                            fl[0]);
+                    if (rows[1][m][0][an].done)
+                        fprintf(g, " %.1f%% | %.2f | %.2f%% | %s | %d |\n", 100.0 * rows[1][m][0][an].err[1],
+                                rows[1][m][0][an].err[1] / oracle_err[1][1], 100.0 * rows[1][m][0][an].vs_cpu, fl[1], ops);
+                    else
+                        fprintf(g, " - | - | - | - | %d |\n", ops);
                 }
         }
         g = gg[0];
