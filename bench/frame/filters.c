@@ -48,6 +48,37 @@ static void fetch_taps2(const fr_maps *m, double tx, double ty, const float g[4]
     for (k = 0; k < 4; ++k)
         a[k] /= (float)N, b[k] /= (float)N;
 }
+/* F: the footprint as an ellipse: taps along the major axis of the Jacobian J = (gx gy) (its
+   first singular vector, length sigma_1: a box of that length has the parallelogram's variance
+   along it), N = min(ceil(sigma_1 / sigma_2), nmax), lod log2(sigma_1 / N) */
+static void fetch_taps_svd(const fr_maps *m, double tx, double ty, const float g[4], int nmax, float a[4], float b[4])
+{
+    double g0 = g[0], g1 = g[1], g2 = g[2], g3 = g[3];
+    /* J J^T = [[g0^2 + g2^2, g0 g1 + g2 g3], [., g1^2 + g3^2]] */
+    double p = g0 * g0 + g2 * g2, q = g0 * g1 + g2 * g3, r = g1 * g1 + g3 * g3;
+    double tr = 0.5 * (p + r), d = sqrt(0.25 * (p - r) * (p - r) + q * q), l1 = tr + d, l2 = tr - d > 0.0 ? tr - d : 0.0;
+    double s1 = sqrt(l1), s2 = sqrt(l2), ex, ey, n, N, lod;
+    int i, k;
+    if (fabs(q) > 1e-30) ex = l1 - r, ey = q;
+    else if (p >= r) ex = 1.0, ey = 0.0;
+    else ex = 0.0, ey = 1.0;
+    n = sqrt(ex * ex + ey * ey);
+    ex /= n, ey /= n;
+    N = ceil(s1 / (s2 > 1e-6 * s1 + 1e-30 ? s2 : 1e-6 * s1 + 1e-30));
+    N = N < 1.0 ? 1.0 : (N > nmax ? nmax : N);
+    lod = s1 / N > 1.0 ? log2(s1 / N) : 0.0;
+    for (k = 0; k < 4; ++k)
+        a[k] = b[k] = 0.0f;
+    for (i = 0; i < (int)N; ++i) {
+        float ta[4], tb[4];
+        double f = (((double)i + 0.5) / N - 0.5) * s1;
+        fetch(m, (tx + f * ex) / m->W, (ty + f * ey) / m->H, lod, ta, tb);
+        for (k = 0; k < 4; ++k)
+            a[k] += ta[k], b[k] += tb[k];
+    }
+    for (k = 0; k < 4; ++k)
+        a[k] /= (float)N, b[k] /= (float)N;
+}
 /* E: grid over the parallelogram: Na x Nb taps; cell size c = max(|gx|/Na, |gy|/Nb); lod log2(c) - bias */
 static void fetch_grid(const fr_maps *m, double tx, double ty, const float g[4], double bias, int nmax, float a[4], float b[4])
 {
@@ -198,6 +229,10 @@ int main(int argc, char **argv)
                     snprintf(nmb[12 + in * 4 + ib], 48, "grid -%.1f N<=%d", bs[ib], nm[in]);
                     ADD(nmb[12 + in * 4 + ib], SH());
                 }
+            fetch_taps_svd(&maps, p->tx, p->ty, g, 16, a, bb);
+            ADD("taps, ellipse axes N<=16", SH());
+            fetch_taps_svd(&maps, p->tx, p->ty, g, 64, a, bb);
+            ADD("taps, ellipse axes N<=64", SH());
             fetch_taps2(&maps, p->tx, p->ty, g, 0.8, 32, 1, a, bb);
             ADD("taps area-rmin-0.8 N<=32", SH());
         }

@@ -2198,9 +2198,13 @@ int main(int argc, char **argv)
                     "exact moments below 8 texels, where all of the gain is, and from 16 texels up the exact moments themselves "
                     "are further from the brute force than trilinear's blur is (LEADR's Gaussian and Smith's term, not the "
                     "filter). Other shader filters, measured on the same pixels by bench/frame/filters.c (CPU emulation, BENCH_QUICK / "
-                    "full, pixel reference): a grid over the pixel's parallelogram of at most 16 taps at the level of its cell "
-                    "46.1%% / 37.9%% against the taps' 47.3%% / 38.1%% (trilinear 60.1%% / 48.2%%); a finer level (log2 rho_min "
-                    "- 0.5 .. 1), more taps (cap 32, 64) or both: 47.2%% to 48.8%% / 38.0%% to 39.4%%: the taps are kept.\n",
+                    "full, pixel reference, hash seed 1): a grid over the pixel's parallelogram of at most 16 taps at the level of "
+                    "its cell 46.1%% / 37.9%% against the taps' 47.3%% / 38.1%% (trilinear 60.1%% / 48.2%%, the specification's "
+                    "16x 49.8%% / 39.5%%: the same N and level, its N probes at i / (N + 1) of the major axis instead of the "
+                    "segments' centres); the taps along the footprint ellipse's major axis (the Jacobian's first singular "
+                    "vector, length sigma_1, N = ceil(sigma_1 / sigma_2)) 47.1%% / 38.1%%; a finer level (log2 rho_min - 0.5 "
+                    ".. 1), more taps (cap 32, 64: the cap binds only for ratios 16-32, the plane has none above 32) or both: "
+                    "47.2%% to 48.8%% / 38.0%% to 39.4%%. The taps are kept.\n",
                 100.0 * lex_err[0][1], 100.0 * oracle_err[0][1]);
         { /* the horizon method (the plane) */
             const fr_row *hz = &rows[0][MT_HORIZON][0][0];
