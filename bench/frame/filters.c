@@ -124,13 +124,12 @@ int main(int argc, char **argv)
     const char *q = getenv("BENCH_QUICK");
     int quick = q && *q && strcmp(q, "0");
     int w = quick ? 160 : 400, h = quick ? 100 : 250, ref_max = quick ? 32 : 64, W = MAP_SIZE, H = MAP_SIZE, npx = w * h, i, k, v,
-        x, y, nl = 0, ns = 0;
+        nl = 0, ns = 0;
     pfm_surface surf;
     fr_maps maps;
     fr_scene sc;
     double *ref, *orc, *lex, *scratch, fl;
     unsigned char *lit, *vis;
-    long long nt;
     static double err[NV][8][8];
     static int cnt[8][8];
     static double tot[NV];
@@ -138,26 +137,8 @@ int main(int argc, char **argv)
     int nv = 0;
     (void)argc;
     (void)argv;
-    pfm_surface_make(&surf, W, H, 1.0, pfm_params_default(PFM_GAUSSIAN));
-    nt = pf_mip_texel_count(W, H);
-    maps.W = W;
-    maps.H = H;
-    maps.slope_pyr = malloc(sizeof(pf_real) * 5 * nt);
-    maps.normal_pyr = malloc(sizeof(pf_real) * 3 * nt);
-    {
-        pf_real *hts = malloc(sizeof(pf_real) * W * H), *nrm = malloc(sizeof(pf_real) * 3 * W * H);
-        for (k = 0; k < W * H; ++k)
-            hts[k] = (pf_real)surf.height[k];
-        for (y = 0; y < H; ++y)
-            for (x = 0; x < W; ++x) {
-                double n[3];
-                pfm_normal(&surf, x, y, n);
-                for (k = 0; k < 3; ++k)
-                    nrm[3 * (y * W + x) + k] = (pf_real)n[k];
-            }
-        pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr);
-        pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr);
-    }
+    if (pfm_surface_make(&surf, W, H, 1.0, pfm_params_default(PFM_GAUSSIAN)) != 0 || maps_build(&surf, &maps, 0, NULL, NULL) != 0)
+        return 1;
     scene_make(&sc, 0, w, h, &surf, 0.0, 1.0);
     vis = malloc((size_t)W * H);
     pfm_visibility_map(&surf, sc.light, vis);

@@ -438,8 +438,10 @@ static void horizon_inputs(const fr_maps *m, double u, double v, double lod, pf_
 }
 
 /* LEADR with the horizon on the CPU at (u, v) and lod (clamped at 0, as the driver's probe):
-   pf_horizon_leadr_specular_lod */
-static float shade_horizon_cpu(const fr_maps *m, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
+   pf_horizon_leadr_specular_lod, faded between lod_full and lod_smith (the frame's:
+   shade_horizon_cpu; bench/frame/horizon_fade.c tries others) */
+static float shade_horizon_fade(const fr_maps *m, double u, double v, double lod, const double wo_d[3], const double wi_d[3],
+                                double lod_full, double lod_smith)
 {
     pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
     pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
@@ -447,8 +449,12 @@ static float shade_horizon_cpu(const fr_maps *m, double u, double v, double lod,
     pf_hdf_moments mo, mi;
     float l = lod > 0.0 ? (float)lod : 0.0f;
     horizon_inputs(m, u, v, l, wo, wi, &st, &mo, &mi);
-    return pf_horizon_leadr_specular_lod(wo, wi, st, (float)(BASE_SIGMA * BASE_SIGMA), mo, mi, (float)F0, l, (float)HOR_LOD_FULL,
-                                         (float)HOR_LOD_SMITH);
+    return pf_horizon_leadr_specular_lod(wo, wi, st, (float)(BASE_SIGMA * BASE_SIGMA), mo, mi, (float)F0, l, (float)lod_full,
+                                         (float)lod_smith);
+}
+static float shade_horizon_cpu(const fr_maps *m, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
+{
+    return shade_horizon_fade(m, u, v, lod, wo_d, wi_d, HOR_LOD_FULL, HOR_LOD_SMITH);
 }
 
 /* trilinear fetch of both textures at (u, v) (fractions of the map) and lod */
@@ -1280,6 +1286,50 @@ static void vmf_item(void *ctx, long long k)
     jb->cpu_s[k] = thread_cpu_seconds() - t1;
 }
 
+/* the map's pyramids (CPU, float: the library's builders), as bench/pictures.c: slopes, normals,
+   the HDF (texel = 1 world unit, as the slopes; t_hdf: its wall seconds) and, with vmf, the
+   two lobe pyramids (EM per texel, both at once; t_vmf: each one's CPU seconds). 0, or 1 when
+   a builder fails. Also bench/frame/filters.c's and horizon_fade.c's. */
+static int maps_build(const pfm_surface *surf, fr_maps *maps, int vmf, double t_vmf[2], double *t_hdf)
+{
+    const int W = surf->w, H = surf->h;
+    long long nt = pf_mip_texel_count(W, H);
+    pf_real *hts = (pf_real *)pfb_xmalloc(sizeof(pf_real) * (size_t)W * H), *nrm = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * (size_t)W * H);
+    double th;
+    int k, x, y;
+    memset(maps, 0, sizeof *maps);
+    maps->W = W;
+    maps->H = H;
+    maps->slope_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 5 * (size_t)nt);
+    maps->normal_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * (size_t)nt);
+    maps->hdf_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * HOR_AZ * (size_t)nt);
+    for (k = 0; k < W * H; ++k) hts[k] = (pf_real)surf->height[k];
+    for (y = 0; y < H; ++y)
+        for (x = 0; x < W; ++x) {
+            double n[3];
+            pfm_normal(surf, x, y, n);
+            for (k = 0; k < 3; ++k) nrm[3 * (y * W + x) + k] = (pf_real)n[k];
+        }
+    th = now_seconds();
+    if (pf_horizon_pyramid(hts, W, H, 1.0f, HOR_AZ, HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, maps->hdf_pyr) != PF_OK) return 1;
+    if (t_hdf) *t_hdf = now_seconds() - th;
+    if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps->slope_pyr) != PF_OK ||
+        pf_normal_pyramid_from_normals(nrm, W, H, maps->normal_pyr) != PF_OK)
+        return 1;
+    if (vmf) {
+        fr_vmf_job vj;
+        vj.nrm = nrm, vj.W = W, vj.H = H, vj.fail = 0, vj.maps = maps;
+        for (k = 0; k < 2; ++k)
+            maps->vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
+        pfb_parallel_for(2, vmf_item, &vj, "frame: vMF lobe pyramids");
+        if (vj.fail) return 1;
+        t_vmf[0] = vj.cpu_s[0], t_vmf[1] = vj.cpu_s[1];
+    }
+    free(hts);
+    free(nrm);
+    return 0;
+}
+
 /* ---------------------------------------------------------------- main */
 #define NSTORE 4
 #define NANISO 2
@@ -1388,44 +1438,10 @@ int main(int argc, char **argv)
     if (pfm_surface_make(&surf, W, H, 1.0, pfm_params_default(PFM_GAUSSIAN)) != 0) return 1;
     nt = pf_mip_texel_count(W, H);
     levels = pf_mip_level_count(W, H);
-    maps.W = W;
-    maps.H = H;
-    maps.slope_pyr = (pf_real *)malloc(sizeof(pf_real) * 5 * (size_t)nt);
-    maps.normal_pyr = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)nt);
     texA = (float *)malloc(sizeof(float) * 4 * (size_t)nt);
     texB = (float *)malloc(sizeof(float) * 4 * (size_t)nt);
     texL = (float *)malloc(sizeof(float) * 4 * (size_t)nt);
-    {
-        pf_real *hts = (pf_real *)malloc(sizeof(pf_real) * (size_t)W * H), *nrm = (pf_real *)malloc(sizeof(pf_real) * 3 * (size_t)W * H);
-        if (!maps.slope_pyr || !maps.normal_pyr || !texA || !texB || !texL || !hts || !nrm) return 1;
-        for (k = 0; k < W * H; ++k) hts[k] = (pf_real)surf.height[k];
-        for (y = 0; y < H; ++y)
-            for (x = 0; x < W; ++x) {
-                double n[3];
-                pfm_normal(&surf, x, y, n);
-                for (k = 0; k < 3; ++k) nrm[3 * (y * W + x) + k] = (pf_real)n[k];
-            }
-        { /* the HDF pyramid of the horizon method (texel = 1 world unit, as the slopes) */
-            double th = now_seconds();
-            maps.hdf_pyr = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 3 * HOR_AZ * (size_t)nt);
-            if (pf_horizon_pyramid(hts, W, H, 1.0f, HOR_AZ, HOR_STEPS, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, maps.hdf_pyr) != PF_OK) return 1;
-            t_hdf = now_seconds() - th;
-        }
-        if (pf_slope_pyramid_from_heights(hts, W, H, 1.0f, 1.0f, 1.0f, PF_BORDER_WRAP, maps.slope_pyr) != PF_OK ||
-            pf_normal_pyramid_from_normals(nrm, W, H, maps.normal_pyr) != PF_OK)
-            return 1;
-        { /* the lobe pyramids (EM per texel), as bench/pictures.c, both at once */
-            fr_vmf_job vj;
-            vj.nrm = nrm, vj.W = W, vj.H = H, vj.fail = 0, vj.maps = &maps;
-            for (k = 0; k < 2; ++k)
-                maps.vmf_pyr[k] = (pf_real *)pfb_xmalloc(sizeof(pf_real) * 4 * (size_t)vmf_lobes[k] * (size_t)pf_vmf_pyramid_texel_count(W, H));
-            pfb_parallel_for(2, vmf_item, &vj, "frame: vMF lobe pyramids");
-            if (vj.fail) return 1;
-            t_vmf[0] = vj.cpu_s[0], t_vmf[1] = vj.cpu_s[1];
-        }
-        free(hts);
-        free(nrm);
-    }
+    if (!texA || !texB || !texL || maps_build(&surf, &maps, 1, t_vmf, &t_hdf) != 0) return 1;
     for (k = 0; k < nt; ++k) {
         texA[4 * k] = maps.slope_pyr[5 * k], texA[4 * k + 1] = maps.slope_pyr[5 * k + 1];
         texA[4 * k + 2] = maps.slope_pyr[5 * k + 2], texA[4 * k + 3] = maps.slope_pyr[5 * k + 3];
