@@ -2036,9 +2036,11 @@ int main(int argc, char **argv)
             " a grid of one sample per texel per axis would take whole texels (a footprint 0.6 texel wide, one full row) and "
             "measure that quantization, not a filter, at footprints of a few texels",
             ref_max, ref_max, quick ? " (BENCH_QUICK)" : "", VMF_ITER, t_vmf[0], t_vmf[1]);
-    fprintf(md, "The horizon row (**LEADR, horizon**, the plane only, f32, isotropic sampler) is `pf_horizon_leadr_specular_lod`: "
+    fprintf(md, "The horizon rows (the plane only, f32, isotropic sampler): **LEADR, horizon** is `pf_horizon_leadr_specular_lod`, "
                 "LEADR's specular with Smith's G replaced by the reflecting facets' horizon visibility, faded to plain LEADR "
-                "between levels %.0f and %.0f (bench/microsurface.c's choice). Its HDF pyramid (`pf_horizon_pyramid`, "
+                "between levels %.0f and %.0f (bench/microsurface.c's choice); **vMF m = 4, horizon** is "
+                "`pf_horizon_vmf_specular_lod`, the vMF m = 4 row's lobes with the same visibility (conditioned on the "
+                "slope-moment texel) and fade. Its HDF pyramid (`pf_horizon_pyramid`, "
                 "PF_HORIZON_MOMENTS, %d azimuths, a %d-texel march on the periodic map; %.1f s wall time, a one-off) is one "
                 "R32G32B32A32_SFLOAT 2D array image with its whole mip chain, layer j = azimuth j holding (E[T], E[T^2], E[S T], "
                 "unused): %d bytes per texel of level 0, %.1f MB for the %dx%d map's chain. The shader fetches 4 layers "
@@ -2048,7 +2050,7 @@ int main(int argc, char **argv)
                 "outside the footprint included): the box reference is bench/pictures.c's `full` (not its in-box variant), "
                 "the pixel reference the same marches over the pixel's footprint.\n\n",
             HOR_LOD_FULL, HOR_LOD_SMITH, HOR_AZ, HOR_STEPS, t_hdf, 16 * HOR_AZ,
-            16.0 * HOR_AZ * (double)pf_mip_texel_count(W, H) / 1048576.0, W, H);
+            16.0 * HOR_AZ * (double)pf_mip_texel_count(W, H) / 1e6, W, H);
     for (s = 0; s < 2; ++s) {
         int br, ops0 = ops_of(ops_file, s, MT_NONE, &br);
         fprintf(md, "**%s**: %d surface pixels, lit %d (box reference) and %d (pixel reference), median footprint side %.1f "
