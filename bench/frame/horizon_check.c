@@ -40,7 +40,7 @@ static double hdf_T(const fr_maps *m, int x, int y, const double *w)
 {
     pf_horizon_azimuth a = pf_horizon_azimuth_of(pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]), HOR_AZ);
     const pf_real *t = m->hdf_pyr + ((size_t)y * m->W + x) * 3 * HOR_AZ;
-    return (1.0 - a.f) * t[3 * a.i0] + a.f * t[3 * a.i1];
+    return (1.0 - (double)a.f) * (double)t[3 * a.i0] + (double)a.f * (double)t[3 * a.i1];
 }
 /* (3) the specular's visibility alone: per pixel the reference R (full occluders) and the same
    texels without visibility N, so V_true = R / N; the methods' visibility: LEADR's Smith G2
@@ -83,7 +83,7 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
             horizon_inputs(maps, p->tx / W, p->ty / H, lod, wo, wi, &st, &mo, &mi);
             {
                 pf_real ao = wo.z - st.mean_x * wo.x - st.mean_y * wo.y;
-                L1 = pf_beckmann_d(pf_vec3_add(wo, wi), st) * 0.25 / ao;
+                L1 = (double)pf_beckmann_d(pf_vec3_add(wo, wi), st) * 0.25 / (double)ao;
             }
             v[0] = shade_method(MT_LEADR, a, b, p->wo, p->wi);
             v[1] = shade_horizon_cpu(maps, p->tx / W, p->ty / H, lod, p->wo, p->wi);
@@ -101,7 +101,7 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
                 pf_vec3 hh = pf_vec3_add(wo, wi);
                 double shx = -hh.x / hh.z, shy = -hh.y / hh.z;
                 double vou = pf_horizon_visibility_gauss(mo, pf_horizon_elevation(wo)), viu = pf_horizon_visibility_gauss(mi, pf_horizon_elevation(wi));
-                double vunc = vou * pf_horizon_bidir_tan((pf_real)viu, (pf_real)vou, pf_vec3_dot(wo, wi));
+                double vunc = vou * (double)pf_horizon_bidir_tan((pf_real)viu, (pf_real)vou, pf_vec3_dot(wo, wi));
                 double vbv = pf_horizon_specular_visibility(wo, wi, mo, mi, st);
                 double add2[7] = {pf_horizon_visibility_given_slope(wo, mo, ts, (pf_real)shx, (pf_real)shy),
                                   pf_horizon_visibility_given_slope(wi, mi, ts, (pf_real)shx, (pf_real)shy),
