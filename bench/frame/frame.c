@@ -2048,7 +2048,10 @@ int main(int argc, char **argv)
                 "pair with `pf_hdf_moments_lerp`; its CPU path is the same from the float pyramids at the same lod. Both "
                 "references march every texel's view and light rays through the whole periodic height field (occluders "
                 "outside the footprint included): the box reference is bench/pictures.c's `full` (not its in-box variant), "
-                "the pixel reference the same marches over the pixel's footprint.\n\n",
+                "the pixel reference the same marches over the pixel's footprint. The HDF's conventions (azimuth 0 along +x, "
+                "turning toward +y, rows along y, the direction toward the viewer or light, texel = 1 world unit) are checked "
+                "against the brute force's march by bench/frame/horizon_check.c, which also splits the horizon rows' error into "
+                "visibility and NDF by footprint band (docs/gpu.md says why the rows lose on this plane).\n\n",
             HOR_LOD_FULL, HOR_LOD_SMITH, HOR_AZ, HOR_STEPS, t_hdf, 16 * HOR_AZ,
             16.0 * HOR_AZ * (double)pf_mip_texel_count(W, H) / 1e6, W, H);
     for (s = 0; s < 2; ++s) {
