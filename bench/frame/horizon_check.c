@@ -58,6 +58,8 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
     for (r = 0; r < 2; ++r) {
         double *R = calloc(npx, 8), *N = calloc(npx, 8), *scr = calloc(npx, 8), fl, e[8][NC];
         int ns = 0, c[8];
+        double zs[4][6];
+        memset(zs, 0, sizeof zs);
         memset(e, 0, sizeof e), memset(c, 0, sizeof c);
         g_novis = 0;
         references(surf, vis, sc, ref_max, r ? -PIXEL_REF_SEED : 0, R, NULL, NULL, NULL, NULL);
@@ -108,6 +110,13 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
                                   rel(N[i] * vunc, R[i], fl), rel(N[i] * vbv, R[i], fl), vunc, vbv,
                                   rel(pf_horizon_leadr_specular_lod(wo, wi, st, 0, mo, mi, (pf_real)F0, (pf_real)lod, (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH), R[i], fl)};
                 for (k = 0; k < 7; ++k) e[br][15 + k] += add2[k], e[7][15 + k] += add2[k];
+                if (br == 0) { /* under 2 texels: by the half vector's distance from the footprint's slopes along wi */
+                    double rr = sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]), dx = p->wi[0] / rr, dy = p->wi[1] / rr;
+                    double vs = (double)ts.var_x * dx * dx + (double)ts.var_y * dy * dy + 2.0 * (double)ts.cov_xy * dx * dy;
+                    double z = fabs(shx * dx + shy * dy - ((double)ts.mean_x * dx + (double)ts.mean_y * dy)) / sqrt(vs > 1e-30 ? vs : 1e-30);
+                    int zb = z < 1 ? 0 : (z < 3 ? 1 : (z < 10 ? 2 : 3));
+                    zs[zb][0]++, zs[zb][1] += Vt, zs[zb][2] += add2[1], zs[zb][3] += viu, zs[zb][4] += Vh, zs[zb][5] += rel(N[i] * Vh, R[i], fl);
+                }
                 for (k = 0; k < 10; ++k) e[br][5 + k] += add[k], e[7][5 + k] += add[k];
             }
             c[br]++, c[7]++;
@@ -125,9 +134,54 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
             for (r = r, i = 0; i < NC; ++i) printf(i < 5 || i == 17 || i == 18 || i == 21 ? " %8.1f%%" : " %9.3f", (i < 5 || i == 17 || i == 18 || i == 21 ? 100 : 1) * e[j][i] / c[j]);
             printf("\n");
         }
+        printf("    under 2 texels by z = |s_h - E[S]| / sd_S along wi (texel stats): pixels, V_t, V_i given s_h, V_i unconditioned, V_h, error of N V_h\n");
+        for (k = 0; k < 4; ++k) {
+            static const char *const zn[4] = {"z < 1", "1-3", "3-10", ">= 10"};
+            if (zs[k][0] > 0)
+                printf("    %-6s %6.0f %.3f %.3f %.3f %.3f %5.1f%%\n", zn[k], zs[k][0], zs[k][1] / zs[k][0], zs[k][2] / zs[k][0], zs[k][3] / zs[k][0],
+                       zs[k][4] / zs[k][0], 100 * zs[k][5] / zs[k][0]);
+        }
         free(R), free(N), free(scr);
     }
     free(vis), free(ones);
+}
+
+/* (4) under 2 texels, toward the light: the footprint's slope deviation along wi's azimuth
+   (texel stats, base variance off), the half vector's slope there in those deviations
+   (z = |s_h - E[S]| / sd_S), and the conditional visibility against the unconditioned one,
+   by z */
+static void part4(const fr_maps *maps, const fr_scene *sc)
+{
+    int npx = sc->w * sc->h, W = maps->W, H = maps->H, i, k;
+    double n[4] = {0}, sd[4] = {0}, vc[4] = {0}, vu[4] = {0};
+    for (i = 0; i < npx; ++i) {
+        const pic_sample *p = &sc->px[i];
+        double rx = sqrt(p->off[0] * p->off[0] + p->off[1] * p->off[1]), ry = sqrt(p->off[2] * p->off[2] + p->off[3] * p->off[3]),
+               rho = rx > ry ? rx : ry, lod = rho > 1 ? log2(rho) : 0, dx, dy, r, vs, z, sh;
+        pf_vec3 wo = pf_vec3_make((pf_real)p->wo[0], (pf_real)p->wo[1], (pf_real)p->wo[2]),
+                wi = pf_vec3_make((pf_real)p->wi[0], (pf_real)p->wi[1], (pf_real)p->wi[2]), hh;
+        pf_slope_stats st, ts;
+        pf_hdf_moments mo, mi;
+        if (!p->hit || rho >= 2.0) continue;
+        horizon_inputs(maps, p->tx / W, p->ty / H, lod, wo, wi, &st, &mo, &mi);
+        ts = pf_horizon_texel_stats(st, (pf_real)(BASE_SIGMA * BASE_SIGMA));
+        r = sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]), dx = p->wi[0] / r, dy = p->wi[1] / r;
+        vs = (double)ts.var_x * dx * dx + (double)ts.var_y * dy * dy + 2.0 * (double)ts.cov_xy * dx * dy;
+        hh = pf_vec3_add(wo, wi);
+        sh = -((double)hh.x * dx + (double)hh.y * dy) / (double)hh.z;
+        z = fabs(sh - ((double)ts.mean_x * dx + (double)ts.mean_y * dy)) / sqrt(vs > 1e-30 ? vs : 1e-30);
+        k = z < 1 ? 0 : (z < 3 ? 1 : (z < 10 ? 2 : 3));
+        n[k]++, sd[k] += sqrt(vs > 0 ? vs : 0);
+        vc[k] += (double)pf_horizon_visibility_given_slope(wi, mi, ts, -hh.x / hh.z, -hh.y / hh.z);
+        vu[k] += (double)pf_horizon_visibility_gauss(mi, pf_horizon_elevation(wi));
+    }
+    printf("(4) under 2 texels, toward the light: z = |s_h - E[S]| / sd_S along wi's azimuth\n");
+    for (k = 0; k < 4; ++k) {
+        static const char *const zn[4] = {"z < 1", "1-3", "3-10", ">= 10"};
+        if (n[k] > 0)
+            printf("   %-6s %6.0f pixels: mean sd_S %.4f, V_i given s_h %.3f, unconditioned %.3f\n", zn[k], n[k], sd[k] / n[k], vc[k] / n[k],
+                   vu[k] / n[k]);
+    }
 }
 
 int main(void)
@@ -213,6 +267,7 @@ int main(void)
         printf("%s: %ld pixels, marched visible %.1f%%\n", k ? "light" : "view ", n, 100.0 * mv / (n ? n : 1));
         for (v = 0; v < NV; ++v) printf("   %-11s mean |dV| %.3f, agreement %.1f%%\n", vname[v], err[v] / n, 100.0 * agr[v] / n);
     }
+    part4(&maps, &sc);
     part3(&surf, &maps, &sc, quick ? 32 : 64);
     return 0;
 }
