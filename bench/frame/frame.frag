@@ -9,7 +9,11 @@
                  2 naive mip-mapped normal, 3 Toksvig, 4 LEADR with the anisotropic filter in the
                  shader (up to 16 textureLod taps along the major axis, isotropic sampler),
                  5 and 6 vMF m = 4 and 8 (lobe pyramids, texelFetch of the 8 texels of a
-                 trilinear fetch at the driver's lod)
+                 trilinear fetch at the driver's lod), 7 LEADR with the horizon
+                 (pf_horizon_leadr_specular_lod: the HDF array texture texH, the two stored
+                 azimuths around wo and around wi, faded to LEADR by the driver's lod), 8 vMF
+                 m = 4 with the horizon (pf_horizon_vmf_specular_lod: method 5's lobes, the
+                 slope-moment texel and method 7's HDF fetches)
      PFF_ENCODED 1 (with PFF_METHOD 1): the moments stored in scaled UNORM (pf_encode.h:
                  16 or 8 bits, centred on the map's mean slope), decoded after the filtered
                  fetch with pf_slope_moments_decode and the map's encoding (uniform block Enc,
@@ -40,6 +44,13 @@
 #if PFF_METHOD >= 5
 #  include "pf_vmf.h"
 #endif
+#if PFF_METHOD == 7 || PFF_METHOD == 8
+#  include "pf_gaussgrid.h"
+#  include "pf_horizon.h"
+#  define PFF_HOR_AZ 16          /* frame.c's HOR_AZ */
+#  define PFF_HOR_LOD_FULL 2.0   /* HOR_LOD_FULL, HOR_LOD_SMITH */
+#  define PFF_HOR_LOD_SMITH 6.0
+#endif
 #ifndef PFF_ENCODED
 #  define PFF_ENCODED 0
 #endif
@@ -67,12 +78,16 @@ layout(set = 0, binding = 5) uniform Enc { /* the map's pf_slope_encoding, in it
 layout(set = 0, binding = 0) uniform sampler2D texA;
 layout(set = 0, binding = 1) uniform sampler2D texB;
 layout(set = 0, binding = 2) uniform sampler2D texL; /* the lod probe: every texel of level l is l */
-#if PFF_METHOD == 5
+#if PFF_METHOD == 5 || PFF_METHOD == 8
 layout(set = 0, binding = 3) uniform sampler2DArray texV; /* vMF lobe pyramid, m = 4: layer j = lobe j */
 const int PFF_LOBES = 4;
 #elif PFF_METHOD == 6
 layout(set = 0, binding = 4) uniform sampler2DArray texV; /* m = 8 */
 const int PFF_LOBES = 8;
+#endif
+#if PFF_METHOD == 7 || PFF_METHOD == 8
+/* the HDF pyramid (PF_HORIZON_MOMENTS): layer j = azimuth j, (E[T], E[T^2], E[S T], unused) */
+layout(set = 0, binding = 6) uniform sampler2DArray texH;
 #endif
 layout(location = 0) out vec4 o0;
 layout(location = 1) out vec4 o1;
@@ -171,6 +186,18 @@ void main()
     float L;
     float base_var = pc.fwd.w, f0 = pc.light.w;
     pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
+#if PFF_METHOD == 7 || PFF_METHOD == 8
+    /* the horizon methods' inputs: the slope-moment texel, and the HDF moments of the two stored
+       azimuths around each direction, filtered by the same sampler and gradients as the slope
+       moments (the HDF moments are linear: a blend of texels filters them), each pair mixed by
+       pf_hdf_moments_lerp */
+    pf_slope_stats hor_st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
+    pf_horizon_azimuth zo = pf_horizon_azimuth_of(vo, PFF_HOR_AZ), zi = pf_horizon_azimuth_of(vi, PFF_HOR_AZ);
+    vec4 h0 = textureGrad(texH, vec3(uv, float(zo.i0)), gx / sz, gy / sz), h1 = textureGrad(texH, vec3(uv, float(zo.i1)), gx / sz, gy / sz);
+    vec4 h2 = textureGrad(texH, vec3(uv, float(zi.i0)), gx / sz, gy / sz), h3 = textureGrad(texH, vec3(uv, float(zi.i1)), gx / sz, gy / sz);
+    pf_hdf_moments hor_mo = pf_hdf_moments_lerp(pf_hdf_moments_make(h0.x, h0.y, h0.z), pf_hdf_moments_make(h1.x, h1.y, h1.z), zo.f);
+    pf_hdf_moments hor_mi = pf_hdf_moments_lerp(pf_hdf_moments_make(h2.x, h2.y, h2.z), pf_hdf_moments_make(h3.x, h3.y, h3.z), zi.f);
+#endif
 #if PFF_METHOD == 1
     /* LEADR (Dupuy et al. 2013 eq. 17) from the filtered moments */
 #  if PFF_ENCODED
@@ -222,6 +249,10 @@ void main()
     b = sb / N;
     pf_slope_stats st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
     L = pf_leadr_specular(vo, vi, st, f0);
+#elif PFF_METHOD == 7
+    /* LEADR with the reflecting facets' horizon visibility instead of Smith's G (pf_horizon.h),
+       faded to LEADR between levels PFF_HOR_LOD_FULL and PFF_HOR_LOD_SMITH (hor_* above) */
+    L = pf_horizon_leadr_specular_lod(vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
 #elif PFF_METHOD >= 5
     /* vMF lobes (Wu et al. 2019 eqs. 4-5, pf_vmf.h): a mixture is not filtered by averaging its
        parameters, so the 8 texels a trilinear fetch at the driver's lod touches are read with
@@ -251,7 +282,13 @@ void main()
             }
         }
     }
+#  if PFF_METHOD == 8
+    /* the lobes' specular with the reflecting facets' horizon visibility (conditioned on the
+       slope-moment texel's statistics, pf_horizon_vmf_specular), faded to pf_vmf_sum_specular */
+    L = pf_horizon_vmf_specular_lod(sum, vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
+#  else
     L = pf_vmf_sum_specular(sum, vo, vi, f0);
+#  endif
 #else
     L = a.x + a.y + a.z + a.w + b.x + b.y + b.z + b.w + wo.x + wi.x; /* keeps the fetch alive */
 #endif

@@ -33,9 +33,9 @@ glslangValidator -V --target-env vulkan1.0 -S vert -o "$spv/frame.vert.spv" benc
     { cat "$spv/vert.log"; exit 1; }
 : > "$spv/ops.txt"
 for s in 0 1; do
-    for m in 0 1 2 3 4 5 6; do
+    for m in 0 1 2 3 4 5 6 7 8; do
         sn=$(echo "plane sphere" | cut -d' ' -f$((s + 1)))
-        mn=$(echo "none leadr naive toksvig leadr_taps vmf4 vmf8" | cut -d' ' -f$((m + 1)))
+        mn=$(echo "none leadr naive toksvig leadr_taps vmf4 vmf8 leadr_horizon vmf4_horizon" | cut -d' ' -f$((m + 1)))
         f="$spv/frame_${sn}_$mn.spv"
         glslangValidator -V --target-env vulkan1.0 -S frag -DPFF_SCENE=$s -DPFF_METHOD=$m -Iinclude -o "$f" \
             bench/frame/frame.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
