@@ -6302,7 +6302,7 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    decorrelate within a texel or two (fBm of spectrum 1/f^2 to 1/f^2.4) the one-sided rise to
    the next node is often below the facet's slope, so back-facing texels counted as visible and
    the visible area's identity V a+ = V a (COMBINING WITH SMITH) broke: masking at 16 texels
-   0.052-0.058 against the full reference on such maps, 0.046-0.049 with S (docs/horizon.md,
+   0.052-0.058 against the full reference on such maps, 0.045-0.050 with S (docs/horizon.md,
    "User maps"). Along an axis the march is exact for the bilinear surface (between nodes
    (h(d) - h0)/d is monotonic); along other azimuths a peak between samples can be missed by up
    to a texel's curvature. The march stops early once no height of the map could raise the
