@@ -6295,10 +6295,18 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    THE CPU MARCH (pf_horizon_map). For texel (i, j) and azimuth phi the ray from its node is
    sampled at horizontal distances d = 1, 2, ..., max_steps texels, heights bilinear between
    nodes (PF_BORDER_WRAP: periodic; PF_BORDER_CLAMP: the nearest edge node beyond the map):
-       tan Theta = max_d (h(d) - h(0)) / (d spacing).
-   Along an axis this is exact for the bilinear surface (between nodes (h(d) - h0)/d is
-   monotonic); along other azimuths a peak between samples can be missed by up to a texel's
-   curvature. The march stops early once no height of the map could raise the maximum.
+       tan Theta = max(S, max_d (h(d) - h(0)) / (d spacing)),
+   S the texel's own slope along the azimuth (the central differences of the slope moments,
+   pf_map_slope_stencil): a direction below the texel's facet (m.w <= 0, i.e. tan e <= S) is
+   hidden by the facet itself whatever the march finds. Without S, on maps whose slopes
+   decorrelate within a texel or two (fBm of spectrum 1/f^2 to 1/f^2.4) the one-sided rise to
+   the next node is often below the facet's slope, so back-facing texels counted as visible and
+   the visible area's identity V a+ = V a (COMBINING WITH SMITH) broke: masking at 16 texels
+   0.052-0.058 against the full reference on such maps, 0.045-0.050 with S (docs/horizon.md,
+   "User maps"). Along an axis the march is exact for the bilinear surface (between nodes
+   (h(d) - h0)/d is monotonic); along other azimuths a peak between samples can be missed by up
+   to a texel's curvature. The march stops early once no height of the map could raise the
+   maximum.
    max_steps bounds the distance: occluders further away are ignored (choose it so that the
    map's height range over max_steps spacings is below tan of the lowest elevation of interest).
 
@@ -7055,13 +7063,15 @@ PF_CPU_DEF void pfi_horizon_fill(const pf_real *heights, int w, int h, pf_real s
                 /* exact zeros on the axes, so axis samples land on nodes */
                 if (4 * a == n_azimuths || 4 * a == 3 * n_azimuths) dx = PF_R(0.0);
                 if (2 * a == n_azimuths || a == 0) dy = PF_R(0.0);
-                t = PF_ATAN2(pfi_horizon_tan(heights, w, h, i, j, dx, dy, spacing, max_steps, border, hmax), PF_R(1.0));
+                /* the facet's own tangent plane hides what is below it (see THE CPU MARCH) */
+                s = sx * dx + sy * dy;
+                t = pfi_horizon_tan(heights, w, h, i, j, dx, dy, spacing, max_steps, border, hmax);
+                t = PF_ATAN2(s > t ? s : t, PF_R(1.0));
                 if (kind == PF_HORIZON_ANGLES) {
                     o[a] = t;
                 } else if (kind == PF_HORIZON_MOMENTS) {
                     /* a slope that overflowed (a spacing tiny against the height differences)
                        is clamped, NaN (inf - inf) taken as 0, so that S T stays finite */
-                    s = sx * dx + sy * dy;
                     s = s == s ? pf_clamp(s, -PF_R(0.5) * PF_REAL_MAX, PF_R(0.5) * PF_REAL_MAX) : PF_R(0.0);
                     o[3 * a] = t;
                     o[3 * a + 1] = t * t;

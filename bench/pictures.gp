@@ -1,6 +1,5 @@
 # bench/pictures.gp - one picture of bench/pictures.c: ncols x 2 panels (reference, LEADR, vMF
-# m = 8, naive; footprint side, LEADR error, vMF error, naive error; ncols = 3 without the vMF
-# column), each with its title and its numbered colour bar,
+# m = 8, vMF m = 8 + horizon, naive; footprint side, the methods' errors: ncols = 5), each with its title and its numbered colour bar,
 # every image panel drawn 1:1 (one data value per output pixel).
 # Called by pictures.c as  gnuplot DIR/pic_NAME.gpv bench/pictures.gp ; the .gpv file sets:
 #   datf        2 ncols float32 planes of w x h (bottom row first), NaN = no surface: radiance of

@@ -44,11 +44,24 @@ static long double ora_horizon(const pf_real *hm, int w, int h, int i, int j, lo
     long double c = cosl(phi), s = sinl(phi);
     if (fabsl(c) < 1e-15L) c = 0.0L;
     if (fabsl(s) < 1e-15L) s = 0.0L;
+    long long xx[3], yy[3];
+    pf_real cx[3], cy[3];
+    long double sx = 0.0L, sy = 0.0L, sf;
+    int q;
     for (d = step; d <= dmax + 1e-9L; d += step) {
         long double t = (ora_bilinear(hm, w, h, i + d * c, j + d * s, wrap) - h0) / (d * spacing);
         if (t > best) best = t;
     }
-    return atanl(best);
+    /* the texel's own facet (the slope moments' central differences, one-sided at clamped
+       edges: pf_map_slope_stencil) hides what is below it */
+    pf_map_slope_stencil(i, w, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(1.0), xx, cx);
+    pf_map_slope_stencil(j, h, wrap ? PF_BORDER_WRAP : PF_BORDER_CLAMP, PF_R(1.0), yy, cy);
+    for (q = 0; q < 3; ++q) {
+        sx += (long double)cx[q] * (long double)hm[(long long)j * w + xx[q]];
+        sy += (long double)cy[q] * (long double)hm[yy[q] * w + i];
+    }
+    sf = (sx * c + sy * s) / (2.0L * spacing);
+    return atanl(sf > best ? sf : best);
 }
 
 /* a smooth random-ish height map: a few waves (periodic when wrap) plus a bump */
@@ -102,6 +115,36 @@ static void test_horizon_angles_vs_brute_march(void)
         }
     pf_test_note("max |angle error| %.3Lg rad (n = 4, 8, 16; wrap and clamp)", worst);
     PF_CHECK(worst <= ANG_TOL, "max error %Lg", worst);
+}
+
+/* The texel's own facet bounds its horizon from below: on a crest (a gentle rise to -x, a cliff
+   to +x) the one-sided rise toward -x is negative but the central-difference facet tilts 43.5
+   degrees toward +x, so a view toward -x below that is back-facing (what the reference's m.w > 0
+   test hides). Toward +x the march is above the facet and decides. Checked for the angles and for
+   the moments' E[T] (level 0). */
+static void test_horizon_facet_plane(void)
+{
+    enum { W = 16, H = 4, N = 4 };
+    static pf_real hm[W * H], ang[W * H * N], mom[W * H * 3 * N];
+    int i, j;
+    long double up, down;
+    for (j = 0; j < H; ++j)
+        for (i = 0; i < W; ++i) hm[j * W + i] = PF_R(i == 5 ? 1.0 : (i == 6 ? -1.0 : 0.9));
+    PF_CHECK(pf_horizon_map(hm, W, H, PF_R(1.0), N, 12, PF_BORDER_WRAP, PF_HORIZON_ANGLES, 0, ang) == PF_OK, "rc");
+    PF_CHECK(pf_horizon_map(hm, W, H, PF_R(1.0), N, 12, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, mom) == PF_OK, "rc");
+    /* toward -x (azimuth 2 of 4): the facet, tan = (0.9 - (-1)) / 2; toward +x (azimuth 0):
+       the march's best, the node 12 texels away, (0.9 - 1) / 12 */
+    up = atanl(0.95L);
+    down = atanl(-0.1L / 12.0L);
+    for (j = 0; j < H; ++j) {
+        long double a2 = (long double)ang[(j * W + 5) * N + 2], a0 = (long double)ang[(j * W + 5) * N + 0];
+        long double m2 = (long double)mom[(j * W + 5) * 3 * N + 3 * 2];
+        PF_CHECK(fabsl(a2 - up) <= ANG_TOL, "row %d: toward -x %.9Lg, facet %.9Lg", j, a2, up);
+        PF_CHECK(fabsl(m2 - up) <= ANG_TOL, "row %d: E[T] toward -x %.9Lg, facet %.9Lg", j, m2, up);
+        PF_CHECK(fabsl(a0 - down) <= ANG_TOL, "row %d: toward +x %.9Lg, march %.9Lg", j, a0, down);
+    }
+    pf_test_note("crest texel: horizon toward -x %.4f rad (facet), toward +x %.5f rad (march)",
+                 (double)ang[5 * N + 2], (double)ang[5 * N]);
 }
 
 /* Along the axes the sampled horizon is the exact horizon of the bilinear surface (the
@@ -1283,6 +1326,7 @@ int main(int argc, char **argv)
     PF_TEST_BEGIN(argc, argv);
     PF_TEST_RUN(test_horizon_angles_vs_brute_march);
     PF_TEST_RUN(test_horizon_angles_vs_continuous_surface);
+    PF_TEST_RUN(test_horizon_facet_plane);
     PF_TEST_RUN(test_horizon_pyramid_is_footprint_mean);
     PF_TEST_RUN(test_horizon_eq26_gauss_counting);
     PF_TEST_RUN(test_horizon_legendre_vs_quadrature);
