@@ -626,67 +626,74 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
 /* ---------------------------------------------------------------- specular: the reflecting facets' horizon
    (see SPECULAR above; measured: docs/horizon.md)
    Visibility of the facets that reflect wi into wo: those whose slope is the half vector's,
-   s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi (the base lobe is narrow: its reflecting facets are
-   within its deviation of s_h). Their HDF toward wo and toward wi is T | S = s_h along each
-   direction's azimuth (pf_horizon_visibility_given_slope), and visible-and-lit is joined by
-   Tan et al.'s eq. 28:
-       V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi)
-   s: the footprint's own slope statistics, WITHOUT the base lobe's variance (the HDF's E[S T]
-   is over the texels' slopes). In [0, 1]; 0 for a half vector at or below the macrosurface
-   (wo + wi with z <= 0), NaN moments or slopes. pf_erfc_fast (the shader tier) inside. */
-/* pfi_horizon_cond_make followed by pfi_horizon_cond_vis(.., 1) for one slope, written for the
-   shader: w scaled once to a largest component of 1 (shared by the azimuth and the
-   elevation), the elevation atan2(z, r) with r >= 0 taken by pf_atan2's octant reduction and
-   polynomial alone in float (no quadrant, infinity or rescaling case is left: |z|, r <= 1.42
-   after the scaling; the same 2-ulp result), and every case of the two (vertical w, zero
-   Var(S), the step, |z| >= 12, NaN moments or slopes) a select of values instead of a
-   branch. The same results as the pair up to rounding. */
-PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real sx, pf_real sy)
+   s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi. A reflecting facet's slope is its texel's slope S
+   plus the base lobe's B (variance base_var, independent of the horizon), so its HDF toward
+   a direction is T | S + B = s_h along the direction's azimuth, Gaussian with
+       mean  E[T] + beta (s_h - E[S]),   variance  Var(T) - beta Cov(S, T),
+       beta = Cov(S, T) / (Var(S) + base_var)
+   (Cov(S + B, T) = Cov(S, T)), and visible-and-lit is joined by Tan et al.'s eq. 28:
+       V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi).
+   Why base_var in beta: without it (conditioning on the texel's slope S = s_h) beta divides by
+   the texels' own Var(S), which is 0 in one texel, and a stored (16-bit) pyramid leaves its
+   rounding there (1e-6 .. 1e-4): beta then became the ratio of two rounding errors, clamped
+   only by Cauchy-Schwarz to sqrt(Var(T)/Var(S)), and shifted the horizon by up to a radian
+   (1-texel footprints: 1.6x the float32 error in half and unorm16; docs/encode.md). With
+   base_var the shift is at most sqrt(Var(T)/base_var)/2 times the slope offset, and it is
+   also the model: the facets that reflect at s_h come from texels within base_var of it.
+   s: the footprint's slope statistics with the base lobe's variance base_var added (what
+   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); the texels' Var(S) is the
+   variance along the azimuth less base_var (floored at 0). Unit directions; V_h in [0, 1];
+   0 when either direction is on or below the macrosurface; NaN moments or slopes give 0 (C).
+   Cost-minded (issue: at most 1.5x the unshadowed method in SPIR-V ops): the elevation is
+   asin(w.z) by Abramowitz & Stegun 4.4.45 (|error| <= 5e-5 rad... measured in tests), the
+   Gaussian CDF the logistic of Bowling et al. 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 +
+   0.070566 z^2))) (|error| <= 1.4e-4), and every case a value, not a branch. */
+/* The conditional visibility toward unit w (w.z > 0: the caller's select), at the slope
+   offset (X, Y) = E[s] - s_h (the sign pfi_beckmann_d_up's X, Y have: the shader shares them),
+   from the statistics s with base_var b added. */
+PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real b, pf_real X,
+                                         pf_real Y)
 {
-    pf_real k = PF_R(1.0) / pf_max(pf_max(PF_FABS(w.x), PF_FABS(w.y)), pf_max(PF_FABS(w.z), PF_REAL_MIN));
-    pf_real x = w.x * k, y = w.y * k, wz = w.z * k, r = PF_SQRT(x * x + y * y);
-    pf_real ir = r > PF_R(0.0) ? PF_R(1.0) / r : PF_R(0.0), dx = x * ir, dy = y * ir, e;
-    pf_real var = m.m2 - m.m1 * m.m1, vc = pf_max(var, PF_R(0.0)), es, vs, lim, cov, beta, mu, sd, z, ph;
-#ifdef PF_REAL_IS_FLOAT
-    {
-        pf_real az = PF_FABS(wz), mx = pf_max(pf_max(az, r), PF_REAL_MIN), mn = pf_min(az, r), u, q;
-        int big = mn > PF_R(0.41421356237309505) * mx ? 1 : 0; /* t > tan(pi/8) */
-        u = (big != 0 ? mn - mx : mn) / (big != 0 ? mn + mx : mx);
-        q = u * u;
-        e = (((PF_R(8.05374449538e-2) * q - PF_R(1.38776856032e-1)) * q + PF_R(1.99777106478e-1)) * q -
-             PF_R(3.33329491539e-1)) * q * u + u;
-        e = big != 0 ? (e - PF_R(2.1855694143368964e-08)) + PF_R(0.78539818525314331) : e;
-        e = az > r ? PF_R(1.5707963705062866) - (e + PF_R(4.371138828673793e-08)) : e;
-        e = wz < PF_R(0.0) ? -e : e;
-    }
-#else
-    e = PF_ATAN2(wz, r);
-#endif
-    es = s.mean_x * dx + s.mean_y * dy;
-    vs = s.var_x * dx * dx + s.var_y * dy * dy + PF_R(2.0) * s.cov_xy * dx * dy;
-    /* the Cauchy-Schwarz clamp of pfi_horizon_cond_make; beta = 0 for Var(S) <= 1e-12 */
-    lim = PF_SQRT(vc * pf_max(vs, PF_R(0.0)));
-    cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
-    beta = vs > PF_R(1e-12) ? cov / vs : PF_R(0.0);
-    sd = PF_SQRT(pf_max(vc - cov * beta, PF_R(0.0)));
-    mu = m.m1 + beta * (sx * dx + sy * dy - es);
-    z = pf_clamp_nan_lo((e - mu) / sd, PF_R(-12.0), PF_R(12.0));
-    ph = PF_R(0.5) * pf_erfc_fast(-z * PF_INV_SQRT2);
-    ph = z < PF_R(12.0) ? ph : PF_R(1.0);
-    ph = z > PF_R(-12.0) ? ph : PF_R(0.0);
-    ph = sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)) ? ph : (e >= mu ? PF_R(1.0) : PF_R(0.0));
-    return (var == var && m.ms == m.ms && e == e) ? ph : PF_R(0.0);
+    pf_real ir = pfi_beckmann_rsqrt(pf_max(w.x * w.x + w.y * w.y, PF_REAL_MIN)), dx = w.x * ir, dy = w.y * ir;
+    pf_real c = pf_max(PF_R(1.0) - w.z, PF_R(0.0));
+    /* A&S 4.4.45: asin(x) = pi/2 - sqrt(1 - x) (a0 + a1 x + a2 x^2 + a3 x^3), 0 <= x <= 1 */
+    pf_real e = PF_R(1.5707963267948966) - PF_SQRT(c) * (PF_R(1.5707288) + w.z * (PF_R(-0.2121144) + w.z * (PF_R(0.0742610) +
+                                                                                       w.z * PF_R(-0.0187293))));
+    pf_real es = s.mean_x * dx + s.mean_y * dy;
+    pf_real vs = dx * (s.var_x * dx + PF_R(2.0) * s.cov_xy * dy) + s.var_y * dy * dy; /* Var(S) + b */
+    pf_real var = m.m2 - m.m1 * m.m1;
+    /* Cauchy-Schwarz, |Cov(S, T)| <= sigma_S sigma_T, with the texels' own Var(S) */
+    pf_real lim = PF_SQRT(pf_max(var, PF_R(0.0)) * pf_max(vs - b, PF_R(0.0)));
+    pf_real cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
+    pf_real beta = cov / pf_max(vs, PF_REAL_MIN);
+    pf_real vc = var - cov * beta;
+    /* (e - mean) / deviation; a zero deviation is the step (+-inf), a NaN (from NaN moments or
+       slopes, or e at the mean of a step) -24, where exp overflows in float and double: 0 */
+    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(0.0), vc));
+    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_REAL_MAX);
+    return PF_R(1.0) / (PF_R(1.0) + PF_EXP(-z * (PF_R(1.5976) + PF_R(0.070566) * z * z)));
+}
+
+/* V_h for unit wo, wi with wo.z, wi.z > 0 (the callers' select): eq. 28's visible-and-lit
+   written without its division, V_o bidir(V_i, V_o) = a min(V_i, V_o) + (1 - a) max(V_o + V_i
+   - 1, 0), a = (1 + wo.wi)/2. */
+PF_DEF pf_real pfi_horizon_spec_vis(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i, pf_slope_stats s,
+                                    pf_real base_var)
+{
+    pf_vec3 h = pf_vec3_add(wo, wi);
+    pf_real iz = PF_R(1.0) / h.z, X = h.x * iz + s.mean_x, Y = h.y * iz + s.mean_y;
+    pf_real b = pf_max(base_var, PF_R(0.0));
+    pf_real vo = pfi_horizon_spec_cond_vis(wo, m_o, s, b, X, Y);
+    pf_real vi = pfi_horizon_spec_cond_vis(wi, m_i, s, b, X, Y);
+    pf_real a = pf_clamp_nan_lo(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi), PF_R(0.0), PF_R(1.0));
+    return a * pf_min(vo, vi) + (PF_R(1.0) - a) * pf_max(vo - (PF_R(1.0) - vi), PF_R(0.0));
 }
 
 PF_DEF pf_real pf_horizon_specular_visibility(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i,
-                                              pf_slope_stats s)
+                                              pf_slope_stats s, pf_real base_var)
 {
-    pf_vec3 h = pf_vec3_add(wo, wi);
-    pf_real iz = h.z > PF_R(0.0) ? PF_R(1.0) / h.z : PF_R(0.0);
-    pf_real sx = -h.x * iz, sy = -h.y * iz;
-    pf_real vo = pfi_horizon_spec_cond_vis(wo, m_o, s, sx, sy);
-    pf_real vi = pfi_horizon_spec_cond_vis(wi, m_i, s, sx, sy);
-    return h.z > PF_R(0.0) ? vo * pf_horizon_bidir_tan(vi, vo, pf_vec3_dot(wo, wi)) : PF_R(0.0);
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
+    return (wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? v : PF_R(0.0);
 }
 
 /* The statistics s with base_var taken off both variances (floored at 0; a negative or NaN
@@ -716,7 +723,7 @@ PF_DEF pf_real pf_horizon_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats 
                                          pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
 {
     pf_real ao = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
-    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
     pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
     pf_real r = f * pf_beckmann_d(pf_vec3_add(wo, wi), s) * v * PF_R(0.25) / pf_max(ao, PF_REAL_MIN);
     return (ao > PF_R(0.0) && wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? pf_min(r, PF_REAL_MAX) : PF_R(0.0);
@@ -754,7 +761,7 @@ PF_DEF pf_real pf_horizon_vmf_specular(pf_vmf_sum sum, pf_vec3 wo, pf_vec3 wi, p
                                        pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
 {
     pf_real area = wo.z * sum.amp - wo.x * sum.ex - wo.y * sum.ey; /* amp A_o (LEADR eq. 1) */
-    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
     pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
     /* (ndf / amp) / (area / amp) = ndf / area: the sum's amplitude cancels */
     pf_real r = (sum.ndf / pf_max(area, PF_REAL_MIN)) * f * v * PF_R(0.25);
