@@ -101,14 +101,18 @@
    whose slope is the half vector's, s_h = (-h.x/h.z, -h.y/h.z). Smith's G (LEADR eq. 13)
    takes their visibility from the footprint's own slopes; below 16-texel footprints the
    shadows and masking are cast by bumps outside the footprint, which it cannot see. The
-   diffuse's conditioning does: V_o(s_h) and V_i(s_h) from the HDF of the texels that share
-   the facet's slope (T | S = s_h), joined by Tan et al.'s eq. 28, replace G in eq. 17:
+   diffuse's conditioning does: V_o(s_h) and V_i(s_h) from the HDF of the texels whose facets
+   reflect, T | S + B = s_h (S the texel's slope, B the base lobe's: a facet of slope s_h lies
+   in a texel within the base lobe's deviation of it), joined by Tan et al.'s eq. 28, replace
+   G in eq. 17:
        I = F D(h) V_o B(V_i, V_o) / (4 A_o).
    For the vMF lobes the same V_h multiplies the sum: every lobe's reflecting facets have the
    slope s_h and the HDF conditions on the slope alone, so the per-lobe visibilities are equal.
    The conditioning uses the slope-moment texel's statistics (the texels' own slopes), not the
    lobes'. Faded to the unshadowed method by mip level as the masking (the same bias of a
-   wide mixture's conditional Gaussians at large footprints).
+   wide mixture's conditional Gaussians at large footprints). With B in the conditioning the
+   method keeps its float32 error with the pyramids stored in 16 bits (conditioned on S alone,
+   one texel's rounded Var(S) set the regression: see pf_horizon_specular_visibility).
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
@@ -627,27 +631,29 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
    (see SPECULAR above; measured: docs/horizon.md)
    Visibility of the facets that reflect wi into wo: those whose slope is the half vector's,
    s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi. A reflecting facet's slope is its texel's slope S
-   plus the base lobe's B (variance base_var, independent of the horizon), so its HDF toward
+   plus the base lobe's B (variance base_var, independent of the horizon T), so its HDF toward
    a direction is T | S + B = s_h along the direction's azimuth, Gaussian with
        mean  E[T] + beta (s_h - E[S]),   variance  Var(T) - beta Cov(S, T),
-       beta = Cov(S, T) / (Var(S) + base_var)
-   (Cov(S + B, T) = Cov(S, T)), and visible-and-lit is joined by Tan et al.'s eq. 28:
+       beta = Cov(S, T) / (Var(S) + base_var)          (Cov(S + B, T) = Cov(S, T)),
+   and visible-and-lit is joined by Tan et al.'s eq. 28:
        V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi).
-   Why base_var in beta: without it (conditioning on the texel's slope S = s_h) beta divides by
-   the texels' own Var(S), which is 0 in one texel, and a stored (16-bit) pyramid leaves its
-   rounding there (1e-6 .. 1e-4): beta then became the ratio of two rounding errors, clamped
-   only by Cauchy-Schwarz to sqrt(Var(T)/Var(S)), and shifted the horizon by up to a radian
-   (1-texel footprints: 1.6x the float32 error in half and unorm16; docs/encode.md). With
-   base_var the shift is at most sqrt(Var(T)/base_var)/2 times the slope offset, and it is
-   also the model: the facets that reflect at s_h come from texels within base_var of it.
-   s: the footprint's slope statistics with the base lobe's variance base_var added (what
-   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); the texels' Var(S) is the
-   variance along the azimuth less base_var (floored at 0). Unit directions; V_h in [0, 1];
-   0 when either direction is on or below the macrosurface; NaN moments or slopes give 0 (C).
-   Cost-minded (issue: at most 1.5x the unshadowed method in SPIR-V ops): the elevation is
-   asin(w.z) by Abramowitz & Stegun 4.4.45 (|error| <= 5e-5 rad... measured in tests), the
-   Gaussian CDF the logistic of Bowling et al. 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 +
-   0.070566 z^2))) (|error| <= 1.4e-4), and every case a value, not a branch. */
+   Why S + B and not S alone: beta would divide by the texels' own Var(S), which is 0 in one
+   texel and, in a pyramid stored in 16 bits, the rounding of E[x^2] - E[x]^2 (1e-6 .. 1e-4);
+   beta is then a ratio of rounding errors, bounded only by Cauchy-Schwarz at
+   sqrt(Var(T)/Var(S)), and it moves the horizon by up to a radian (1-texel footprints stored
+   in half or unorm16: relative L2 0.67 from the float32 values, tests/test_horizon.c). With
+   base_var, |beta| <= sqrt(Var(T)/base_var)/2. Var(S) in Cauchy-Schwarz's bound is the
+   texels' own (the statistics' variance along the azimuth less base_var, floored at 0).
+   s: the footprint's slope statistics with base_var added (what pf_leadr_specular takes:
+   pf_slope_moments_stats(m, base_var)). Unit directions. In [0, 1]; 0 when either direction
+   is on or below the macrosurface; NaN moments or slopes give 0 (C; GLSL's clamp of a NaN is
+   undefined).
+   Written for the shader: no branch; the elevation asin(w.z) by Abramowitz & Stegun 4.4.45
+   (|error| <= 5e-5 rad), the Gaussian CDF by the logistic of Bowling, Khasawneh, Kaewkuekool
+   & Cho 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 + 0.070566 z^2))) (|error| <= 1.4e-4); the
+   visibility is within 7.8e-4 of the long-double formula (float and double: the arcsine's
+   error over the deviation, at deviations from 0.02 rad), far below the model's error against
+   the brute force. A zero deviation is the step (1/2 at e = E[T | S + B] exactly). */
 /* The conditional visibility toward unit w (w.z > 0: the caller's select), at the slope
    offset (X, Y) = E[s] - s_h (the sign pfi_beckmann_d_up's X, Y have: the shader shares them),
    from the statistics s with base_var b added. */
@@ -667,10 +673,12 @@ PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_s
     pf_real cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
     pf_real beta = cov / pf_max(vs, PF_REAL_MIN);
     pf_real vc = var - cov * beta;
-    /* (e - mean) / deviation; a zero deviation is the step (+-inf), a NaN (from NaN moments or
-       slopes, or e at the mean of a step) -24, where exp overflows in float and double: 0 */
-    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(0.0), vc));
-    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_REAL_MAX);
+    /* (e - mean) / deviation; the variance floored at 1e-30 (GLSL's inversesqrt(0) is
+       undefined; max(1e-30, NaN) keeps the NaN in C), so a zero deviation is the step within
+       1e-15 rad; z clamped to +-24, where Phi is 0 or 1 exactly in float and double (exp
+       overflows or underflows; no infinite argument), a NaN (NaN moments or slopes) to -24: 0 */
+    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc));
+    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(24.0));
     return PF_R(1.0) / (PF_R(1.0) + PF_EXP(-z * (PF_R(1.5976) + PF_R(0.070566) * z * z)));
 }
 
@@ -712,8 +720,9 @@ PF_DEF pf_slope_stats pf_horizon_texel_stats(pf_slope_stats s, pf_real base_var)
        I = F(h.wi) D(h) V_h / (4 A_o),   A_o = wo.z - E[x] wo.x - E[y] wo.y  (eq. 1),
    radiance toward wo per unit radiance from wi, light cosine included, as pf_leadr_specular.
    s: the footprint's slope statistics with the base lobe's variance base_var added (what
-   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); base_var is taken off again
-   for the HDF's conditioning. m_o, m_i: the HDF moments toward wo and wi (the two stored
+   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); the HDF is conditioned on
+   the reflecting facets' slope, the texels' plus the base lobe's (see
+   pf_horizon_specular_visibility). Unit directions. m_o, m_i: the HDF moments toward wo and wi (the two stored
    azimuths around each, pf_hdf_moments_lerp). No Smith factor is left: the horizon holds the
    footprint's own occluders as well as its neighbours' (the march starts one texel from the
    node). 0 when either direction is on or below the macrosurface or A_o <= 0 (the view at or
@@ -747,8 +756,8 @@ PF_DEF pf_real pf_horizon_leadr_specular_lod(pf_vec3 wo, pf_vec3 wi, pf_slope_st
    horizon visibility:
        I = F(h.wi) (ndf / amp) V_h / (4 A_o),   amp A_o = wo.z amp - wo.x sum amp E[x] - wo.y sum amp E[y],
    V_h = pf_horizon_specular_visibility conditioned on the footprint's slope statistics s (the
-   LEADR slope-moment texel: pf_slope_moments_stats(m, base_var), base_var taken off inside as
-   in pf_horizon_leadr_specular). Why not the lobes' own mixture statistics: at small footprints
+   LEADR slope-moment texel: pf_slope_moments_stats(m, base_var), as in
+   pf_horizon_leadr_specular). Why not the lobes' own mixture statistics: at small footprints
    their variance is the lobes' spread (kappa), not the texels', and the HDF's slope-horizon
    covariance, mixed over two stored azimuths, then shifts the conditional horizon by noise
    (measured: 1-texel footprints 0.18 against 0.13 with the slope moments; docs/horizon.md).
