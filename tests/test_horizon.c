@@ -848,9 +848,16 @@ static void test_horizon_spec_cond_vis_matches(void)
             if (e >= 8 && e <= 11) want = 0.0L;
             got = pfi_horizon_spec_cond_vis(w, m, s, (pf_real)b, dsx, dsy);
         }
-        if (!(got >= PF_R(0.0) && got <= PF_R(1.0))) ++bad;
-        else if (e == 1 || (e >= 6 && e <= 11)) { if (fabsl((long double)got - want) > worst_edge) worst_edge = (double)fabsl((long double)got - want); }
-        else if (fabsl((long double)got - want) > worst) worst = (double)fabsl((long double)got - want);
+        if (!(got >= PF_R(0.0) && got <= PF_R(1.0))) {
+            ++bad;
+        } else {
+            double d = (double)fabsl((long double)got - want);
+            if (e == 1 || (e >= 6 && e <= 11)) {
+                if (d > worst_edge) worst_edge = d;
+            } else if (d > worst) {
+                worst = d;
+            }
+        }
     }
     pf_test_note("specular conditional visibility vs the long-double conditional HDF: max abs %.2g (cases %.2g)", worst, worst_edge);
     PF_CHECK(bad == 0, "%d outside [0, 1] or NaN", bad);
