@@ -9,7 +9,7 @@
 #include "pf_test.h"
 #include "pf_microsurface.h"
 
-/* test_horizon_specular_brute_force: measured 0.489 (float and double) against 0.987 for Smith */
+/* test_horizon_specular_brute_force: measured 0.486 (float and double) against 0.987 for Smith */
 #define HSPEC_BRUTE_BOUND 0.6
 
 #define TPI 3.14159265358979323846264338327950288L
