@@ -182,10 +182,10 @@
      ~0.5 us per texel and azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the
      highest texels always march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
      Specular, 1-16 texels, full reference, views 0-75 deg, the seven kinds pooled (n = 32):
-     pf_horizon_leadr_specular 0.156 (per kind 0.087-0.214), pf_horizon_vmf_specular with 16
-     lobes 0.129 (0.065-0.174), against 0.517 and 0.499 with Smith's G. With the pyramids in
-     half or unorm16 (pf_encode.h), at most 1.06x the float32 error (quick run, every kind
-     and footprint). Against the long-double formula: the per-direction visibility 7.8e-4 abs,
+     pf_horizon_leadr_specular 0.148 (per kind 0.084-0.211), pf_horizon_vmf_specular with 16
+     lobes 0.121 (0.063-0.157), against 0.517 and 0.499 with Smith's G. With the pyramids in
+     half or unorm16 (pf_encode.h), at most 1.024x the float32 error (every kind and footprint,
+     both references). Against the long-double formula: the per-direction visibility 7.8e-4 abs,
      V_h 3.5e-4 abs, radiance 3.5e-4 of the unshadowed lobe (float and double: the arcsine and
      CDF approximations). GPU: pf_horizon_leadr_specular 174 SPIR-V ops (pf_leadr_specular 116:
      1.50x), pf_horizon_vmf_specular 149 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add
