@@ -6272,14 +6272,18 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    whose slope is the half vector's, s_h = (-h.x/h.z, -h.y/h.z). Smith's G (LEADR eq. 13)
    takes their visibility from the footprint's own slopes; below 16-texel footprints the
    shadows and masking are cast by bumps outside the footprint, which it cannot see. The
-   diffuse's conditioning does: V_o(s_h) and V_i(s_h) from the HDF of the texels that share
-   the facet's slope (T | S = s_h), joined by Tan et al.'s eq. 28, replace G in eq. 17:
+   diffuse's conditioning does: V_o(s_h) and V_i(s_h) from the HDF of the texels whose facets
+   reflect, T | S + B = s_h (S the texel's slope, B the base lobe's: a facet of slope s_h lies
+   in a texel within the base lobe's deviation of it), joined by Tan et al.'s eq. 28, replace
+   G in eq. 17:
        I = F D(h) V_o B(V_i, V_o) / (4 A_o).
    For the vMF lobes the same V_h multiplies the sum: every lobe's reflecting facets have the
    slope s_h and the HDF conditions on the slope alone, so the per-lobe visibilities are equal.
    The conditioning uses the slope-moment texel's statistics (the texels' own slopes), not the
    lobes'. Faded to the unshadowed method by mip level as the masking (the same bias of a
-   wide mixture's conditional Gaussians at large footprints).
+   wide mixture's conditional Gaussians at large footprints). With B in the conditioning the
+   method keeps its float32 error with the pyramids stored in 16 bits (conditioned on S alone,
+   one texel's rounded Var(S) set the regression: see pf_horizon_specular_visibility).
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
@@ -6357,11 +6361,14 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      ~0.5 us per texel and azimuth at max_steps = 64 (512^2, n = 16: 2.1 s on one core); the
      highest texels always march all max_steps. Storage: 3 n pf_reals per texel (n = 32: 96).
      Specular, 1-16 texels, full reference, views 0-75 deg, the seven kinds pooled (n = 32):
-     pf_horizon_leadr_specular 0.156 (per kind 0.087-0.214), pf_horizon_vmf_specular with 16
-     lobes 0.129 (0.065-0.174), against 0.517 and 0.499 with Smith's G. Against the long-double
-     formula: visibility 6.2e-7 abs, radiance 3.3e-6 of the unshadowed lobe (float). GPU:
-     pf_horizon_leadr_specular 325 SPIR-V ops (pf_leadr_specular 116), pf_horizon_vmf_specular
-     298 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add lobe in both).
+     pf_horizon_leadr_specular 0.148 (per kind 0.084-0.211), pf_horizon_vmf_specular with 16
+     lobes 0.121 (0.063-0.157), against 0.517 and 0.499 with Smith's G. With the pyramids in
+     half or unorm16 (pf_encode.h), at most 1.024x the float32 error (every kind and footprint,
+     both references). Against the long-double formula: the per-direction visibility 7.8e-4 abs,
+     V_h 3.5e-4 abs, radiance 3.5e-4 of the unshadowed lobe (float and double: the arcsine and
+     CDF approximations). GPU: pf_horizon_leadr_specular 174 SPIR-V ops (pf_leadr_specular 116:
+     1.50x), pf_horizon_vmf_specular 149 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add
+     lobe in both).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
@@ -6805,67 +6812,78 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
 /* ---------------------------------------------------------------- specular: the reflecting facets' horizon
    (see SPECULAR above; measured: docs/horizon.md)
    Visibility of the facets that reflect wi into wo: those whose slope is the half vector's,
-   s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi (the base lobe is narrow: its reflecting facets are
-   within its deviation of s_h). Their HDF toward wo and toward wi is T | S = s_h along each
-   direction's azimuth (pf_horizon_visibility_given_slope), and visible-and-lit is joined by
-   Tan et al.'s eq. 28:
-       V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi)
-   s: the footprint's own slope statistics, WITHOUT the base lobe's variance (the HDF's E[S T]
-   is over the texels' slopes). In [0, 1]; 0 for a half vector at or below the macrosurface
-   (wo + wi with z <= 0), NaN moments or slopes. pf_erfc_fast (the shader tier) inside. */
-/* pfi_horizon_cond_make followed by pfi_horizon_cond_vis(.., 1) for one slope, written for the
-   shader: w scaled once to a largest component of 1 (shared by the azimuth and the
-   elevation), the elevation atan2(z, r) with r >= 0 taken by pf_atan2's octant reduction and
-   polynomial alone in float (no quadrant, infinity or rescaling case is left: |z|, r <= 1.42
-   after the scaling; the same 2-ulp result), and every case of the two (vertical w, zero
-   Var(S), the step, |z| >= 12, NaN moments or slopes) a select of values instead of a
-   branch. The same results as the pair up to rounding. */
-PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real sx, pf_real sy)
+   s_h = (-h.x/h.z, -h.y/h.z), h = wo + wi. A reflecting facet's slope is its texel's slope S
+   plus the base lobe's B (variance base_var, independent of the horizon T), so its HDF toward
+   a direction is T | S + B = s_h along the direction's azimuth, Gaussian with
+       mean  E[T] + beta (s_h - E[S]),   variance  Var(T) - beta Cov(S, T),
+       beta = Cov(S, T) / (Var(S) + base_var)          (Cov(S + B, T) = Cov(S, T)),
+   and visible-and-lit is joined by Tan et al.'s eq. 28:
+       V_h = V_o(s_h) pf_horizon_bidir_tan(V_i(s_h), V_o(s_h), wo.wi).
+   Why S + B and not S alone: beta would divide by the texels' own Var(S), which is 0 in one
+   texel and, in a pyramid stored in 16 bits, the rounding of E[x^2] - E[x]^2 (1e-6 .. 1e-4);
+   beta is then a ratio of rounding errors, bounded only by Cauchy-Schwarz at
+   sqrt(Var(T)/Var(S)), and it moves the horizon by up to a radian (1-texel footprints stored
+   in half or unorm16: relative L2 0.67 from the float32 values, tests/test_horizon.c). With
+   base_var, |beta| <= sqrt(Var(T)/base_var)/2. Var(S) in Cauchy-Schwarz's bound is the
+   texels' own (the statistics' variance along the azimuth less base_var, floored at 0).
+   s: the footprint's slope statistics with base_var added (what pf_leadr_specular takes:
+   pf_slope_moments_stats(m, base_var)). Unit directions. In [0, 1]; 0 when either direction
+   is on or below the macrosurface; NaN moments or slopes give 0 (C; GLSL's clamp of a NaN is
+   undefined).
+   Written for the shader: no branch; the elevation asin(w.z) by Abramowitz & Stegun 4.4.45
+   (|error| <= 5e-5 rad), the Gaussian CDF by the logistic of Bowling, Khasawneh, Kaewkuekool
+   & Cho 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 + 0.070566 z^2))) (|error| <= 1.4e-4); the
+   visibility is within 7.8e-4 of the long-double formula (float and double: the arcsine's
+   error over the deviation, at deviations from 0.02 rad), far below the model's error against
+   the brute force. A zero deviation is the step (1/2 at e = E[T | S + B] exactly). */
+/* The conditional visibility toward unit w (w.z > 0: the caller's select), at the slope
+   offset (X, Y) = E[s] - s_h (the sign pfi_beckmann_d_up's X, Y have: the shader shares them),
+   from the statistics s with base_var b added. */
+PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s, pf_real b, pf_real X,
+                                         pf_real Y)
 {
-    pf_real k = PF_R(1.0) / pf_max(pf_max(PF_FABS(w.x), PF_FABS(w.y)), pf_max(PF_FABS(w.z), PF_REAL_MIN));
-    pf_real x = w.x * k, y = w.y * k, wz = w.z * k, r = PF_SQRT(x * x + y * y);
-    pf_real ir = r > PF_R(0.0) ? PF_R(1.0) / r : PF_R(0.0), dx = x * ir, dy = y * ir, e;
-    pf_real var = m.m2 - m.m1 * m.m1, vc = pf_max(var, PF_R(0.0)), es, vs, lim, cov, beta, mu, sd, z, ph;
-#ifdef PF_REAL_IS_FLOAT
-    {
-        pf_real az = PF_FABS(wz), mx = pf_max(pf_max(az, r), PF_REAL_MIN), mn = pf_min(az, r), u, q;
-        int big = mn > PF_R(0.41421356237309505) * mx ? 1 : 0; /* t > tan(pi/8) */
-        u = (big != 0 ? mn - mx : mn) / (big != 0 ? mn + mx : mx);
-        q = u * u;
-        e = (((PF_R(8.05374449538e-2) * q - PF_R(1.38776856032e-1)) * q + PF_R(1.99777106478e-1)) * q -
-             PF_R(3.33329491539e-1)) * q * u + u;
-        e = big != 0 ? (e - PF_R(2.1855694143368964e-08)) + PF_R(0.78539818525314331) : e;
-        e = az > r ? PF_R(1.5707963705062866) - (e + PF_R(4.371138828673793e-08)) : e;
-        e = wz < PF_R(0.0) ? -e : e;
-    }
-#else
-    e = PF_ATAN2(wz, r);
-#endif
-    es = s.mean_x * dx + s.mean_y * dy;
-    vs = s.var_x * dx * dx + s.var_y * dy * dy + PF_R(2.0) * s.cov_xy * dx * dy;
-    /* the Cauchy-Schwarz clamp of pfi_horizon_cond_make; beta = 0 for Var(S) <= 1e-12 */
-    lim = PF_SQRT(vc * pf_max(vs, PF_R(0.0)));
-    cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
-    beta = vs > PF_R(1e-12) ? cov / vs : PF_R(0.0);
-    sd = PF_SQRT(pf_max(vc - cov * beta, PF_R(0.0)));
-    mu = m.m1 + beta * (sx * dx + sy * dy - es);
-    z = pf_clamp_nan_lo((e - mu) / sd, PF_R(-12.0), PF_R(12.0));
-    ph = PF_R(0.5) * pf_erfc_fast(-z * PF_INV_SQRT2);
-    ph = z < PF_R(12.0) ? ph : PF_R(1.0);
-    ph = z > PF_R(-12.0) ? ph : PF_R(0.0);
-    ph = sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(mu)) ? ph : (e >= mu ? PF_R(1.0) : PF_R(0.0));
-    return (var == var && m.ms == m.ms && e == e) ? ph : PF_R(0.0);
+    pf_real ir = pfi_beckmann_rsqrt(pf_max(w.x * w.x + w.y * w.y, PF_REAL_MIN)), dx = w.x * ir, dy = w.y * ir;
+    pf_real c = pf_max(PF_R(1.0) - w.z, PF_R(0.0));
+    /* A&S 4.4.45: asin(x) = pi/2 - sqrt(1 - x) (a0 + a1 x + a2 x^2 + a3 x^3), 0 <= x <= 1 */
+    pf_real e = PF_R(1.5707963267948966) - PF_SQRT(c) * (PF_R(1.5707288) + w.z * (PF_R(-0.2121144) + w.z * (PF_R(0.0742610) +
+                                                                                       w.z * PF_R(-0.0187293))));
+    pf_real es = s.mean_x * dx + s.mean_y * dy;
+    pf_real vs = dx * (s.var_x * dx + PF_R(2.0) * s.cov_xy * dy) + s.var_y * dy * dy; /* Var(S) + b */
+    pf_real var = m.m2 - m.m1 * m.m1;
+    /* Cauchy-Schwarz, |Cov(S, T)| <= sigma_S sigma_T, with the texels' own Var(S) */
+    pf_real lim = PF_SQRT(pf_max(var, PF_R(0.0)) * pf_max(vs - b, PF_R(0.0)));
+    pf_real cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
+    pf_real beta = cov / pf_max(vs, PF_REAL_MIN);
+    pf_real vc = var - cov * beta;
+    /* (e - mean) / deviation; the variance floored at 1e-30 (GLSL's inversesqrt(0) is
+       undefined; max(1e-30, NaN) keeps the NaN in C), so a zero deviation is the step within
+       1e-15 rad; z clamped to +-24, where Phi is 0 or 1 exactly in float and double (exp
+       overflows or underflows; no infinite argument), a NaN (NaN moments or slopes) to -24: 0 */
+    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc));
+    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(24.0));
+    return PF_R(1.0) / (PF_R(1.0) + PF_EXP(-z * (PF_R(1.5976) + PF_R(0.070566) * z * z)));
+}
+
+/* V_h for unit wo, wi with wo.z, wi.z > 0 (the callers' select): eq. 28's visible-and-lit
+   written without its division, V_o bidir(V_i, V_o) = a min(V_i, V_o) + (1 - a) max(V_o + V_i
+   - 1, 0), a = (1 + wo.wi)/2. */
+PF_DEF pf_real pfi_horizon_spec_vis(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i, pf_slope_stats s,
+                                    pf_real base_var)
+{
+    pf_vec3 h = pf_vec3_add(wo, wi);
+    pf_real iz = PF_R(1.0) / h.z, X = h.x * iz + s.mean_x, Y = h.y * iz + s.mean_y;
+    pf_real b = pf_max(base_var, PF_R(0.0));
+    pf_real vo = pfi_horizon_spec_cond_vis(wo, m_o, s, b, X, Y);
+    pf_real vi = pfi_horizon_spec_cond_vis(wi, m_i, s, b, X, Y);
+    pf_real a = pf_clamp_nan_lo(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi), PF_R(0.0), PF_R(1.0));
+    return a * pf_min(vo, vi) + (PF_R(1.0) - a) * pf_max(vo - (PF_R(1.0) - vi), PF_R(0.0));
 }
 
 PF_DEF pf_real pf_horizon_specular_visibility(pf_vec3 wo, pf_vec3 wi, pf_hdf_moments m_o, pf_hdf_moments m_i,
-                                              pf_slope_stats s)
+                                              pf_slope_stats s, pf_real base_var)
 {
-    pf_vec3 h = pf_vec3_add(wo, wi);
-    pf_real iz = h.z > PF_R(0.0) ? PF_R(1.0) / h.z : PF_R(0.0);
-    pf_real sx = -h.x * iz, sy = -h.y * iz;
-    pf_real vo = pfi_horizon_spec_cond_vis(wo, m_o, s, sx, sy);
-    pf_real vi = pfi_horizon_spec_cond_vis(wi, m_i, s, sx, sy);
-    return h.z > PF_R(0.0) ? vo * pf_horizon_bidir_tan(vi, vo, pf_vec3_dot(wo, wi)) : PF_R(0.0);
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
+    return (wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? v : PF_R(0.0);
 }
 
 /* The statistics s with base_var taken off both variances (floored at 0; a negative or NaN
@@ -6884,8 +6902,9 @@ PF_DEF pf_slope_stats pf_horizon_texel_stats(pf_slope_stats s, pf_real base_var)
        I = F(h.wi) D(h) V_h / (4 A_o),   A_o = wo.z - E[x] wo.x - E[y] wo.y  (eq. 1),
    radiance toward wo per unit radiance from wi, light cosine included, as pf_leadr_specular.
    s: the footprint's slope statistics with the base lobe's variance base_var added (what
-   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); base_var is taken off again
-   for the HDF's conditioning. m_o, m_i: the HDF moments toward wo and wi (the two stored
+   pf_leadr_specular takes: pf_slope_moments_stats(m, base_var)); the HDF is conditioned on
+   the reflecting facets' slope, the texels' plus the base lobe's (see
+   pf_horizon_specular_visibility). Unit directions. m_o, m_i: the HDF moments toward wo and wi (the two stored
    azimuths around each, pf_hdf_moments_lerp). No Smith factor is left: the horizon holds the
    footprint's own occluders as well as its neighbours' (the march starts one texel from the
    node). 0 when either direction is on or below the macrosurface or A_o <= 0 (the view at or
@@ -6895,7 +6914,7 @@ PF_DEF pf_real pf_horizon_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats 
                                          pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
 {
     pf_real ao = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
-    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
     pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
     pf_real r = f * pf_beckmann_d(pf_vec3_add(wo, wi), s) * v * PF_R(0.25) / pf_max(ao, PF_REAL_MIN);
     return (ao > PF_R(0.0) && wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) ? pf_min(r, PF_REAL_MAX) : PF_R(0.0);
@@ -6919,8 +6938,8 @@ PF_DEF pf_real pf_horizon_leadr_specular_lod(pf_vec3 wo, pf_vec3 wi, pf_slope_st
    horizon visibility:
        I = F(h.wi) (ndf / amp) V_h / (4 A_o),   amp A_o = wo.z amp - wo.x sum amp E[x] - wo.y sum amp E[y],
    V_h = pf_horizon_specular_visibility conditioned on the footprint's slope statistics s (the
-   LEADR slope-moment texel: pf_slope_moments_stats(m, base_var), base_var taken off inside as
-   in pf_horizon_leadr_specular). Why not the lobes' own mixture statistics: at small footprints
+   LEADR slope-moment texel: pf_slope_moments_stats(m, base_var), as in
+   pf_horizon_leadr_specular). Why not the lobes' own mixture statistics: at small footprints
    their variance is the lobes' spread (kappa), not the texels', and the HDF's slope-horizon
    covariance, mixed over two stored azimuths, then shifts the conditional horizon by noise
    (measured: 1-texel footprints 0.18 against 0.13 with the slope moments; docs/horizon.md).
@@ -6933,7 +6952,7 @@ PF_DEF pf_real pf_horizon_vmf_specular(pf_vmf_sum sum, pf_vec3 wo, pf_vec3 wi, p
                                        pf_hdf_moments m_o, pf_hdf_moments m_i, pf_real f0)
 {
     pf_real area = wo.z * sum.amp - wo.x * sum.ex - wo.y * sum.ey; /* amp A_o (LEADR eq. 1) */
-    pf_real v = pf_horizon_specular_visibility(wo, wi, m_o, m_i, pf_horizon_texel_stats(s, base_var));
+    pf_real v = pfi_horizon_spec_vis(wo, wi, m_o, m_i, s, base_var);
     pf_real f = pf_fresnel_schlick(f0, PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi))));
     /* (ndf / amp) / (area / amp) = ndf / area: the sum's amplitude cancels */
     pf_real r = (sum.ndf / pf_max(area, PF_REAL_MIN)) * f * v * PF_R(0.25);

@@ -2166,7 +2166,8 @@ static void pfc_f_pf_horizon_specular_visibility(pfc_ctx *c)
 {
     pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
     pf_hdf_moments mo = pfc_hdf(c), mi = pfc_hdf(c);
-    pfc_01(c, pf_horizon_specular_visibility(wo, wi, mo, mi, pfc_stats(c, 0)));
+    pf_slope_stats s = pfc_stats(c, 0);
+    pfc_01(c, pf_horizon_specular_visibility(wo, wi, mo, mi, s, pfc_var(c, 0)));
 }
 static void pfc_f_pf_horizon_texel_stats(pfc_ctx *c)
 {
