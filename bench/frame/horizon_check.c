@@ -90,7 +90,7 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
             v[0] = shade_method(MT_LEADR, a, b, p->wo, p->wi);
             v[1] = shade_horizon_cpu(maps, p->tx / W, p->ty / H, lod, p->wo, p->wi);
             G = v[0] / L1;
-            Vh = pf_horizon_specular_visibility(wo, wi, mo, mi, pf_horizon_texel_stats(st, (pf_real)(BASE_SIGMA * BASE_SIGMA)));
+            Vh = pf_horizon_specular_visibility(wo, wi, mo, mi, st, (pf_real)(BASE_SIGMA * BASE_SIGMA));
             Vt = R[i] / N[i];
             v[2] = N[i] * G, v[3] = N[i] * Vh, v[4] = L1 * Vt;
             tx = pfmi_wrap((int)floor(p->tx), W), ty = pfmi_wrap((int)floor(p->ty), H);
@@ -104,7 +104,7 @@ static void part3(const pfm_surface *surf, const fr_maps *maps, const fr_scene *
                 double shx = -hh.x / hh.z, shy = -hh.y / hh.z;
                 double vou = pf_horizon_visibility_gauss(mo, pf_horizon_elevation(wo)), viu = pf_horizon_visibility_gauss(mi, pf_horizon_elevation(wi));
                 double vunc = vou * (double)pf_horizon_bidir_tan((pf_real)viu, (pf_real)vou, pf_vec3_dot(wo, wi));
-                double vbv = pf_horizon_specular_visibility(wo, wi, mo, mi, st);
+                double vbv = pf_horizon_specular_visibility(wo, wi, mo, mi, st, 0);
                 double add2[7] = {pf_horizon_visibility_given_slope(wo, mo, ts, (pf_real)shx, (pf_real)shy),
                                   pf_horizon_visibility_given_slope(wi, mi, ts, (pf_real)shx, (pf_real)shy),
                                   rel(N[i] * vunc, R[i], fl), rel(N[i] * vbv, R[i], fl), vunc, vbv,
