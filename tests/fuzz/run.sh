@@ -3,8 +3,9 @@
 #
 # usage: sh tests/fuzz/run.sh [BUILD_DIR]          (BUILD_DIR defaults to build)
 # Environment:
-#   FUZZ_SECONDS   seconds per harness and precision (default 5: 22 harnesses x 2 precisions
-#                  ~ 2 min on 2 cores in CI; run longer by hand, e.g. FUZZ_SECONDS=600)
+#   FUZZ_SECONDS   seconds per harness and precision (default 5: 24 harnesses x 2 precisions,
+#                  2 at a time on 2 cores, is 2 min of fuzzing in CI; run longer by hand, e.g.
+#                  FUZZ_SECONDS=600)
 #   FUZZ_MODULES   harnesses to run (default: every tests/fuzz/fuzz_*.c)
 #   FUZZ_JOBS      harnesses run at once (default: the online cores); the lines of every
 #                  harness are printed together, in module order, at the end
