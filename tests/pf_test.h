@@ -101,6 +101,16 @@ PF_TEST_FN void pf_test_run(void (*fn)(void), const char *name)
 
 #define PF_TEST_RUN(fn) pf_test_run(fn, #fn)
 
+/* 1 when PF_TEST_REDUCED is set (not "0") in the environment: tests/portability/cell.sh sets it
+   for the cells run under an emulator (arm-float under qemu-arm, about ten times slower than
+   native), where the heaviest quadrature tests check fewer configurations with the same bounds
+   (each says how many in its note); every native build runs the full grids. */
+PF_TEST_FN int pf_test_reduced(void)
+{
+    const char *e = getenv("PF_TEST_REDUCED");
+    return e && *e && strcmp(e, "0") != 0;
+}
+
 PF_TEST_FN int pf_test_end(void)
 {
     printf("RESULT %d %d\n", pf_test_cases_passed, pf_test_cases_failed);

@@ -548,17 +548,20 @@ cell_list() {
     # guarded-buffer test meets the narrow limits; the sanitizer cells run the whole suite under
     # ASan+UBSan there (a size accepted past PF_MAX_REALS writes out of bounds only on 32-bit
     # hosts). SSE arithmetic (-msse2 -mfpmath=sse), as x86-64 has: the cells test the sizes,
-    # not the x87's excess precision.
+    # not the x87's excess precision. So they run in cell.sh's "sizes" mode: the whole suite of
+    # every module with a pointer-taking CPU-only function and of the reference code; the tests
+    # of the pure-evaluator modules (no size, pointer or buffer; their arithmetic is x86-64's)
+    # are compiled, not run (they were two thirds of these cells' time).
     if [ "$PF_HAVE_M32" = 1 ]; then
         M32="-m32 -msse2 -mfpmath=sse"
         # clang's -Warray-bounds sees the constant indices of test_height's far-corner table
         # test exceed the 32-bit address space (the test skips itself at run time there): kept
         # a warning in the clang cells
         SAN32="-O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -Wno-error=array-bounds"
-        echo "x86-32-gcc-float full - - gcc $M32 -std=c99 $WC99 -O2"
-        echo "x86-32-gcc-double full - - gcc $M32 -std=c99 $WC99 -O2 -DPF_DOUBLE"
-        echo "x86-32-clang-san-float full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32"
-        echo "x86-32-clang-san-double full - - clang -m32 -msse2 -std=c99 $WC99 $SAN32 -DPF_DOUBLE"
+        echo "x86-32-gcc-float sizes - - gcc $M32 -std=c99 $WC99 -O2"
+        echo "x86-32-gcc-double sizes - - gcc $M32 -std=c99 $WC99 -O2 -DPF_DOUBLE"
+        echo "x86-32-clang-san-float sizes - - clang -m32 -msse2 -std=c99 $WC99 $SAN32"
+        echo "x86-32-clang-san-double sizes - - clang -m32 -msse2 -std=c99 $WC99 $SAN32 -DPF_DOUBLE"
     fi
 }
 # plan_cells: the cells to run (cells/todo.txt, one cell.sh argument line each) and the plan
@@ -696,11 +699,11 @@ plan_cells
 # the sanitizers first, then qemu-arm), then the groups, then the edge_ and compile-only cells
 touch "$OUT/cells/todo.txt"
 {
-    awk '$2 == "full" && / -fsanitize=/' "$OUT/cells/todo.txt"
-    awk '$2 == "full" && !/ -fsanitize=/' "$OUT/cells/todo.txt"
+    awk '($2 == "full" || $2 == "sizes") && / -fsanitize=/' "$OUT/cells/todo.txt"
+    awk '($2 == "full" || $2 == "sizes") && !/ -fsanitize=/' "$OUT/cells/todo.txt"
 } | sed 's/^/cell /' > "$OUT/jobs/list.txt"
 for g in $GROUPS; do echo "group $g"; done >> "$OUT/jobs/list.txt"
-awk '$2 != "full"' "$OUT/cells/todo.txt" | sed 's/^/cell /' >> "$OUT/jobs/list.txt"
+awk '$2 != "full" && $2 != "sizes"' "$OUT/cells/todo.txt" | sed 's/^/cell /' >> "$OUT/jobs/list.txt"
 njobs=${PORT_JOBS:-$(nproc 2>/dev/null || echo 2)}
 echo "portability: $(grep -c . "$OUT/jobs/list.txt") jobs, $njobs at once" >&2
 xargs -P "$njobs" -L 1 sh "$P/run.sh" --job "$BUILD" < "$OUT/jobs/list.txt"
