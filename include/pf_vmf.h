@@ -55,8 +55,9 @@
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
      (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
      Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
-     adds the same sums (to 3.3e-4) and repairs a texel outside the fit's contract (NaN, an
-     axis past the horizon, a negative amplitude), at 2.4x the SPIR-V ops per lobe.
+     adds the same sums with the exact tangent variance (the texel path's rational is 1.3e-2
+     off) and repairs a texel outside the fit's contract (NaN, an axis past the horizon, a
+     negative amplitude), at 3x the SPIR-V ops per lobe.
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
@@ -102,12 +103,13 @@
      Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
      spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
      the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
-     m = 1, 4, 8, 16: 174 / 179, 330 / 350, 538 / 578, 954 / 1034, i.e. 1.5, 2.8, 4.6, 8.2x
-     pf_leadr_specular's 116 / 129 SPIR-V (52 ops per lobe, 122 per pixel, 2 branches); the
-     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 499 / 521, 907 / 965. Through
-     pf_vmf_lobe_make + pf_vmf_sum_add: 615 / 562 (m = 4), 1111 / 1002 (m = 8). CPU (callgrind,
-     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 497, 1152,
-     2014, 3735, mixture m = 4, 8: 1580, 2978, against pf_leadr_specular's 277 (docs/vmf.md).
+     m = 1, 4, 8, 16: 161 / 164, 290 / 306, 462 / 494, 806 / 870, i.e. 1.39, 2.50, 3.98, 6.95x
+     pf_leadr_specular's 116 / 129 SPIR-V (43 ops per lobe, 118 per pixel, 2 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 461 / 479, 833 / 883. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 591 / 547 (m = 4), 1067 / 979 (m = 8). CPU (callgrind,
+     float, x86-64 gcc -O2, instructions per pixel, measured before the rational tangent
+     variance): texel path m = 1, 4, 8, 16: 497, 1152, 2014, 3735, mixture m = 4, 8: 1580,
+     2978, against pf_leadr_specular's 277 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -603,10 +605,11 @@ PF_DEF pf_real pfi_vmf_tangent_variance_lean(pf_real kappa)
 
 /* Adds one lobe straight from its texel (amp, mu.x, mu.y, kappa), the lobe pyramid's packed
    form (pf_vmf_fit.h), with the pixel's shared terms p = pf_vmf_pixel_make(wo, wi, base_var):
-   the shader path, branch-free, 40-odd SPIR-V ops per lobe (docs/vmf.md). The same sums as
+   the shader path, branch-free, 43 SPIR-V ops per lobe (docs/vmf.md). The same sums as
    pf_vmf_sum_add(s, pf_vmf_lobe_make(amp, mu_x, mu_y, kappa), wo, wi, base_var) for a texel
    the fit wrote (amp >= 0, mu_x^2 + mu_y^2 <= 1, kappa in the clamp range), to rounding and
-   the tangent variance's 3.3e-4 (pfi_vmf_tangent_variance_lean); mu.z^2 = 1 - mu_x^2 -
+   the tangent variance's 1.3e-2 (pfi_vmf_tangent_variance_lean: D' within 1.3e-2 of the
+   lobe's peak, the moments within 1.2e-2, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 -
    mu_y^2 floored at 1e-6 as pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No decode: a texel
    outside that contract (a negative amp, an axis past the horizon, NaN) is not repaired as
    pf_vmf_lobe_make repairs it. */
@@ -657,7 +660,7 @@ PF_DEF pf_real pfi_vmf_excess_fast(pf_real amp, pf_real sx, pf_real sy, pf_real 
 /* pf_vmf_sum_add_texel and the lobe's Smith excesses toward wo and wi (what
    pf_vmf_sum_add_masking adds), for pf_vmf_sum_specular_mixture: the mixture's exact Smith
    Lambda with each excess from the G1 fit (pfi_vmf_excess_fast) instead of erfc. The shader
-   path of the mixture form: one texel, branch-free, ~100 SPIR-V ops per lobe against ~650
+   path of the mixture form: one texel, branch-free, ~93 SPIR-V ops per lobe against ~650
    (docs/vmf.md). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel_mixture(pf_vmf_sum s, pf_vmf_pixel p, pf_vec3 wo, pf_vec3 wi, pf_real amp,
                                                pf_real mu_x, pf_real mu_y, pf_real kappa)
