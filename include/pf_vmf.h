@@ -515,14 +515,15 @@ PF_DEF pf_vmf_pixel pf_vmf_pixel_make(pf_vec3 wo, pf_vec3 wi, pf_real base_var)
     pf_vmf_pixel p;
     pf_vec3 h = pf_vec3_add(wo, wi);
     /* 1/h.z with h.z floored at 1e-30: gx, gy finite for every pair (|h.xy| <= 2); q is then
-       >= 1e12, inf or NaN (h = 0) wherever h.z <= 1e-6 |h|, and ldn = -1e30 there */
+       >= 1e12 or inf wherever h.z <= 1e-6 |h|, and ldn = -1e30 there */
     pf_real iz = PF_R(1.0) / pf_max(h.z, PF_R(1.0e-30));
-    pf_real q = pf_vec3_dot(h, h) * (iz * iz); /* 1 / cos^2 of h, in [1, 1e12) where used */
+    /* 1 / cos^2 of h, in [1, 1e12) where used; |h|^2 + 1e-30, so that h = 0 gives q = inf
+       (float) or 1e30 (double), never 0 */
+    pf_real q = (h.x * h.x + (h.y * h.y + (h.z * h.z + PF_R(1.0e-30)))) * (iz * iz);
     p.gx = h.x * iz;
     p.gy = h.y * iz;
     p.ngx = -p.gx;
-    /* h.z > 1e-6 |h| <=> 1 / cos^2 < 1e12 (q >= 1 otherwise: no test for q > 0; h = 0, q NaN,
-       needs wo = -wi, both on the macrosurface, where the specular functions return 0);
+    /* h.z > 1e-6 |h| <=> 1 / cos^2 < 1e12 (q >= 1 otherwise: no test for q > 0);
        log(q^2 / (2 pi)) = 2 log q - log(2 pi) */
     p.ldn = q < PF_R(1.0e12) ? PF_R(2.0) * PF_LOG(q) - PF_R(1.837877066409345483560659472811235279)
                                               : PF_R(-1.0e30);
