@@ -2464,8 +2464,8 @@ PF_DEF pf_real pf_leadr_specular_point(pf_vec3 wo, pf_vec3 to_light, pf_slope_st
      pf_leadr_specular's 116 / 129 SPIR-V (43 ops per lobe, 118 per pixel, 2 branches); the
      mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 461 / 479, 833 / 883. Through
      pf_vmf_lobe_make + pf_vmf_sum_add: 591 / 547 (m = 4), 1067 / 979 (m = 8). CPU (callgrind,
-     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 444, 926,
-     1556, 2813, mixture m = 4, 8: 1258, 2276, against pf_leadr_specular's 271 (docs/vmf.md).
+     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 459, 944,
+     1578, 2843, mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
