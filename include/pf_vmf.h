@@ -55,8 +55,9 @@
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
      (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
      Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
-     adds the same sums (to 3.3e-4) and repairs a texel outside the fit's contract (NaN, an
-     axis past the horizon, a negative amplitude), at 2.4x the SPIR-V ops per lobe.
+     adds the same sums with the exact tangent variance (the texel path's rational is 1.3e-2
+     off) and repairs a texel outside the fit's contract (NaN, an axis past the horizon, a
+     negative amplitude), at 2.8x the SPIR-V ops per lobe (119 against 43).
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
@@ -102,12 +103,12 @@
      Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
      spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
      the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
-     m = 1, 4, 8, 16: 174 / 179, 330 / 350, 538 / 578, 954 / 1034, i.e. 1.5, 2.8, 4.6, 8.2x
-     pf_leadr_specular's 116 / 129 SPIR-V (52 ops per lobe, 122 per pixel, 2 branches); the
-     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 499 / 521, 907 / 965. Through
-     pf_vmf_lobe_make + pf_vmf_sum_add: 615 / 562 (m = 4), 1111 / 1002 (m = 8). CPU (callgrind,
-     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 497, 1152,
-     2014, 3735, mixture m = 4, 8: 1580, 2978, against pf_leadr_specular's 277 (docs/vmf.md).
+     m = 1, 4, 8, 16: 161 / 164, 290 / 306, 462 / 494, 806 / 870, i.e. 1.39, 2.50, 3.98, 6.95x
+     pf_leadr_specular's 116 / 129 SPIR-V (43 ops per lobe, 118 per pixel, 2 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 461 / 479, 833 / 883. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 591 / 547 (m = 4), 1067 / 979 (m = 8). CPU (callgrind,
+     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 459, 944,
+     1578, 2843, mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -496,15 +497,16 @@ PF_DEF pf_real pfi_vmf_rsqrt(pf_real x) { return PF_R(1.0) / PF_SQRT(x); }
 
 /* What every lobe of one pixel shares (pf_vmf_pixel_make, once per pixel): with H = wo + wi
    and h = H / |H|, gx = H.x / H.z and gy = H.y / H.z (minus the half vector's slope),
-   dn = 1 / (2 pi h.z^4) (the slope density's Jacobian, LEADR eq. 10, and the Gaussian's
-   1 / (2 pi); 0 when h.z <= 1e-6, as pf_vmf_lobe_ndf_slope) and the base lobe's slope
-   variance base_var (>= 0). wo and wi unit, on or above the macrosurface: a pair below it
-   gives values that the specular functions discard (they return 0 there). */
+   ldn = log(1 / (2 pi h.z^4)) (the log of the slope density's Jacobian, LEADR eq. 10, times the
+   Gaussian's 1 / (2 pi), added to each lobe's exponent so that no lobe multiplies by it;
+   -1e30 when h.z <= 1e-6, where the lobes' terms are 0, as pf_vmf_lobe_ndf_slope) and the base
+   lobe's slope variance base_var (>= 0). wo and wi unit, on or above the macrosurface: a pair
+   below it gives values that the specular functions discard (they return 0 there). */
 PF_STRUCT_BEGIN(pf_vmf_pixel)
     pf_real gx;
     pf_real gy;
     pf_real ngx; /* -gx (saves a negation per lobe) */
-    pf_real dn;
+    pf_real ldn;
     pf_real base_var;
 PF_STRUCT_END(pf_vmf_pixel)
 
@@ -513,16 +515,35 @@ PF_DEF pf_vmf_pixel pf_vmf_pixel_make(pf_vec3 wo, pf_vec3 wi, pf_real base_var)
     pf_vmf_pixel p;
     pf_vec3 h = pf_vec3_add(wo, wi);
     /* 1/h.z with h.z floored at 1e-30: gx, gy finite for every pair (|h.xy| <= 2); q is then
-       >= 1e12, inf or NaN (h = 0) wherever h.z <= 1e-6 |h|, and dn = 0 there */
+       >= 1e12 or inf wherever h.z <= 1e-6 |h|, and ldn = -1e30 there */
     pf_real iz = PF_R(1.0) / pf_max(h.z, PF_R(1.0e-30));
-    pf_real q = pf_vec3_dot(h, h) * (iz * iz); /* 1 / cos^2 of h */
+    /* 1 / cos^2 of h, in [1, 1e12) where used; |h|^2 + 1e-30, so that h = 0 gives q = inf
+       (float) or 1e30 (double), never 0 */
+    pf_real q = (h.x * h.x + (h.y * h.y + (h.z * h.z + PF_R(1.0e-30)))) * (iz * iz);
     p.gx = h.x * iz;
     p.gy = h.y * iz;
     p.ngx = -p.gx;
-    /* h.z > 1e-6 |h| <=> 1 / cos^2 < 1e12 */
-    p.dn = q > PF_R(0.0) && q < PF_R(1.0e12) ? q * q * (PF_R(0.5) * PF_INV_PI) : PF_R(0.0);
+    /* h.z > 1e-6 |h| <=> 1 / cos^2 < 1e12 (q >= 1 otherwise: no test for q > 0);
+       log(q^2 / (2 pi)) = 2 log q - log(2 pi) */
+    p.ldn = q < PF_R(1.0e12) ? PF_R(2.0) * PF_LOG(q) - PF_R(1.837877066409345483560659472811235279)
+                                              : PF_R(-1.0e30);
     p.base_var = pf_max(base_var, PF_R(0.0));
     return p;
+}
+
+/* exp(ldn + x), x = -q/2 <= 0 the lobe's exponent, ldn of pf_vmf_pixel_make. C and C++:
+   exp(ldn + max(x, -PF_VMF_EXP_CAP)) (the exponent capped as pfi_vmf_ndf_stats caps it, so
+   that libm's exp never takes its underflow path, which sets errno and made a far lobe cost
+   10x a near one on the CPU; 0 where ldn is -1e30). GPUs (GLSL, CUDA device code) evaluate
+   exp as one exp2 that underflows to 0 at no cost: exp(ldn + x), one fused add and no compare;
+   the two differ only where the term is below exp(-80) = 1.8e-35 of its peak. */
+PF_DEF pf_real pfi_vmf_exp_lobe(pf_real ldn, pf_real x)
+{
+#if defined(PF_GLSL) || defined(__CUDA_ARCH__)
+    return PF_EXP(ldn + x);
+#else
+    return ldn > PF_R(-1.0e29) ? PF_EXP(ldn + pf_max(x, -PF_VMF_EXP_CAP)) : PF_R(0.0);
+#endif
 }
 
 /* One lobe of the slope form into the sum, from its amplitude, axis (mu.x, mu.y) with
@@ -531,11 +552,11 @@ PF_DEF pf_vmf_pixel pf_vmf_pixel_make(pf_vec3 wo, pf_vec3 wi, pf_real base_var)
    with s = mu.xy / mu.z (the slope mean is -s) and the identity (1/z^2 - 1) / |mu.xy|^2 =
    1/z^2 of a unit axis,
        Sigma = c I + w s s^T,   w = v / z^2,   c = w + base_var,
-   whose determinant is c e (e = c + w |s|^2; >= 1e-10: no floor needed) and whose quadratic
-   form of d = slope(h) + s is (c |d|^2 + w (s x d)^2) / (c e) (Sherman-Morrison, and
-   |s|^2 |d|^2 - (s.d)^2 = (s x d)^2: no cancellation), s x d = -(sx gy - sy gx). So the lobe's
-   D'(h) term (pfi_vmf_ndf_stats) is
-       amp dn exp(-min(q/2, PF_VMF_EXP_CAP)) / sqrt(c e)
+   whose determinant is c e, e = c + w |s|^2 = base_var + w / z^2 (|s|^2 = 1/z^2 - 1 for a unit
+   axis; >= 1e-10: no floor needed), and whose quadratic form of d = slope(h) + s is
+   (c |d|^2 + w (s x d)^2) / (c e) (Sherman-Morrison, and |s|^2 |d|^2 - (s.d)^2 = (s x d)^2: no
+   cancellation), s x d = -(sx gy - sy gx). So the lobe's D'(h) term (pfi_vmf_ndf_stats) is
+       amp exp(ldn - q/2) / sqrt(c e)       (pfi_vmf_exp_lobe; ldn of pf_vmf_pixel_make)
    and its moments sum amp (var + mean^2) = amp c + amp (1 + w) s s^T (pfi_vmf_sum_moments):
    the same sums as pf_vmf_lobe_slope_stats + pfi_vmf_ndf_stats + pfi_vmf_sum_moments, with a
    third of the instructions and no branch. */
@@ -545,11 +566,11 @@ PF_DEF pf_vmf_sum pfi_vmf_sum_add_slope(pf_vmf_sum s, pf_vmf_pixel p, pf_real am
     pf_real iz = pfi_vmf_rsqrt(z2), iz2 = iz * iz;
     pf_real sx = mx * iz, sy = my * iz;
     pf_real w = v * iz2, c = w + p.base_var;
-    pf_real ce = c * (c + w * ((mx * mx + my * my) * iz2));
+    pf_real ce = c * (w * iz2 + p.base_var);
     pf_real dx = sx + p.ngx, dy = sy - p.gy, cr = sx * p.gy + sy * p.ngx;
     pf_real q = (c * (dx * dx + dy * dy) + w * (cr * cr)) / ce;
     pf_real u = amp + amp * w, ac = amp * c, usx = u * sx;
-    s.ndf += amp * p.dn * pfi_vmf_rsqrt(ce) * PF_EXP(pf_max(PF_R(-0.5) * q, -PF_VMF_EXP_CAP));
+    s.ndf += amp * pfi_vmf_rsqrt(ce) * pfi_vmf_exp_lobe(p.ldn, PF_R(-0.5) * q);
     s.amp += amp;
     s.ex -= amp * sx;
     s.ey -= amp * sy;
@@ -567,28 +588,28 @@ PF_DEF pf_vmf_sum pf_vmf_sum_add(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec
                                  pf_vmf_tangent_variance(l.kappa));
 }
 
-/* A3(kappa) / kappa (pf_vmf_tangent_variance) without a branch: ((1 + e) k - (1 - e)) /
-   ((1 - e) k^2), e = exp(-2 k), k = kappa clamped to [1/20, PF_VMF_KAPPA_MAX] (NaN: 1/20), the
-   exponent capped at PF_VMF_EXP_CAP. Within 3.3e-4 (float) / 1.7e-4 (double) of
-   pf_vmf_tangent_variance over [PF_VMF_KAPPA_MIN, PF_VMF_KAPPA_MAX] (tests/test_vmf.c): below
-   k = 1/20 the clamp (v(1/20) = v(0) (1 - 1.7e-4)), near it the subtraction's rounding
-   (3 / k^2 ulp: 1200 at k = 1/20); 10 SPIR-V ops against 51 with 10 branches. */
+/* A3(kappa) / kappa (pf_vmf_tangent_variance) without a branch or an exp, for a kappa in the
+   clamp range (a texel the fit wrote): the rational
+       (k + a) / (k (k + b) + c),   a = 1.80401518, b = 2.41260648, c = 5.48254123,
+   1/k (1 - 0.61/k) at large k as the exact 1/k (1 - 1/k), a / c = 0.329 at 0 (exact: 1/3);
+   a, b, c minimize the largest relative error over kappa in [1e-4, 1e5] (Nelder-Mead on 2001
+   log-spaced points): 1.29e-2 (tests/test_vmf.c measures it against pf_vmf_tangent_variance).
+   4 SPIR-V ops, against 10 for the exp form ((k coth k - 1) / k^2, one exp and a clamp) and
+   51 with 10 branches for pf_vmf_tangent_variance; every coefficient positive, no
+   cancellation. What the 1.3% costs the shading: docs/vmf.md (the bench's 4096-texel
+   specular errors through this path). */
 PF_DEF pf_real pfi_vmf_tangent_variance_lean(pf_real kappa)
 {
-    pf_real k = pf_clamp_nan_lo(kappa, PF_R(0.05), PF_VMF_KAPPA_MAX);
-    pf_real e = PF_EXP(pf_max(PF_R(-2.0) * k, -PF_VMF_EXP_CAP));
-    pf_real om = PF_R(1.0) - e;
-    /* (k coth k - 1) / k^2 with coth k = (1 + e) / (1 - e); both terms of the numerator ~2k
-       (not ~1, as (k - 1) + e (k + 1) would have them), so it loses only 3 / k^2 ulp */
-    return (k + e * k - om) / (om * (k * k));
+    return (kappa + PF_R(1.80401518)) / (kappa * (kappa + PF_R(2.41260648)) + PF_R(5.48254123));
 }
 
 /* Adds one lobe straight from its texel (amp, mu.x, mu.y, kappa), the lobe pyramid's packed
    form (pf_vmf_fit.h), with the pixel's shared terms p = pf_vmf_pixel_make(wo, wi, base_var):
-   the shader path, branch-free, 40-odd SPIR-V ops per lobe (docs/vmf.md). The same sums as
+   the shader path, branch-free, 43 SPIR-V ops per lobe (docs/vmf.md). The same sums as
    pf_vmf_sum_add(s, pf_vmf_lobe_make(amp, mu_x, mu_y, kappa), wo, wi, base_var) for a texel
    the fit wrote (amp >= 0, mu_x^2 + mu_y^2 <= 1, kappa in the clamp range), to rounding and
-   the tangent variance's 3.3e-4 (pfi_vmf_tangent_variance_lean); mu.z^2 = 1 - mu_x^2 -
+   the tangent variance's 1.3e-2 (pfi_vmf_tangent_variance_lean: D' within 1.3e-2 of the
+   lobe's peak, the moments within 1.2e-2, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 -
    mu_y^2 floored at 1e-6 as pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No decode: a texel
    outside that contract (a negative amp, an axis past the horizon, NaN) is not repaired as
    pf_vmf_lobe_make repairs it. */
@@ -639,7 +660,7 @@ PF_DEF pf_real pfi_vmf_excess_fast(pf_real amp, pf_real sx, pf_real sy, pf_real 
 /* pf_vmf_sum_add_texel and the lobe's Smith excesses toward wo and wi (what
    pf_vmf_sum_add_masking adds), for pf_vmf_sum_specular_mixture: the mixture's exact Smith
    Lambda with each excess from the G1 fit (pfi_vmf_excess_fast) instead of erfc. The shader
-   path of the mixture form: one texel, branch-free, ~100 SPIR-V ops per lobe against ~650
+   path of the mixture form: one texel, branch-free, ~93 SPIR-V ops per lobe against ~650
    (docs/vmf.md). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel_mixture(pf_vmf_sum s, pf_vmf_pixel p, pf_vec3 wo, pf_vec3 wi, pf_real amp,
                                                pf_real mu_x, pf_real mu_y, pf_real kappa)
@@ -754,9 +775,11 @@ PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real
     pf_real area_o = wo.z - pw_o, area_i = wi.z - pw_i;
     pf_real rs_o = pfi_vmf_rsqrt(pf_clamp_nan_lo(e_o * ia2 - (pw_o + pw_o) * pw_o, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     pf_real rs_i = pfi_vmf_rsqrt(pf_clamp_nan_lo(e_i * ia2 - (pw_i + pw_i) * pw_i, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-    /* as pfi_leadr_specular: nu_o floored at -64 (P_o is 0 there), |nu_o| at 1e-20 */
-    pf_real nu_o = pf_max(area_o * rs_o, PF_R(-64.0));
-    pf_real front = (pf_smith_nu_over_g1(pf_max(PF_FABS(nu_o), PF_R(1.0e-20))) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
+    /* nu_o finite (|area_o| <= 3, rs_o <= 1/sqrt(PF_REAL_MIN)); pf_smith_nu_over_g1 takes any
+       nu >= 0 (0 included) and is nu to rounding past 3.3 (float) / 2 (double), so that P_o is
+       0 there with no floor on nu_o */
+    pf_real nu_o = area_o * rs_o;
+    pf_real front = (pf_smith_nu_over_g1(PF_FABS(nu_o)) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
     pf_real g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pf_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
     /* Schlick with cos = h.wi = sqrt((1 + wo.wi) / 2) */
     pf_real t = PF_R(1.0) - PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi)));

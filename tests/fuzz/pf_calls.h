@@ -1984,7 +1984,7 @@ static void pfc_f_pf_vmf_pixel_make(pfc_ctx *c)
 {
     pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
     pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, pfc_var(c, 0));
-    pfc_out(c, p.gx); pfc_out(c, p.gy); pfc_out(c, p.ngx); pfc_ge0(c, p.dn); pfc_ge0(c, p.base_var);
+    pfc_out(c, p.gx); pfc_out(c, p.gy); pfc_out(c, p.ngx); pfc_out(c, p.ldn); pfc_ge0(c, p.base_var);
 }
 static pf_vmf_sum pfc_vmf_sum_texel(pfc_ctx *c, pf_vec3 wo, pf_vec3 wi, pf_real bv, int mixture)
 {
@@ -2524,7 +2524,7 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_sum_g2, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g2_mixture, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g1_mixture, 0, "sums of 1-4 lobes, direction", "in [0, 1]"),
-    PFC_E(vmf, pf_vmf_pixel_make, 0, "directions (grazing, below), base variance", "finite; dn >= 0"),
+    PFC_E(vmf, pf_vmf_pixel_make, 0, "directions (grazing, below), base variance", "finite"),
     PFC_E(vmf, pf_vmf_sum_add_texel, 0, "1-4 texels as the fit writes them, directions, base variance", "sums; specular >= 0"),
     PFC_E(vmf, pf_vmf_sum_add_texel_mixture, 0, "1-4 texels as the fit writes them, directions, base variance", "sums, excesses >= 0; G2 in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the macrosurface"),
