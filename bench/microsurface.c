@@ -295,10 +295,11 @@ static const int vmf_lobes[NVMF] = { 1, 2, 4, 8, 16 };
    per map and level; at other levels these methods return the unscaled lobes:
      S per level and m (a 6 x 6 x 5 node table fitted over 16 patches of the level, with a
        prior toward 1) and T per pyramid texel (the patch's own samples given S), as
-       bench/vmf_scaling.h's settings say (pf_vmf_scale_fit_level per level, then
-       pf_vmf_scale_texel_t per texel on every core); the training patches' T when S is built, every other
-       texel's before the footprints that read it are shaded (scale_T_fill: the error run's
-       footprints, then the cost section's, before the cost is timed).
+       bench/vmf_scaling.h's settings say (pf_vmf_scale_fit_level per level, its training
+       patches on every core (scale_build), then pf_vmf_scale_texel_t per texel on every
+       core); the training patches' T when S is built, every other texel's before the
+       footprints that read it are shaded (scale_T_fill: the error run's footprints, then
+       the cost section's, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
    trilinear) and multiplies (pf_vmf_scale_apply). */
 #define NSCALE 2
@@ -466,8 +467,9 @@ static int scale_factor_level(lib_maps *L, const scale_fit_job *J, int li)
                                   &L->sc_prior[si][k], 0);
         if (rc == PF_OK)
             for (p = 0; p < P; ++p)
-                L->sc_T[k][off + (p * gw * gh) / P] = pfi_vmf_scale_t(J->f_eff[li] + p * cnt, fk + p * cnt, r->nt, r->np,
-                                                                      L->sc_S[si][k], L->sc_prior[si][k]);
+                L->sc_T[k][off + (p * gw * gh) / P] =
+                    pfi_vmf_scale_t(J->f_eff[li] + p * cnt, fk + p * cnt, r->nt, r->np, L->sc_S[si][k],
+                                    L->sc_prior[si][k]);
     }
     free(fac);
     return rc;
@@ -487,11 +489,13 @@ static void scale_check_level(const lib_maps *L, const pf_vmf_scale_desc *d, int
         t_level[j] = (pf_real *)pfb_xcalloc((size_t)lt, sizeof(pf_real));
         for (i = 0; i < lt; ++i) t_level[j][i] = (pf_real)NAN; /* untouched texels: the same NaNs as sc_T's */
     }
-    if (pf_vmf_scale_fit_level(d, si, s_out, prior, t_level, scratch, len) != PF_OK) fatal("the scaling function's fit failed");
+    if (pf_vmf_scale_fit_level(d, si, s_out, prior, t_level, scratch, len) != PF_OK)
+        fatal("the scaling function's fit failed");
     check_same(S, L->sc_S[si], sizeof S, "the scaling function's S (parallel patches)");
     check_same(prior, L->sc_prior[si], sizeof prior, "the scaling function's prior (parallel patches)");
     for (j = 0; j < NSCALE; ++j) {
-        check_same(t_level[j], L->sc_T[j] + off, (size_t)lt * sizeof(pf_real), "the training patches' T (parallel patches)");
+        check_same(t_level[j], L->sc_T[j] + off, (size_t)lt * sizeof(pf_real),
+                   "the training patches' T (parallel patches)");
         free(t_level[j]);
     }
     free(scratch);
