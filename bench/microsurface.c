@@ -295,10 +295,11 @@ static const int vmf_lobes[NVMF] = { 1, 2, 4, 8, 16 };
    per map and level; at other levels these methods return the unscaled lobes:
      S per level and m (a 6 x 6 x 5 node table fitted over 16 patches of the level, with a
        prior toward 1) and T per pyramid texel (the patch's own samples given S), as
-       bench/vmf_scaling.h's settings say (pf_vmf_scale_fit_level per level, then
-       pf_vmf_scale_texel_t per texel on every core); the training patches' T when S is built, every other
-       texel's before the footprints that read it are shaded (scale_T_fill: the error run's
-       footprints, then the cost section's, before the cost is timed).
+       bench/vmf_scaling.h's settings say (pf_vmf_scale_fit_level per level, its training
+       patches on every core (scale_build), then pf_vmf_scale_texel_t per texel on every
+       core); the training patches' T when S is built, every other texel's before the
+       footprints that read it are shaded (scale_T_fill: the error run's footprints, then
+       the cost section's, before the cost is timed).
    The shader fetches T (one texel of level log2 n) and S (pf_vmf_scale_lookup: 8 nodes,
    trilinear) and multiplies (pf_vmf_scale_apply). */
 #define NSCALE 2
@@ -406,61 +407,160 @@ static void scale_texel_item(void *ctx, long long i)
     free(scratch);
 }
 
-/* S and the prior per lobe count at the scaled levels (pf_vmf_scale_fit_level: VS_TRAIN evenly
-   spaced training patches of the level), and the training patches' T; every other texel's T
-   NaN (scale_T_fill computes them) */
-/* one level's fit of the scaling function: the levels are independent (each writes its own S,
-   prior and T slice), so they run in parallel; each level's result does not depend on the
-   thread count */
+/* ---- the scaling function's fit on every core (bench-side driver of pf_vmf_scale_fit_level)
+   S and the prior per lobe count at the scaled levels, and the training patches' T; every other
+   texel's T NaN (scale_T_fill computes them). pf_vmf_scale_fit_level does, per level: the
+   samples of VS_TRAIN evenly spaced training patches (pfi_vmf_scale_texel_samples: the marches,
+   nearly all its time), then per lobe count the factorization (pfi_vmf_scale_factor) and the
+   training patches' T (pfi_vmf_scale_t). This driver makes the same calls in the same order on
+   the same inputs, with the patches' samples as the parallel work items (one per training patch
+   of every scaled level, each writing only its own slot, with its own scratch) and the
+   factorizations after the loop in level and lobe-count order: S, prior and T are those of
+   pf_vmf_scale_fit_level bit for bit, for any thread count (MICROSURFACE_CHECK=1 compares them
+   with the serial call). One work item per level would leave all but one core idle. */
 typedef struct {
-    lib_maps *L;
-    pf_vmf_scale_desc d;
-    int status[NSIZE];
-} scale_level_job;
+    pf_vmf_scale_desc r; /* the resolved description (pfi_vmf_scale_resolve) */
+    int level[NSIZE];    /* per scaled level (index si - sc_min_level): */
+    long long P[NSIZE];  /*   training patches, */
+    long long first[NSIZE]; /*   its first work item, */
+    pf_real *f_eff[NSIZE];  /*   f_eff of its patches (P cnt) and f_lobes per pyramid (NSCALE P cnt), */
+    pf_real *f_l[NSIZE];
+    int status[NSIZE];      /*   and the first failed patch's error (PF_OK: none) */
+    int patch_rc[NSIZE * VS_TRAIN]; /* per work item */
+    int nlevels;
+    long long cnt, work_len;
+} scale_fit_job;
 
-static void scale_level_item(void *ctx, long long item)
+/* work item i: one training patch's samples (pf_vmf_scale_fit_level's loop body) */
+static void scale_patch_item(void *ctx, long long i)
 {
-    scale_level_job *J = (scale_level_job *)ctx;
-    lib_maps *L = J->L;
-    const int si = sc_max_level - (int)item; /* the largest patches first */
-    const long long len = pf_vmf_scale_scratch_size(&J->d, si);
-    pf_real *scratch, *s_out[NSCALE], *t_level[NSCALE];
-    int j;
-    if (len <= 0) { J->status[si] = PF_ERR_ARG; return; }
-    scratch = (pf_real *)pfb_xcalloc((size_t)len, sizeof(pf_real));
-    for (j = 0; j < NSCALE; ++j) {
-        s_out[j] = L->sc_S[si][j];
-        t_level[j] = L->sc_T[j] + pf_vmf_pyramid_level_offset(L->w, L->h, si);
+    scale_fit_job *J = (scale_fit_job *)ctx;
+    const pf_vmf_scale_desc *r = &J->r;
+    int li = 0;
+    long long p, c, gw, gh;
+    pf_real *work;
+    while (li + 1 < J->nlevels && i >= J->first[li + 1]) ++li;
+    p = i - J->first[li];
+    gw = r->w >> J->level[li];
+    gh = r->h >> J->level[li];
+    c = (p * gw * gh) / J->P[li];
+    work = (pf_real *)pfb_xcalloc((size_t)J->work_len, sizeof(pf_real));
+    J->patch_rc[i] = pfi_vmf_scale_texel_samples(r, J->level[li], c % gw, c / gw, J->f_eff[li] + p * J->cnt,
+                                                 J->f_l[li] + p * J->cnt, J->P[li] * J->cnt, work);
+    free(work);
+}
+
+/* one level's factorization per lobe count from its patches' samples (the rest of
+   pf_vmf_scale_fit_level, same calls, same order) */
+static int scale_factor_level(lib_maps *L, const scale_fit_job *J, int li)
+{
+    const pf_vmf_scale_desc *r = &J->r;
+    const int si = J->level[li];
+    const long long P = J->P[li], cnt = J->cnt, cells = pf_vmf_scale_cell_count(r->nt, r->np);
+    const long long gw = r->w >> si, gh = r->h >> si, off = pf_vmf_pyramid_level_offset(L->w, L->h, si);
+    pf_real *fac = (pf_real *)pfb_xcalloc((size_t)(2 * P * cells + P), sizeof(pf_real)), *t = fac + 2 * P * cells;
+    long long p;
+    int k, rc = PF_OK;
+    for (k = 0; k < NSCALE && rc == PF_OK; ++k) {
+        const pf_real *fk = J->f_l[li] + k * P * cnt;
+        rc = pfi_vmf_scale_factor(J->f_eff[li], fk, (int)P, r->nt, r->np, r->rounds, r->shrink, t, L->sc_S[si][k], fac,
+                                  &L->sc_prior[si][k], 0);
+        if (rc == PF_OK)
+            for (p = 0; p < P; ++p)
+                L->sc_T[k][off + (p * gw * gh) / P] =
+                    pfi_vmf_scale_t(J->f_eff[li] + p * cnt, fk + p * cnt, r->nt, r->np, L->sc_S[si][k],
+                                    L->sc_prior[si][k]);
     }
-    J->status[si] = pf_vmf_scale_fit_level(&J->d, si, s_out, L->sc_prior[si], t_level, scratch, len);
+    free(fac);
+    return rc;
+}
+
+/* MICROSURFACE_CHECK=1: the serial pf_vmf_scale_fit_level of level si, compared bit for bit */
+static void scale_check_level(const lib_maps *L, const pf_vmf_scale_desc *d, int si)
+{
+    const long long len = pf_vmf_scale_scratch_size(d, si), lt = (long long)(L->w >> si) * (L->h >> si);
+    const long long off = pf_vmf_pyramid_level_offset(L->w, L->h, si);
+    pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)len, sizeof(pf_real));
+    pf_real S[NSCALE][VS_CELLS], prior[NSCALE], *s_out[NSCALE], *t_level[NSCALE];
+    long long i;
+    int j;
+    for (j = 0; j < NSCALE; ++j) {
+        s_out[j] = S[j];
+        t_level[j] = (pf_real *)pfb_xcalloc((size_t)lt, sizeof(pf_real));
+        for (i = 0; i < lt; ++i) t_level[j][i] = (pf_real)NAN; /* untouched texels: the same NaNs as sc_T's */
+    }
+    if (pf_vmf_scale_fit_level(d, si, s_out, prior, t_level, scratch, len) != PF_OK)
+        fatal("the scaling function's fit failed");
+    check_same(S, L->sc_S[si], sizeof S, "the scaling function's S (parallel patches)");
+    check_same(prior, L->sc_prior[si], sizeof prior, "the scaling function's prior (parallel patches)");
+    for (j = 0; j < NSCALE; ++j) {
+        check_same(t_level[j], L->sc_T[j] + off, (size_t)lt * sizeof(pf_real),
+                   "the training patches' T (parallel patches)");
+        free(t_level[j]);
+    }
     free(scratch);
 }
 
 static void scale_build(lib_maps *L, const char *kind_name)
 {
-    scale_level_job J;
-    long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i;
-    int si, j;
+    scale_fit_job J;
+    pf_vmf_scale_desc d = scale_desc(L);
+    long long tc = pf_vmf_pyramid_texel_count(L->w, L->h), i, items = 0;
+    int si, j, li;
     double t0 = pfb_now_ns();
+    struct timespec c0, c1;
     char label[96];
-    J.L = L;
-    J.d = scale_desc(L);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c0);
+    memset(&J, 0, sizeof J);
     for (j = 0; j < NSCALE; ++j) {
         L->sc_T[j] = (pf_real *)pfb_xcalloc((size_t)tc, sizeof(pf_real));
         for (i = 0; i < tc; ++i) L->sc_T[j][i] = (pf_real)NAN;
     }
-    for (si = 0; si < NSIZE; ++si) J.status[si] = PF_OK;
-    snprintf(label, sizeof label, "%s: scaling function fit", kind_name);
-    pfb_parallel_for(sc_max_level - sc_min_level + 1, scale_level_item, &J, label);
+    if (!pfi_vmf_scale_resolve(&d, &J.r)) fatal("the scaling function's fit failed");
+    J.cnt = pf_vmf_scale_sample_count(J.r.nt, J.r.np);
+    J.nlevels = sc_max_level - sc_min_level + 1;
+    J.work_len = 0;
+    for (li = 0; li < J.nlevels; ++li) {
+        const int s = sc_max_level - li; /* the largest patches first */
+        const long long gp = (long long)(L->w >> s) * (L->h >> s), n = 1LL << s;
+        /* pfi_vmf_scale_texel_samples' work: normals, a junk f_lobes, the visibility bytes */
+        const long long wl = 3 * n * n + J.cnt +
+                             (pf_vmf_scale_vis_bytes(J.r.nt, J.r.np, (int)n) + (long long)sizeof(pf_real) - 1) /
+                                 (long long)sizeof(pf_real);
+        if (pfi_vmf_scale_check(&J.r, s) != PF_OK || pf_vmf_scale_scratch_size(&J.r, s) <= 0)
+            fatal("the scaling function's fit failed");
+        J.level[li] = s;
+        J.P[li] = gp < J.r.train_patches ? gp : J.r.train_patches;
+        if (J.P[li] > VS_TRAIN) fatal("the scaling function's fit: more training patches than VS_TRAIN");
+        J.first[li] = items;
+        items += J.P[li];
+        J.f_eff[li] = (pf_real *)pfb_xcalloc((size_t)((1 + NSCALE) * J.P[li] * J.cnt), sizeof(pf_real));
+        J.f_l[li] = J.f_eff[li] + J.P[li] * J.cnt;
+        J.work_len = wl > J.work_len ? wl : J.work_len;
+    }
+    snprintf(label, sizeof label, "%s: scaling function fit (training patches)", kind_name);
+    pfb_parallel_for(items, scale_patch_item, &J, label);
+    /* in level order after the loop: the first failed patch, else the factorizations */
+    for (li = 0; li < J.nlevels; ++li) {
+        J.status[li] = PF_OK;
+        for (i = J.first[li]; i < J.first[li] + J.P[li] && J.status[li] == PF_OK; ++i) J.status[li] = J.patch_rc[i];
+        if (J.status[li] == PF_OK) J.status[li] = scale_factor_level(L, &J, li);
+        if (J.status[li] != PF_OK) fatal("the scaling function's fit failed");
+        free(J.f_eff[li]);
+    }
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &c1);
+    L->sc_seconds = (pfb_now_ns() - t0) * 1e-9;
     L->sc_patches = 0;
     for (si = sc_min_level; si <= sc_max_level; ++si) {
         const long long gp = (long long)(L->w >> si) * (L->h >> si);
-        if (J.status[si] != PF_OK) fatal("the scaling function's fit failed");
         L->sc_patches += gp < VS_TRAIN ? (int)gp : VS_TRAIN;
     }
-    L->sc_seconds = (pfb_now_ns() - t0) * 1e-9;
-    fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s\n",
-            VS_NT, VS_NT, VS_NP, VS_TRAIN, L->sc_seconds);
+    fprintf(stderr, "microsurface: scaling function S (%d x %d x %d nodes, %d patches per level, m = 4, 8): %.2f s"
+                    " (CPU %.2f s, %d threads)\n",
+            VS_NT, VS_NT, VS_NP, VS_TRAIN, L->sc_seconds,
+            (double)(c1.tv_sec - c0.tv_sec) + 1e-9 * (double)(c1.tv_nsec - c0.tv_nsec), pfb_thread_count());
+    if (check_on())
+        for (si = sc_min_level; si <= sc_max_level; ++si) scale_check_level(L, &d, si);
 }
 
 /* the id of footprint (x0, y0, n)'s texel in the level-log2(n) T table */
