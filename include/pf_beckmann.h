@@ -530,12 +530,13 @@ PF_DEF pf_real pfi_beckmann_mass(pf_real lo, pf_real hi, pf_real m, pf_real isd)
 PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s0, pf_real base_var)
 {
     pf_slope_stats s = pfi_beckmann_floor(s0);
-    pf_real vb = pf_max(base_var, PF_R(0.0));
+    /* NaN and negative: 0 (no base lobe, result 1); capped as the covariance is */
+    pf_real vb = pf_clamp_nan_lo(base_var, PF_R(0.0), PFI_BECKMANN_VAR_CEIL);
     pf_real det = pfi_beckmann_det(s);
     /* base_var S^-1 (adjugate over det) */
     pf_real bx = vb * s.var_y / det, by = vb * s.var_x / det, bc = -vb * s.cov_xy / det;
     /* the half vector's slope, and its offset from the mean */
-    pf_real hz = pf_max(wo.z + wi.z, PF_REAL_MIN);
+    pf_real hz = pf_max(wo.z + wi.z, PF_R(1.0e-6)); /* both directions above the macrosurface: > 0 */
     pf_real hx = -(wo.x + wi.x) / hz, hy = -(wo.y + wi.y) / hz;
     pf_real dx = hx - s.mean_x, dy = hy - s.mean_y;
     /* posterior mean m = x_h - base_var S^-1 (x_h - mean); covariance P = base_var (I - base_var S^-1) */
@@ -557,7 +558,7 @@ PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
     /* the outer interval: a_o > 0, and where a_i > 0 keeps some mass (the conditional mean
        above -4 conditional deviations): at a mirror light a_o and a_i are nearly opposite
        (beta < 0) and both are positive in a narrow band only, which the nodes must sample */
-    pf_real t = (ma_i + PF_R(4.0) * sd_c) / pf_max(PF_FABS(beta), PF_R(1.0e-30));
+    pf_real t = pf_min(pf_max((ma_i + PF_R(4.0) * sd_c) / pf_max(PF_FABS(beta), PF_R(1.0e-6)), PF_R(-1.0e30)), PF_R(1.0e30));
     pf_real lo = beta > PF_R(0.0) ? pf_max(ma_o - t, PF_R(0.0)) : PF_R(0.0);
     pf_real hi = beta < PF_R(0.0) ? pf_max(ma_o + t, lo) : ma_o + PF_R(64.0) * sd_o;
     pf_real sum = PF_R(0.0), wsum = PF_R(0.0);
