@@ -1,6 +1,6 @@
 /* bench/grazing_diag.c - where the filtered specular's error at grazing views comes from
    (issue 28, item 2). Not part of `make bench`: a diagnostic, built and run by hand:
-       cc -std=c99 -O2 -DPF_DOUBLE -Ibench -Iinclude -Itests/reference bench/grazing_diag.c -lm -o /tmp/gd
+       cc -std=c99 -O2 -DPF_DOUBLE [-DQQ=80] -Ibench -Iinclude -Itests/reference bench/grazing_diag.c -lm -o /tmp/gd
        /tmp/gd gaussian_fine 85
    For one kind, 64 x 64 footprints (every one of the 512 x 512 map), one view angle at the
    bench's two azimuths (10 and 100 degrees), the mirror light of each footprint (the specular
@@ -11,7 +11,9 @@
        oracle = F [mean_t D_t(h) G_t] G(s0) / (4 A)  s0 = footprint stats, G_t the base lobe's own
    then swaps one factor of LEADR at a time for the oracle's and prints each hybrid's rel_l2 to
    the reference (same cull as the bench: A > CULL_AREA wo.z), so the factor that carries the
-   error is the one whose swap removes it. */
+   error is the one whose swap removes it. QQ: the rule of the posterior average of G_t (80:
+   80 x 80 midpoint, 5 or 4 or 3: Gauss-Hermite, 1: Smith G2 of the posterior widened by the
+   base lobe); the last row is the library's pf_leadr_specular_base. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -23,7 +25,7 @@
 #define N 64
 #define W 512
 #define NL 8
-#define NH 12
+#define NH 13
 #ifndef QQ
 #define QQ 80
 #endif
@@ -41,7 +43,8 @@ static const char *hname[NH] = {
     "leadr, Smith P_o -> histogram front area",   /* 8 */
     "oracle, G -> reference's visible fraction",   /* 9 */
     "leadr, G(s) -> G(s0) x <G_t>",                /* 10 */
-    "leadr x posterior <G_t>, 80 x 80 midpoint",  /* 11 */
+    "leadr x posterior <G_t>, QQ rule",           /* 11 */
+    "pf_leadr_specular_base (library)",            /* 12 */
 };
 
 /* Smith Lambda of the base lobe (deviation BASE_SIGMA) for a facet whose projected area toward
@@ -217,6 +220,7 @@ int main(int argc, char **argv)
                     hyb[9] = nov > 0 ? nov * (ref / nov) : 0;
                     hyb[10] = lead * gs0 / gs * gt;
                     hyb[11] = lead * post_gt(wo, wi, s0, hs, QQ);
+                    hyb[12] = pf_leadr_specular_base(vo, vi, s, BASE_SIGMA * BASE_SIGMA, 1.0);
                     for (k = 0; k < NH; ++k) se[k] += (hyb[k] - ref) * (hyb[k] - ref);
                     sr += ref * ref;
                     nsamp++;

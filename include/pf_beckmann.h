@@ -524,7 +524,7 @@ PF_DEF pf_real pfi_beckmann_gl_pdf_weight(int k, pf_real a, pf_real m, pf_real i
 }
 PF_DEF pf_real pfi_beckmann_mass(pf_real lo, pf_real hi, pf_real m, pf_real isd)
 {
-    const pf_real r = PF_R(0.707106781186547524) * isd;
+    pf_real r = PF_R(0.707106781186547524) * isd;
     return pf_max(PF_R(0.5) * (pf_erfc((lo - m) * r) - pf_erfc((hi - m) * r)), PF_R(0.0));
 }
 PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s0, pf_real base_var)
