@@ -77,6 +77,13 @@
                to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_fit_level, a prior toward 1),
                T per pyramid texel (pf_vmf_scale_texel_t; see "scaling function"
                below); vmf_m8_scaled_s = S alone (T = 1).
+               Grazing views (issue 28, item 2): leadr_base = pf_leadr_specular_base (LEADR
+               times pf_beckmann_base_masking: the base lobe's own masking-shadowing averaged
+               over the reflecting texels' slopes, which eq. 17's one Smith G of the summed
+               Gaussian misses; bench/grazing_diag.c has the factor-by-factor diagnosis);
+               vmf_m16_base = vmf_m16 with each lobe's NDF term times that factor for the
+               lobe's own slope statistics (pf_vmf_lobe_slope_stats), vmf_m16_base_fp = vmf_m16
+               times one factor of the footprint's slope moments.
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,

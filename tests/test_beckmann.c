@@ -1289,8 +1289,8 @@ static void test_base_masking_quadrature(void)
         /* the library's inputs, rounded to pf_real; the reference sees the same directions */
         {
             pf_vec3 o = vec3_of(wo[0], wo[1], wo[2]), i = vec3_of(wi[0], wi[1], wi[2]);
-            wo[0] = o.x; wo[1] = o.y; wo[2] = o.z;
-            wi[0] = i.x; wi[1] = i.y; wi[2] = i.z;
+            wo[0] = (long double)o.x; wo[1] = (long double)o.y; wo[2] = (long double)o.z;
+            wi[0] = (long double)i.x; wi[1] = (long double)i.y; wi[2] = (long double)i.z;
             got = pf_beckmann_base_masking(o, i, bcfg_stats(k), (pf_real)vb);
         }
         ref = base_masking_def(k, vb, wo, wi);
