@@ -83,7 +83,8 @@
                Gaussian misses; bench/grazing_diag.c has the factor-by-factor diagnosis);
                vmf_m16_base = vmf_m16 with each lobe's NDF term times that factor for the
                lobe's own slope statistics (pf_vmf_lobe_slope_stats), vmf_m16_base_fp = vmf_m16
-               times one factor of the footprint's slope moments.
+               times one factor of the footprint's slope moments (fetched), vmf_m16_base_sum =
+               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
@@ -898,8 +899,14 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
     const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
     pf_vmf_sum sum = pf_vmf_sum_zero();
     int j;
-    if (!per_lobe)
+    if (per_lobe == 0)
         return vmf_method(c, p, 0, -1, 0) * (double)pf_beckmann_base_masking(c->wo, c->wi, fetch_slope_spec(c), bv);
+    if (per_lobe == 2) { /* the factor of the mixture's own moments: no fetch beyond the lobes */
+        for (j = 0; j < m; ++j)
+            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
+        return (double)(pf_vmf_sum_specular(sum, c->wo, c->wi, PF_R(F0)) *
+                        pf_beckmann_base_masking(c->wo, c->wi, pf_vmf_sum_stats(sum), bv));
+    }
     for (j = 0; j < m; ++j) {
         pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
         pf_real before = sum.ndf;
@@ -912,6 +919,7 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
 }
 static double m_vmf_m16_base(const mctx *c) { return vmf_base_method(c, V16, 1); }
 static double m_vmf_m16_base_fp(const mctx *c) { return vmf_base_method(c, V16, 0); }
+static double m_vmf_m16_base_sum(const mctx *c) { return vmf_base_method(c, V16, 2); }
 /* ---- end of the grazing-view block */
 /* diffuse */
 static double gg_diffuse(const mctx *c, int nodes, int n)
@@ -1027,6 +1035,7 @@ static const method methods[] = {
     { TB(T_SPEC), "leadr_base", m_leadr_base, "slope moments", 0 },
     { TB(T_SPEC), "vmf_m16_base", m_vmf_m16_base, "16 vMF lobe texels", 0 },
     { TB(T_SPEC), "vmf_m16_base_fp", m_vmf_m16_base_fp, "16 vMF lobe texels, slope moments", 0 },
+    { TB(T_SPEC), "vmf_m16_base_sum", m_vmf_m16_base_sum, "16 vMF lobe texels", 0 },
     { TB(T_DIFF), "leadr_gg_matched3", m_leadr_gg_matched3, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_matched5", m_leadr_gg_matched5, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_hermite3", m_leadr_gg_hermite3, "slope moments", 0 },
