@@ -483,7 +483,8 @@ PF_DEF pf_real pf_leadr_specular_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats 
    vector's slope x_h seen through the base lobe N(x_h; s, base_var I) - a Gaussian of
        mean   x_h - base_var S^-1 (x_h - mean),   covariance  base_var (I - base_var S^-1),
    S = S0 + base_var I the covariance the caller already has (s: the statistics WITH the base
-   variance, as pf_leadr_specular takes them). a(w_o; s) and a(w_i; s) are then jointly normal
+   variance, as pf_leadr_specular takes them; S - base_var I is clamped to positive
+   semidefinite, so statistics below the base variance are read as one slope). a(w_o; s) and a(w_i; s) are then jointly normal
    and E[G2_b] is a 4 x 4 product rule over them restricted to both areas positive (a_o, then
    a_i given a_o: Gauss-Legendre on each positive part, times its probability from erfc; 16
    nodes, each one G1 of pf_smith.h, pf_smith_joint and an exp; a Gauss-Hermite rule missed the
@@ -532,16 +533,26 @@ PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
     pf_slope_stats s = pfi_beckmann_floor(s0);
     /* NaN and negative: 0 (no base lobe, result 1); capped as the covariance is */
     pf_real vb = pf_clamp_nan_lo(base_var, PF_R(0.0), PFI_BECKMANN_VAR_CEIL);
-    pf_real det = pfi_beckmann_det(s);
+    /* the footprint's own covariance S0 = S - base_var I, clamped to positive semidefinite
+       (statistics below the base variance are read as a single slope), and S = S0 + base_var I
+       rebuilt from it: det >= base_var^2, so the posterior below is one for any input */
+    pf_real v0x = pf_max(s.var_x - vb, PF_R(0.0)), v0y = pf_max(s.var_y - vb, PF_R(0.0));
+    pf_real cm = PF_SQRT(v0x * v0y), c0 = pf_min(pf_max(s.cov_xy, -cm), cm);
+    pf_real sxx = v0x + vb, syy = v0y + vb;
+    pf_real det = pf_max(sxx * syy - c0 * c0, PF_REAL_MIN);
     /* base_var S^-1 (adjugate over det) */
-    pf_real bx = vb * s.var_y / det, by = vb * s.var_x / det, bc = -vb * s.cov_xy / det;
+    pf_real bx = vb * syy / det, by = vb * sxx / det, bc = -vb * c0 / det;
     /* the half vector's slope, and its offset from the mean */
     pf_real hz = pf_max(wo.z + wi.z, PF_R(1.0e-6)); /* both directions above the macrosurface: > 0 */
     pf_real hx = -(wo.x + wi.x) / hz, hy = -(wo.y + wi.y) / hz;
     pf_real dx = hx - s.mean_x, dy = hy - s.mean_y;
     /* posterior mean m = x_h - base_var S^-1 (x_h - mean); covariance P = base_var (I - base_var S^-1) */
     pf_real mx = hx - (bx * dx + bc * dy), my = hy - (bc * dx + by * dy);
-    pf_real pxx = vb * (PF_R(1.0) - bx), pyy = vb * (PF_R(1.0) - by), pxy = -vb * bc;
+    /* P = base_var S^-1 S0 = base_var / det [det0 + base_var v0x, base_var c0; base_var c0,
+       det0 + base_var v0y] (det0 = det S0): no cancellation as S0 nears singular, where
+       base_var (I - base_var S^-1) lost all its digits in float */
+    pf_real det0 = pf_max(v0x * v0y - c0 * c0, PF_R(0.0)), f = vb / det;
+    pf_real pxx = f * (det0 + vb * v0x), pyy = f * (det0 + vb * v0y), pxy = f * (vb * c0);
     /* the facets' areas toward wo and wi: means, variances, covariance */
     pf_real ma_o = wo.z - mx * wo.x - my * wo.y, ma_i = wi.z - mx * wi.x - my * wi.y;
     pf_real vo = pf_max(wo.x * (wo.x * pxx + PF_R(2.0) * wo.y * pxy) + wo.y * (wo.y * pyy), PF_R(0.0));

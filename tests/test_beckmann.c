@@ -1310,6 +1310,14 @@ static void test_base_masking_quadrature(void)
     PF_CHECK(pf_beckmann_base_masking(pf_vec3_make(PF_R(0.9), PF_R(0.0), PF_R(0.1)), pf_vec3_make(PF_R(-0.9), PF_R(0.0), PF_R(0.1)),
                                       pf_slope_stats_make(PF_R(0.0), PF_R(0.0), PF_R(0.1), PF_R(0.1), PF_R(0.0)), PF_R(0.0)) == PF_R(1.0),
              "base_var 0 must give 1");
+    /* statistics below the base variance (inconsistent input) are read as one slope: the
+       same value as S = base_var I exactly */
+    {
+        pf_vec3 o = pf_vec3_normalize(pf_vec3_make(PF_R(0.6), PF_R(-0.55), PF_R(0.58))), i = pf_vec3_normalize(pf_vec3_make(PF_R(-0.99), PF_R(-0.02), PF_R(0.05)));
+        pf_real a = pf_beckmann_base_masking(o, i, pf_slope_stats_make(PF_R(0.18), PF_R(0.2), PF_R(0.003), PF_R(0.004), PF_R(0.0034)), PF_R(0.01));
+        pf_real b = pf_beckmann_base_masking(o, i, pf_slope_stats_make(PF_R(0.18), PF_R(0.2), PF_R(0.01), PF_R(0.01), PF_R(0.0)), PF_R(0.01));
+        PF_CHECK(a == b && a >= PF_R(0.0) && a <= PF_R(1.0), "statistics below the base variance: %g vs %g", (double)a, (double)b);
+    }
     /* the evaluator is pf_leadr_specular times the factor */
     {
         pf_vec3 o = pf_vec3_normalize(pf_vec3_make(PF_R(0.99), PF_R(0.0), PF_R(0.0871557))), i = pf_vec3_make(-o.x, -o.y, o.z);
