@@ -2284,12 +2284,14 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    at -1, 2e-4 at -1.5, 2e-3 at -2, 3% at -2.5, 50% at -3 (double: <= 7e-11 down to -3). The
    grazing views of a flat macrosurface sit at nu > -0.5 (bench/pictures.c). Exact at any nu,
    for one exp and a branch more: P_o = max(A_o, 0) + sqrt(2 var_o) |nu| pf_lambda_beckmann(|nu|). */
-PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
+/* (sg: the statistics whose covariance the masking-shadowing G uses; s itself in eq. 17, the
+   footprint's own without the base variance in pf_leadr_specular_base) */
+PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_slope_stats sg, pf_real f0,
                                   int masking_only)
 {
     pf_real area_o = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
     pf_real area_i = wi.z - s.mean_x * wi.x - s.mean_y * wi.y;
-    pf_real vx2 = PF_R(2.0) * s.var_x, vy2 = PF_R(2.0) * s.var_y, c4 = PF_R(4.0) * s.cov_xy;
+    pf_real vx2 = PF_R(2.0) * sg.var_x, vy2 = PF_R(2.0) * sg.var_y, c4 = PF_R(4.0) * sg.cov_xy;
     /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
        (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
        tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
@@ -2331,13 +2333,13 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
 /* LEADR specular with joint masking-shadowing (eq. 17). See pfi_leadr_specular. */
 PF_DEF pf_real pf_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0)
 {
-    return pfi_leadr_specular(wo, wi, s, f0, 0);
+    return pfi_leadr_specular(wo, wi, s, s, f0, 0);
 }
 
 /* LEADR specular with masking only, 1/(1 + Lambda_o) (LEADR sec. 6). See pfi_leadr_specular. */
 PF_DEF pf_real pf_leadr_specular_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0)
 {
-    return pfi_leadr_specular(wo, wi, s, f0, 1);
+    return pfi_leadr_specular(wo, wi, s, s, f0, 1);
 }
 
 /* ---------------------------------------------------------------- the base lobe's own masking
@@ -2472,12 +2474,24 @@ PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
     return vb > PF_R(0.0) ? pf_min(pf_max(sum, PF_R(0.0)), PF_R(1.0)) : PF_R(1.0);
 }
 
-/* LEADR specular (eq. 17) times the base lobe's own masking-shadowing at the reflecting facets
-   (pf_beckmann_base_masking): s the footprint's statistics with base_var added, as for
-   pf_leadr_specular. For grazing views (see above); 16 more G1 pairs than pf_leadr_specular. */
+/* LEADR specular (eq. 17) with the two scales' visibility kept apart: Smith's G of the
+   footprint's own slopes (the covariance of s minus base_var I, clamped to positive
+   semidefinite as in pf_beckmann_base_masking) times the base lobe's own masking-shadowing at
+   the reflecting facets (pf_beckmann_base_masking), D and the projected area as in
+   pf_leadr_specular. s: the footprint's statistics with base_var added, as for
+   pf_leadr_specular. G of s itself would count the base lobe's masking twice (a one-texel
+   footprint: G2_b squared). For grazing views (see above); 16 more G1 pairs than
+   pf_leadr_specular. */
 PF_DEF pf_real pf_leadr_specular_base(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real base_var, pf_real f0)
 {
-    pf_real v = pf_leadr_specular(wo, wi, s, f0);
+    pf_real vb = pf_clamp_nan_lo(base_var, PF_R(0.0), PFI_BECKMANN_VAR_CEIL);
+    pf_slope_stats g = s;
+    pf_real cm, v;
+    g.var_x = pf_max(s.var_x - vb, PF_R(0.0));
+    g.var_y = pf_max(s.var_y - vb, PF_R(0.0));
+    cm = PF_SQRT(g.var_x * g.var_y);
+    g.cov_xy = pf_min(pf_max(s.cov_xy, -cm), cm);
+    v = pfi_leadr_specular(wo, wi, s, g, f0, 0);
     return v > PF_R(0.0) ? v * pf_beckmann_base_masking(wo, wi, s, base_var) : PF_R(0.0);
 }
 

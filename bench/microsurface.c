@@ -178,7 +178,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define MAX_TASK_METHODS 24 /* methods of one task at most (the registry is checked against it) */
+#define MAX_TASK_METHODS 28 /* methods of one task at most (the registry is checked against it) */
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
