@@ -22,7 +22,9 @@
 #include "pf_microsurface.h"
 
 #define BASE_SIGMA 0.1
+#ifndef N
 #define N 64
+#endif
 #define W 512
 #define NL 8
 #define NH 13
