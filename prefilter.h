@@ -2402,10 +2402,13 @@ PF_DEF pf_real pfi_beckmann_gl_pdf_weight(int k, pf_real a, pf_real m, pf_real i
     pf_real z = (a - m) * isd;
     return pfi_beckmann_gl_weight(k) * PF_EXP(-PF_R(0.5) * pf_min(z * z, PF_R(64.0)));
 }
-PF_DEF pf_real pfi_beckmann_mass(pf_real lo, pf_real hi, pf_real m, pf_real isd)
+PF_DEF pf_real pfi_beckmann_mass(pf_real lo, pf_real hi, int bounded, pf_real m, pf_real isd)
 {
     pf_real r = PF_R(0.707106781186547524) * isd;
-    return pf_max(PF_R(0.5) * (pf_erfc((lo - m) * r) - pf_erfc((hi - m) * r)), PF_R(0.0));
+    /* unbounded above: no upper term (m + 64 sd rounds to m in float when sd is at its floor,
+       and the mass came out 1/2) */
+    pf_real up = bounded != 0 ? pf_erfc((hi - m) * r) : PF_R(0.0);
+    return pf_max(PF_R(0.5) * (pf_erfc((lo - m) * r) - up), PF_R(0.0));
 }
 PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s0, pf_real base_var)
 {
@@ -2470,7 +2473,7 @@ PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
         sum += w_o * (row / pf_max(rsum, PF_REAL_MIN)) * PF_R(0.5) * pf_erfc(-mc * isd_c * PF_R(0.707106781186547524));
         wsum += w_o;
     }
-    sum = (sum / pf_max(wsum, PF_REAL_MIN)) * pfi_beckmann_mass(lo, hi, ma_o, isd_o);
+    sum = (sum / pf_max(wsum, PF_REAL_MIN)) * pfi_beckmann_mass(lo, hi, beta < PF_R(0.0) ? 1 : 0, ma_o, isd_o);
     return vb > PF_R(0.0) ? pf_min(pf_max(sum, PF_R(0.0)), PF_R(1.0)) : PF_R(1.0);
 }
 

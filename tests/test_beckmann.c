@@ -1329,6 +1329,15 @@ static void test_base_masking_quadrature(void)
         pf_real g = pf_beckmann_masking_shadowing(o, i, st);
         PF_CHECK(a > PF_R(0.0) && fabsl((long double)a / (long double)b - 1.0L) <= 1e-3L && g < PF_R(0.9),
                  "one texel: pf_leadr_specular_base %g vs pf_leadr_specular %g (G %g)", (double)a, (double)b, (double)g);
+        /* a steep texel (a crater's wall): the view's area ~2.3, where a deviation at its floor
+           vanished in float next to it and the mass came out 1/2 */
+        o = pf_vec3_make(PF_R(0.852868557), PF_R(0.150383726), PF_R(0.5));
+        i = pf_vec3_make(PF_R(0.238368616), PF_R(-0.925060809), PF_R(0.295707524));
+        st = pf_slope_stats_make(PF_R(-2.06218243), PF_R(-0.0903292298), PF_R(0.01), PF_R(0.01), PF_R(0.0));
+        a = pf_leadr_specular_base(o, i, st, PF_R(0.01), PF_R(1.0));
+        b = pf_leadr_specular(o, i, st, PF_R(1.0));
+        PF_CHECK(a > PF_R(0.0) && fabsl((long double)a / (long double)b - 1.0L) <= 1e-3L,
+                 "one steep texel: pf_leadr_specular_base %g vs pf_leadr_specular %g", (double)a, (double)b);
     }
 }
 
