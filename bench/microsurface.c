@@ -77,6 +77,14 @@
                to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_fit_level, a prior toward 1),
                T per pyramid texel (pf_vmf_scale_texel_t; see "scaling function"
                below); vmf_m8_scaled_s = S alone (T = 1).
+               Grazing views (issue 28, item 2): leadr_base = pf_leadr_specular_base (LEADR
+               times pf_beckmann_base_masking: the base lobe's own masking-shadowing averaged
+               over the reflecting texels' slopes, which eq. 17's one Smith G of the summed
+               Gaussian misses; bench/grazing_diag.c has the factor-by-factor diagnosis);
+               vmf_m16_base = vmf_m16 with each lobe's NDF term times that factor for the
+               lobe's own slope statistics (pf_vmf_lobe_slope_stats), vmf_m16_base_fp = vmf_m16
+               times one factor of the footprint's slope moments (fetched), vmf_m16_base_sum =
+               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats).
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
@@ -170,7 +178,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define MAX_TASK_METHODS 24 /* methods of one task at most (the registry is checked against it) */
+#define MAX_TASK_METHODS 28 /* methods of one task at most (the registry is checked against it) */
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
@@ -973,6 +981,46 @@ static double vmf_horizon_method(const mctx *c, int p, int lod)
 }
 static double m_vmf_m16_horizon_n32(const mctx *c) { return vmf_horizon_method(c, V16, 0); }
 static double m_vmf_m16_horizon_lod_n32(const mctx *c) { return vmf_horizon_method(c, V16, 1); }
+/* ---- grazing views (issue 28, item 2): the base lobe's own masking-shadowing at the
+   reflecting facets (pf_beckmann_base_masking). leadr_base = pf_leadr_specular_base;
+   vmf_m16_base = vmf_m16 with each lobe's NDF term times the factor of that lobe's slope
+   statistics (the caller-applied per-lobe form); vmf_m16_base_fp = vmf_m16 times one factor of
+   the footprint's slope moments (one evaluation per pixel) */
+static double m_leadr_base(const mctx *c)
+{
+    return (double)pf_leadr_specular_base(c->wo, c->wi, fetch_slope_spec(c), PF_R(BASE_SIGMA * BASE_SIGMA), PF_R(F0));
+}
+static double vmf_base_method(const mctx *c, int p, int per_lobe)
+{
+    const lib_maps *L = c->L;
+    const int m = vmf_lobes[p], W = L->w, H = L->h;
+    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
+    const pf_real *tx = L->vmf[p] + id * 4 * m;
+    const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int j;
+    if (per_lobe == 0)
+        return vmf_method(c, p, 0, -1, 0) * (double)pf_beckmann_base_masking(c->wo, c->wi, fetch_slope_spec(c), bv);
+    if (per_lobe == 2) { /* the factor of the mixture's own moments: no fetch beyond the lobes */
+        for (j = 0; j < m; ++j)
+            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
+        return (double)(pf_vmf_sum_specular(sum, c->wo, c->wi, PF_R(F0)) *
+                        pf_beckmann_base_masking(c->wo, c->wi, pf_vmf_sum_stats(sum), bv));
+    }
+    for (j = 0; j < m; ++j) {
+        pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
+        pf_real before = sum.ndf;
+        if (!(lobe.amp > PF_R(0.0))) continue; /* padding */
+        sum = pf_vmf_sum_add(sum, lobe, c->wo, c->wi, bv);
+        sum.ndf = before + (sum.ndf - before) *
+                               pf_beckmann_base_masking(c->wo, c->wi, pf_vmf_lobe_slope_stats(lobe.mu, lobe.kappa, bv), bv);
+    }
+    return (double)pf_vmf_sum_specular(sum, c->wo, c->wi, PF_R(F0));
+}
+static double m_vmf_m16_base(const mctx *c) { return vmf_base_method(c, V16, 1); }
+static double m_vmf_m16_base_fp(const mctx *c) { return vmf_base_method(c, V16, 0); }
+static double m_vmf_m16_base_sum(const mctx *c) { return vmf_base_method(c, V16, 2); }
+/* ---- end of the grazing-view block */
 /* diffuse */
 static double gg_diffuse(const mctx *c, int nodes, int n)
 {
@@ -1083,6 +1131,11 @@ static const method methods[] = {
     { TB(T_SPEC), "vmf_m16_horizon_n32", m_vmf_m16_horizon_n32, "16 vMF lobe texels, slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
     { TB(T_SPEC), "vmf_m16_horizon_lod_n32", m_vmf_m16_horizon_lod_n32,
       "16 vMF lobe texels, slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
+    /* grazing views (issue 28, item 2) */
+    { TB(T_SPEC), "leadr_base", m_leadr_base, "slope moments", 0 },
+    { TB(T_SPEC), "vmf_m16_base", m_vmf_m16_base, "16 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m16_base_fp", m_vmf_m16_base_fp, "16 vMF lobe texels, slope moments", 0 },
+    { TB(T_SPEC), "vmf_m16_base_sum", m_vmf_m16_base_sum, "16 vMF lobe texels", 0 },
     { TB(T_DIFF), "leadr_gg_matched3", m_leadr_gg_matched3, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_matched5", m_leadr_gg_matched5, "slope moments", 0 },
     { TB(T_DIFF), "leadr_gg_hermite3", m_leadr_gg_hermite3, "slope moments", 0 },

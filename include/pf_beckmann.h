@@ -407,12 +407,14 @@ PF_DEF pf_real pf_fresnel_schlick(pf_real f0, pf_real cos_theta)
    at -1, 2e-4 at -1.5, 2e-3 at -2, 3% at -2.5, 50% at -3 (double: <= 7e-11 down to -3). The
    grazing views of a flat macrosurface sit at nu > -0.5 (bench/pictures.c). Exact at any nu,
    for one exp and a branch more: P_o = max(A_o, 0) + sqrt(2 var_o) |nu| pf_lambda_beckmann(|nu|). */
-PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
+/* (sg: the statistics whose covariance the masking-shadowing G uses; s itself in eq. 17, the
+   footprint's own without the base variance in pf_leadr_specular_base) */
+PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_slope_stats sg, pf_real f0,
                                   int masking_only)
 {
     pf_real area_o = wo.z - s.mean_x * wo.x - s.mean_y * wo.y;
     pf_real area_i = wi.z - s.mean_x * wi.x - s.mean_y * wi.y;
-    pf_real vx2 = PF_R(2.0) * s.var_x, vy2 = PF_R(2.0) * s.var_y, c4 = PF_R(4.0) * s.cov_xy;
+    pf_real vx2 = PF_R(2.0) * sg.var_x, vy2 = PF_R(2.0) * sg.var_y, c4 = PF_R(4.0) * sg.cov_xy;
     /* 1/sqrt(2 var_o), the variance along wo clamped once to [PF_REAL_MIN, PF_REAL_MAX/4]
        (normal incidence: nu huge, G1 = 1; huge variances: nu -> 0) instead of pf_smith_nu's
        tests, and a reciprocal square root; kept: P_o needs sqrt(2 var_o) = 1/rs_o too */
@@ -454,13 +456,169 @@ PF_DEF pf_real pfi_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_r
 /* LEADR specular with joint masking-shadowing (eq. 17). See pfi_leadr_specular. */
 PF_DEF pf_real pf_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0)
 {
-    return pfi_leadr_specular(wo, wi, s, f0, 0);
+    return pfi_leadr_specular(wo, wi, s, s, f0, 0);
 }
 
 /* LEADR specular with masking only, 1/(1 + Lambda_o) (LEADR sec. 6). See pfi_leadr_specular. */
 PF_DEF pf_real pf_leadr_specular_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0)
 {
-    return pfi_leadr_specular(wo, wi, s, f0, 1);
+    return pfi_leadr_specular(wo, wi, s, s, f0, 1);
+}
+
+/* ---------------------------------------------------------------- the base lobe's own masking
+   The reflecting facets' masking-shadowing by their own base roughness (our model, for LEADR's
+   two scales: the map's slopes and the micro-BRDF's base lobe). eq. 17 with base_var added to
+   the covariance (pf_slope_moments_stats) treats both scales as one Gaussian surface, with one
+   Smith G for the sum. A two-scale surface - each texel a plane of slope s_t covered by the
+   base lobe's microfacets, what tests/reference/pf_microsurface.h shades - reflects toward w_o
+   through microfacets of normal w_h lying on texels of every slope, and each such microfacet
+   is masked and shadowed by its texel's own base roughness: the base lobe's Smith
+       G2_b(s) = 1 / (1 + Lambda_b(w_o; s) + Lambda_b(w_i; s)),
+       Lambda_b(w; s) = Lambda(nu),  nu = a(w; s) / sqrt(2 base_var |w.xy|^2),  a = w.z - s.w.xy,
+   0 when the texel faces away from either direction (a <= 0: the microfacet of normal w_h on
+   it is not seen, although w_h itself faces w_o). The Smith G of the sum's Gaussian sees
+   neither: at grazing views (80-85 degrees) the reflecting facets sit at nu ~ 0.3-0.7 of the
+   base lobe and the tilted half of them faces away, so eq. 17 overestimates the peak 2-3x
+   (bench/grazing_diag.c: the factor that carries the error, gaussian_fine at 85 degrees).
+   This function returns that factor: G2_b averaged over the slopes s of the texels whose base
+   lobe reflects w_o into w_i, i.e. over the posterior of s ~ N(mean, S0) given the half
+   vector's slope x_h seen through the base lobe N(x_h; s, base_var I) - a Gaussian of
+       mean   x_h - base_var S^-1 (x_h - mean),   covariance  base_var (I - base_var S^-1),
+   S = S0 + base_var I the covariance the caller already has (s: the statistics WITH the base
+   variance, as pf_leadr_specular takes them; S - base_var I is clamped to positive
+   semidefinite, so statistics below the base variance are read as one slope). a(w_o; s) and a(w_i; s) are then jointly normal
+   and E[G2_b] is a 4 x 4 product rule over them restricted to both areas positive (a_o, then
+   a_i given a_o: Gauss-Legendre on each positive part, times its probability from erfc; 16
+   nodes, each one G1 of pf_smith.h, pf_smith_joint and an exp; a Gauss-Hermite rule missed the
+   narrow band where both are positive at grazing views and mirror lights). Accuracy against
+   the integral's definition: tests/test_beckmann.c (test_base_masking_quadrature).
+   Use: pf_leadr_specular(wo, wi, s, f0) * pf_beckmann_base_masking(wo, wi, s, base_var)
+   (pf_leadr_specular_base), or per lobe of a mixture with that lobe's statistics (pf_vmf.h's
+   lobes: pf_vmf_lobe_slope_stats(mu, kappa, base_var)). In [0, 1]; 1 when base_var <= 0 (no
+   base lobe); about 1 away from grazing (nu of the base lobe above ~2 at both directions). The
+   directions must be above the macrosurface (w.z > 0; otherwise the result is meaningless, and
+   the BRDFs it multiplies return 0). */
+/* Gauss-Legendre nodes and weights on [-1, 1], PFI_BASE_NODES of them */
+#define PFI_BASE_NODES 4
+/* half-width of the node interval in deviations: 4 Gauss-Legendre nodes on +-2.5 sd weighted by
+   the normal density reproduce its variance (0.997) */
+#define PFI_BASE_WIN PF_R(2.5)
+PF_DEF pf_real pfi_beckmann_gl_node(int k)
+{
+    pf_real x = (k == 0 || k == 3) ? PF_R(0.861136311594052575) : PF_R(0.339981043584856265);
+    return k < 2 ? -x : x;
+}
+PF_DEF pf_real pfi_beckmann_gl_weight(int k)
+{
+    return (k == 0 || k == 3) ? PF_R(0.347854845137453857) : PF_R(0.652145154862546143);
+}
+/* Node k of Gauss-Legendre on [lo, hi], and its weight times exp(-z^2 / 2), z = (a - m) / sd:
+   over a ~ N(m, sd^2) restricted to [lo, hi] (nodes within +-PFI_BASE_WIN sd of m), the mean of
+   f is sum_k v_k f(a_k) / sum_k v_k (self-normalized: a degenerate sd gives the point m), and
+   the mass (erfc((lo - m) / (sd sqrt 2)) - erfc((hi - m) / (sd sqrt 2))) / 2 (pfi_beckmann_mass). */
+PF_DEF pf_real pfi_beckmann_gl_at(int k, pf_real lo, pf_real hi)
+{
+    return PF_R(0.5) * (lo + hi) + PF_R(0.5) * (hi - lo) * pfi_beckmann_gl_node(k);
+}
+PF_DEF pf_real pfi_beckmann_gl_pdf_weight(int k, pf_real a, pf_real m, pf_real isd)
+{
+    pf_real z = (a - m) * isd;
+    return pfi_beckmann_gl_weight(k) * PF_EXP(-PF_R(0.5) * pf_min(z * z, PF_R(64.0)));
+}
+PF_DEF pf_real pfi_beckmann_mass(pf_real lo, pf_real hi, int bounded, pf_real m, pf_real isd)
+{
+    pf_real r = PF_R(0.707106781186547524) * isd;
+    /* unbounded above: no upper term (m + 64 sd rounds to m in float when sd is at its floor,
+       and the mass came out 1/2) */
+    pf_real up = bounded != 0 ? pf_erfc((hi - m) * r) : PF_R(0.0);
+    return pf_max(PF_R(0.5) * (pf_erfc((lo - m) * r) - up), PF_R(0.0));
+}
+PF_DEF pf_real pf_beckmann_base_masking(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s0, pf_real base_var)
+{
+    pf_slope_stats s = pfi_beckmann_floor(s0);
+    /* NaN and negative: 0 (no base lobe, result 1); capped as the covariance is */
+    pf_real vb = pf_clamp_nan_lo(base_var, PF_R(0.0), PFI_BECKMANN_VAR_CEIL);
+    /* the footprint's own covariance S0 = S - base_var I, clamped to positive semidefinite
+       (statistics below the base variance are read as a single slope), and S = S0 + base_var I
+       rebuilt from it: det >= base_var^2, so the posterior below is one for any input */
+    pf_real v0x = pf_max(s.var_x - vb, PF_R(0.0)), v0y = pf_max(s.var_y - vb, PF_R(0.0));
+    pf_real cm = PF_SQRT(v0x * v0y), c0 = pf_min(pf_max(s.cov_xy, -cm), cm);
+    pf_real sxx = v0x + vb, syy = v0y + vb;
+    pf_real det = pf_max(sxx * syy - c0 * c0, PF_REAL_MIN);
+    /* base_var S^-1 (adjugate over det) */
+    pf_real bx = vb * syy / det, by = vb * sxx / det, bc = -vb * c0 / det;
+    /* the half vector's slope, and its offset from the mean */
+    pf_real hz = pf_max(wo.z + wi.z, PF_R(1.0e-6)); /* both directions above the macrosurface: > 0 */
+    pf_real hx = -(wo.x + wi.x) / hz, hy = -(wo.y + wi.y) / hz;
+    pf_real dx = hx - s.mean_x, dy = hy - s.mean_y;
+    /* posterior mean m = x_h - base_var S^-1 (x_h - mean); covariance P = base_var (I - base_var S^-1) */
+    pf_real mx = hx - (bx * dx + bc * dy), my = hy - (bc * dx + by * dy);
+    /* P = base_var S^-1 S0 = base_var / det [det0 + base_var v0x, base_var c0; base_var c0,
+       det0 + base_var v0y] (det0 = det S0): no cancellation as S0 nears singular, where
+       base_var (I - base_var S^-1) lost all its digits in float */
+    pf_real det0 = pf_max(v0x * v0y - c0 * c0, PF_R(0.0)), f = vb / det;
+    pf_real pxx = f * (det0 + vb * v0x), pyy = f * (det0 + vb * v0y), pxy = f * (vb * c0);
+    /* the facets' areas toward wo and wi: means, variances, covariance */
+    pf_real ma_o = wo.z - mx * wo.x - my * wo.y, ma_i = wi.z - mx * wi.x - my * wi.y;
+    pf_real vo = pf_max(wo.x * (wo.x * pxx + PF_R(2.0) * wo.y * pxy) + wo.y * (wo.y * pyy), PF_R(0.0));
+    pf_real vi = pf_max(wi.x * (wi.x * pxx + PF_R(2.0) * wi.y * pxy) + wi.y * (wi.y * pyy), PF_R(0.0));
+    pf_real coi = wo.x * (wi.x * pxx + wi.y * pxy) + wo.y * (wi.x * pxy + wi.y * pyy);
+    /* deviations floored (a point mass stays a point: the weights are self-normalized) */
+    pf_real sd_o = pf_max(PF_SQRT(vo), PF_R(1.0e-9)), isd_o = PF_R(1.0) / sd_o;
+    /* a_i given a_o: mean ma_i + beta (a_o - ma_o), variance vi - beta coi */
+    pf_real beta = coi / (sd_o * sd_o);
+    pf_real sd_c = pf_max(PF_SQRT(pf_max(vi - beta * coi, PF_R(0.0))), PF_R(1.0e-9)), isd_c = PF_R(1.0) / sd_c;
+    /* 1 / sqrt(2 base_var |w.xy|^2): nu of the base lobe per unit area */
+    pf_real ko = pfi_beckmann_rsqrt(pf_clamp_nan_lo(PF_R(2.0) * vb * (wo.x * wo.x + wo.y * wo.y), PF_REAL_MIN, PF_REAL_MAX));
+    pf_real ki = pfi_beckmann_rsqrt(pf_clamp_nan_lo(PF_R(2.0) * vb * (wi.x * wi.x + wi.y * wi.y), PF_REAL_MIN, PF_REAL_MAX));
+    /* the outer interval: a_o > 0, and where a_i > 0 keeps some mass (the conditional mean
+       above -4 conditional deviations): at a mirror light a_o and a_i are nearly opposite
+       (beta < 0) and both are positive in a narrow band only, which the nodes must sample */
+    pf_real t = pf_min(pf_max((ma_i + PF_R(4.0) * sd_c) / pf_max(PF_FABS(beta), PF_R(1.0e-6)), PF_R(-1.0e30)), PF_R(1.0e30));
+    pf_real lo = beta > PF_R(0.0) ? pf_max(ma_o - t, PF_R(0.0)) : PF_R(0.0);
+    pf_real hi = beta < PF_R(0.0) ? pf_max(ma_o + t, lo) : ma_o + PF_R(64.0) * sd_o;
+    pf_real sum = PF_R(0.0), wsum = PF_R(0.0);
+    int j, k;
+    for (j = 0; j < PFI_BASE_NODES; ++j) {
+        pf_real a_o = pfi_beckmann_gl_at(j, pf_max(lo, ma_o - PFI_BASE_WIN * sd_o), pf_min(hi, ma_o + PFI_BASE_WIN * sd_o));
+        pf_real w_o = pfi_beckmann_gl_pdf_weight(j, a_o, ma_o, isd_o);
+        pf_real g_o = pf_g1_beckmann(a_o * ko);
+        pf_real mc = ma_i + beta * (a_o - ma_o);
+        pf_real lo_i = pf_max(mc - PFI_BASE_WIN * sd_c, PF_R(0.0)), hi_i = pf_max(mc + PFI_BASE_WIN * sd_c, PF_R(0.0));
+        pf_real row = PF_R(0.0), rsum = PF_R(0.0);
+        for (k = 0; k < PFI_BASE_NODES; ++k) {
+            pf_real a_i = pfi_beckmann_gl_at(k, lo_i, hi_i);
+            pf_real w_i = pfi_beckmann_gl_pdf_weight(k, a_i, mc, isd_c);
+            row += w_i * pf_smith_joint(g_o, pf_g1_beckmann(a_i * ki));
+            rsum += w_i;
+        }
+        /* the inner mean times P(a_i > 0 | a_o) */
+        sum += w_o * (row / pf_max(rsum, PF_REAL_MIN)) * PF_R(0.5) * pf_erfc(-mc * isd_c * PF_R(0.707106781186547524));
+        wsum += w_o;
+    }
+    sum = (sum / pf_max(wsum, PF_REAL_MIN)) * pfi_beckmann_mass(lo, hi, beta < PF_R(0.0) ? 1 : 0, ma_o, isd_o);
+    return vb > PF_R(0.0) ? pf_min(pf_max(sum, PF_R(0.0)), PF_R(1.0)) : PF_R(1.0);
+}
+
+/* LEADR specular (eq. 17) with the two scales' visibility kept apart: Smith's G of the
+   footprint's own slopes (the covariance of s minus base_var I, clamped to positive
+   semidefinite as in pf_beckmann_base_masking) times the base lobe's own masking-shadowing at
+   the reflecting facets (pf_beckmann_base_masking), D and the projected area as in
+   pf_leadr_specular. s: the footprint's statistics with base_var added, as for
+   pf_leadr_specular. G of s itself would count the base lobe's masking twice (a one-texel
+   footprint: G2_b squared). For grazing views (see above); 16 more G1 pairs than
+   pf_leadr_specular. */
+PF_DEF pf_real pf_leadr_specular_base(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real base_var, pf_real f0)
+{
+    pf_real vb = pf_clamp_nan_lo(base_var, PF_R(0.0), PFI_BECKMANN_VAR_CEIL);
+    pf_slope_stats g = s;
+    pf_real cm, v;
+    g.var_x = pf_max(s.var_x - vb, PF_R(0.0));
+    g.var_y = pf_max(s.var_y - vb, PF_R(0.0));
+    cm = PF_SQRT(g.var_x * g.var_y);
+    g.cov_xy = pf_min(pf_max(s.cov_xy, -cm), cm);
+    v = pfi_leadr_specular(wo, wi, s, g, f0, 0);
+    return v > PF_R(0.0) ? v * pf_beckmann_base_masking(wo, wi, s, base_var) : PF_R(0.0);
 }
 
 /* Point light: to_light is the (unnormalized) vector from the shaded point to the light in the

@@ -863,6 +863,19 @@ static void pfc_f_pf_leadr_specular_masking(pfc_ctx *c)
     pf_slope_stats s = pfc_leadr_stats(c);
     pfc_ge0(c, pf_leadr_specular_masking(wo, wi, s, pfc_u01(c)));
 }
+static void pfc_f_pf_beckmann_base_masking(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_slope_stats s = pfc_leadr_stats(c);
+    pfc_01(c, pf_beckmann_base_masking(wo, wi, s, pfc_var(c, 1)));
+}
+static void pfc_f_pf_leadr_specular_base(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_slope_stats s = pfc_leadr_stats(c);
+    pf_real bv = pfc_var(c, 1);
+    pfc_ge0(c, pf_leadr_specular_base(wo, wi, s, bv, pfc_u01(c)));
+}
 static void pfc_f_pf_leadr_specular_point(pfc_ctx *c)
 {
     pf_vec3 wo = pfc_dir(c), tl = pfc_dir_any(c);
@@ -2279,6 +2292,8 @@ static const pfc_entry pfc_table[] = {
     PFC_E(beckmann, pf_fresnel_schlick, 0, "f0 in [0, 1], cos in [-1, 1]", "cos clamped to [0, 1]; f0 = 1 gives exactly 1"),
     PFC_E(beckmann, pf_leadr_specular, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats (var >= 1e-6), f0 in [0, 1]", "0 on/below the macrosurface (a light below the mesosurface has Lambda_i capped, not 0); peak of D ~ 1/(2 pi sqrt(det)) large for var -> 1e-6 (1.6e5)"),
     PFC_E(beckmann, pf_leadr_specular_masking, 0, "as pf_leadr_specular", "as pf_leadr_specular"),
+    PFC_E(beckmann, pf_beckmann_base_masking, 0, "unit wo, wi (grazing, below), stats from pf_slope_moments_stats, base_var >= 0", "in [0, 1]; 1 for base_var 0; meaningless (finite) for a direction below the macrosurface"),
+    PFC_E(beckmann, pf_leadr_specular_base, 0, "as pf_leadr_specular, base_var >= 0", "as pf_leadr_specular"),
     PFC_E(beckmann, pf_leadr_specular_point, 0, "unit wo, any-length to_light (zero, 2^+-40), stats, f0", "0 for a zero to_light; 1/|to_light|^2 falloff overflows for |to_light| < ~1e-19 (f)"),
     /* moments */
     PFC_E(moments, pf_depth_moments2_make, 0, "moments of two depths in [0, 1] mixed, +-2^-20 rounding", "constructor"),
