@@ -7009,8 +7009,8 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
    texels' own (the statistics' variance along the azimuth less base_var, floored at 0).
    s: the footprint's slope statistics with base_var added (what pf_leadr_specular takes:
    pf_slope_moments_stats(m, base_var)). Unit directions. In [0, 1]; 0 when either direction
-   is on or below the macrosurface; NaN moments or slopes give 0 (C; GLSL's clamp of a NaN is
-   undefined).
+   is on or below the macrosurface; NaN moments or slopes give 0 (C and C++; CUDA's fmin/fmax
+   and GLSL's min/max drop or keep a NaN operand, so there the result is not specified).
    Written for the shader: no branch; the elevation asin(w.z) by Abramowitz & Stegun 4.4.45
    (|error| <= 5e-5 rad), the Gaussian CDF by the logistic of Bowling, Khasawneh, Kaewkuekool
    & Cho 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 + 0.070566 z^2))) (|error| <= 1.4e-4); the
