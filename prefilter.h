@@ -9505,8 +9505,9 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_ke
     pf_real cx = c.var_x - c.var_x == PF_R(0.0) ? pf_clamp_nan_lo(c.var_x, -bx, bx) : PF_R(0.0);
     pf_real cy = c.var_y - c.var_y == PF_R(0.0) ? pf_clamp_nan_lo(c.var_y, -by, by) : PF_R(0.0);
     pf_real cxy = c.cov_xy - c.cov_xy == PF_R(0.0) ? c.cov_xy : PF_R(0.0);
-    return pf_slope_stats_make(s.mean_x, s.mean_y, s.var_x + k.var_x + cx, s.var_y + k.var_y + cy,
-                               s.cov_xy + k.cov_xy + cxy);
+    /* (sqrt s - sqrt k)^2 >= 0 at the clamp, but its rounding can be -1e-10: floored at 0 */
+    return pf_slope_stats_make(s.mean_x, s.mean_y, pf_max(s.var_x + k.var_x + cx, PF_R(0.0)),
+                               pf_max(s.var_y + k.var_y + cy, PF_R(0.0)), s.cov_xy + k.cov_xy + cxy);
 }
 
 /* The pixel's slope statistics from four reads of the moment pyramid, one per quadrant of the
