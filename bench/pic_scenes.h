@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "pf_map.h" /* the pyramid layout of pic_trilinear_taps */
+
 /* ---------------------------------------------------------------- settings */
 #define MAP_SIZE        256     /* the height map: MAP_SIZE^2 texels, texel = 1 world unit */
 #define BASE_SIGMA      0.1     /* slope deviation of the narrow Beckmann base lobe */
@@ -58,6 +60,57 @@ static void v3_set(double a[3], double x, double y, double z)
     a[2] = z;
 }
 static int wrap_index(int i, int n) { return ((i % n) + n) % n; }
+
+/* ---------------------------------------------------------------- the trilinear fetch */
+/* The texels and weights of a trilinear fetch (GL's LINEAR_MIPMAP_LINEAR, pf_map.h's
+   pf_mip_sample_trilinear with wrap) from a pyramid of pf_map.h's layout, C pf_reals a texel,
+   at (u, v), fractions of the map (wrapped into [0, 1)), and lod (clamped to [0, levels - 1]):
+   the 4 texels around (u, v) of level floor(lod) (texel centres, wrap), then those of the next
+   level, each weighted by its level's share (1 - f, f) times its bilinear weight, in double.
+   Texels of weight 0 are left out; returns how many are kept (at most 8). The callers sum what
+   they need over the taps in this order: a mixture of the texels' vMF lobes (bench/pictures.c,
+   bench/frame/frame.c), the HDF moments' channels (bench/pictures.c). */
+typedef struct {
+    const pf_real *tex[8]; /* the texel's first channel */
+    double w[8];           /* its weight: the kept ones sum to 1 */
+} pic_taps;
+
+static int pic_trilinear_taps(const pf_real *pyr, int W, int H, int C, double u, double v, double lod, pic_taps *tp)
+{
+    const int nl = pf_mip_level_count(W, H);
+    double fl;
+    int l0, lv, t, n = 0;
+    u -= floor(u);
+    v -= floor(v);
+    if (!(lod > 0.0)) lod = 0.0;
+    if (lod > nl - 1) lod = nl - 1;
+    l0 = (int)floor(lod);
+    fl = lod - l0;
+    for (lv = 0; lv < 2; ++lv) {
+        int l = l0 + lv, lw, lh;
+        double wl = lv ? fl : 1.0 - fl, x, y, fx, fy;
+        long ix, iy;
+        const pf_real *lev;
+        if (!(wl > 0.0) || l >= nl) continue;
+        lw = pf_mip_level_size(W, l);
+        lh = pf_mip_level_size(H, l);
+        lev = pyr + pf_mip_level_offset(W, H, l) * C;
+        x = u * lw - 0.5;
+        y = v * lh - 0.5;
+        ix = (long)floor(x);
+        iy = (long)floor(y);
+        fx = x - (double)ix;
+        fy = y - (double)iy;
+        for (t = 0; t < 4; ++t) {
+            double wt = wl * ((t & 1) ? fx : 1.0 - fx) * ((t & 2) ? fy : 1.0 - fy);
+            int tx = wrap_index((int)(ix + (t & 1)), lw), ty = wrap_index((int)(iy + (t >> 1)), lh);
+            if (!(wt > 0.0)) continue;
+            tp->tex[n] = lev + ((size_t)ty * (size_t)lw + (size_t)tx) * (size_t)C;
+            tp->w[n++] = wt;
+        }
+    }
+    return n;
+}
 
 /* ---------------------------------------------------------------- the pixels */
 typedef struct {

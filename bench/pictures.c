@@ -445,43 +445,17 @@ static double shade_leadr_box(const pic_maps *m, const pic_sample *p)
 static pf_vmf_sum vmf_sum_sample(const pic_maps *m, const pic_sample *p, int which)
 {
     const int W = m->surf.w, H = m->surf.h, nm = vmf_pic_lobes[which];
-    const int nl = pf_vmf_pyramid_level_count(W, H);
     const pf_real base_var = (pf_real)(BASE_SIGMA * BASE_SIGMA);
     pf_vec3 wo = to_pf(p->wo), wi = to_pf(p->wi);
-    double lod = p->fp > 1.0 ? log2(p->fp) : 0.0, fl;
-    double u = p->tx / W - floor(p->tx / W), v = p->ty / H - floor(p->ty / H);
     pf_vmf_sum sum = pf_vmf_sum_zero();
-    int l0, lv;
-    if (lod > nl - 1) lod = nl - 1;
-    l0 = (int)floor(lod);
-    fl = lod - l0;
-    for (lv = 0; lv < 2; ++lv) {
-        int l = l0 + lv, lw, lh, t, j;
-        double wl = lv ? fl : 1.0 - fl, x, y, fx, fy;
-        long ix, iy;
-        const pf_real *lev;
-        if (!(wl > 0.0) || l >= nl) continue;
-        lw = W >> l > 1 ? W >> l : 1;
-        lh = H >> l > 1 ? H >> l : 1;
-        lev = m->vmf_pyr[which] + pf_vmf_pyramid_level_offset(W, H, l) * 4 * nm;
-        x = u * lw - 0.5;
-        y = v * lh - 0.5;
-        ix = (long)floor(x);
-        iy = (long)floor(y);
-        fx = x - (double)ix;
-        fy = y - (double)iy;
-        for (t = 0; t < 4; ++t) {
-            double wt = wl * ((t & 1) ? fx : 1.0 - fx) * ((t & 2) ? fy : 1.0 - fy);
-            long tx = wrap_index((int)(ix + (t & 1)), lw), ty = wrap_index((int)(iy + (t >> 1)), lh);
-            const pf_real *tex = lev + ((size_t)ty * (size_t)lw + (size_t)tx) * 4 * (size_t)nm;
-            if (!(wt > 0.0)) continue;
-            for (j = 0; j < nm; ++j) { /* one RGBA texel per lobe: (mu.x, mu.y, kappa, amp) */
-                pf_vmf_lobe lobe = pf_vmf_lobe_make((pf_real)wt * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1],
-                                                    tex[4 * j + 2]);
-                sum = pf_vmf_sum_add(sum, lobe, wo, wi, base_var);
-            }
+    pic_taps tp;
+    int n = pic_trilinear_taps(m->vmf_pyr[which], W, H, 4 * nm, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, &tp), t, j;
+    for (t = 0; t < n; ++t)
+        for (j = 0; j < nm; ++j) { /* one RGBA texel per lobe: (mu.x, mu.y, kappa, amp) */
+            const pf_real *tex = tp.tex[t];
+            pf_vmf_lobe lobe = pf_vmf_lobe_make((pf_real)tp.w[t] * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1], tex[4 * j + 2]);
+            sum = pf_vmf_sum_add(sum, lobe, wo, wi, base_var);
         }
-    }
     return sum;
 }
 
@@ -531,38 +505,14 @@ static double shade_vmf_m8_scaled(const pic_maps *m, const pic_sample *p) { retu
    6 channels of the 8 texels. Texel centres, wrap and level clamp as shade_vmf. */
 static pf_hdf_moments hdf_sample(const pic_maps *m, const pic_sample *p, const double w[3])
 {
-    const int W = m->surf.w, H = m->surf.h, nl = pf_mip_level_count(W, H), C = 3 * HOR_N;
+    const int W = m->surf.w, H = m->surf.h;
     pf_horizon_azimuth az = pf_horizon_azimuth_of(to_pf(w), HOR_N);
-    double lod = p->fp > 1.0 ? log2(p->fp) : 0.0, fl, acc[2][3] = {{0, 0, 0}, {0, 0, 0}};
-    double u = p->tx / W - floor(p->tx / W), v = p->ty / H - floor(p->ty / H);
-    int l0, lv, t, q, a;
-    if (lod > nl - 1) lod = nl - 1;
-    l0 = (int)floor(lod);
-    fl = lod - l0;
-    for (lv = 0; lv < 2; ++lv) {
-        int l = l0 + lv, lw, lh;
-        double wl = lv ? fl : 1.0 - fl, x, y, fx, fy;
-        long ix, iy;
-        const pf_real *lev;
-        if (!(wl > 0.0) || l >= nl) continue;
-        lw = pf_mip_level_size(W, l);
-        lh = pf_mip_level_size(H, l);
-        lev = m->hor + pf_mip_level_offset(W, H, l) * C;
-        x = u * lw - 0.5;
-        y = v * lh - 0.5;
-        ix = (long)floor(x);
-        iy = (long)floor(y);
-        fx = x - (double)ix;
-        fy = y - (double)iy;
-        for (t = 0; t < 4; ++t) {
-            double wt = wl * ((t & 1) ? fx : 1.0 - fx) * ((t & 2) ? fy : 1.0 - fy);
-            long tx = wrap_index((int)(ix + (t & 1)), lw), ty = wrap_index((int)(iy + (t >> 1)), lh);
-            const pf_real *tex = lev + ((size_t)ty * (size_t)lw + (size_t)tx) * (size_t)C;
-            if (!(wt > 0.0)) continue;
-            for (a = 0; a < 2; ++a)
-                for (q = 0; q < 3; ++q) acc[a][q] += wt * (double)tex[3 * (a ? az.i1 : az.i0) + q];
-        }
-    }
+    double acc[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    pic_taps tp;
+    int n = pic_trilinear_taps(m->hor, W, H, 3 * HOR_N, p->tx / W, p->ty / H, p->fp > 1.0 ? log2(p->fp) : 0.0, &tp), t, q, a;
+    for (t = 0; t < n; ++t)
+        for (a = 0; a < 2; ++a)
+            for (q = 0; q < 3; ++q) acc[a][q] += tp.w[t] * (double)tp.tex[t][3 * (a ? az.i1 : az.i0) + q];
     return pf_hdf_moments_lerp(pf_hdf_moments_make((pf_real)acc[0][0], (pf_real)acc[0][1], (pf_real)acc[0][2]),
                                pf_hdf_moments_make((pf_real)acc[1][0], (pf_real)acc[1][1], (pf_real)acc[1][2]), az.f);
 }

@@ -525,43 +525,23 @@ static void fetch_taps(const fr_maps *m, double tx, double ty, const float g[4],
    of a trilinear fetch, amplitudes times the trilinear weights (bench/pictures.c's shade_vmf) */
 static float shade_vmf_cpu(const fr_maps *m, int which, int horizon, double u, double v, double lod, const double wo_d[3], const double wi_d[3])
 {
-    const int W = m->W, H = m->H, nm = vmf_lobes[which], nl = pf_vmf_pyramid_level_count(W, H);
+    const int nm = vmf_lobes[which], nl = pf_vmf_pyramid_level_count(m->W, m->H);
     pf_vec3 wo = pf_vec3_make((float)wo_d[0], (float)wo_d[1], (float)wo_d[2]);
     pf_vec3 wi = pf_vec3_make((float)wi_d[0], (float)wi_d[1], (float)wi_d[2]);
     pf_vmf_sum sum = pf_vmf_sum_zero();
-    double fl;
-    int l0, lv, t, j;
+    pic_taps tp;
+    int n, t, j;
     u -= floor(u);
     v -= floor(v);
     if (!(lod > 0.0)) lod = 0.0;
-    if (lod > nl - 1) lod = nl - 1;
-    l0 = (int)floor(lod);
-    fl = lod - l0;
-    for (lv = 0; lv < 2; ++lv) {
-        int l = l0 + lv, lw, lh;
-        double wl = lv ? fl : 1.0 - fl, x, y, fx, fy;
-        long ix, iy;
-        const pf_real *lev;
-        if (!(wl > 0.0) || l >= nl) continue;
-        lw = W >> l > 1 ? W >> l : 1;
-        lh = H >> l > 1 ? H >> l : 1;
-        lev = m->vmf_pyr[which] + pf_vmf_pyramid_level_offset(W, H, l) * 4 * nm;
-        x = u * lw - 0.5;
-        y = v * lh - 0.5;
-        ix = (long)floor(x);
-        iy = (long)floor(y);
-        fx = x - (double)ix;
-        fy = y - (double)iy;
-        for (t = 0; t < 4; ++t) {
-            double wt = wl * ((t & 1) ? fx : 1.0 - fx) * ((t & 2) ? fy : 1.0 - fy);
-            int tx = pfmi_wrap((int)(ix + (t & 1)), lw), ty = pfmi_wrap((int)(iy + (t >> 1)), lh);
-            const pf_real *tex = lev + ((size_t)ty * (size_t)lw + (size_t)tx) * 4 * (size_t)nm;
-            if (!(wt > 0.0)) continue;
-            for (j = 0; j < nm; ++j)
-                sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make((float)wt * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1], tex[4 * j + 2]), wo,
-                                     wi, (float)(BASE_SIGMA * BASE_SIGMA));
+    if (lod > nl - 1) lod = nl - 1; /* as the fetch clamps it: the horizon below sees the same lod */
+    n = pic_trilinear_taps(m->vmf_pyr[which], m->W, m->H, 4 * nm, u, v, lod, &tp);
+    for (t = 0; t < n; ++t)
+        for (j = 0; j < nm; ++j) {
+            const pf_real *tex = tp.tex[t];
+            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make((float)tp.w[t] * tex[4 * j + 3], tex[4 * j], tex[4 * j + 1], tex[4 * j + 2]), wo,
+                                 wi, (float)(BASE_SIGMA * BASE_SIGMA));
         }
-    }
     if (horizon) { /* pf_horizon_vmf_specular_lod: the slope-moment texel and the HDF at the same lod */
         pf_slope_stats st;
         pf_hdf_moments mo, mi;
