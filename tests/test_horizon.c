@@ -1377,18 +1377,9 @@ static void test_horizon_guarded_buffers(void)
 }
 
 /* ---------------------------------------------------------------- edge (also under -ffast-math) */
-/* Known defect, open: clang -O3/-O2 -ffast-math vectorizes the loop below into about 100 NaN
-   results (one evaluation at a time, as with volatile inputs or at -O1, gcc, or without
-   -ffast-math, every result is finite); until it is found, the inputs are volatile under clang's
-   fast-math, so each evaluation is checked as a shader would run it, one pixel at a time. */
-#if defined(__FAST_MATH__) && defined(__clang__)
-#  define PFT_EDGE_VOLATILE volatile
-#else
-#  define PFT_EDGE_VOLATILE
-#endif
 static void edge_horizon_evaluators_finite(void)
 {
-    static const PFT_EDGE_VOLATILE pf_real v[] = { PF_R(0), PF_R(1e-30), PF_R(-1e-30), PF_R(0.5), PF_R(-0.5), PF_R(1), PF_R(-1), PF_R(1.5),
+    static const pf_real v[] = { PF_R(0), PF_R(1e-30), PF_R(-1e-30), PF_R(0.5), PF_R(-0.5), PF_R(1), PF_R(-1), PF_R(1.5),
                                  PF_R(-1.5), PF_R(3.2), PF_R(1e10), PF_R(-1e10), PF_R(1e30) };
     const int nv = (int)(sizeof v / sizeof v[0]);
     int a, b, c, bad = 0;
@@ -1445,12 +1436,6 @@ static void edge_horizon_evaluators_finite(void)
                     pf_real s1 = pf_horizon_leadr_specular(wu, wl, st, PF_R(0.01), hm, hm, PF_R(1.0));
                     pf_real s2 = pf_horizon_leadr_specular_lod(wu, wl, st, PF_R(0.01), hm, hm, PF_R(0.5), v[b], PF_R(2.0), PF_R(6.0));
                     pf_real s3 = pf_horizon_vmf_specular_lod(sm, wu, wl, st, PF_R(0.01), hm, hm, PF_R(1.0), v[b], PF_R(2.0), PF_R(6.0));
-#ifdef __FAST_MATH__
-                    /* Known defect, open: under clang -ffast-math (flush to zero) the vMF form
-                       gave NaN for views within 1e-29 of the horizon (w.z ~ 2e-30); left out of
-                       the fast-math run until the cause is found */
-                    if (PF_FABS(wu.z) < PF_R(1e-6)) s3 = PF_R(0.0);
-#endif
                     pf_real s4 = pf_horizon_specular_visibility(wu, wl, hm, hm, st, PF_R(0.01));
 #ifdef __FAST_MATH__
                     /* -ffinite-math-only: moments or lods of 1e10 and more overflow the products
@@ -1469,6 +1454,46 @@ static void edge_horizon_evaluators_finite(void)
                 bad += pf_horizon_azimuth_of(w, 16).i0 < 0 || pf_horizon_azimuth_of(w, 16).i0 > 15;
             }
     PF_CHECK(bad == 0, "%d non-finite or out-of-range results", bad);
+}
+
+/* Directions under horizons that hide them give exactly 0, in every build: the horizon
+   specular's Phi at its lower clamp (z = -24) must come from exp underflowing to 0, not from
+   1/(1 + exp(1013)) = 1/inf (clang -O2 -ffast-math divided the two directions' lanes by a
+   reciprocal estimate and a Newton step, inf * 0 = NaN: 753 of these 768 results). Views from
+   grazing (w.z = 1e-3) to steep, every azimuth; horizons at 1.5 rad with no spread (above
+   every direction), at -1.5 rad (open sky) or one of each. */
+static void edge_horizon_specular_occluded(void)
+{
+    pf_real bv = PF_R(0.01), low = PF_R(-1.5), high = PF_R(1.5);
+    pf_slope_stats s = pf_slope_stats_make(PF_R(0.05), PF_R(-0.03), PF_R(0.06) + bv, PF_R(0.04) + bv, PF_R(0.01));
+    pf_hdf_moments ml = pf_hdf_moments_make(low, low * low, PF_R(0.0)), mh = pf_hdf_moments_make(high, high * high, PF_R(0.0));
+    pf_vec3 wi = pf_vec3_normalize(pf_vec3_make(PF_R(-0.3), PF_R(0.2), PF_R(0.9)));
+    int a, e, bad = 0, open_bad = 0;
+    for (a = 0; a < 16; ++a)
+        for (e = 0; e < 8; ++e) {
+            double phi = 2.0 * 3.14159265358979 * a / 16.0, cz = e == 0 ? 1e-3 : 0.13 * e;
+            double sz = sqrt(1.0 - cz * cz);
+            pf_vec3 wo = pf_vec3_make((pf_real)(sz * cos(phi)), (pf_real)(sz * sin(phi)), (pf_real)cz);
+            pf_vmf_sum sum = pf_vmf_sum_add(pf_vmf_sum_zero(), pf_vmf_lobe_make(PF_R(1.0), PF_R(0.1), PF_R(0.0), PF_R(0.99)), wo,
+                                            wi, bv);
+            /* open sky: the visibility 1 less the logistic's rounding; the specular as is */
+            pf_real vo = pf_horizon_specular_visibility(wo, wi, ml, ml, s, bv);
+            pf_real lo = pf_horizon_leadr_specular(wo, wi, s, bv, ml, ml, PF_R(1.0));
+            pf_real so = pf_horizon_vmf_specular(sum, wo, wi, s, bv, ml, ml, PF_R(1.0));
+            pf_real v[6];
+            int q;
+            v[0] = pf_horizon_specular_visibility(wo, wi, mh, mh, s, bv);
+            v[1] = pf_horizon_specular_visibility(wo, wi, ml, mh, s, bv);
+            v[2] = pf_horizon_specular_visibility(wi, wo, mh, ml, s, bv);
+            v[3] = pf_horizon_specular_visibility(wo, wi, mh, ml, s, bv);
+            v[4] = pf_horizon_leadr_specular(wo, wi, s, bv, mh, mh, PF_R(1.0));
+            v[5] = pf_horizon_vmf_specular(sum, wo, wi, s, bv, mh, mh, PF_R(1.0));
+            for (q = 0; q < 6; ++q) bad += !pf_test_bits_finite(v[q]) || v[q] != PF_R(0.0);
+            open_bad += !pf_test_bits_finite(vo) || !(vo > PF_R(0.99)) || vo > PF_R(1.0) || !pf_test_bits_finite(lo) ||
+                        !pf_test_bits_finite(so) || !(lo >= PF_R(0.0)) || !(so >= PF_R(0.0));
+        }
+    PF_CHECK(bad == 0, "%d of 768 occluded results not exactly 0", bad);
+    PF_CHECK(open_bad == 0, "%d of 128 open-sky results outside their range (visibility (0.99, 1])", open_bad);
 }
 
 /* zero and underflowing directions give the documented values: elevation 0 for w = 0 (PF_ATAN2
@@ -1538,5 +1563,6 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_horizon_guarded_buffers);
     PF_TEST_RUN(edge_horizon_evaluators_finite);
     PF_TEST_RUN(edge_horizon_zero_directions);
+    PF_TEST_RUN(edge_horizon_specular_occluded);
     return PF_TEST_END();
 }
