@@ -7038,11 +7038,18 @@ PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_s
     pf_real vc = var - cov * beta;
     /* (e - mean) / deviation; the variance floored at 1e-30 (GLSL's inversesqrt(0) is
        undefined; max(1e-30, NaN) keeps the NaN in C), so a zero deviation is the step within
-       1e-15 rad; z clamped to +-24, where Phi is 0 or 1 exactly in float and double (exp
-       overflows or underflows; no infinite argument), a NaN (NaN moments or slopes) to -24: 0 */
-    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc));
-    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(24.0));
-    return PF_R(1.0) / (PF_R(1.0) + PF_EXP(-z * (PF_R(1.5976) + PF_R(0.070566) * z * z)));
+       1e-15 rad. Phi = exp(t)/(1 + exp(t)), t = z (1.5976 + 0.070566 z^2), with z clamped to
+       [-24, 9] (a NaN, from NaN moments or slopes, to -24): at -24 exp(t) = exp(-1013)
+       underflows to 0 and Phi is 0 exactly; from z = 5 (float; 7.1 in double) on Phi rounds to 1
+       exactly, and at 9 exp(t) = exp(66) is finite. So no step makes an infinity (within 4 ulp
+       of 1/(1 + exp(-t))): that form took exp(1013) = inf to 1/inf = 0, which
+       -ffinite-math-only does not keep (clang and gcc -ffast-math divide float vectors by a
+       reciprocal estimate and one Newton step, r + r (1 - d r): inf * 0 = NaN for every
+       occluded direction; here 0 times the estimate is 0). */
+    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc)), ez;
+    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(9.0));
+    ez = PF_EXP(z * (PF_R(1.5976) + PF_R(0.070566) * z * z));
+    return ez / (PF_R(1.0) + ez);
 }
 
 /* V_h for unit wo, wi with wo.z, wi.z > 0 (the callers' select): eq. 28's visible-and-lit
