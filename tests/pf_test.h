@@ -220,11 +220,28 @@ PF_TEST_FN double pf_test_uniform(pf_test_rng *r, double a, double b)
     return a + (b - a) * u;
 }
 
+/* Uniform in (0, 1), never 0 or 1: the top 53 bits plus one half, over 2^53. */
+PF_TEST_FN double pf_test_uniform_open(pf_test_rng *r)
+{
+    return ((double)(pf_test_rng_next(r) >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+
 /* Log-uniform in [a, b), a > 0: equal density per decade. */
 PF_TEST_FN double pf_test_log_uniform(pf_test_rng *r, double a, double b)
 {
     return exp(pf_test_uniform(r, log(a), log(b)));
 }
+
+/* The unit direction at polar angle theta and azimuth phi (degrees; phi from +x toward +y). */
+PF_TEST_FN void pf_test_dir_deg(double theta, double phi, double w[3])
+{
+    theta *= (double)PF_TEST_PI / 180.0;
+    phi *= (double)PF_TEST_PI / 180.0;
+    w[0] = sin(theta) * cos(phi);
+    w[1] = sin(theta) * sin(phi);
+    w[2] = cos(theta);
+}
+PF_TEST_FN pf_vec3 pf_test_vec3(const double w[3]) { return pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]); }
 
 /* ------------------------------------------------------------------ guarded mappings
    pf_test_guarded_alloc(bytes): `bytes` of zeroed, readable and writable memory that ends

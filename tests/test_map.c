@@ -16,17 +16,6 @@
 #include "pf_test.h"
 #include "pf_microsurface.h"
 
-/* ------------------------------------------------------------------ directions */
-static void dir_deg(double theta, double phi, double w[3])
-{
-    theta *= PFM_PI / 180.0;
-    phi *= PFM_PI / 180.0;
-    w[0] = sin(theta) * cos(phi);
-    w[1] = sin(theta) * sin(phi);
-    w[2] = cos(theta);
-}
-static pf_vec3 V(const double w[3]) { return pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]); }
-
 /* a wall of height H along y (columns [32, 48) of a 64^2 map): a node at column x < 31 on the
    flat ground sees w (azimuth phi toward +x) iff the ray clears the wall's foot line, i.e.
    rise (32 - x) / cos(phi) >= H, rise = cot(theta): the ramp cell from column 31 to 32 and
@@ -41,13 +30,13 @@ static void test_scale_visibility_wall(void)
     for (a = 0; a < 40; ++a)
         for (b = 0; b < 5; ++b) {
             double th = 20.0 + 1.7 * a, ph = -50.0 + 25.0 * b, w[3];
-            dir_deg(th, ph, w);
+            pf_test_dir_deg(th, ph, w);
             for (x = 2; x <= 29; ++x) {
                 double rise = w[2] / sqrt(w[0] * w[0] + w[1] * w[1]);
                 double clear = rise * (32.0 - x) / cos(ph * 3.14159265358979323846 / 180.0) - (double)H;
                 int got;
                 if (fabs(clear) < 1e-3) continue;
-                got = pf_map_visible(hm, 64, 64, PF_R(1.0), x, 20, V(w), 0, 0, 64, H);
+                got = pf_map_visible(hm, 64, 64, PF_R(1.0), x, 20, pf_test_vec3(w), 0, 0, 64, H);
                 tested++;
                 vis += got;
                 if (got != (clear > 0.0)) bad++;

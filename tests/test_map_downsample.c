@@ -16,17 +16,6 @@
 #include "pf_test.h"
 #include "pf_microsurface.h"
 
-/* ------------------------------------------------------------------ seeded sampling */
-typedef struct trng { unsigned long long s; } trng;
-static double trng_u(trng *r)
-{
-    unsigned long long z = (r->s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return ((double)(z >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-}
-
 /* ------------------------------------------------------------------ slope-preserving downsampling
    The oracle rebuilds the objective from its definition (docs/vmf.md): the library's height
    slope stencil written out again here (central difference, wrapped or inside; one-sided
@@ -135,14 +124,14 @@ static int ds_dense(const pf_real *fine, int w, int h, int f, int wrap, long dou
 /* a bumpy height map: a few sinusoids and sharp Gaussian bumps, seeded */
 static void ds_bumpy(pf_real *fine, int w, int h, unsigned long long seed, double amp)
 {
-    trng r;
+    pf_test_rng r;
     double cx[12], cy[12], a[12];
     int i, j, k;
-    r.s = seed;
+    r = pf_test_rng_seed(seed);
     for (k = 0; k < 12; ++k) {
-        cx[k] = trng_u(&r) * w;
-        cy[k] = trng_u(&r) * h;
-        a[k] = trng_u(&r) - 0.5;
+        cx[k] = pf_test_uniform_open(&r) * w;
+        cy[k] = pf_test_uniform_open(&r) * h;
+        a[k] = pf_test_uniform_open(&r) - 0.5;
     }
     for (j = 0; j < h; ++j)
         for (i = 0; i < w; ++i) {

@@ -16,26 +16,6 @@
 #include "pf_test.h"
 #include "pf_microsurface.h"
 
-/* ------------------------------------------------------------------ seeded sampling */
-typedef struct trng { unsigned long long s; } trng;
-static double trng_u(trng *r)
-{
-    unsigned long long z = (r->s += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    return ((double)(z >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-}
-
-static void dir_deg(double theta, double phi, double w[3])
-{
-    theta *= PFM_PI / 180.0;
-    phi *= PFM_PI / 180.0;
-    w[0] = sin(theta) * cos(phi);
-    w[1] = sin(theta) * sin(phi);
-    w[2] = cos(theta);
-}
-static pf_vec3 V(const double w[3]) { return pf_vec3_make((pf_real)w[0], (pf_real)w[1], (pf_real)w[2]); }
 
 /* ================================================================== scaling function (helper J)
    Oracles: the base lobe of tests/reference/pf_microsurface.h (pfm_base_specular, double) on a flat patch;
@@ -62,9 +42,9 @@ static void test_scale_flat_patch_is_base(void)
             for (c = 0; c < 4; ++c) {
                 double wo[3], wi[3], ref;
                 pf_real got = PF_R(-1.0);
-                dir_deg(5.0 + 17.0 * a, 0.0, wo);
-                dir_deg(3.0 + 18.0 * b, 180.0 - 40.0 * c, wi);
-                PF_CHECK(pfi_vmf_effective_brdf(hm, 16, 16, PF_R(0.5), 3, 5, 8, V(wo), V(wi), PF_R(0.2), PF_R(0.04), &got) ==
+                pf_test_dir_deg(5.0 + 17.0 * a, 0.0, wo);
+                pf_test_dir_deg(3.0 + 18.0 * b, 180.0 - 40.0 * c, wi);
+                PF_CHECK(pfi_vmf_effective_brdf(hm, 16, 16, PF_R(0.5), 3, 5, 8, pf_test_vec3(wo), pf_test_vec3(wi), PF_R(0.2), PF_R(0.04), &got) ==
                              PF_OK,
                          "call");
                 ref = pfm_base_specular(wo, wi, 0.0, 0.0, 0.2, 0.04) / wo[2];
@@ -92,10 +72,10 @@ static void test_scale_reciprocity(void)
         double wo[3], wi[3];
         pf_real f1 = 0, f2 = 0;
         long double l, r;
-        dir_deg(5.0 + 1.7 * a, 11.0 * a, wo);
-        dir_deg(70.0 - 1.6 * a, 180.0 + 7.0 * a, wi);
-        PF_CHECK(pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &f1) == PF_OK &&
-                     pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, V(wi), V(wo), PF_R(0.1), PF_R(0.04), &f2) == PF_OK,
+        pf_test_dir_deg(5.0 + 1.7 * a, 11.0 * a, wo);
+        pf_test_dir_deg(70.0 - 1.6 * a, 180.0 + 7.0 * a, wi);
+        PF_CHECK(pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, pf_test_vec3(wo), pf_test_vec3(wi), PF_R(0.1), PF_R(0.04), &f1) == PF_OK &&
+                     pfi_vmf_effective_brdf(hm, 32, 32, PF_R(1.0), 0, 0, 32, pf_test_vec3(wi), pf_test_vec3(wo), PF_R(0.1), PF_R(0.04), &f2) == PF_OK,
                  "call");
         /* whole periodic map: the projected area is n^2 w.z, so f / cos(light) is symmetric */
         l = (long double)f1 / (long double)(pf_real)wi[2];
@@ -130,12 +110,12 @@ static void test_scale_vs_microsurface_reference(void)
             double wo[3], wi[3];
             pfm_shade sh;
             pf_real got = 0;
-            dir_deg(10.0 + 2.8 * a, 37.0 * a, wo);
-            dir_deg(70.0 - 2.5 * a, 37.0 * a + 150.0 + 3.0 * a, wi);
+            pf_test_dir_deg(10.0 + 2.8 * a, 37.0 * a, wo);
+            pf_test_dir_deg(70.0 - 2.5 * a, 37.0 * a + 150.0 + 3.0 * a, wi);
             pfm_visibility_map_box(&s, wo, 8, 24, 32, NULL, vo);
             pfm_visibility_map_box(&s, wi, 8, 24, 32, NULL, vi);
             sh = pfm_reference_shade(&s, vo, vi, 8, 24, 32, wo, wi, 0.1, 0.04);
-            PF_CHECK(pfi_vmf_effective_brdf(hm, 64, 64, PF_R(1.0), 8, 24, 32, V(wo), V(wi), PF_R(0.1), PF_R(0.04), &got) ==
+            PF_CHECK(pfi_vmf_effective_brdf(hm, 64, 64, PF_R(1.0), 8, 24, 32, pf_test_vec3(wo), pf_test_vec3(wi), PF_R(0.1), PF_R(0.04), &got) ==
                          PF_OK,
                      "call");
             num += ((long double)got - (long double)sh.spec) * ((long double)got - (long double)sh.spec);
@@ -162,13 +142,13 @@ static void test_scale_factor_shrink(void)
     long long cnt = pf_vmf_scale_sample_count(NT, NP), cells = pf_vmf_scale_cell_count(NT, NP), s, c;
     pf_real fe[P * 36], fl[P * 36], scr[2 * 18 * P], T[P], S[18], S0[18], T0[P], prior = PF_R(-1.0), t_one;
     long double a = 0, q = 0, worst_fit = 0;
-    trng r;
+    pf_test_rng r;
     int x, weak = 5, tail_cell = 7;
-    r.s = 91;
+    r = pf_test_rng_seed(91);
     for (x = 0; x < P; ++x)
         for (s = 0; s < cnt; ++s) {
             c = pfi_vmf_scale_cell(s, NT, NP);
-            fl[x * cnt + s] = (pf_real)(0.5 + trng_u(&r)) * (x == weak ? PF_R(1e-4) : PF_R(1.0)) * (c == tail_cell ? PF_R(1e-3) : PF_R(1.0));
+            fl[x * cnt + s] = (pf_real)(0.5 + pf_test_uniform_open(&r)) * (x == weak ? PF_R(1e-4) : PF_R(1.0)) * (c == tail_cell ? PF_R(1e-3) : PF_R(1.0));
             /* R = 1.5 on patch 0, 0.8 elsewhere; the tail cell's f_eff is exactly 0 */
             fe[x * cnt + s] = c == tail_cell ? PF_R(0.0) : (x == 0 ? PF_R(1.5) : PF_R(0.8)) * fl[x * cnt + s];
         }
@@ -216,20 +196,20 @@ static void test_scale_factor_separable(void)
     pf_real *fe = (pf_real *)malloc((size_t)(cnt * P) * sizeof(pf_real)), *fl = (pf_real *)malloc((size_t)(cnt * P) * sizeof(pf_real));
     pf_real *scr = (pf_real *)malloc((size_t)(2 * cells * P) * sizeof(pf_real)), T[P], S[NT * NT * NP], err[3], t0[P],
             s0[NT * NT * NP];
-    trng r;
+    pf_test_rng r;
     long double worst = 0, ratio;
     int x;
-    r.s = 77;
+    r = pf_test_rng_seed(77);
     PF_CHECK(cnt == 36 && cells == 18, "counts %lld %lld", cnt, cells);
     if (!fe || !fl || !scr) {
         PF_CHECK(0, "alloc");
         return;
     }
-    for (x = 0; x < P; ++x) t0[x] = (pf_real)(0.5 + trng_u(&r));
-    for (c = 0; c < cells; ++c) s0[c] = (pf_real)(0.2 + 2.0 * trng_u(&r));
+    for (x = 0; x < P; ++x) t0[x] = (pf_real)(0.5 + pf_test_uniform_open(&r));
+    for (c = 0; c < cells; ++c) s0[c] = (pf_real)(0.2 + 2.0 * pf_test_uniform_open(&r));
     for (x = 0; x < P; ++x)
         for (s = 0; s < cnt; ++s) {
-            fl[x * cnt + s] = (pf_real)(trng_u(&r) * trng_u(&r) * 3.0);
+            fl[x * cnt + s] = (pf_real)(pf_test_uniform_open(&r) * pf_test_uniform_open(&r) * 3.0);
             fe[x * cnt + s] = t0[x] * s0[pfi_vmf_scale_cell(s, NT, NP)] * fl[x * cnt + s];
         }
     PF_CHECK(pfi_vmf_scale_factor(fe, fl, P, NT, NP, 60, PF_R(0.0), T, S, scr, NULL, err) == PF_OK, "factor");
