@@ -1,0 +1,53 @@
+/* curved_shade.h - one pixel of bench/specaa_scenes.h's curved scenes shaded by the specular AA
+   forms of pf_specaa.h, written once in the subset C99 and GLSL share: bench/frame/curved.frag
+   (the GPU, hardware dFdx/dFdy) and bench/frame/frame_curved.h (the CPU float path, the same
+   quad differences computed analytically) call the same function, so the GPU-vs-CPU column
+   measures the driver (texture filtering, lod, derivatives, arithmetic), not two transcriptions.
+   The forms are bench/specaa_scenes.h's rows of the same names (sc_run), with the quad's
+   derivatives instead of its exact ones. Bench code, not part of the library.
+     m   FC_NONE .. FC_VMF_BOX below
+     wo, wi   view and light in the pixel's tangent frame (T, B, N)
+     mm  the map's filtered 5 slope moments (zero without a map); nav: its averaged unit normal
+     bv  base per-axis slope variance alpha^2 / 2
+     dnx, dny  screen derivatives of the macro-normal (world); ax, ay: the same in (T, B, N) */
+#ifndef FC_CURVED_SHADE_H
+#define FC_CURVED_SHADE_H
+
+#define FC_NONE     0 /* LEADR, no kernel */
+#define FC_BOX      1 /* LEADR + box kernel, anisotropic (pf_specaa_kernel_aniso, sigma2 1/24) */
+#define FC_BOX_ISO  2 /* pf_specaa_leadr_specular: the isotropic box kernel, one call */
+#define FC_TK       3 /* LEADR + Tokuyoshi & Kaplanyan 2019 (1/(2 pi), 0.18) */
+#define FC_FILAMENT 4 /* LEADR + Filament's constants (0.15, 0.2^2) */
+#define FC_HDRP     5 /* LEADR + HDRP's (0.1, 0.2^2) */
+#define FC_GODOT    6 /* LEADR + Godot's limiter (0.25, 0.18 on alpha) */
+#define FC_VMF_BOX  7 /* one vMF lobe from the averaged normal + box kernel (pf_specaa_vmf_kappa) */
+#define FC_COUNT    8
+
+PF_DEF pf_real fc_shade(int m, pf_vec3 wo, pf_vec3 wi, pf_slope_moments mm, pf_vec3 nav, pf_real bv, pf_vec3 dnx, pf_vec3 dny,
+                        pf_vec3 ax, pf_vec3 ay)
+{
+    pf_slope_stats s0 = pf_slope_moments_stats(mm, bv), st = s0;
+    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
+    if (m == FC_BOX) st = pf_specaa_slope_stats_aniso(s0, pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA));
+    if (m == FC_BOX_ISO) return pf_specaa_leadr_specular(wo, wi, s0, PF_R(1.0), dnx, dny);
+    if (m == FC_TK) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA));
+    if (m == FC_FILAMENT) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.04)));
+    if (m == FC_HDRP) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.1), PF_R(0.04)));
+    if (m == FC_GODOT) {
+        /* perceptual roughness^2 (= alpha) += min(2 x 0.25 |dn|^2, 0.18) on LEADR's isotropic
+           equivalent alpha^2 = var_x + var_y, the alpha^2 increment spread on both axes */
+        pf_real ae = PF_SQRT(s0.var_x + s0.var_y), an = ae + pf_specaa_kernel_normal(dnx, dny, PF_R(0.25), PF_R(0.18));
+        an = an < PF_R(1.0) ? an : PF_R(1.0);
+        an = an * an - ae * ae;
+        st = pf_specaa_slope_stats(s0, an > PF_R(0.0) ? an : PF_R(0.0));
+    }
+    if (m == FC_VMF_BOX) {
+        /* one lobe from the mip's averaged unit normal (Banerjee et al. 2005), widened by the kernel */
+        pf_real r = PF_SQRT(pf_vec3_dot(nav, nav));
+        pf_vec3 mu = r > PF_R(0.0) ? pf_vec3_scale(nav, PF_R(1.0) / r) : pf_vec3_make(PF_R(0.0), PF_R(0.0), PF_R(1.0));
+        pf_real kb = pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+        st = pf_vmf_lobe_slope_stats(mu, pf_specaa_vmf_kappa(pf_vmf_kappa_from_mean_length(r), kb), bv);
+    }
+    return pf_leadr_specular(wo, wi, st, PF_R(1.0));
+}
+#endif

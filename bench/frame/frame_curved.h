@@ -1,0 +1,329 @@
+/* frame_curved.h - the curved scenes of bench/specaa_scenes.h (an orthographic sphere and
+   cylinder, 16 and 40 px across (24 in BENCH_QUICK), plain or normal-mapped, base alpha 0.03 and
+   0.1, a sub-pixel camera path) rendered by the GPU frame: bench/frame/curved.frag ray-casts them
+   analytically and shades every pixel with the specular AA forms of pf_specaa.h
+   (bench/frame/curved_shade.h: LEADR alone, with the box geometry kernel (anisotropic and the
+   isotropic pf_specaa_leadr_specular), with the engines' kernels (Tokuyoshi & Kaplanyan 2019,
+   Filament, HDRP, Godot), and one vMF lobe with the kernel), the geometry kernel from the
+   hardware dFdx/dFdy of the macro-normal, the texture part from the map's moment pyramid as
+   R32G32B32A32_SFLOAT textures through an isotropic trilinear sampler at the driver's lod.
+   Included once by bench/frame/frame.c (its Vulkan helpers); bench code.
+
+   WHAT IS MEASURED, per scene row (scene, size, alpha) and form, over the pixels whose centre is
+   on the surface (specaa_scenes.h's rule) in every frame:
+     err      RMS over pixels and frames of (GPU - reference) / the mean reference, and its ratio
+              to the oracle's (specaa_scenes.h's: the same metric as bench/specaa.c's table).
+              Reference and oracle are specaa_scenes.h's own (sc_run, included, not copied): S x S
+              stratified rays per pixel each shading its own texel, and one Gaussian lobe of
+              those rays' exact slope mean and covariance.
+     flk      RMS frame-to-frame change per pixel / the reference's own (the same path).
+     vs CPU   RMS (GPU - CPU) / mean CPU: the CPU float path is curved_shade.h's fc_shade, the
+              same function, fed by the analytic geometry at the quad's four pixel centres
+              (dFdxFine = right - left of the pixel's quad row, dFdyFine = bottom - top of its
+              column: what the hardware differences), pf_slope_moments_sample and
+              pf_normal_avg_sample at lod log2(max |d(s,t)/dx|, |d(s,t)/dy|). So it measures the
+              driver's lod, filtering, derivatives and float arithmetic.
+     exact d  the CPU error with the exact (central-difference) derivatives, bench/specaa.c's
+              own row of the same form (from the same sc_run images): what the 1-px quad
+              differences cost.
+     non-finite  NaN or infinite GPU pixels over the whole rendered images. */
+#include "pf_specaa.h"
+#include "specaa_scenes.h"
+#include "curved_shade.h"
+
+/* the rows: every form of curved_shade.h through the driver's lod (textureGrad), and the box
+   kernel again with the lod computed in the shader (textureLod at log2 of the longer texel
+   derivative, the CPU path's formula): the driver's lod approximation apart */
+#define FC_ROWS (FC_COUNT + 1)
+static const char *const fc_key[FC_ROWS] = {"none", "box", "box_iso", "tk", "filament", "hdrp", "godot", "vmf_box", "box_lod"};
+static const int fc_form[FC_ROWS] = {FC_NONE, FC_BOX, FC_BOX_ISO, FC_TK, FC_FILAMENT, FC_HDRP, FC_GODOT, FC_VMF_BOX, FC_BOX};
+static const int fc_sm[FC_ROWS] = {SM_NONE, SM_BOX, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_BOX, SM_BOX};
+static const char *fc_name(int r) { return r == FC_COUNT ? "LEADR + box kernel (aniso), lod computed in the shader (textureLod)" : sc_meth_name[fc_sm[r]]; }
+
+/* specaa_scenes.h's surface at image point (x, y) (sc_eval); off the surface the point moves
+   radially to 0.999 R first, as curved.frag's geo: returns 1 on the surface */
+static int fc_eval(int scene, double R, double cx, double cy, double x, double y, sc_geo *g)
+{
+    double dx = (x - cx) / R, dy = (y - cy) / R;
+    if (sc_eval(scene, R, cx, cy, x, y, g)) return 1;
+    if (scene < 2) {
+        double k = 0.999 / sqrt(dx * dx + dy * dy);
+        dx *= k, dy *= k;
+    } else
+        dx = dx > 0.0 ? 0.999 : -0.999;
+    sc_eval(scene, R, cx, cy, cx + dx * R, cy + dy * R, g);
+    return 0;
+}
+
+static pf_vec3 fc_v3(const double *v) { return pf_vec3_make((pf_real)v[0], (pf_real)v[1], (pf_real)v[2]); }
+
+/* the CPU float path of form m at pixel (px, py) of job (sc_run's numbering) */
+static double fc_cpu(int m, long long job, int px, int py)
+{
+    int ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), fr = (int)(job % sc_F);
+    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE)), W = sc_W[si], x0 = px & ~1, y0 = py & ~1, i;
+    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    double dn[2][3], d[2][2], rho;
+    const double *L = sc_wi_all[scene >= 2];
+    sc_geo g, q[4];
+    pf_slope_moments mm = pf_slope_moments_make(0, 0, 0, 0, 0);
+    pf_vec3 nav = pf_vec3_make(0, 0, 1);
+    fc_eval(scene, R, cx, cy, px + 0.5, py + 0.5, &g);
+    fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &q[0]);
+    fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &q[1]);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &q[2]);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &q[3]);
+    for (i = 0; i < 3; ++i) dn[0][i] = q[1].N[i] - q[0].N[i], dn[1][i] = q[3].N[i] - q[2].N[i];
+    d[0][0] = q[1].s - q[0].s, d[0][1] = q[1].t - q[0].t, d[1][0] = q[3].s - q[2].s, d[1][1] = q[3].t - q[2].t;
+    rho = fmax(sqrt(d[0][0] * d[0][0] + d[0][1] * d[0][1]), sqrt(d[1][0] * d[1][0] + d[1][1] * d[1][1]));
+    if (scene & 1) {
+        pf_real lod = (pf_real)(rho > 1.0 ? log2(rho) : 0.0), us = (pf_real)(g.s / SC_N), vs = (pf_real)(g.t / SC_N);
+        mm = pf_slope_moments_sample(sc_pyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
+        nav = pf_normal_avg_sample(sc_npyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
+    }
+    return (double)fc_shade(m, pf_vec3_make((pf_real)g.T[2], (pf_real)g.B[2], (pf_real)g.N[2]),
+                            pf_vec3_make((pf_real)sc_dot(L, g.T), (pf_real)sc_dot(L, g.B), (pf_real)sc_dot(L, g.N)), mm, nav,
+                            (pf_real)(0.5 * a * a), fc_v3(dn[0]), fc_v3(dn[1]),
+                            pf_vec3_make((pf_real)sc_dot(dn[0], g.T), (pf_real)sc_dot(dn[0], g.B), (pf_real)sc_dot(dn[0], g.N)),
+                            pf_vec3_make((pf_real)sc_dot(dn[1], g.T), (pf_real)sc_dot(dn[1], g.B), (pf_real)sc_dot(dn[1], g.N)));
+}
+
+typedef struct {
+    const float *gpu; /* [FC_COUNT][job][W x W] radiance, NaN where the GPU missed */
+    double *cpu;      /* the same layout */
+    long long stride;
+} fc_cpu_job;
+
+static void fc_cpu_item(void *ctx, long long job)
+{
+    fc_cpu_job *c = (fc_cpu_job *)ctx;
+    int si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), W = sc_W[si], m, px, py;
+    const double *ref = sc_img + job * sc_img_stride + (long long)SM_REF * W * W;
+    for (m = 0; m < FC_ROWS; ++m)
+        for (py = 0; py < W; ++py)
+            for (px = 0; px < W; ++px) {
+                long long p = (long long)py * W + px, o = ((long long)m * sc_njobs() + job) * c->stride + p;
+                c->cpu[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], job, px, py);
+            }
+}
+
+typedef struct {
+    double err, err_exact, orc, flk, vs_cpu, vs_cpu_max;
+    int nonfinite, mismatch;
+} fc_stat;
+
+/* Renders the curved scenes on the device (vk, set up by main), writes their table to md (the
+   report's frame section), OUT_DIR/gpuspecaa.md (docs/specaa.md's generated block) and
+   OUT_DIR/frame_curved.csv. probe .. hdf: the main scenes' textures, for the set's unread
+   bindings. Returns 0, or 1 on a missing shader or file. */
+static int fc_bench(const char *spv, const char *outdir, const char *ops_file, int quick, FILE *md, const fr_tex *probe,
+                    const fr_tex *v4, const fr_tex *v8, const fr_tex *hdf)
+{
+    int si, scene, ai, m, fr, levels = pf_mip_level_count(SC_N, SC_N), Wm, k, ops[FC_ROWS], br[FC_ROWS], row;
+    long long njob, nt = pf_mip_texel_count(SC_N, SC_N), job, stride;
+    double t0 = now_seconds(), c0 = thread_cpu_seconds(), t_ref, t_gpu, t_cpu;
+    float *ta, *tb, *gpu;
+    double *cpu;
+    fr_tex tex[2];
+    VkSampler samp;
+    VkDescriptorPool pool;
+    VkDescriptorSet set;
+    fr_target tg;
+    char path[1024], vert[1024];
+    static fc_stat stat[SC_NSCENE * SC_NSIZE * SC_NALPHA][FC_ROWS];
+    FILE *csv, *gm;
+    fc_cpu_job cj;
+    (void)sc_bench; /* specaa.c's table: not this step's */
+    /* specaa_scenes.h's settings, as sc_bench sets them, and its images (reference, oracle, its
+       CPU rows with exact derivatives) for every job */
+    if (quick) { sc_S = 8; sc_F = 6; sc_diam[1] = 24.0; }
+    sc_build_map();
+    for (si = 0; si < SC_NSIZE; ++si) sc_W[si] = (int)sc_diam[si] + 5;
+    Wm = sc_W[SC_NSIZE - 1];
+    stride = sc_dev_stride = (long long)Wm * Wm;
+    sc_img_stride = SM_COUNT * sc_dev_stride;
+    njob = sc_njobs();
+    sc_img = (double *)pfb_xmalloc(sizeof(double) * (size_t)(njob * sc_img_stride));
+    sc_dev2 = (double *)pfb_xmalloc(sizeof(double) * (size_t)(njob * sc_dev_stride));
+    sc_full = (unsigned char *)pfb_xmalloc((size_t)(njob * sc_dev_stride));
+    pfb_parallel_for(njob, sc_run, NULL, "frame: curved scenes, specaa_scenes.h's reference");
+    t_ref = now_seconds() - t0;
+
+    /* the map as GPU textures */
+    t0 = now_seconds();
+    ta = (float *)pfb_xmalloc(sizeof(float) * 4 * (size_t)nt);
+    tb = (float *)pfb_xmalloc(sizeof(float) * 4 * (size_t)nt);
+    for (k = 0; k < nt; ++k) {
+        ta[4 * k] = sc_pyr[5 * k], ta[4 * k + 1] = sc_pyr[5 * k + 1], ta[4 * k + 2] = sc_pyr[5 * k + 2], ta[4 * k + 3] = sc_pyr[5 * k + 3];
+        tb[4 * k] = sc_pyr[5 * k + 4], tb[4 * k + 1] = sc_npyr[3 * k], tb[4 * k + 2] = sc_npyr[3 * k + 1], tb[4 * k + 3] = sc_npyr[3 * k + 2];
+    }
+    tex[0] = upload_texture(ta, SC_N, SC_N, levels, VK_FORMAT_R32G32B32A32_SFLOAT);
+    tex[1] = upload_texture(tb, SC_N, SC_N, levels, VK_FORMAT_R32G32B32A32_SFLOAT);
+    samp = make_sampler(1.0f, levels);
+    {   /* frame.c's set layout: the map in bindings 0 and 1; the others (unread by curved.frag) bound
+           to the main scenes' textures so that every binding is valid */
+        VkDescriptorPoolSize ps[2];
+        VkDescriptorPoolCreateInfo dpci;
+        ps[0].type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        ps[0].descriptorCount = 6;
+        ps[1].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        ps[1].descriptorCount = 1;
+        memset(&dpci, 0, sizeof dpci);
+        dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+        dpci.maxSets = 1;
+        dpci.poolSizeCount = 2;
+        dpci.pPoolSizes = ps;
+        VKC(vkCreateDescriptorPool(vk.dev, &dpci, NULL, &pool));
+        set = make_set(pool, &tex[0], &tex[1], probe, v4, v8, hdf, samp);
+    }
+
+    /* every form, every job, one Wm x Wm frame each (the smaller size uses its top-left W x W) */
+    gpu = (float *)pfb_xmalloc(sizeof(float) * (size_t)(FC_ROWS * njob * stride));
+    cpu = (double *)pfb_xmalloc(sizeof(double) * (size_t)(FC_ROWS * njob * stride));
+    tg = make_target(Wm, Wm);
+    snprintf(vert, sizeof vert, "%s/frame.vert.spv", spv);
+    memset(stat, 0, sizeof stat);
+    for (m = 0; m < FC_ROWS; ++m) {
+        VkPipeline pipe;
+        snprintf(path, sizeof path, "%s/curved_%s.spv", spv, fc_key[m]);
+        pipe = make_pipeline(&tg, Wm, Wm, vert, path);
+        ops[m] = ops_of_name(ops_file, "curved", fc_key[m], &br[m]);
+        for (job = 0; job < njob; ++job) {
+            int ai_ = (int)(job / sc_F % SC_NALPHA), si_ = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), fr_ = (int)(job % sc_F);
+            int sc_ = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE)), W = sc_W[si_], p, x, y;
+            fr_push pc;
+            float *out = gpu + ((long long)m * njob + job) * stride;
+            memset(&pc, 0, sizeof pc);
+            pc.pos[0] = (float)(0.5 * W + 0.13 + (double)fr_ / sc_F), pc.pos[1] = (float)(0.5 * W + 0.41 + 0.37 * fr_ / sc_F);
+            pc.pos[2] = (float)(0.5 * sc_diam[si_]), pc.pos[3] = (float)W;
+            pc.right[0] = (float)(sc_ >= 2), pc.right[1] = (float)(sc_ & 1), pc.right[2] = (float)(0.5 * sc_alpha[ai_] * sc_alpha[ai_]);
+            for (k = 0; k < 3; ++k) pc.up[k] = (float)sc_wi_all[sc_ >= 2][k];
+            render(&tg, pipe, set, &pc, Wm, Wm);
+            for (y = 0; y < Wm; ++y)
+                for (x = 0; x < Wm; ++x) {
+                    const float *o0 = tg.rb_map + 4 * ((size_t)y * Wm + x);
+                    if (x >= W || y >= W) continue;
+                    p = y * W + x;
+                    out[p] = o0[3] > 0.5f ? o0[0] : NAN;
+                    if (!isfinite(o0[0])) stat[(sc_ * SC_NSIZE + si_) * SC_NALPHA + ai_][m].nonfinite++;
+                }
+        }
+        vkDestroyPipeline(vk.dev, pipe, NULL);
+    }
+    t_gpu = now_seconds() - t0;
+    t0 = now_seconds();
+    cj.gpu = gpu, cj.cpu = cpu, cj.stride = stride;
+    pfb_parallel_for(njob, fc_cpu_item, &cj, "frame: curved scenes, CPU path");
+    t_cpu = now_seconds() - t0;
+
+    /* statistics per scene row and form (specaa_scenes.h's metric) */
+    for (scene = 0; scene < SC_NSCENE; ++scene)
+        for (si = 0; si < SC_NSIZE; ++si)
+            for (ai = 0; ai < SC_NALPHA; ++ai) {
+                int W = sc_W[si];
+                long long WW = (long long)W * W, p, j0 = (((long long)scene * SC_NSIZE + si) * SC_NALPHA + ai) * sc_F;
+                row = (scene * SC_NSIZE + si) * SC_NALPHA + ai;
+                for (m = 0; m < FC_ROWS; ++m) {
+                    double e2 = 0, x2 = 0, o2 = 0, rs = 0, d2 = 0, r2 = 0, c2 = 0, cs = 0, vmax = 0;
+                    long long np = 0, nd = 0;
+                    fc_stat *s = &stat[row][m];
+                    for (fr = 0; fr < sc_F; ++fr) {
+                        const double *img = sc_img + (j0 + fr) * sc_img_stride, *prv = fr ? sc_img + (j0 + fr - 1) * sc_img_stride : NULL;
+                        const float *gg = gpu + ((long long)m * njob + j0 + fr) * stride, *gp = fr ? gg - stride : gg;
+                        const double *cc = cpu + ((long long)m * njob + j0 + fr) * stride;
+                        double fe2 = 0, fcs = 0;
+                        long long fnp = 0;
+                        for (p = 0; p < WW; ++p) {
+                            double r = img[SM_REF * WW + p], g = (double)gg[p];
+                            if (isnan(r) != isnan(g)) s->mismatch++;
+                            if (isnan(r) || isnan(g)) continue;
+                            ++np, ++fnp;
+                            rs += r, cs += cc[p], fcs += cc[p];
+                            e2 += (g - r) * (g - r);
+                            x2 += (img[fc_sm[m] * WW + p] - r) * (img[fc_sm[m] * WW + p] - r);
+                            o2 += (img[SM_ORACLE * WW + p] - r) * (img[SM_ORACLE * WW + p] - r);
+                            c2 += (g - cc[p]) * (g - cc[p]), fe2 += (g - cc[p]) * (g - cc[p]);
+                            if (prv && !isnan(prv[SM_REF * WW + p]) && !isnan((double)gp[p])) {
+                                double dg = g - (double)gp[p], dr = r - prv[SM_REF * WW + p];
+                                ++nd, d2 += dg * dg, r2 += dr * dr;
+                            }
+                        }
+                        if (fnp && fcs > 0.0 && sqrt(fe2 / fnp) / (fcs / fnp) > vmax) vmax = sqrt(fe2 / fnp) / (fcs / fnp);
+                    }
+                    rs /= (double)(np ? np : 1), cs /= (double)(np ? np : 1);
+                    s->err = sqrt(e2 / (double)(np ? np : 1)) / rs;
+                    s->err_exact = sqrt(x2 / (double)(np ? np : 1)) / rs;
+                    s->orc = sqrt(o2 / (double)(np ? np : 1)) / rs;
+                    s->flk = r2 > 0.0 ? sqrt(d2 / r2) : 0.0;
+                    s->vs_cpu = cs > 0.0 ? sqrt(c2 / (double)(np ? np : 1)) / cs : 0.0;
+                    s->vs_cpu_max = vmax;
+                }
+            }
+
+    /* the tables */
+    snprintf(path, sizeof path, "%s/frame_curved.csv", outdir);
+    csv = fopen(path, "w");
+    snprintf(path, sizeof path, "%s/gpuspecaa.md", outdir);
+    gm = fopen(path, "w");
+    if (!csv || !gm) return 1;
+    fprintf(csv, "scene,diameter_px,alpha,form,err,err_over_oracle,cpu_exact_deriv_err_over_oracle,flicker_over_ref,vs_cpu,"
+                 "vs_cpu_worst_frame,nonfinite,center_mismatch,spirv_ops,cond_branches,frames,spp\n");
+    for (scene = 0; scene < SC_NSCENE; ++scene)
+        for (si = 0; si < SC_NSIZE; ++si)
+            for (ai = 0; ai < SC_NALPHA; ++ai)
+                for (m = 0; m < FC_ROWS; ++m) {
+                    const fc_stat *s = &stat[(scene * SC_NSIZE + si) * SC_NALPHA + ai][m];
+                    fprintf(csv, "\"%s\",%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%d,%d,%d,%d\n", sc_scene_name[scene], sc_diam[si],
+                            sc_alpha[ai], fc_key[m], s->err, s->err / s->orc, s->err_exact / s->orc, s->flk, s->vs_cpu, s->vs_cpu_max,
+                            s->nonfinite, s->mismatch, ops[m], br[m], sc_F, sc_S * sc_S);
+                }
+    fclose(csv);
+    for (k = 0; k < 2; ++k) {
+        FILE *f = k ? gm : md;
+        const int nrow = SC_NSCENE * SC_NSIZE * SC_NALPHA;
+        fprintf(f, "%sThe curved scenes of bench/specaa_scenes.h (an orthographic sphere and cylinder %g and %g px across, "
+                   "plain or normal-mapped, base alpha %g and %g, %d frames of a sub-pixel camera path) rendered by the GPU frame "
+                   "(bench/frame/curved.frag, device %s%s): the surface ray-cast per pixel, the geometry kernel from the hardware "
+                   "`dFdxFine`/`dFdyFine` of the macro-normal, the map's moment pyramid as R32G32B32A32_SFLOAT textures through "
+                   "an isotropic trilinear sampler at the driver's lod. Reference and oracle: specaa_scenes.h's own (%dx%d "
+                   "stratified rays per pixel, each shading its texel; one Gaussian lobe of those rays' exact slope moments), "
+                   "the same pixels. Per form, over the %d scene rows: **err/oracle**, the RMS error against the reference over "
+                   "the oracle's (mean over rows; worst row); **rows within 1.5x**; the same with the CPU's exact derivatives "
+                   "(bench/specaa.c's row); **flk**, the RMS frame-to-frame change per pixel over the reference's own (mean; "
+                   "worst); **GPU vs CPU**, RMS |GPU - CPU| / mean CPU with the CPU float path running the same function "
+                   "(bench/frame/curved_shade.h) on the quad's analytic differences (mean over rows; worst frame); non-finite "
+                   "pixels; SPIR-V ops after `spirv-opt -O` (and conditional branches).%s\n\n",
+                k ? "" : "\n### The curved scenes on the GPU (specular antialiasing)\n\n", sc_diam[0], sc_diam[1], sc_alpha[0],
+                sc_alpha[1], sc_F, vk.name, vk.is_cpu ? ", a CPU implementation" : "", sc_S, sc_S, nrow,
+                quick ? " BENCH_QUICK: smoke run, not for publication." : "");
+        fprintf(f, "| form | err/oracle (GPU): mean; worst | rows within 1.5x | err/oracle, CPU exact derivatives: mean | flk: "
+                   "mean; worst | GPU vs CPU: mean; worst frame | non-finite | SPIR-V ops (branches) |\n"
+                   "|---|--:|--:|--:|--:|--:|--:|--:|\n");
+        for (m = 0; m < FC_ROWS; ++m) {
+            double se = 0, we = 0, sx = 0, sf = 0, wf = 0, sv = 0, wv = 0;
+            int nin = 0, nf = 0, r;
+            for (r = 0; r < nrow; ++r) {
+                const fc_stat *s = &stat[r][m];
+                double e = s->err / s->orc;
+                se += e, sx += s->err_exact / s->orc, sf += s->flk, sv += s->vs_cpu, nf += s->nonfinite;
+                if (e > we) we = e;
+                if (s->flk > wf) wf = s->flk;
+                if (s->vs_cpu_max > wv) wv = s->vs_cpu_max;
+                nin += e <= 1.5;
+            }
+            fprintf(f, "| %s | %.2f; %.2f | %d/%d | %.2f | %.2f; %.2f | %.3f%%; %.3f%% | %d | %d (%d) |\n", fc_name(m),
+                    se / nrow, we, nin, nrow, sx / nrow, sf / nrow, wf, 100.0 * sv / nrow, 100.0 * wv, nf, ops[m], br[m]);
+        }
+        fprintf(f, "\nPer scene row (GPU; err/oracle / flk): `bench/out/frame_curved.csv`. Reference, GPU frames and CPU path "
+                   "took %.1f s, %.1f s and %.1f s wall (the reference: specaa_scenes.h's sc_run for every form it has).\n",
+                t_ref, t_gpu, t_cpu);
+    }
+    fclose(gm);
+    printf("frame: curved scenes: %lld frames x %d rows; reference %.1f s, GPU %.1f s, CPU path %.1f s (wall); %.1f s CPU in this thread\n",
+           njob, FC_ROWS, t_ref, t_gpu, t_cpu, thread_cpu_seconds() - c0);
+    vkDestroyBuffer(vk.dev, tg.rb, NULL);
+    vkFreeMemory(vk.dev, tg.rb_mem, NULL);
+    free(ta), free(tb), free(gpu), free(cpu);
+    free(sc_img), free(sc_dev2), free(sc_full), free(sc_slope), free(sc_pyr), free(sc_npyr);
+    return 0;
+}
