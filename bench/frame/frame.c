@@ -45,6 +45,10 @@
    grid-sampled reference did not (its own change was mostly sampling noise). The still frames'
    pixel reference is the same area integral (PIXEL_REF_SEED).
 
+   CURVED SCENES. bench/specaa_scenes.h's sphere and cylinder with pf_specaa.h's forms, against
+   its own reference and oracle: bench/frame/frame_curved.h (fc_bench, called at the end of main)
+   says what it measures.
+
    SCENES. Cameras, lights, pixel rays, footprints and the box brute force are bench/pictures.c's,
    from their one home bench/pic_scenes.h. CPU WORK (references, the CPU float path, the sampler
    emulation, the lobe pyramids) runs on every core (bench/pf_parallel.h, PFB_THREADS), rows as

@@ -273,7 +273,8 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
             for (ai = 0; ai < SC_NALPHA; ++ai)
                 for (m = 0; m < FC_ROWS; ++m) {
                     const fc_stat *s = &stat[(scene * SC_NSIZE + si) * SC_NALPHA + ai][m];
-                    fprintf(csv, "\"%s\",%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%d,%d,%d,%d\n", sc_scene_name[scene], sc_diam[si],
+                    static const char *const key[SC_NSCENE] = {"sphere", "sphere_mapped", "cylinder", "cylinder_mapped"};
+                    fprintf(csv, "%s,%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%d,%d,%d,%d\n", key[scene], sc_diam[si],
                             sc_alpha[ai], fc_key[m], s->err, s->err / s->orc, s->err_exact / s->orc, s->flk, s->vs_cpu, s->vs_cpu_max,
                             s->nonfinite, s->mismatch, ops[m], br[m], sc_F, sc_S * sc_S);
                 }
