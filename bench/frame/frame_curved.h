@@ -89,8 +89,7 @@ static double fc_cpu(int m, long long job, int px, int py)
 }
 
 typedef struct {
-    const float *gpu; /* [FC_COUNT][job][W x W] radiance, NaN where the GPU missed */
-    double *cpu;      /* the same layout */
+    double *cpu; /* [FC_ROWS][job][stride]: the CPU path at the pixels of the reference, NaN elsewhere */
     long long stride;
 } fc_cpu_job;
 
@@ -119,9 +118,9 @@ typedef struct {
 static int fc_bench(const char *spv, const char *outdir, const char *ops_file, int quick, FILE *md, const fr_tex *probe,
                     const fr_tex *v4, const fr_tex *v8, const fr_tex *hdf)
 {
-    int si, scene, ai, m, fr, levels = pf_mip_level_count(SC_N, SC_N), Wm, k, ops[FC_ROWS], br[FC_ROWS], row;
+    int si, scene, ai, m, fr, levels = pf_mip_level_count(SC_N, SC_N), Wm, k, ops[FC_ROWS], br[FC_ROWS], row, nms[FC_ROWS];
     long long njob, nt = pf_mip_texel_count(SC_N, SC_N), job, stride;
-    double t0 = now_seconds(), c0 = thread_cpu_seconds(), t_ref, t_gpu, t_cpu;
+    double t0 = now_seconds(), c0 = thread_cpu_seconds(), t_ref, t_gpu, t_cpu, ms[FC_ROWS];
     float *ta, *tb, *gpu;
     double *cpu;
     fr_tex tex[2];
@@ -188,6 +187,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
         snprintf(path, sizeof path, "%s/curved_%s.spv", spv, fc_key[m]);
         pipe = make_pipeline(&tg, Wm, Wm, vert, path);
         ops[m] = ops_of_name(ops_file, "curved", fc_key[m], &br[m]);
+        ms[m] = 0.0, nms[m] = 0;
         for (job = 0; job < njob; ++job) {
             int ai_ = (int)(job / sc_F % SC_NALPHA), si_ = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), fr_ = (int)(job % sc_F);
             int sc_ = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE)), W = sc_W[si_], p, x, y;
@@ -198,7 +198,10 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
             pc.pos[2] = (float)(0.5 * sc_diam[si_]), pc.pos[3] = (float)W;
             pc.right[0] = (float)(sc_ >= 2), pc.right[1] = (float)(sc_ & 1), pc.right[2] = (float)(0.5 * sc_alpha[ai_] * sc_alpha[ai_]);
             for (k = 0; k < 3; ++k) pc.up[k] = (float)sc_wi_all[sc_ >= 2][k];
-            render(&tg, pipe, set, &pc, Wm, Wm);
+            {
+                double t = render(&tg, pipe, set, &pc, Wm, Wm); /* GPU ms (timestamps), -1 without */
+                if (t >= 0.0) ms[m] += t, nms[m]++;
+            }
             for (y = 0; y < Wm; ++y)
                 for (x = 0; x < Wm; ++x) {
                     const float *o0 = tg.rb_map + 4 * ((size_t)y * Wm + x);
@@ -212,7 +215,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     }
     t_gpu = now_seconds() - t0;
     t0 = now_seconds();
-    cj.gpu = gpu, cj.cpu = cpu, cj.stride = stride;
+    cj.cpu = cpu, cj.stride = stride;
     pfb_parallel_for(njob, fc_cpu_item, &cj, "frame: curved scenes, CPU path");
     t_cpu = now_seconds() - t0;
 
@@ -293,16 +296,18 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                    "(bench/specaa.c's row); **flk**, the RMS frame-to-frame change per pixel over the reference's own (mean; "
                    "worst); **GPU vs CPU**, RMS |GPU - CPU| / mean CPU with the CPU float path running the same function "
                    "(bench/frame/curved_shade.h) on the quad's analytic differences (mean over rows; worst frame); non-finite "
-                   "pixels; SPIR-V ops after `spirv-opt -O` (and conditional branches).%s\n\n",
+                   "pixels; SPIR-V ops after `spirv-opt -O` (and conditional branches); on a GPU, the mean time of one "
+                   "%dx%d frame (timestamps; none on a CPU device).%s\n\n",
                 k ? "" : "\n### The curved scenes on the GPU (specular antialiasing)\n\n", sc_diam[0], sc_diam[1], sc_alpha[0],
-                sc_alpha[1], sc_F, vk.name, vk.is_cpu ? ", a CPU implementation" : "", sc_S, sc_S, nrow,
+                sc_alpha[1], sc_F, vk.name, vk.is_cpu ? ", a CPU implementation" : "", sc_S, sc_S, nrow, Wm, Wm,
                 quick ? " BENCH_QUICK: smoke run, not for publication." : "");
         fprintf(f, "| form | err/oracle (GPU): mean; worst | rows within 1.5x | err/oracle, CPU exact derivatives: mean | flk: "
-                   "mean; worst | GPU vs CPU: mean; worst frame | non-finite | SPIR-V ops (branches) |\n"
-                   "|---|--:|--:|--:|--:|--:|--:|--:|\n");
+                   "mean; worst | GPU vs CPU: mean; worst frame | non-finite | SPIR-V ops (branches) | GPU ms |\n"
+                   "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for (m = 0; m < FC_ROWS; ++m) {
             double se = 0, we = 0, sx = 0, sf = 0, wf = 0, sv = 0, wv = 0;
             int nin = 0, nf = 0, r;
+            char tm[32] = "-";
             for (r = 0; r < nrow; ++r) {
                 const fc_stat *s = &stat[r][m];
                 double e = s->err / s->orc;
@@ -312,8 +317,9 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                 if (s->vs_cpu_max > wv) wv = s->vs_cpu_max;
                 nin += e <= 1.5;
             }
-            fprintf(f, "| %s | %.2f; %.2f | %d/%d | %.2f | %.2f; %.2f | %.3f%%; %.3f%% | %d | %d (%d) |\n", fc_name(m),
-                    se / nrow, we, nin, nrow, sx / nrow, sf / nrow, wf, 100.0 * sv / nrow, 100.0 * wv, nf, ops[m], br[m]);
+            if (nms[m]) snprintf(tm, sizeof tm, "%.3f", ms[m] / nms[m]);
+            fprintf(f, "| %s | %.2f; %.2f | %d/%d | %.2f | %.2f; %.2f | %.3f%%; %.3f%% | %d | %d (%d) | %s |\n", fc_name(m),
+                    se / nrow, we, nin, nrow, sx / nrow, sf / nrow, wf, 100.0 * sv / nrow, 100.0 * wv, nf, ops[m], br[m], tm);
         }
         fprintf(f, "\nPer scene row (GPU; err/oracle / flk): `bench/out/frame_curved.csv`. Reference, GPU frames and CPU path "
                    "took %.1f s, %.1f s and %.1f s wall (the reference: specaa_scenes.h's sc_run for every form it has).\n",
