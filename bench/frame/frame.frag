@@ -191,9 +191,9 @@ void main()
     /* The horizon methods fetch at an explicit lod, log2 of the longer texel derivative (the
        Vulkan rule, clamped to the chain), the same formula as their CPU path, as engines do for
        array textures; the sampler still filters (texels, wrap, bilinear weights, level blend).
-       With the driver's own lod (textureGrad) they were 1.15% (LEADR) and 1.21% (vMF 4) off the
-       CPU path at log2(rho_max) (BENCH_QUICK plane): lavapipe's lod is off by 0.025 level on
-       average, and the fade alone from the explicit lod left LEADR's at 1.16% (the moment and
+       With the driver's own lod (textureGrad) they were 1.144% (LEADR) and 1.182% (vMF 4) off the
+       CPU path at log2(rho_max) (full plane; 1.15% and 1.21% BENCH_QUICK): lavapipe's lod is off
+       by 0.022 level on average, and (BENCH_QUICK) the fade alone from the explicit lod left LEADR's at 1.16% (the moment and
        HDF fetches carry it; the fade's share is 0.21%) while vMF's lobes at the explicit level
        took that row to 0.18%. */
     float lod_e = clamp(log2(max(max(length(gx), length(gy)), 1e-30)), 0.0, float(textureQueryLevels(texA) - 1));
