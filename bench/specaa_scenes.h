@@ -35,12 +35,18 @@
                 with the cross term (4) of pf_specaa.h from the central differences of its mean
                 at +-1/2 px (what dFdx/dFdy of the fetched mean give); four such reads, one per
                 pixel quadrant with half the footprint (pf_specaa_slope_stats_quad: moments,
-                gradient, kernel, cross term);
+                gradient, kernel, cross term); the second-order shift of the pixel's mean slope
+                (pf_specaa.h (6) from the kernel's trace and the view, pf_specaa_leadr_specular_curved's
+                form; (5) from the surface position's exact screen derivatives, P = (x, y, R n_z))
+                on the box kernel and on the quadrant reads;
    diagnostics  the exact texel moments of the pixel (the rays' nearest texels) with and
                 without the exact cross term (the rays' regression of the texel slope on the
                 sub-pixel offset); the anisotropic read with that exact cross term; the oracle's
                 covariance around the texture's mean (the geometry's second-order mean shift
-                removed).
+                removed); the box kernel's covariance around the oracle's exact mean (the split
+                of the error into mean and covariance); a second reference of independent jitter
+                (its RMS difference to the first / sqrt 2: the reference's true sampling
+                deviation, printed beside the i.i.d. bound).
    ERROR: RMS over pixels and frames of (method - reference), relative to the mean reference;
    the table gives it divided by the oracle's. FLICKER: per pixel, the change from one frame to
    the next (pixels on the surface in both), RMS over pixels and frame pairs; the table gives it

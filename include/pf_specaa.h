@@ -72,6 +72,10 @@
      pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
      pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
      pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
+     -- plain curved surfaces, the most accurate form (tangent-frame dndx, dndy and wo):
+     pf_real I = pf_specaa_leadr_specular_curved(wo, wi, s, f0, dndx, dndy);  -- + mean shift (6)
+     -- or, with any kernel and texture part: s = pf_specaa_slope_stats_shift(s,
+     --     pf_specaa_mean_shift(wo, k)), or pf_specaa_mean_shift_surface(dFdx(p), dFdy(p), ...)
      -- normal-mapped curved surfaces, the most accurate form (tangent-frame dndx, dndy; the
      -- four reads at uv -+ duvdx/4 -+ duvdy/4 with gradients duvdx/2, duvdy/2):
      pf_slope_stats s = pf_specaa_slope_stats_quad(m00, m10, m01, m11, alpha * alpha / 2,
@@ -92,8 +96,10 @@
                  pf_specaa_slope_variance_from_projected
      cross term  pf_specaa_kernel_cross (4), pf_specaa_slope_stats_cross,
                  pf_specaa_slope_stats_quad (four quadrant reads: moments, gradient, kernel, (4))
+     mean shift  pf_specaa_mean_shift (6), pf_specaa_mean_shift_surface (5),
+                 pf_specaa_slope_stats_shift
      compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
-                 pf_specaa_vmf_lobe, pf_specaa_leadr_specular
+                 pf_specaa_vmf_lobe, pf_specaa_leadr_specular, pf_specaa_leadr_specular_curved
    FUNCTIONS (CPU only, PF_CPU_DEF, compiled out under PF_GLSL)
      pf_specaa_bake_scratch_reals, pf_specaa_bake (2)
 
@@ -126,7 +132,10 @@
    NaN and inf), above the 15 the library allows the default, so the default stays isotropic.
    pf_specaa_kernel_cross is 13 ops, pf_specaa_slope_stats_cross 33, pf_specaa_slope_stats_quad
    118 (the four reads not counted); the anisotropic kernel with the cross term adds 64 to
-   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The anisotropic kernel halved is the slope covariance of a
+   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The mean
+   shift: pf_specaa_mean_shift 16 ops, pf_specaa_mean_shift_surface 47;
+   pf_specaa_leadr_specular_curved (anisotropic kernel and (6)) adds 42 to pf_leadr_specular
+   (116 -> 158): an opt-in too. The anisotropic kernel halved is the slope covariance of a
    sphere's normals over the Gaussian pixel filter within 0.7% of its trace (spheres 20-200 px
    across). Baker (2), against the exact NDF of each mip texel's footprint on the seven kinds of
    the microsurface corpus (bench/specaa.c): more accurate than every engine formula (Toksvig,
@@ -134,9 +143,9 @@
    (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40 px across, plain and
    normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled reference and the
    exact-footprint oracle over a sub-pixel camera path): without a map, LEADR with the
-   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error (the rest
-   is the second-order shift of the pixel's mean slope, which first derivatives cannot see)
-   and its flicker within 1.03x of the reference's; the isotropic kernel is as good on the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error, with the
+   mean shift (6) (pf_specaa_leadr_specular_curved) within 0.97-1.14x, its flicker within
+   1.03x of the reference's; the isotropic kernel is as good on the
    sphere and over-blurs the cylinder's straight axis (2.6-12x); the papers' constant
    over-blurs (2-77x). With a normal map, one isotropic trilinear read of the
    pyramid and no cross term are 1.0-8.8x the oracle's error; pf_specaa_slope_stats_quad is
@@ -340,8 +349,10 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_ke
    half the kernel times the view's slope. (6) is (5) on cylinders too when the view's tangential
    part is across the axis; otherwise (5). A 2x2 quad's first differences cannot give the
    second differences the shift is made of; (5) and (6) get them from the geometry instead.
-   On the plain curved scenes of bench/specaa_scenes.h, the box kernel with (6) is 1.04-1.14x
-   the oracle's error where the kernel alone is 1.26-1.82x (docs/specaa.md). */
+   On the plain curved scenes of bench/specaa_scenes.h at alpha 0.1, the box kernel with (6) is
+   1.04-1.14x the oracle's error where the kernel alone is 1.26-1.82x; given the oracle's exact
+   mean instead, 1.00-1.07x: the kernel's covariance was right, the mean was the gap
+   (docs/specaa.md). */
 
 /* Largest |component| of a mean shift (5)/(6): sqrt(PF_SPECAA_KAPPA/2), the per-axis deviation
    of the clamped kernel; a shift is clamped to it componentwise (near the silhouette wo.z -> 0
@@ -466,7 +477,7 @@ PF_DEF pf_real pf_specaa_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
 /* pf_leadr_specular on a plain curved surface, the most accurate form without position
    derivatives: the anisotropic kernel of the TANGENT-FRAME derivatives of the normal
    (pf_specaa_kernel_aniso) and the mean shift (6) of its trace, at PF_SPECAA_LEADR_SIGMA2 and
-   PF_SPECAA_KAPPA. On the plain scenes of bench/specaa_scenes.h 1.04-1.14x the oracle's error
+   PF_SPECAA_KAPPA. On the plain scenes of bench/specaa_scenes.h 0.97-1.14x the oracle's error
    where pf_specaa_leadr_specular is 0.97-11.7x (docs/specaa.md); more ops than the 15 the
    default may add (bench/gpu/count.sh), so an opt-in. Degenerate derivatives as the kernel's
    (NaN: kappa/2 per axis, and the shift of that trace). */
