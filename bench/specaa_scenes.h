@@ -550,3 +550,56 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
     (void)total;
     free(sc_img); free(sc_dev2); free(sc_full); free(sc_slope); free(sc_pyr); free(sc_npyr);
 }
+
+/* sc_run for a caller that needs only the reference and the oracle (bench/frame/frame_curved.h,
+   which shades its own forms): job as sc_run; fills img[SM_REF] and img[SM_ORACLE] (NaN off the
+   surface; every other method's plane left as it was), dev2 and full. The same rays, seeds and
+   oracle moments as sc_run, so the two agree to the bit on those planes; without the second
+   reference and the methods (their texture reads) it costs about half of sc_run. */
+static void sc_run_ref(void *ctx, long long job)
+{
+    int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
+    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE));
+    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], bv = 0.5 * a * a;
+    int W = sc_W[si], px, py;
+    double cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    double *img = sc_img + job * sc_img_stride, *dev2 = sc_dev2 + job * sc_dev_stride;
+    unsigned char *full = sc_full + job * sc_dev_stride;
+    (void)ctx;
+    for (py = 0; py < W; ++py)
+        for (px = 0; px < W; ++px) {
+            long long p = (long long)py * W + px, WW = (long long)W * W;
+            double x = px + 0.5, y = py + 0.5, sum = 0, sum2 = 0, o[5] = { 0, 0, 0, 0, 0 };
+            sc_geo g;
+            int hits = 0, i, j;
+            img[SM_REF * WW + p] = img[SM_ORACLE * WW + p] = NAN;
+            dev2[p] = NAN;
+            full[p] = 0;
+            if (!sc_eval(scene, R, cx, cy, x, y, &g)) continue;
+            for (j = 0; j < sc_S; ++j)
+                for (i = 0; i < sc_S; ++i) {
+                    unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x5ce);
+                    double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
+                    sc_geo gr;
+                    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
+                    u1 = (double)(z >> 40) / 16777216.0;
+                    u2 = (double)(z & 0xFFFFFF) / 16777216.0;
+                    ox = (i + u1) / sc_S - 0.5;
+                    oy = (j + u2) / sc_S - 0.5;
+                    if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
+                    sc_normal(scene, &gr, n, &sx, &sy);
+                    f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
+                    sum += f; sum2 += f * f; ++hits;
+                    nz = sc_dot(n, g.N);
+                    if (nz < 1e-3) nz = 1e-3;
+                    qx = -sc_dot(n, g.T) / nz; qy = -sc_dot(n, g.B) / nz;
+                    o[0] += qx; o[1] += qy; o[2] += qx * qx; o[3] += qy * qy; o[4] += qx * qy;
+                }
+            full[p] = hits == sc_S * sc_S;
+            img[SM_REF * WW + p] = sum / hits;
+            dev2[p] = hits > 1 ? fmax(sum2 / hits - (sum / hits) * (sum / hits), 0.0) / (hits - 1) : 0.0;
+            for (i = 0; i < 5; ++i) o[i] /= hits;
+            img[SM_ORACLE * WW + p] = sc_shade(&g, pf_slope_moments_stats(pf_slope_moments_make((pf_real)o[0], (pf_real)o[1],
+                (pf_real)o[2], (pf_real)o[3], (pf_real)o[4]), (pf_real)bv));
+        }
+}

@@ -4,7 +4,10 @@
    pyramid stored as GPU textures; the geometry kernel's normal derivatives and the texture
    coordinates' derivatives from the 2x2 quad (dFdxFine, dFdyFine), as in an engine.
    bench/frame/frame_curved.h is the host part and says what is measured.
-   Compiled once per form by bench/frame/run.sh: PFC_METHOD = FC_NONE .. FC_VMF_BOX.
+   Compiled once per form by bench/frame/run.sh: PFC_METHOD = FC_NONE .. FC_CROSS. The pyramid is
+   read at the lod computed here (textureLod at log2 of the longer texel derivative, the CPU
+   path's formula), so that the CPU path checks the shader; PFC_DRIVER_LOD: at the driver's lod
+   instead (textureGrad), to show the driver's lod approximation.
    Textures: texA = (E[x], E[y], E[x^2], E[y^2]) of the map's slopes, texB = (E[xy], the averaged
    unit normal), the whole mip chain, trilinear, REPEAT.
    Outputs: o0 = (radiance, s, t in texels, 1 on the surface else 0), o1 = (ds/dx, dt/dx, ds/dy,
@@ -76,21 +79,27 @@ void main()
     /* every lane, uniform control flow: the quad's derivatives */
     vec3 dnx = dFdxFine(N), dny = dFdyFine(N);
     vec2 gx = dFdxFine(st), gy = dFdyFine(st);
-#ifdef PFC_EXPLICIT_LOD
+#ifdef PFC_DRIVER_LOD
+    vec4 a = textureGrad(texA, st / SCN, gx / SCN, gy / SCN), b = textureGrad(texB, st / SCN, gx / SCN, gy / SCN);
+#else
     float lod_e = max(log2(max(max(length(gx), length(gy)), 1e-30)), 0.0);
     vec4 a = textureLod(texA, st / SCN, lod_e), b = textureLod(texB, st / SCN, lod_e);
-#else
-    vec4 a = textureGrad(texA, st / SCN, gx / SCN, gy / SCN), b = textureGrad(texB, st / SCN, gx / SCN, gy / SCN);
 #endif
     if (pc.par.y < 0.5) { /* no map: a flat micro-surface */
         a = vec4(0.0);
         b = vec4(0.0, 0.0, 0.0, 1.0);
     }
+    /* the read's mean-slope derivatives (the cross term (4)) and the position's, P = (x, y, R n_z)
+       in pixels (orthographic; the mean shift (5)): the quad's differences, uniform control flow */
+    vec2 dmx = dFdxFine(a.xy), dmy = dFdyFine(a.xy);
+    vec3 P = vec3(gl_FragCoord.xy, pc.geo.z * N.z), dpx = dFdxFine(P), dpy = dFdyFine(P);
     vec3 L = pc.light.xyz;
     pf_vec3 wo = pf_vec3_make(T.z, B.z, N.z), wi = pf_vec3_make(dot(L, T), dot(L, B), dot(L, N)); /* the view is +z */
     pf_vec3 ax = pf_vec3_make(dot(dnx, T), dot(dnx, B), dot(dnx, N)), ay = pf_vec3_make(dot(dny, T), dot(dny, B), dot(dny, N));
+    pf_vec3 jx = pf_vec3_make(dot(dpx, T), dot(dpx, B), dot(dpx, N)), jy = pf_vec3_make(dot(dpy, T), dot(dpy, B), dot(dpy, N));
     float r = fc_shade(PFC_METHOD, wo, wi, pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), pf_vec3_make(b.y, b.z, b.w), pc.par.z,
-                       pf_vec3_make(dnx.x, dnx.y, dnx.z), pf_vec3_make(dny.x, dny.y, dny.z), ax, ay);
+                       pf_vec3_make(dnx.x, dnx.y, dnx.z), pf_vec3_make(dny.x, dny.y, dny.z), ax, ay, jx, jy,
+                       pf_vec2_make(dmx.x, dmx.y), pf_vec2_make(dmy.x, dmy.y));
     o0 = hit ? vec4(r, st, 1.0) : vec4(0.0);
     o1 = vec4(gx, gy);
 }

@@ -9,7 +9,9 @@
      wo, wi   view and light in the pixel's tangent frame (T, B, N)
      mm  the map's filtered 5 slope moments (zero without a map); nav: its averaged unit normal
      bv  base per-axis slope variance alpha^2 / 2
-     dnx, dny  screen derivatives of the macro-normal (world); ax, ay: the same in (T, B, N) */
+     dnx, dny  screen derivatives of the macro-normal (world); ax, ay: the same in (T, B, N)
+     jx, jy    screen derivatives of the surface position (pixels) in (T, B, N), for (5)
+     dmx, dmy  screen derivatives of the fetched mean slope (mm's ex, ey), for the cross term (4) */
 #ifndef FC_CURVED_SHADE_H
 #define FC_CURVED_SHADE_H
 
@@ -21,15 +23,28 @@
 #define FC_HDRP     5 /* LEADR + HDRP's (0.1, 0.2^2) */
 #define FC_GODOT    6 /* LEADR + Godot's limiter (0.25, 0.18 on alpha) */
 #define FC_VMF_BOX  7 /* one vMF lobe from the averaged normal + box kernel (pf_specaa_vmf_kappa) */
-#define FC_COUNT    8
+#define FC_CURVED   8 /* pf_specaa_leadr_specular_curved: box kernel (aniso) + the mean shift (6) */
+#define FC_SURF     9 /* box kernel (aniso) + the mean shift (5) from the position derivatives */
+#define FC_CROSS   10 /* box kernel (aniso) + the cross term (4) from dFdx/dFdy of the read's mean + (6) */
+#define FC_COUNT   11
 
 PF_DEF pf_real fc_shade(int m, pf_vec3 wo, pf_vec3 wi, pf_slope_moments mm, pf_vec3 nav, pf_real bv, pf_vec3 dnx, pf_vec3 dny,
-                        pf_vec3 ax, pf_vec3 ay)
+                        pf_vec3 ax, pf_vec3 ay, pf_vec3 jx, pf_vec3 jy, pf_vec2 dmx, pf_vec2 dmy)
 {
     pf_slope_stats s0 = pf_slope_moments_stats(mm, bv), st = s0;
     if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
     if (m == FC_BOX) st = pf_specaa_slope_stats_aniso(s0, pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA));
     if (m == FC_BOX_ISO) return pf_specaa_leadr_specular(wo, wi, s0, PF_R(1.0), dnx, dny);
+    if (m == FC_CURVED) return pf_specaa_leadr_specular_curved(wo, wi, s0, PF_R(1.0), ax, ay);
+    if (m == FC_SURF)
+        st = pf_specaa_slope_stats_shift(pf_specaa_slope_stats_aniso(s0, pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA)),
+                                         pf_specaa_mean_shift_surface(jx, jy, ax, ay, wo, PF_SPECAA_SIGMA2_BOX));
+    if (m == FC_CROSS) {
+        /* (4) reads the turn's tangent-plane part only (x, y), as bench/specaa_scenes.h's ax0, ay0 */
+        pf_specaa_kernel k = pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+        st = pf_specaa_slope_stats_shift(pf_specaa_slope_stats_cross(s0, k, pf_specaa_kernel_cross(ax, ay, dmx, dmy, PF_SPECAA_SIGMA2_BOX)),
+                                         pf_specaa_mean_shift(wo, pf_specaa_kernel_trace(k)));
+    }
     if (m == FC_TK) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA));
     if (m == FC_FILAMENT) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.04)));
     if (m == FC_HDRP) st = pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.1), PF_R(0.04)));

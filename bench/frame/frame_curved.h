@@ -31,14 +31,23 @@
 #include "specaa_scenes.h"
 #include "curved_shade.h"
 
-/* the rows: every form of curved_shade.h through the driver's lod (textureGrad), and the box
-   kernel again with the lod computed in the shader (textureLod at log2 of the longer texel
-   derivative, the CPU path's formula): the driver's lod approximation apart */
+/* the rows: every form of curved_shade.h with the lod computed in the shader (textureLod at
+   log2 of the longer texel derivative, the CPU path's formula, so "vs CPU" checks the shader),
+   and the box kernel again through the driver's lod (textureGrad): the driver's lod
+   approximation apart */
 #define FC_ROWS (FC_COUNT + 1)
-static const char *const fc_key[FC_ROWS] = {"none", "box", "box_iso", "tk", "filament", "hdrp", "godot", "vmf_box", "box_lod"};
-static const int fc_form[FC_ROWS] = {FC_NONE, FC_BOX, FC_BOX_ISO, FC_TK, FC_FILAMENT, FC_HDRP, FC_GODOT, FC_VMF_BOX, FC_BOX};
-static const int fc_sm[FC_ROWS] = {SM_NONE, SM_BOX, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_BOX, SM_BOX};
-static const char *fc_name(int r) { return r == FC_COUNT ? "LEADR + box kernel (aniso), lod computed in the shader (textureLod)" : sc_meth_name[fc_sm[r]]; }
+static const char *const fc_key[FC_ROWS] = {"none", "box", "box_iso", "tk", "filament", "hdrp", "godot", "vmf_box",
+                                            "curved", "surf", "cross", "box_drvlod"};
+static const int fc_form[FC_ROWS] = {FC_NONE, FC_BOX, FC_BOX_ISO, FC_TK, FC_FILAMENT, FC_HDRP, FC_GODOT, FC_VMF_BOX,
+                                     FC_CURVED, FC_SURF, FC_CROSS, FC_BOX};
+static const int fc_sm[FC_ROWS] = {SM_NONE, SM_BOX, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_BOX,
+                                   SM_BOX_SHIFT, SM_BOX_SHIFT_SURF, -1, SM_BOX};
+static const char *fc_name(int r)
+{
+    if (r == FC_COUNT) return "LEADR + box kernel (aniso), the driver's lod (textureGrad)";
+    if (fc_form[r] == FC_CROSS) return "LEADR + box kernel (aniso) + cross term (4) from dFdx/dFdy of the read's mean + mean shift (6)";
+    return sc_meth_name[fc_sm[r]];
+}
 
 /* specaa_scenes.h's surface at image point (x, y) (sc_eval); off the surface the point moves
    radially to 0.999 R first, as curved.frag's geo: returns 1 on the surface */
@@ -57,53 +66,139 @@ static int fc_eval(int scene, double R, double cx, double cy, double x, double y
 
 static pf_vec3 fc_v3(const double *v) { return pf_vec3_make((pf_real)v[0], (pf_real)v[1], (pf_real)v[2]); }
 
-/* the CPU float path of form m at pixel (px, py) of job (sc_run's numbering) */
-static double fc_cpu(int m, long long job, int px, int py)
+/* the inputs of fc_shade at one pixel */
+typedef struct {
+    pf_vec3 wo, wi, dnx, dny, ax, ay, jx, jy, nav;
+    pf_vec2 dmx, dmy;
+    pf_slope_moments mm;
+} fc_in;
+
+static pf_vec3 fc_frame(const double *v, const sc_geo *g)
+{
+    return pf_vec3_make((pf_real)sc_dot(v, g->T), (pf_real)sc_dot(v, g->B), (pf_real)sc_dot(v, g->N));
+}
+
+/* the pyramid read at texel (s, t) and lod log2 rho (0 below 1): moments and averaged normal */
+static pf_slope_moments fc_read(double s, double t, double rho, pf_vec3 *nav)
+{
+    pf_real lod = (pf_real)(rho > 1.0 ? log2(rho) : 0.0), us = (pf_real)(s / SC_N), vs = (pf_real)(t / SC_N);
+    if (nav) *nav = pf_normal_avg_sample(sc_npyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
+    return pf_slope_moments_sample(sc_pyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
+}
+
+/* the longer texel derivative at pixel (px, py) as the quad gives it: dFdxFine from its quad row,
+   dFdyFine from its quad column */
+static double fc_quad_rho(int scene, double R, double cx, double cy, int px, int py)
+{
+    int x0 = px & ~1, y0 = py & ~1;
+    sc_geo a, b, c, d;
+    fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &a);
+    fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &b);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &c);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &d);
+    return fmax(hypot(b.s - a.s, b.t - a.t), hypot(d.s - c.s, d.t - c.t));
+}
+
+/* the read at pixel (px, py) at its own shader lod, as that lane of the quad reads */
+static pf_slope_moments fc_quad_read(int scene, double R, double cx, double cy, int px, int py)
+{
+    sc_geo g;
+    fc_eval(scene, R, cx, cy, px + 0.5, py + 0.5, &g);
+    return fc_read(g.s, g.t, fc_quad_rho(scene, R, cx, cy, px, py), NULL);
+}
+
+/* fc_shade's inputs at pixel (px, py) of job (sc_run's numbering): exact = 0, the quad's
+   differences as the hardware takes them (dFdxFine = right - left of the pixel's quad row,
+   dFdyFine = bottom - top of its column, each neighbour's read at its own lod); exact = 1,
+   specaa_scenes.h's central differences (h = 1e-4 px) and the read's mean differenced at +-1/2 px
+   (at the centre's lod). g: the pixel's surface point. */
+static void fc_inputs(long long job, int px, int py, int exact, fc_in *in, sc_geo *g)
 {
     int ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), fr = (int)(job % sc_F);
-    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE)), W = sc_W[si], x0 = px & ~1, y0 = py & ~1, i;
-    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
-    double dn[2][3], d[2][2], rho;
+    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE)), W = sc_W[si], x0 = px & ~1, y0 = py & ~1, i, d;
+    double R = 0.5 * sc_diam[si], cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    double dn[2][3], dst[2][2], rho, dp[2][3];
     const double *L = sc_wi_all[scene >= 2];
-    sc_geo g, q[4];
-    pf_slope_moments mm = pf_slope_moments_make(0, 0, 0, 0, 0);
-    pf_vec3 nav = pf_vec3_make(0, 0, 1);
-    fc_eval(scene, R, cx, cy, px + 0.5, py + 0.5, &g);
-    fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &q[0]);
-    fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &q[1]);
-    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &q[2]);
-    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &q[3]);
-    for (i = 0; i < 3; ++i) dn[0][i] = q[1].N[i] - q[0].N[i], dn[1][i] = q[3].N[i] - q[2].N[i];
-    d[0][0] = q[1].s - q[0].s, d[0][1] = q[1].t - q[0].t, d[1][0] = q[3].s - q[2].s, d[1][1] = q[3].t - q[2].t;
-    rho = fmax(sqrt(d[0][0] * d[0][0] + d[0][1] * d[0][1]), sqrt(d[1][0] * d[1][0] + d[1][1] * d[1][1]));
-    if (scene & 1) {
-        pf_real lod = (pf_real)(rho > 1.0 ? log2(rho) : 0.0), us = (pf_real)(g.s / SC_N), vs = (pf_real)(g.t / SC_N);
-        mm = pf_slope_moments_sample(sc_pyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
-        nav = pf_normal_avg_sample(sc_npyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
+    (void)ai;
+    fc_eval(scene, R, cx, cy, px + 0.5, py + 0.5, g);
+    if (!exact) {
+        sc_geo q[4];
+        fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &q[0]);
+        fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &q[1]);
+        fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &q[2]);
+        fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &q[3]);
+        for (i = 0; i < 3; ++i) dn[0][i] = q[1].N[i] - q[0].N[i], dn[1][i] = q[3].N[i] - q[2].N[i];
+        dst[0][0] = q[1].s - q[0].s, dst[0][1] = q[1].t - q[0].t, dst[1][0] = q[3].s - q[2].s, dst[1][1] = q[3].t - q[2].t;
+    } else {
+        const double h = 1e-4;
+        for (d = 0; d < 2; ++d) {
+            sc_geo gp, gm;
+            int okp = sc_eval(scene, R, cx, cy, px + 0.5 + (d == 0 ? h : 0), py + 0.5 + (d == 1 ? h : 0), &gp);
+            int okm = sc_eval(scene, R, cx, cy, px + 0.5 - (d == 0 ? h : 0), py + 0.5 - (d == 1 ? h : 0), &gm);
+            double den = (okp && okm) ? 2.0 * h : h;
+            const sc_geo *A = okp ? &gp : g, *Bm = okm ? &gm : g;
+            for (i = 0; i < 3; ++i) dn[d][i] = (A->N[i] - Bm->N[i]) / den;
+            dst[d][0] = (A->s - Bm->s) / den;
+            dst[d][1] = (A->t - Bm->t) / den;
+        }
     }
-    return (double)fc_shade(m, pf_vec3_make((pf_real)g.T[2], (pf_real)g.B[2], (pf_real)g.N[2]),
-                            pf_vec3_make((pf_real)sc_dot(L, g.T), (pf_real)sc_dot(L, g.B), (pf_real)sc_dot(L, g.N)), mm, nav,
-                            (pf_real)(0.5 * a * a), fc_v3(dn[0]), fc_v3(dn[1]),
-                            pf_vec3_make((pf_real)sc_dot(dn[0], g.T), (pf_real)sc_dot(dn[0], g.B), (pf_real)sc_dot(dn[0], g.N)),
-                            pf_vec3_make((pf_real)sc_dot(dn[1], g.T), (pf_real)sc_dot(dn[1], g.B), (pf_real)sc_dot(dn[1], g.N)));
+    rho = fmax(hypot(dst[0][0], dst[0][1]), hypot(dst[1][0], dst[1][1]));
+    in->mm = pf_slope_moments_make(0, 0, 0, 0, 0);
+    in->nav = pf_vec3_make(0, 0, 1);
+    in->dmx = in->dmy = pf_vec2_make(0, 0);
+    if (scene & 1) {
+        pf_slope_moments a, b, c, e;
+        in->mm = fc_read(g->s, g->t, rho, &in->nav);
+        if (!exact) {
+            a = fc_quad_read(scene, R, cx, cy, x0, py), b = fc_quad_read(scene, R, cx, cy, x0 + 1, py);
+            c = fc_quad_read(scene, R, cx, cy, px, y0), e = fc_quad_read(scene, R, cx, cy, px, y0 + 1);
+        } else {
+            a = fc_read(g->s - 0.5 * dst[0][0], g->t - 0.5 * dst[0][1], rho, NULL), b = fc_read(g->s + 0.5 * dst[0][0], g->t + 0.5 * dst[0][1], rho, NULL);
+            c = fc_read(g->s - 0.5 * dst[1][0], g->t - 0.5 * dst[1][1], rho, NULL), e = fc_read(g->s + 0.5 * dst[1][0], g->t + 0.5 * dst[1][1], rho, NULL);
+        }
+        in->dmx = pf_vec2_make(b.ex - a.ex, b.ey - a.ey);
+        in->dmy = pf_vec2_make(e.ex - c.ex, e.ey - c.ey);
+    }
+    /* P = (x, y, R n_z) in pixels (orthographic): curved.frag's P */
+    dp[0][0] = 1.0, dp[0][1] = 0.0, dp[0][2] = R * dn[0][2];
+    dp[1][0] = 0.0, dp[1][1] = 1.0, dp[1][2] = R * dn[1][2];
+    in->wo = pf_vec3_make((pf_real)g->T[2], (pf_real)g->B[2], (pf_real)g->N[2]);
+    in->wi = fc_frame(L, g);
+    in->dnx = fc_v3(dn[0]), in->dny = fc_v3(dn[1]);
+    in->ax = fc_frame(dn[0], g), in->ay = fc_frame(dn[1], g);
+    in->jx = fc_frame(dp[0], g), in->jy = fc_frame(dp[1], g);
+}
+
+static double fc_cpu(int m, const fc_in *in, double bv)
+{
+    return (double)fc_shade(m, in->wo, in->wi, in->mm, in->nav, (pf_real)bv, in->dnx, in->dny, in->ax, in->ay, in->jx, in->jy,
+                            in->dmx, in->dmy);
 }
 
 typedef struct {
     double *cpu; /* [FC_ROWS][job][stride]: the CPU path at the pixels of the reference, NaN elsewhere */
+    double *cpx; /* the same with the exact derivatives */
     long long stride;
 } fc_cpu_job;
 
 static void fc_cpu_item(void *ctx, long long job)
 {
     fc_cpu_job *c = (fc_cpu_job *)ctx;
-    int si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), W = sc_W[si], m, px, py;
+    int si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE), ai = (int)(job / sc_F % SC_NALPHA), W = sc_W[si], m, px, py;
+    double bv = 0.5 * sc_alpha[ai] * sc_alpha[ai];
     const double *ref = sc_img + job * sc_img_stride + (long long)SM_REF * W * W;
-    for (m = 0; m < FC_ROWS; ++m)
-        for (py = 0; py < W; ++py)
-            for (px = 0; px < W; ++px) {
-                long long p = (long long)py * W + px, o = ((long long)m * sc_njobs() + job) * c->stride + p;
-                c->cpu[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], job, px, py);
+    for (py = 0; py < W; ++py)
+        for (px = 0; px < W; ++px) {
+            long long p = (long long)py * W + px;
+            fc_in q, x;
+            sc_geo g;
+            if (!isnan(ref[p])) fc_inputs(job, px, py, 0, &q, &g), fc_inputs(job, px, py, 1, &x, &g);
+            for (m = 0; m < FC_ROWS; ++m) {
+                long long o = ((long long)m * sc_njobs() + job) * c->stride + p;
+                c->cpu[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], &q, bv);
+                c->cpx[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], &x, bv);
             }
+        }
 }
 
 typedef struct {
@@ -122,7 +217,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     long long njob, nt = pf_mip_texel_count(SC_N, SC_N), job, stride;
     double t0 = now_seconds(), c0 = thread_cpu_seconds(), t_ref, t_gpu, t_cpu, ms[FC_ROWS];
     float *ta, *tb, *gpu;
-    double *cpu;
+    double *cpu, *cpx;
     fr_tex tex[2];
     VkSampler samp;
     VkDescriptorPool pool;
@@ -145,7 +240,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     sc_img = (double *)pfb_xmalloc(sizeof(double) * (size_t)(njob * sc_img_stride));
     sc_dev2 = (double *)pfb_xmalloc(sizeof(double) * (size_t)(njob * sc_dev_stride));
     sc_full = (unsigned char *)pfb_xmalloc((size_t)(njob * sc_dev_stride));
-    pfb_parallel_for(njob, sc_run, NULL, "frame: curved scenes, specaa_scenes.h's reference");
+    pfb_parallel_for(njob, sc_run_ref, NULL, "frame: curved scenes, specaa_scenes.h's reference");
     t_ref = now_seconds() - t0;
 
     /* the map as GPU textures */
@@ -179,6 +274,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     /* every form, every job, one Wm x Wm frame each (the smaller size uses its top-left W x W) */
     gpu = (float *)pfb_xmalloc(sizeof(float) * (size_t)(FC_ROWS * njob * stride));
     cpu = (double *)pfb_xmalloc(sizeof(double) * (size_t)(FC_ROWS * njob * stride));
+    cpx = (double *)pfb_xmalloc(sizeof(double) * (size_t)(FC_ROWS * njob * stride));
     tg = make_target(Wm, Wm);
     snprintf(vert, sizeof vert, "%s/frame.vert.spv", spv);
     memset(stat, 0, sizeof stat);
@@ -215,7 +311,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     }
     t_gpu = now_seconds() - t0;
     t0 = now_seconds();
-    cj.cpu = cpu, cj.stride = stride;
+    cj.cpu = cpu, cj.cpx = cpx, cj.stride = stride;
     pfb_parallel_for(njob, fc_cpu_item, &cj, "frame: curved scenes, CPU path");
     t_cpu = now_seconds() - t0;
 
@@ -233,7 +329,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                     for (fr = 0; fr < sc_F; ++fr) {
                         const double *img = sc_img + (j0 + fr) * sc_img_stride, *prv = fr ? sc_img + (j0 + fr - 1) * sc_img_stride : NULL;
                         const float *gg = gpu + ((long long)m * njob + j0 + fr) * stride, *gp = fr ? gg - stride : gg;
-                        const double *cc = cpu + ((long long)m * njob + j0 + fr) * stride;
+                        const double *cc = cpu + ((long long)m * njob + j0 + fr) * stride, *cx = cpx + ((long long)m * njob + j0 + fr) * stride;
                         double fe2 = 0, fcs = 0;
                         long long fnp = 0;
                         for (p = 0; p < WW; ++p) {
@@ -243,7 +339,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                             ++np, ++fnp;
                             rs += r, cs += cc[p], fcs += cc[p];
                             e2 += (g - r) * (g - r);
-                            x2 += (img[fc_sm[m] * WW + p] - r) * (img[fc_sm[m] * WW + p] - r);
+                            x2 += (cx[p] - r) * (cx[p] - r);
                             o2 += (img[SM_ORACLE * WW + p] - r) * (img[SM_ORACLE * WW + p] - r);
                             c2 += (g - cc[p]) * (g - cc[p]), fe2 += (g - cc[p]) * (g - cc[p]);
                             if (prv && !isnan(prv[SM_REF * WW + p]) && !isnan((double)gp[p])) {
@@ -330,7 +426,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
            njob, FC_ROWS, t_ref, t_gpu, t_cpu, thread_cpu_seconds() - c0);
     vkDestroyBuffer(vk.dev, tg.rb, NULL);
     vkFreeMemory(vk.dev, tg.rb_mem, NULL);
-    free(ta), free(tb), free(gpu), free(cpu);
+    free(ta), free(tb), free(gpu), free(cpu), free(cpx);
     free(sc_img), free(sc_dev2), free(sc_full), free(sc_slope), free(sc_pyr), free(sc_npyr);
     return 0;
 }
