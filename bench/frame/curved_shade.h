@@ -26,7 +26,8 @@
 #define FC_CURVED   8 /* pf_specaa_leadr_specular_curved: box kernel (aniso) + the mean shift (6) */
 #define FC_SURF     9 /* box kernel (aniso) + the mean shift (5) from the position derivatives */
 #define FC_CROSS   10 /* box kernel (aniso) + the cross term (4) from dFdx/dFdy of the read's mean + (6) */
-#define FC_COUNT   11
+#define FC_QUAD    11 /* four quadrant reads (fc_shade_quad): pf_specaa_slope_stats_quad + (6) */
+#define FC_COUNT   12
 
 PF_DEF pf_real fc_shade(int m, pf_vec3 wo, pf_vec3 wi, pf_slope_moments mm, pf_vec3 nav, pf_real bv, pf_vec3 dnx, pf_vec3 dny,
                         pf_vec3 ax, pf_vec3 ay, pf_vec3 jx, pf_vec3 jy, pf_vec2 dmx, pf_vec2 dmy)
@@ -64,5 +65,18 @@ PF_DEF pf_real fc_shade(int m, pf_vec3 wo, pf_vec3 wi, pf_slope_moments mm, pf_v
         st = pf_vmf_lobe_slope_stats(mu, pf_specaa_vmf_kappa(pf_vmf_kappa_from_mean_length(r), kb), bv);
     }
     return pf_leadr_specular(wo, wi, st, PF_R(1.0));
+}
+
+/* FC_QUAD: the pixel's statistics from four reads of the pyramid, one per quadrant of the pixel
+   (m00: -x -y, m10: +x -y, m01: -x +y, m11: +x +y, pf_specaa_slope_stats_quad: their mean, the
+   gradient from their differences, the kernel and the cross term (4)), and the mean shift (6)
+   of the kernel's trace (bench/specaa_scenes.h's "4 quadrant aniso fetches ... + mean shift") */
+PF_DEF pf_real fc_shade_quad(pf_vec3 wo, pf_vec3 wi, pf_slope_moments m00, pf_slope_moments m10, pf_slope_moments m01,
+                             pf_slope_moments m11, pf_real bv, pf_vec3 ax, pf_vec3 ay)
+{
+    pf_slope_stats st = pf_specaa_slope_stats_quad(m00, m10, m01, m11, bv, ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+    pf_real k = pf_specaa_kernel_trace(pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA));
+    if (!(wo.z > PF_R(0.0)) || !(wi.z > PF_R(0.0))) return PF_R(0.0);
+    return pf_leadr_specular(wo, wi, pf_specaa_slope_stats_shift(st, pf_specaa_mean_shift(wo, k)), PF_R(1.0));
 }
 #endif

@@ -35,17 +35,25 @@
    log2 of the longer texel derivative, the CPU path's formula, so "vs CPU" checks the shader),
    and the box kernel again through the driver's lod (textureGrad): the driver's lod
    approximation apart */
-#define FC_ROWS (FC_COUNT + 1)
+#define FC_ROWS (FC_COUNT + 3)
+#define FC_ROW_DRV (FC_ROWS - 1)
 static const char *const fc_key[FC_ROWS] = {"none", "box", "box_iso", "tk", "filament", "hdrp", "godot", "vmf_box",
-                                            "curved", "surf", "cross", "box_drvlod"};
+                                            "curved", "surf", "cross", "quad", "cross_taps", "quad_drv16", "box_drvlod"};
 static const int fc_form[FC_ROWS] = {FC_NONE, FC_BOX, FC_BOX_ISO, FC_TK, FC_FILAMENT, FC_HDRP, FC_GODOT, FC_VMF_BOX,
-                                     FC_CURVED, FC_SURF, FC_CROSS, FC_BOX};
+                                     FC_CURVED, FC_SURF, FC_CROSS, FC_QUAD, FC_CROSS, FC_QUAD, FC_BOX};
+/* the rows with anisotropic reads: 1, in the shader by EXT_texture_filter_anisotropic's rule
+   (curved.frag's aniso, the CPU path's specaa_scenes.h's sc_fetch_aniso); 2, through the
+   driver's sampler at maxAnisotropy 16 (textureGrad; the CPU path still the EXT rule, so its
+   "vs CPU" is the driver's anisotropic filter against the specification's) */
+static const int fc_af[FC_ROWS] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 2, 0};
 static const int fc_sm[FC_ROWS] = {SM_NONE, SM_BOX, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_BOX,
-                                   SM_BOX_SHIFT, SM_BOX_SHIFT_SURF, -1, SM_BOX};
+                                   SM_BOX_SHIFT, SM_BOX_SHIFT_SURF, -1, SM_QUAD_SHIFT, -1, SM_QUAD_SHIFT, SM_BOX};
 static const char *fc_name(int r)
 {
-    if (r == FC_COUNT) return "LEADR + box kernel (aniso), the driver's lod (textureGrad)";
-    if (fc_form[r] == FC_CROSS) return "LEADR + box kernel (aniso) + cross term (4) from dFdx/dFdy of the read's mean + mean shift (6)";
+    if (r == FC_ROW_DRV) return "LEADR + box kernel (aniso), the driver's lod (textureGrad)";
+    if (r == 10) return "LEADR + box kernel (aniso) + cross term (4) from dFdx/dFdy of the read's mean + mean shift (6)";
+    if (r == 12) return "LEADR (one aniso read) + box kernel + cross term (4) from dFdx/dFdy of the read's mean + mean shift (6)";
+    if (r == 13) return "the same 4 quadrant reads through the driver's 16x anisotropic sampler (textureGrad)";
     return sc_meth_name[fc_sm[r]];
 }
 
@@ -69,8 +77,8 @@ static pf_vec3 fc_v3(const double *v) { return pf_vec3_make((pf_real)v[0], (pf_r
 /* the inputs of fc_shade at one pixel */
 typedef struct {
     pf_vec3 wo, wi, dnx, dny, ax, ay, jx, jy, nav;
-    pf_vec2 dmx, dmy;
-    pf_slope_moments mm;
+    pf_vec2 dmx, dmy, dmx_af, dmy_af;   /* the read's mean differences: trilinear, anisotropic */
+    pf_slope_moments mm, af, q[4];      /* the trilinear read, the anisotropic read, the quadrant reads */
 } fc_in;
 
 static pf_vec3 fc_frame(const double *v, const sc_geo *g)
@@ -97,6 +105,28 @@ static double fc_quad_rho(int scene, double R, double cx, double cy, int px, int
     fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &c);
     fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &d);
     return fmax(hypot(b.s - a.s, b.t - a.t), hypot(d.s - c.s, d.t - c.t));
+}
+
+/* the quad's texel derivatives at pixel (px, py) (fc_quad_rho's) */
+static void fc_quad_dst(int scene, double R, double cx, double cy, int px, int py, double dst[2][2])
+{
+    int x0 = px & ~1, y0 = py & ~1;
+    sc_geo a, b, c, d;
+    fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &a);
+    fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &b);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &c);
+    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &d);
+    dst[0][0] = b.s - a.s, dst[0][1] = b.t - a.t, dst[1][0] = d.s - c.s, dst[1][1] = d.t - c.t;
+}
+
+/* the anisotropic read at pixel (px, py) with its own quad derivatives */
+static pf_slope_moments fc_quad_read_af(int scene, double R, double cx, double cy, int px, int py)
+{
+    sc_geo g;
+    double dst[2][2];
+    fc_eval(scene, R, cx, cy, px + 0.5, py + 0.5, &g);
+    fc_quad_dst(scene, R, cx, cy, px, py, dst);
+    return sc_fetch_aniso(g.s, g.t, dst, 0, 0, 1.0);
 }
 
 /* the read at pixel (px, py) at its own shader lod, as that lane of the quad reads */
@@ -145,7 +175,8 @@ static void fc_inputs(long long job, int px, int py, int exact, fc_in *in, sc_ge
     rho = fmax(hypot(dst[0][0], dst[0][1]), hypot(dst[1][0], dst[1][1]));
     in->mm = pf_slope_moments_make(0, 0, 0, 0, 0);
     in->nav = pf_vec3_make(0, 0, 1);
-    in->dmx = in->dmy = pf_vec2_make(0, 0);
+    in->dmx = in->dmy = in->dmx_af = in->dmy_af = pf_vec2_make(0, 0);
+    in->af = in->q[0] = in->q[1] = in->q[2] = in->q[3] = in->mm;
     if (scene & 1) {
         pf_slope_moments a, b, c, e;
         in->mm = fc_read(g->s, g->t, rho, &in->nav);
@@ -158,6 +189,18 @@ static void fc_inputs(long long job, int px, int py, int exact, fc_in *in, sc_ge
         }
         in->dmx = pf_vec2_make(b.ex - a.ex, b.ey - a.ey);
         in->dmy = pf_vec2_make(e.ex - c.ex, e.ey - c.ey);
+        /* the anisotropic reads (specaa_scenes.h's sc_run: the same offsets) */
+        in->af = sc_fetch_aniso(g->s, g->t, dst, 0, 0, 1.0);
+        for (i = 0; i < 4; ++i) in->q[i] = sc_fetch_aniso(g->s, g->t, dst, (i & 1) ? 0.25 : -0.25, (i >> 1) ? 0.25 : -0.25, 0.5);
+        if (!exact) {
+            a = fc_quad_read_af(scene, R, cx, cy, x0, py), b = fc_quad_read_af(scene, R, cx, cy, x0 + 1, py);
+            c = fc_quad_read_af(scene, R, cx, cy, px, y0), e = fc_quad_read_af(scene, R, cx, cy, px, y0 + 1);
+        } else {
+            a = sc_fetch_aniso(g->s, g->t, dst, -0.5, 0, 1.0), b = sc_fetch_aniso(g->s, g->t, dst, 0.5, 0, 1.0);
+            c = sc_fetch_aniso(g->s, g->t, dst, 0, -0.5, 1.0), e = sc_fetch_aniso(g->s, g->t, dst, 0, 0.5, 1.0);
+        }
+        in->dmx_af = pf_vec2_make(b.ex - a.ex, b.ey - a.ey);
+        in->dmy_af = pf_vec2_make(e.ex - c.ex, e.ey - c.ey);
     }
     /* P = (x, y, R n_z) in pixels (orthographic): curved.frag's P */
     dp[0][0] = 1.0, dp[0][1] = 0.0, dp[0][2] = R * dn[0][2];
@@ -169,9 +212,13 @@ static void fc_inputs(long long job, int px, int py, int exact, fc_in *in, sc_ge
     in->jx = fc_frame(dp[0], g), in->jy = fc_frame(dp[1], g);
 }
 
-static double fc_cpu(int m, const fc_in *in, double bv)
+static double fc_cpu(int row, const fc_in *in, double bv)
 {
-    return (double)fc_shade(m, in->wo, in->wi, in->mm, in->nav, (pf_real)bv, in->dnx, in->dny, in->ax, in->ay, in->jx, in->jy,
+    if (fc_form[row] == FC_QUAD) return (double)fc_shade_quad(in->wo, in->wi, in->q[0], in->q[1], in->q[2], in->q[3], (pf_real)bv, in->ax, in->ay);
+    if (fc_af[row])
+        return (double)fc_shade(fc_form[row], in->wo, in->wi, in->af, in->nav, (pf_real)bv, in->dnx, in->dny, in->ax, in->ay, in->jx,
+                                in->jy, in->dmx_af, in->dmy_af);
+    return (double)fc_shade(fc_form[row], in->wo, in->wi, in->mm, in->nav, (pf_real)bv, in->dnx, in->dny, in->ax, in->ay, in->jx, in->jy,
                             in->dmx, in->dmy);
 }
 
@@ -195,14 +242,14 @@ static void fc_cpu_item(void *ctx, long long job)
             if (!isnan(ref[p])) fc_inputs(job, px, py, 0, &q, &g), fc_inputs(job, px, py, 1, &x, &g);
             for (m = 0; m < FC_ROWS; ++m) {
                 long long o = ((long long)m * sc_njobs() + job) * c->stride + p;
-                c->cpu[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], &q, bv);
-                c->cpx[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(fc_form[m], &x, bv);
+                c->cpu[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(m, &q, bv);
+                c->cpx[o] = isnan(ref[p]) ? (double)NAN : fc_cpu(m, &x, bv);
             }
         }
 }
 
 typedef struct {
-    double err, err_exact, orc, flk, vs_cpu, vs_cpu_max;
+    double err, err_exact, err_cpu, orc, flk, vs_cpu, vs_cpu_max;
     int nonfinite, mismatch;
 } fc_stat;
 
@@ -219,9 +266,9 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     float *ta, *tb, *gpu;
     double *cpu, *cpx;
     fr_tex tex[2];
-    VkSampler samp;
+    VkSampler samp, samp_af;
     VkDescriptorPool pool;
-    VkDescriptorSet set;
+    VkDescriptorSet set, set_af;
     fr_target tg;
     char path[1024], vert[1024];
     static fc_stat stat[SC_NSCENE * SC_NSIZE * SC_NALPHA][FC_ROWS];
@@ -254,21 +301,24 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     tex[0] = upload_texture(ta, SC_N, SC_N, levels, VK_FORMAT_R32G32B32A32_SFLOAT);
     tex[1] = upload_texture(tb, SC_N, SC_N, levels, VK_FORMAT_R32G32B32A32_SFLOAT);
     samp = make_sampler(1.0f, levels);
+    /* the anisotropic rows' sampler: 16 where the device has the feature (frame.c enables it) */
+    samp_af = make_sampler(vk.features.samplerAnisotropy ? fminf(16.0f, vk.props.limits.maxSamplerAnisotropy) : 1.0f, levels);
     {   /* frame.c's set layout: the map in bindings 0 and 1; the others (unread by curved.frag) bound
            to the main scenes' textures so that every binding is valid */
         VkDescriptorPoolSize ps[2];
         VkDescriptorPoolCreateInfo dpci;
         ps[0].type = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-        ps[0].descriptorCount = 6;
+        ps[0].descriptorCount = 12;
         ps[1].type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        ps[1].descriptorCount = 1;
+        ps[1].descriptorCount = 2;
         memset(&dpci, 0, sizeof dpci);
         dpci.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-        dpci.maxSets = 1;
+        dpci.maxSets = 2;
         dpci.poolSizeCount = 2;
         dpci.pPoolSizes = ps;
         VKC(vkCreateDescriptorPool(vk.dev, &dpci, NULL, &pool));
         set = make_set(pool, &tex[0], &tex[1], probe, v4, v8, hdf, samp);
+        set_af = make_set(pool, &tex[0], &tex[1], probe, v4, v8, hdf, samp_af);
     }
 
     /* every form, every job, one Wm x Wm frame each (the smaller size uses its top-left W x W) */
@@ -295,7 +345,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
             pc.right[0] = (float)(sc_ >= 2), pc.right[1] = (float)(sc_ & 1), pc.right[2] = (float)(0.5 * sc_alpha[ai_] * sc_alpha[ai_]);
             for (k = 0; k < 3; ++k) pc.up[k] = (float)sc_wi_all[sc_ >= 2][k];
             {
-                double t = render(&tg, pipe, set, &pc, Wm, Wm); /* GPU ms (timestamps), -1 without */
+                double t = render(&tg, pipe, fc_af[m] == 2 ? set_af : set, &pc, Wm, Wm); /* GPU ms (timestamps), -1 without */
                 if (t >= 0.0) ms[m] += t, nms[m]++;
             }
             for (y = 0; y < Wm; ++y)
@@ -323,7 +373,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                 long long WW = (long long)W * W, p, j0 = (((long long)scene * SC_NSIZE + si) * SC_NALPHA + ai) * sc_F;
                 row = (scene * SC_NSIZE + si) * SC_NALPHA + ai;
                 for (m = 0; m < FC_ROWS; ++m) {
-                    double e2 = 0, x2 = 0, o2 = 0, rs = 0, d2 = 0, r2 = 0, c2 = 0, cs = 0, vmax = 0;
+                    double e2 = 0, x2 = 0, q2 = 0, o2 = 0, rs = 0, d2 = 0, r2 = 0, c2 = 0, cs = 0, vmax = 0;
                     long long np = 0, nd = 0;
                     fc_stat *s = &stat[row][m];
                     for (fr = 0; fr < sc_F; ++fr) {
@@ -339,7 +389,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                             ++np, ++fnp;
                             rs += r, cs += cc[p], fcs += cc[p];
                             e2 += (g - r) * (g - r);
-                            x2 += (cx[p] - r) * (cx[p] - r);
+                            x2 += (cx[p] - r) * (cx[p] - r), q2 += (cc[p] - r) * (cc[p] - r);
                             o2 += (img[SM_ORACLE * WW + p] - r) * (img[SM_ORACLE * WW + p] - r);
                             c2 += (g - cc[p]) * (g - cc[p]), fe2 += (g - cc[p]) * (g - cc[p]);
                             if (prv && !isnan(prv[SM_REF * WW + p]) && !isnan((double)gp[p])) {
@@ -352,6 +402,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                     rs /= (double)(np ? np : 1), cs /= (double)(np ? np : 1);
                     s->err = sqrt(e2 / (double)(np ? np : 1)) / rs;
                     s->err_exact = sqrt(x2 / (double)(np ? np : 1)) / rs;
+                    s->err_cpu = sqrt(q2 / (double)(np ? np : 1)) / rs;
                     s->orc = sqrt(o2 / (double)(np ? np : 1)) / rs;
                     s->flk = r2 > 0.0 ? sqrt(d2 / r2) : 0.0;
                     s->vs_cpu = cs > 0.0 ? sqrt(c2 / (double)(np ? np : 1)) / cs : 0.0;
@@ -365,7 +416,7 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
     snprintf(path, sizeof path, "%s/gpuspecaa.md", outdir);
     gm = fopen(path, "w");
     if (!csv || !gm) return 1;
-    fprintf(csv, "scene,diameter_px,alpha,form,err,err_over_oracle,cpu_exact_deriv_err_over_oracle,flicker_over_ref,vs_cpu,"
+    fprintf(csv, "scene,diameter_px,alpha,form,err,err_over_oracle,cpu_exact_deriv_err_over_oracle,cpu_quad_err_over_oracle,flicker_over_ref,vs_cpu,"
                  "vs_cpu_worst_frame,nonfinite,center_mismatch,spirv_ops,cond_branches,frames,spp\n");
     for (scene = 0; scene < SC_NSCENE; ++scene)
         for (si = 0; si < SC_NSIZE; ++si)
@@ -373,8 +424,8 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                 for (m = 0; m < FC_ROWS; ++m) {
                     const fc_stat *s = &stat[(scene * SC_NSIZE + si) * SC_NALPHA + ai][m];
                     static const char *const key[SC_NSCENE] = {"sphere", "sphere_mapped", "cylinder", "cylinder_mapped"};
-                    fprintf(csv, "%s,%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%d,%d,%d,%d\n", key[scene], sc_diam[si],
-                            sc_alpha[ai], fc_key[m], s->err, s->err / s->orc, s->err_exact / s->orc, s->flk, s->vs_cpu, s->vs_cpu_max,
+                    fprintf(csv, "%s,%g,%g,%s,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%d,%d,%d,%d,%d,%d\n", key[scene], sc_diam[si],
+                            sc_alpha[ai], fc_key[m], s->err, s->err / s->orc, s->err_exact / s->orc, s->err_cpu / s->orc, s->flk, s->vs_cpu, s->vs_cpu_max,
                             s->nonfinite, s->mismatch, ops[m], br[m], sc_F, sc_S * sc_S);
                 }
     fclose(csv);
