@@ -4,16 +4,20 @@
    analytically and shades every pixel with the specular AA forms of pf_specaa.h
    (bench/frame/curved_shade.h: LEADR alone, with the box geometry kernel (anisotropic and the
    isotropic pf_specaa_leadr_specular), with the engines' kernels (Tokuyoshi & Kaplanyan 2019,
-   Filament, HDRP, Godot), and one vMF lobe with the kernel), the geometry kernel from the
-   hardware dFdx/dFdy of the macro-normal, the texture part from the map's moment pyramid as
-   R32G32B32A32_SFLOAT textures through an isotropic trilinear sampler at the driver's lod.
+   Filament, HDRP, Godot), one vMF lobe with the kernel, and the curved forms: the mean shift (6)
+   (pf_specaa_leadr_specular_curved), (5) from dFdx of the position, the cross term (4) from dFdx
+   of the read's mean, pf_specaa_slope_stats_quad's four quadrant reads), the geometry kernel from
+   the hardware dFdx/dFdy of the macro-normal, the texture part from the map's moment pyramid as
+   R32G32B32A32_SFLOAT textures: one trilinear read at the lod computed in the shader, or
+   anisotropic reads (the EXT rule in the shader, or the driver's 16x sampler), and one row at the
+   driver's lod (fc_key below).
    Included once by bench/frame/frame.c (its Vulkan helpers); bench code.
 
    WHAT IS MEASURED, per scene row (scene, size, alpha) and form, over the pixels whose centre is
    on the surface (specaa_scenes.h's rule) in every frame:
      err      RMS over pixels and frames of (GPU - reference) / the mean reference, and its ratio
               to the oracle's (specaa_scenes.h's: the same metric as bench/specaa.c's table).
-              Reference and oracle are specaa_scenes.h's own (sc_run, included, not copied): S x S
+              Reference and oracle are specaa_scenes.h's own (sc_run_ref, included, not copied): S x S
               stratified rays per pixel each shading its own texel, and one Gaussian lobe of
               those rays' exact slope mean and covariance.
      flk      RMS frame-to-frame change per pixel / the reference's own (the same path).
@@ -21,10 +25,12 @@
               same function, fed by the analytic geometry at the quad's four pixel centres
               (dFdxFine = right - left of the pixel's quad row, dFdyFine = bottom - top of its
               column: what the hardware differences), pf_slope_moments_sample and
-              pf_normal_avg_sample at lod log2(max |d(s,t)/dx|, |d(s,t)/dy|). So it measures the
-              driver's lod, filtering, derivatives and float arithmetic.
-     exact d  the CPU error with the exact (central-difference) derivatives, bench/specaa.c's
-              own row of the same form (from the same sc_run images): what the 1-px quad
+              pf_normal_avg_sample at lod log2(max |d(s,t)/dx|, |d(s,t)/dy|) (the anisotropic
+              rows: sc_fetch_aniso). Where the shader computes the same lod (or taps) it measures
+              the driver's filtering, derivatives and float arithmetic; on the driver-lod and
+              driver-16x rows, the driver's lod and anisotropic filter against the formula's.
+     exact d  the CPU path's error with the exact (central-difference, as bench/specaa.c)
+              derivatives and the read's mean differenced at +-1/2 px: what the 1-px quad
               differences cost.
      non-finite  NaN or infinite GPU pixels over the whole rendered images. */
 #include "pf_specaa.h"
@@ -435,12 +441,16 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
         fprintf(f, "%sThe curved scenes of bench/specaa_scenes.h (an orthographic sphere and cylinder %g and %g px across, "
                    "plain or normal-mapped, base alpha %g and %g, %d frames of a sub-pixel camera path) rendered by the GPU frame "
                    "(bench/frame/curved.frag, device %s%s): the surface ray-cast per pixel, the geometry kernel from the hardware "
-                   "`dFdxFine`/`dFdyFine` of the macro-normal, the map's moment pyramid as R32G32B32A32_SFLOAT textures through "
-                   "an isotropic trilinear sampler at the driver's lod. Reference and oracle: specaa_scenes.h's own (%dx%d "
+                   "`dFdxFine`/`dFdyFine` of the macro-normal (and of the position, and of the read's mean, for the forms that "
+                   "use them), the map's moment pyramid as R32G32B32A32_SFLOAT textures, read trilinear at the lod the shader "
+                   "computes (`textureLod`, log2 of the longer texel derivative) unless the row says otherwise: anisotropic reads "
+                   "by EXT_texture_filter_anisotropic's rule done in the shader (up to 16 `textureLod` taps, bench/specaa.c's "
+                   "\"aniso fetch\"), or through the driver's 16x sampler, and one row at the driver's lod (`textureGrad`). "
+                   "Reference and oracle: specaa_scenes.h's own (%dx%d "
                    "stratified rays per pixel, each shading its texel; one Gaussian lobe of those rays' exact slope moments), "
                    "the same pixels. Per form, over the %d scene rows: **err/oracle**, the RMS error against the reference over "
-                   "the oracle's (mean over rows; worst row); **rows within 1.5x**; the same with the CPU's exact derivatives "
-                   "(bench/specaa.c's row); **flk**, the RMS frame-to-frame change per pixel over the reference's own (mean; "
+                   "the oracle's (mean over rows; worst row); **rows within 1.5x** of the oracle's error, and of it and of the "
+                   "reference's flicker; the CPU path's err/oracle with exact derivatives (bench/specaa.c's); **flk**, the RMS frame-to-frame change per pixel over the reference's own (mean; "
                    "worst); **GPU vs CPU**, RMS |GPU - CPU| / mean CPU with the CPU float path running the same function "
                    "(bench/frame/curved_shade.h) on the quad's analytic differences (mean over rows; worst frame); non-finite "
                    "pixels; SPIR-V ops after `spirv-opt -O` (and conditional branches); on a GPU, the mean time of one "
@@ -448,12 +458,12 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                 k ? "" : "\n### The curved scenes on the GPU (specular antialiasing)\n\n", sc_diam[0], sc_diam[1], sc_alpha[0],
                 sc_alpha[1], sc_F, vk.name, vk.is_cpu ? ", a CPU implementation" : "", sc_S, sc_S, nrow, Wm, Wm,
                 quick ? " BENCH_QUICK: smoke run, not for publication." : "");
-        fprintf(f, "| form | err/oracle (GPU): mean; worst | rows within 1.5x | err/oracle, CPU exact derivatives: mean | flk: "
+        fprintf(f, "| form | err/oracle (GPU): mean; worst | rows within 1.5x: err; err and flk | err/oracle, CPU exact derivatives: mean | flk: "
                    "mean; worst | GPU vs CPU: mean; worst frame | non-finite | SPIR-V ops (branches) | GPU ms |\n"
                    "|---|--:|--:|--:|--:|--:|--:|--:|--:|\n");
         for (m = 0; m < FC_ROWS; ++m) {
             double se = 0, we = 0, sx = 0, sf = 0, wf = 0, sv = 0, wv = 0;
-            int nin = 0, nf = 0, r;
+            int nin = 0, nboth = 0, nf = 0, r;
             char tm[32] = "-";
             for (r = 0; r < nrow; ++r) {
                 const fc_stat *s = &stat[r][m];
@@ -462,14 +472,14 @@ static int fc_bench(const char *spv, const char *outdir, const char *ops_file, i
                 if (e > we) we = e;
                 if (s->flk > wf) wf = s->flk;
                 if (s->vs_cpu_max > wv) wv = s->vs_cpu_max;
-                nin += e <= 1.5;
+                nin += e <= 1.5, nboth += e <= 1.5 && s->flk <= 1.5;
             }
             if (nms[m]) snprintf(tm, sizeof tm, "%.3f", ms[m] / nms[m]);
-            fprintf(f, "| %s | %.2f; %.2f | %d/%d | %.2f | %.2f; %.2f | %.3f%%; %.3f%% | %d | %d (%d) | %s |\n", fc_name(m),
-                    se / nrow, we, nin, nrow, sx / nrow, sf / nrow, wf, 100.0 * sv / nrow, 100.0 * wv, nf, ops[m], br[m], tm);
+            fprintf(f, "| %s | %.3g; %.3g | %d/%d; %d/%d | %.3g | %.3g; %.3g | %.3f%%; %.3f%% | %d | %d (%d) | %s |\n", fc_name(m),
+                    se / nrow, we, nin, nrow, nboth, nrow, sx / nrow, sf / nrow, wf, 100.0 * sv / nrow, 100.0 * wv, nf, ops[m], br[m], tm);
         }
         fprintf(f, "\nPer scene row (GPU; err/oracle / flk): `bench/out/frame_curved.csv`. Reference, GPU frames and CPU path "
-                   "took %.1f s, %.1f s and %.1f s wall (the reference: specaa_scenes.h's sc_run for every form it has).\n",
+                   "took %.1f s, %.1f s and %.1f s wall (the reference: specaa_scenes.h's sc_run_ref, reference and oracle only).\n",
                 t_ref, t_gpu, t_cpu);
     }
     fclose(gm);
