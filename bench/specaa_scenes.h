@@ -551,6 +551,7 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
     free(sc_img); free(sc_dev2); free(sc_full); free(sc_slope); free(sc_pyr); free(sc_npyr);
 }
 
+#ifdef SC_RUN_REF /* defined by the includer that calls it (an unused static function is an error) */
 /* sc_run for a caller that needs only the reference and the oracle (bench/frame/frame_curved.h,
    which shades its own forms): job as sc_run; fills img[SM_REF] and img[SM_ORACLE] (NaN off the
    surface; every other method's plane left as it was), dev2 and full. The same rays, seeds and
@@ -603,3 +604,4 @@ static void sc_run_ref(void *ctx, long long job)
                 (pf_real)o[2], (pf_real)o[3], (pf_real)o[4]), (pf_real)bv));
         }
 }
+#endif

@@ -34,6 +34,7 @@
               differences cost.
      non-finite  NaN or infinite GPU pixels over the whole rendered images. */
 #include "pf_specaa.h"
+#define SC_RUN_REF 1 /* specaa_scenes.h's sc_run_ref */
 #include "specaa_scenes.h"
 #include "curved_shade.h"
 
