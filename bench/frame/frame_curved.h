@@ -101,20 +101,8 @@ static pf_slope_moments fc_read(double s, double t, double rho, pf_vec3 *nav)
     return pf_slope_moments_sample(sc_pyr, SC_N, SC_N, lod, us, vs, PF_BORDER_WRAP);
 }
 
-/* the longer texel derivative at pixel (px, py) as the quad gives it: dFdxFine from its quad row,
-   dFdyFine from its quad column */
-static double fc_quad_rho(int scene, double R, double cx, double cy, int px, int py)
-{
-    int x0 = px & ~1, y0 = py & ~1;
-    sc_geo a, b, c, d;
-    fc_eval(scene, R, cx, cy, x0 + 0.5, py + 0.5, &a);
-    fc_eval(scene, R, cx, cy, x0 + 1.5, py + 0.5, &b);
-    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &c);
-    fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &d);
-    return fmax(hypot(b.s - a.s, b.t - a.t), hypot(d.s - c.s, d.t - c.t));
-}
-
-/* the quad's texel derivatives at pixel (px, py) (fc_quad_rho's) */
+/* the quad's texel derivatives at pixel (px, py): dFdxFine from its quad row, dFdyFine from its
+   quad column */
 static void fc_quad_dst(int scene, double R, double cx, double cy, int px, int py, double dst[2][2])
 {
     int x0 = px & ~1, y0 = py & ~1;
@@ -124,6 +112,14 @@ static void fc_quad_dst(int scene, double R, double cx, double cy, int px, int p
     fc_eval(scene, R, cx, cy, px + 0.5, y0 + 0.5, &c);
     fc_eval(scene, R, cx, cy, px + 0.5, y0 + 1.5, &d);
     dst[0][0] = b.s - a.s, dst[0][1] = b.t - a.t, dst[1][0] = d.s - c.s, dst[1][1] = d.t - c.t;
+}
+
+/* the longer of the two (the shader's lod is its log2) */
+static double fc_quad_rho(int scene, double R, double cx, double cy, int px, int py)
+{
+    double dst[2][2];
+    fc_quad_dst(scene, R, cx, cy, px, py, dst);
+    return fmax(hypot(dst[0][0], dst[0][1]), hypot(dst[1][0], dst[1][1]));
 }
 
 /* the anisotropic read at pixel (px, py) with its own quad derivatives */
