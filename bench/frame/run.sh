@@ -53,9 +53,10 @@ done
 # the curved scenes of bench/specaa_scenes.h (bench/frame/curved.frag, one shader per form of
 # bench/frame/curved_shade.h at the lod computed in the shader; quad and cross_taps: anisotropic
 # reads in the shader by the EXT rule, PFC_TAPS; quad_drv16: quad's reads through the driver's 16x
-# sampler, PFC_ANISO; box_drvlod: the box kernel's form at the driver's lod, PFC_DRIVER_LOD)
+# sampler, PFC_ANISO; box: the box kernel's form at the driver's lod, PFC_DRIVER_LOD, and box_lod
+# the same at the shader's, the keys bench/report.sh reads)
 for m in 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14; do
-    mn=$(echo "none box box_iso tk filament hdrp godot vmf_box curved surf cross quad cross_taps quad_drv16 box_drvlod" | cut -d' ' -f$((m + 1)))
+    mn=$(echo "none box_lod box_iso tk filament hdrp godot vmf_box curved surf cross quad cross_taps quad_drv16 box" | cut -d' ' -f$((m + 1)))
     f="$spv/curved_$mn.spv"
     d="-DPFC_METHOD=$m"
     [ $m = 11 ] && d="-DPFC_METHOD=11 -DPFC_TAPS=1"
