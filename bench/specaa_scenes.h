@@ -573,8 +573,8 @@ static void sc_run_ref(void *ctx, long long job)
             double x = px + 0.5, y = py + 0.5, sum = 0, sum2 = 0, o[5] = { 0, 0, 0, 0, 0 };
             sc_geo g;
             int hits = 0, i, j;
-            img[SM_REF * WW + p] = img[SM_ORACLE * WW + p] = NAN;
-            dev2[p] = NAN;
+            img[SM_REF * WW + p] = img[SM_ORACLE * WW + p] = (double)NAN;
+            dev2[p] = (double)NAN;
             full[p] = 0;
             if (!sc_eval(scene, R, cx, cy, x, y, &g)) continue;
             for (j = 0; j < sc_S; ++j)
