@@ -402,6 +402,25 @@ static void edge_cross(void)
                                                                   pf_vec2_make(1, 1), PF_SPECAA_SIGMA2_BOX));
     PF_CHECK(pf_test_bits_finite(r.var_x) && pf_test_bits_finite(r.var_y) && pf_test_bits_finite(r.cov_xy), "finite");
 #endif
+    /* a huge off-diagonal cross term (a silhouette quad's reads): the covariance clamped to
+       |cov| <= sqrt(var_x var_y), so LEADR stays bounded (7.5e16 unclamped over the grid below) */
+    r = pf_specaa_slope_stats_cross(s, k, pf_specaa_kernel_make(PF_R(0.0), PF_R(0.0), PF_R(-1.0e3)));
+    PF_CHECK((long double)r.cov_xy * (long double)r.cov_xy
+                     <= (long double)r.var_x * (long double)r.var_y * (1.0L + 8.0L * (long double)PF_TEST_EPS)
+                 && r.cov_xy < PF_R(0.0), "cov %g var %g %g", (double)r.cov_xy, (double)r.var_x, (double)r.var_y);
+    { /* LEADR over a grid of light directions (half-vector slopes across the degenerate axis) */
+        pf_vec3 wo = pf_vec3_normalize(v3(0.3L, 0.2L, 1.0L));
+        pf_real f, fmax = PF_R(0.0);
+        int a, b;
+        for (a = 0; a < 41; ++a)
+            for (b = 0; b < 41; ++b) {
+                pf_vec3 wi = pf_vec3_normalize(v3(-0.8L + 0.04L * a, -0.8L + 0.04L * b, 1.0L));
+                f = pf_leadr_specular(wo, wi, r, PF_R(1.0));
+                fmax = pf_test_bits_finite(f) ? pf_max(fmax, f) : PF_REAL_MAX;
+            }
+        pf_test_note("LEADR of the clamped cross: max %g over 41^2 lights", (double)fmax);
+        PF_CHECK(fmax <= PF_R(1.0e5), "LEADR of the clamped cross: max %g", (double)fmax);
+    }
     /* zero derivatives: no cross term */
     r = pf_specaa_slope_stats_cross(s, k, pf_specaa_kernel_cross(v3(0, 0, 0), v3(0, 0, 0), pf_vec2_make(1, 1),
                                                                   pf_vec2_make(1, 1), PF_SPECAA_SIGMA2_BOX));
