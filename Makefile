@@ -152,7 +152,7 @@ $(BUILD)/bench/%: bench/%.c $(HEADERS) $(wildcard bench/*.h) $(wildcard bench/*.
 # force and the CPU float path; lavapipe unless PF_VK_DEVICE names a device. make frame: that step
 # alone (BENCH_QUICK=1: small frames); make bench runs it too.
 FRAME_BIN := $(BUILD)/bench/frame
-$(FRAME_BIN): bench/frame/frame.c tests/gpu/vk_common.h $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
+$(FRAME_BIN): bench/frame/frame.c bench/frame/frame_curved.h bench/frame/curved_shade.h tests/gpu/vk_common.h $(HEADERS) $(wildcard bench/*.h) $(BENCH_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(BENCH_FLAGS) -pthread -Itests -Itests/reference -Itests/gpu $< -o $@ -lvulkan -lm
 bench-run: $(FRAME_BIN)

@@ -9233,6 +9233,10 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
      pf_real a = pf_specaa_alpha(alpha, k);                       -- GGX/Beckmann, (1)
      pf_slope_stats s2 = pf_specaa_slope_stats(s, k);             -- LEADR
      pf_real I = pf_specaa_leadr_specular(wo, wi, s, f0, dndx, dndy);  -- both in one call
+     -- plain curved surfaces, the most accurate form (tangent-frame dndx, dndy and wo):
+     pf_real I = pf_specaa_leadr_specular_curved(wo, wi, s, f0, dndx, dndy);  -- + mean shift (6)
+     -- or, with any kernel and texture part: s = pf_specaa_slope_stats_shift(s,
+     --     pf_specaa_mean_shift(wo, k)), or pf_specaa_mean_shift_surface(dFdx(p), dFdy(p), ...)
      -- normal-mapped curved surfaces, the most accurate form (tangent-frame dndx, dndy; the
      -- four reads at uv -+ duvdx/4 -+ duvdy/4 with gradients duvdx/2, duvdy/2):
      pf_slope_stats s = pf_specaa_slope_stats_quad(m00, m10, m01, m11, alpha * alpha / 2,
@@ -9253,8 +9257,10 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
                  pf_specaa_slope_variance_from_projected
      cross term  pf_specaa_kernel_cross (4), pf_specaa_slope_stats_cross,
                  pf_specaa_slope_stats_quad (four quadrant reads: moments, gradient, kernel, (4))
+     mean shift  pf_specaa_mean_shift (6), pf_specaa_mean_shift_surface (5),
+                 pf_specaa_slope_stats_shift
      compose     pf_specaa_slope_stats, pf_specaa_slope_stats_aniso, pf_specaa_vmf_kappa,
-                 pf_specaa_vmf_lobe, pf_specaa_leadr_specular
+                 pf_specaa_vmf_lobe, pf_specaa_leadr_specular, pf_specaa_leadr_specular_curved
    FUNCTIONS (CPU only, PF_CPU_DEF, compiled out under PF_GLSL)
      pf_specaa_bake_scratch_reals, pf_specaa_bake (2)
 
@@ -9287,7 +9293,10 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
    NaN and inf), above the 15 the library allows the default, so the default stays isotropic.
    pf_specaa_kernel_cross is 13 ops, pf_specaa_slope_stats_cross 33, pf_specaa_slope_stats_quad
    118 (the four reads not counted); the anisotropic kernel with the cross term adds 64 to
-   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The anisotropic kernel halved is the slope covariance of a
+   pf_leadr_specular: an opt-in for normal-mapped curved surfaces, not the default. The mean
+   shift: pf_specaa_mean_shift 16 ops, pf_specaa_mean_shift_surface 47;
+   pf_specaa_leadr_specular_curved (anisotropic kernel and (6)) adds 42 to pf_leadr_specular
+   (116 -> 158): an opt-in too. The anisotropic kernel halved is the slope covariance of a
    sphere's normals over the Gaussian pixel filter within 0.7% of its trace (spheres 20-200 px
    across). Baker (2), against the exact NDF of each mip texel's footprint on the seven kinds of
    the microsurface corpus (bench/specaa.c): more accurate than every engine formula (Toksvig,
@@ -9295,9 +9304,9 @@ PF_DEF pf_real pf_shadow_csm(pf_csm_moments m, pf_real d, int terms, pf_real sca
    (bench/specaa_scenes.h: a sphere and a cylinder 16 and 40 px across, plain and
    normal-mapped, alpha 0.03 and 0.1, against a box-filtered supersampled reference and the
    exact-footprint oracle over a sub-pixel camera path): without a map, LEADR with the
-   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error (the rest
-   is the second-order shift of the pixel's mean slope, which first derivatives cannot see)
-   and its flicker within 1.03x of the reference's; the isotropic kernel is as good on the
+   anisotropic kernel at PF_SPECAA_SIGMA2_BOX is within 1.0-1.8x the oracle's error, with the
+   mean shift (6) (pf_specaa_leadr_specular_curved) within 0.97-1.14x, its flicker within
+   1.03x of the reference's; the isotropic kernel is as good on the
    sphere and over-blurs the cylinder's straight axis (2.6-12x); the papers' constant
    over-blurs (2-77x). With a normal map, one isotropic trilinear read of the
    pyramid and no cross term are 1.0-8.8x the oracle's error; pf_specaa_slope_stats_quad is
@@ -9474,6 +9483,82 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_ke
                                s.cov_xy + k.cov_xy);
 }
 
+/* THE MEAN SHIFT. On a curved surface the pixel's mean slope is not the centre's slope: a ray
+   at offset o from the pixel centre meets the surface at a depth that is quadratic in o (the
+   surface curves away from the view), so the footprint on the surface is not centred on the
+   centre's point: it is displaced along the view's tangential part w_t, and the mean normal
+   with it. To second order in o, for a pixel filter of per-axis variance 2 sigma2 and an
+   orthographic view direction w (wo in the tangent frame: n = +z), the tangent-frame shift
+   of the mean slope is
+       d = sigma2 wo.z II ((wo.dpdx) dndx.xy + (wo.dpdy) dndy.xy) / p^2,                   (5)
+       II = dpdx.dndx + dpdy.dndy,   p^2 = (|dpdx|^2 - (wo.dpdx)^2 + |dpdy|^2 - (wo.dpdy)^2)/2
+   (dpdx, dpdy the screen derivatives of the surface position, dndx, dndy of the unit normal,
+   all in the tangent frame; p the pixel's size in the position's units). Derivation: the
+   depth's second-order term is t2(o) = -(dp o).(dn o) / (2 w.n) (the second fundamental form
+   of the first-order offset), its mean over the filter -sigma2 II / (w.n); the footprint's
+   centroid moves by that along w, whose tangential part the shape operator turns into
+   (w.n)^2 ((w.dpdx) dndx + (w.dpdy) dndy) / p^2 of normal. The renormalised mean of unit
+   normals spread SYMMETRICALLY around the centre's normal points along it (the mean only
+   shrinks, by 1 - tr/2): the shift comes from the foreshortening alone, not from the
+   half-vector map or the clamp. (5) is exact to second order for surfaces whose normal is an
+   affine function of the position (spheres, cylinders, planes), and leaves out the change of
+   curvature across the pixel (third-order shape) and, under perspective, the turn of the view
+   ray across the pixel (relative size: the object's extent over its distance).
+   On a sphere (umbilic: dn = dp/R) (5) reduces to what needs no position derivatives,
+       d = (k/2) wo.xy / wo.z,   k = 2 sigma2 (|dndx|^2 + |dndy|^2),                        (6)
+   k the kernel's alpha^2 increment (1): the pixel's mean normal leans toward the silhouette by
+   half the kernel times the view's slope. (6) is (5) on cylinders too when the view's tangential
+   part is across the axis; otherwise (5). A 2x2 quad's first differences cannot give the
+   second differences the shift is made of; (5) and (6) get them from the geometry instead.
+   On the plain curved scenes of bench/specaa_scenes.h at alpha 0.1, the box kernel with (6) is
+   1.04-1.14x the oracle's error where the kernel alone is 1.26-1.82x; given the oracle's exact
+   mean instead, 1.00-1.07x: the kernel's covariance was right, the mean was the gap
+   (docs/specaa.md). */
+
+/* Largest |component| of a mean shift (5)/(6): sqrt(PF_SPECAA_KAPPA/2), the per-axis deviation
+   of the clamped kernel; a shift is clamped to it componentwise (near the silhouette wo.z -> 0
+   and (6) grows without bound). */
+#ifndef PF_SPECAA_SHIFT_MAX
+#  define PF_SPECAA_SHIFT_MAX PF_R(0.3)
+#endif
+
+/* (6): the mean-slope shift of an umbilic surface from the kernel increment k (the trace of
+   pf_specaa_kernel_aniso or pf_specaa_kernel_normal, same sigma2) and the view direction wo in
+   the tangent frame. wo.z floored at 1e-4; each component clamped to +-PF_SPECAA_SHIFT_MAX;
+   a NaN or infinite k or wo gives 0 on the component it reaches. */
+PF_DEF pf_vec2 pf_specaa_mean_shift(pf_vec3 wo, pf_real k)
+{
+    pf_real r = PF_R(0.5) * k / pf_max(wo.z, PF_R(1.0e-4));
+    pf_real dx = r * wo.x, dy = r * wo.y;
+    pf_real m = PF_SPECAA_SHIFT_MAX;
+    return pf_vec2_make(dx - dx == PF_R(0.0) ? pf_clamp(dx, -m, m) : PF_R(0.0),
+                        dy - dy == PF_R(0.0) ? pf_clamp(dy, -m, m) : PF_R(0.0));
+}
+
+/* (5): the mean-slope shift from the screen derivatives of the position (dpdx, dpdy) and of the
+   unit normal (dndx, dndy), all in the tangent frame, the view direction wo (tangent frame) and
+   the pixel filter's sigma2 (PF_SPECAA_SIGMA2_BOX for a box-filtered target). Each component
+   clamped to +-PF_SPECAA_SHIFT_MAX; NaN, inf or a zero pixel size (p^2 = 0) give 0. */
+PF_DEF pf_vec2 pf_specaa_mean_shift_surface(pf_vec3 dpdx, pf_vec3 dpdy, pf_vec3 dndx, pf_vec3 dndy, pf_vec3 wo,
+                                            pf_real sigma2)
+{
+    pf_real wx = pf_vec3_dot(wo, dpdx), wy = pf_vec3_dot(wo, dpdy);
+    pf_real p2 = PF_R(0.5) * (pf_vec3_dot(dpdx, dpdx) - wx * wx + pf_vec3_dot(dpdy, dpdy) - wy * wy);
+    pf_real c = sigma2 * wo.z * (pf_vec3_dot(dpdx, dndx) + pf_vec3_dot(dpdy, dndy));
+    pf_real m = PF_SPECAA_SHIFT_MAX, dx, dy;
+    c = p2 > PF_R(0.0) ? c / p2 : PF_R(0.0);
+    dx = c * (wx * dndx.x + wy * dndy.x);
+    dy = c * (wx * dndx.y + wy * dndy.y);
+    return pf_vec2_make(dx - dx == PF_R(0.0) ? pf_clamp(dx, -m, m) : PF_R(0.0),
+                        dy - dy == PF_R(0.0) ? pf_clamp(dy, -m, m) : PF_R(0.0));
+}
+
+/* The footprint's slope statistics with the mean moved by d (pf_specaa_mean_shift*). */
+PF_DEF pf_slope_stats pf_specaa_slope_stats_shift(pf_slope_stats s, pf_vec2 d)
+{
+    return pf_slope_stats_make(s.mean_x + d.x, s.mean_y + d.y, s.var_x, s.var_y, s.cov_xy);
+}
+
 /* The cross term of the geometry's turn and the texture's slopes inside the pixel. A ray at the
    offset o from the pixel centre (pixels) sees, in the centre's tangent frame, the slope
        q(o) = -(a o_x + b o_y) + t(o),   a = dndx.xy, b = dndy.xy (tangent frame, as
@@ -9548,6 +9633,21 @@ PF_DEF pf_real pf_specaa_leadr_specular(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s
 {
     pf_real k = pf_specaa_kernel_normal(dndx, dndy, PF_SPECAA_LEADR_SIGMA2, PF_SPECAA_KAPPA);
     return pf_leadr_specular(wo, wi, pf_specaa_slope_stats(s, k), f0);
+}
+
+/* pf_leadr_specular on a plain curved surface, the most accurate form without position
+   derivatives: the anisotropic kernel of the TANGENT-FRAME derivatives of the normal
+   (pf_specaa_kernel_aniso) and the mean shift (6) of its trace, at PF_SPECAA_LEADR_SIGMA2 and
+   PF_SPECAA_KAPPA. On the plain scenes of bench/specaa_scenes.h 0.97-1.14x the oracle's error
+   where pf_specaa_leadr_specular is 0.97-11.7x (docs/specaa.md); more ops than the 15 the
+   default may add (bench/gpu/count.sh), so an opt-in. Degenerate derivatives as the kernel's
+   (NaN: kappa/2 per axis, and the shift of that trace). */
+PF_DEF pf_real pf_specaa_leadr_specular_curved(pf_vec3 wo, pf_vec3 wi, pf_slope_stats s, pf_real f0,
+                                               pf_vec3 dndx, pf_vec3 dndy)
+{
+    pf_specaa_kernel k = pf_specaa_kernel_aniso(dndx, dndy, PF_SPECAA_LEADR_SIGMA2, PF_SPECAA_KAPPA);
+    return pf_leadr_specular(wo, wi, pf_specaa_slope_stats_shift(pf_specaa_slope_stats_aniso(s, k),
+                             pf_specaa_mean_shift(wo, pf_specaa_kernel_trace(k))), f0);
 }
 
 /* vMF: kappa' = kappa / (1 + kappa k/2), the lobe's tangent variance ~1/kappa plus the

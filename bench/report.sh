@@ -171,7 +171,11 @@ summary_page() {
                   printf "; non-finite pixels over all still frames (every method, storage and sampler): %d.", nf }' "$out/frame.csv")$([ -f "$out/frame_motion.csv" ] && awk -F, '
             NR > 1 && $2 == "leadr" && $3 == 1 { f[++n] = $1 " " sprintf("%.2f", $7) }
             END { if (n) { printf " Flicker under motion (LEADR%ss change per frame over the box-filtered reference%ss own): ", sprintf("%c", 39), sprintf("%c", 39)
-                  for (i = 1; i <= n; i++) printf "%s%s", (i > 1 ? ", " : ""), f[i]; printf "." } }' "$out/frame_motion.csv")"
+                  for (i = 1; i <= n; i++) printf "%s%s", (i > 1 ? ", " : ""), f[i]; printf "." } }' "$out/frame_motion.csv")$([ -f "$out/frame_curved.csv" ] && awk -F, '
+            # frame_curved.csv: scene, diameter_px, alpha, form, err, err_over_oracle ($6), ..., flicker_over_ref ($8), vs_cpu ($9), ..., nonfinite ($11)
+            NR > 1 && $4 == "box" { e += $6; f += $8; v += $9; nf += $11; n++ }
+            NR > 1 && $4 == "box_lod" { vl += $9; nl++ }
+            END { if (n) printf " Curved scenes of specular antialiasing (sphere, cylinder; LEADR + the box geometry kernel from hardware derivatives, mean over %d rows): %.2fx the oracle%ss error, flicker %.2fx the reference%ss, GPU vs CPU %.2f%% through the driver%ss lod (%.3f%% with the lod computed in the shader), non-finite pixels %d.", n, e / n, sprintf("%c", 39), f / n, sprintf("%c", 39), 100 * v / n, sprintf("%c", 39), nl ? 100 * vl / nl : 0, nf }' "$out/frame_curved.csv")"
         echo
     fi
     if [ -f "$out/gpu_cost.md" ]; then

@@ -35,12 +35,18 @@
                 with the cross term (4) of pf_specaa.h from the central differences of its mean
                 at +-1/2 px (what dFdx/dFdy of the fetched mean give); four such reads, one per
                 pixel quadrant with half the footprint (pf_specaa_slope_stats_quad: moments,
-                gradient, kernel, cross term);
+                gradient, kernel, cross term); the second-order shift of the pixel's mean slope
+                (pf_specaa.h (6) from the kernel's trace and the view, pf_specaa_leadr_specular_curved's
+                form; (5) from the surface position's exact screen derivatives, P = (x, y, R n_z))
+                on the box kernel and on the quadrant reads;
    diagnostics  the exact texel moments of the pixel (the rays' nearest texels) with and
                 without the exact cross term (the rays' regression of the texel slope on the
                 sub-pixel offset); the anisotropic read with that exact cross term; the oracle's
                 covariance around the texture's mean (the geometry's second-order mean shift
-                removed).
+                removed); the box kernel's covariance around the oracle's exact mean (the split
+                of the error into mean and covariance); a second reference of independent jitter
+                (its RMS difference to the first / sqrt 2: the reference's true sampling
+                deviation, printed beside the i.i.d. bound).
    ERROR: RMS over pixels and frames of (method - reference), relative to the mean reference;
    the table gives it divided by the oracle's. FLICKER: per pixel, the change from one frame to
    the next (pixels on the surface in both), RMS over pixels and frame pairs; the table gives it
@@ -57,7 +63,8 @@ static double sc_diam[SC_NSIZE] = { 16.0, 40.0 };
 static int sc_S = 20, sc_F = 12;
 
 enum { SM_NONE, SM_BOX, SM_BOX_AREA, SM_BOX_ISO, SM_TK, SM_FILAMENT, SM_HDRP, SM_GODOT, SM_VMF_NONE, SM_VMF_BOX,
-       SM_AF, SM_AF_CROSS, SM_QUAD_CROSS, SM_AF_XCROSS, SM_DIAG_OMEAN0, SM_TEXEXACT, SM_TEXEXACT_CROSS, SM_ORACLE, SM_REF, SM_COUNT };
+       SM_AF, SM_AF_CROSS, SM_QUAD_CROSS, SM_AF_XCROSS, SM_DIAG_OMEAN0, SM_TEXEXACT, SM_TEXEXACT_CROSS,
+       SM_BOX_SHIFT, SM_BOX_SHIFT_SURF, SM_ISO_SHIFT, SM_QUAD_SHIFT, SM_DIAG_BOX_OMEAN, SM_REF2, SM_ORACLE, SM_REF, SM_COUNT };
 #define SC_NMETH SM_REF /* methods and the oracle */
 static const char *sc_meth_name[SM_REF] = {
     "LEADR, no kernel", "LEADR + box kernel (aniso, sigma2 1/24)", "LEADR (area lod) + box kernel (aniso)",
@@ -67,7 +74,12 @@ static const char *sc_meth_name[SM_REF] = {
     "LEADR (aniso fetch) + box kernel (aniso)", "LEADR (aniso fetch) + box kernel + cross term",
     "LEADR (4 quadrant aniso fetches) + box kernel + cross term",
     "aniso fetch + box kernel + exact cross term", "diag: oracle covariance, mean of the texture only",
-    "exact texel moments + box kernel (aniso)", "exact texel moments + box kernel + exact cross term", "oracle (exact footprint)"
+    "exact texel moments + box kernel (aniso)", "exact texel moments + box kernel + exact cross term",
+    "LEADR + box kernel (aniso) + mean shift (6): pf_specaa_leadr_specular_curved",
+    "LEADR + box kernel (aniso) + mean shift (5) from position derivatives", "LEADR + box kernel (iso) + mean shift (6)",
+    "LEADR (4 quadrant aniso fetches) + box kernel + cross term + mean shift (6)",
+    "diag: box kernel (aniso) covariance, the oracle's exact mean", "diag: a second reference (independent jitter)",
+    "oracle (exact footprint)"
 };
 
 static double *sc_slope;   /* level 0: SC_N^2 x 2 slopes */
@@ -277,6 +289,27 @@ static void sc_run(void *ctx, long long job)
                     q[0] += sx; q[1] += sy; q[2] += sx * sx; q[3] += sy * sy; q[4] += sx * sy;
                     c[0] += ox; c[1] += oy; c[2] += ox * sx; c[3] += ox * sy; c[4] += oy * sx; c[5] += oy * sy;
                 }
+            {   /* a second, independent reference (other jitter): its difference to the first measures the
+                       stratified reference's true sampling deviation */
+                double sb = 0;
+                int hb = 0;
+                for (j = 0; j < sc_S; ++j)
+                    for (i = 0; i < sc_S; ++i) {
+                        unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x9e3779b97f4a7c15ULL);
+                        double u1, u2, n[3], sx, sy, ox, oy;
+                        sc_geo gr;
+                        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
+                        u1 = (double)(z >> 40) / 16777216.0;
+                        u2 = (double)(z & 0xFFFFFF) / 16777216.0;
+                        ox = (i + u1) / sc_S - 0.5;
+                        oy = (j + u2) / sc_S - 0.5;
+                        if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
+                        sc_normal(scene, &gr, n, &sx, &sy);
+                        sb += sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
+                        ++hb;
+                    }
+                res[SM_REF2] = hb ? sb / hb : 0.0;
+            }
             full[p] = hits == sc_S * sc_S;
             res[SM_REF] = sum / hits;
             dev2[p] = hits > 1 ? fmax(sum2 / hits - res[SM_REF] * res[SM_REF], 0.0) / (hits - 1) : 0.0;
@@ -352,6 +385,32 @@ static void sc_run(void *ctx, long long job)
                             pf_specaa_kernel_cross(ax0, ay0, ex, ey, PF_SPECAA_SIGMA2_BOX)));
                     }
                 }
+                {   /* the second-order shift of the pixel's mean slope (pf_specaa.h (5), (6)); the surface's
+                       position derivatives: P = (x, y, R n_z) in pixels for both scenes (orthographic) */
+                    pf_vec3 wot = pf_vec3_make((pf_real)sc_dot(sc_wo, g.T), (pf_real)sc_dot(sc_wo, g.B), (pf_real)sc_dot(sc_wo, g.N));
+                    pf_specaa_kernel kan = pf_specaa_kernel_aniso(ax, ay, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA);
+                    pf_vec2 d6 = pf_specaa_mean_shift(wot, pf_specaa_kernel_trace(kan)), d6i = pf_specaa_mean_shift(wot, kbox);
+                    double dpx[3] = { 1.0, 0.0, R * dN[0][2] }, dpy[3] = { 0.0, 1.0, R * dN[1][2] };
+                    pf_vec3 jx = pf_vec3_make((pf_real)sc_dot(dpx, g.T), (pf_real)sc_dot(dpx, g.B), (pf_real)sc_dot(dpx, g.N));
+                    pf_vec3 jy = pf_vec3_make((pf_real)sc_dot(dpy, g.T), (pf_real)sc_dot(dpy, g.B), (pf_real)sc_dot(dpy, g.N));
+                    pf_vec2 d5 = pf_specaa_mean_shift_surface(jx, jy, ax, ay, wot, PF_SPECAA_SIGMA2_BOX);
+                    pf_slope_stats sa = pf_specaa_slope_stats_aniso(s0, kan), t;
+                    res[SM_BOX_SHIFT] = sc_shade(&g, pf_specaa_slope_stats_shift(sa, d6));
+                    res[SM_BOX_SHIFT_SURF] = sc_shade(&g, pf_specaa_slope_stats_shift(sa, d5));
+                    res[SM_ISO_SHIFT] = sc_shade(&g, pf_specaa_slope_stats_shift(pf_specaa_slope_stats(s0, kbox), d6i));
+                    {
+                        pf_slope_moments t00 = pf_slope_moments_make(0, 0, 0, 0, 0), t10 = t00, t01 = t00, t11 = t00;
+                        pf_vec3 ax0 = pf_vec3_make(ax.x, ax.y, 0), ay0 = pf_vec3_make(ay.x, ay.y, 0);
+                        if (scene & 1) {
+                            t00 = sc_fetch_aniso(g.s, g.t, dst, -0.25, -0.25, 0.5); t10 = sc_fetch_aniso(g.s, g.t, dst, 0.25, -0.25, 0.5);
+                            t01 = sc_fetch_aniso(g.s, g.t, dst, -0.25, 0.25, 0.5); t11 = sc_fetch_aniso(g.s, g.t, dst, 0.25, 0.25, 0.5);
+                        }
+                        res[SM_QUAD_SHIFT] = sc_shade(&g, pf_specaa_slope_stats_shift(pf_specaa_slope_stats_quad(t00, t10, t01, t11,
+                            (pf_real)bv, ax0, ay0, PF_SPECAA_SIGMA2_BOX, PF_SPECAA_KAPPA), d6));
+                    }
+                    t = sa; t.mean_x = (pf_real)o[0]; t.mean_y = (pf_real)o[1];
+                    res[SM_DIAG_BOX_OMEAN] = sc_shade(&g, t);
+                }
                 res[SM_TK] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_SPECAA_SIGMA2, PF_SPECAA_KAPPA)));
                 res[SM_FILAMENT] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.15), PF_R(0.04))));
                 res[SM_HDRP] = sc_shade(&g, pf_specaa_slope_stats(s0, pf_specaa_kernel_normal(dnx, dny, PF_R(0.1), PF_R(0.04))));
@@ -397,8 +456,9 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
                 "in its own frame; oracle: the exact mean and covariance of those rays' slopes in the pixel centre's frame. "
                 "%d frames of a sub-pixel camera path (1 px along x, 0.37 px along y in all). **err** = RMS error against the "
                 "reference / the oracle's; **flk** = RMS frame-to-frame change per pixel / the reference's own. Reference "
-                "noise: its sampling deviation relative to the mean, and its share of its own frame-to-frame change "
-                "(sqrt 2 x deviation / change: below 1 means the reference's flicker is resolved). Texture reads: one "
+                "deviation, relative to the mean: measured (the RMS difference to a second reference of independent jitter, "
+                "/ sqrt 2), the i.i.d. bound (the rays' variance / (n - 1): the stratification makes the true one far smaller), "
+                "and the bound's share of the reference's frame-to-frame change (sqrt 2 x bound / change). Texture reads: one "
                 "trilinear read at the GPU's isotropic lod unless named; \"aniso fetch\": a GPU's anisotropic rule (up to 16 "
                 "trilinear taps along the major axis at the minor axis' level); \"cross term\": (4) of pf_specaa.h from the read's "
                 "mean-slope derivatives; \"4 quadrant\": pf_specaa_slope_stats_quad; \"exact\" and \"diag\" columns are "
@@ -406,12 +466,12 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
             sc_diam[0], sc_diam[1], SC_N * SC_REP / (3.14159265358979323846 * sc_diam[1]),
             SC_N * SC_REP / (3.14159265358979323846 * sc_diam[0]), sc_alpha[0], sc_alpha[1], sc_S, sc_S, sc_F,
             quick ? " BENCH_QUICK: smoke run, not for publication." : "");
-    fprintf(md, "| scene | px | alpha | ref. noise / share | oracle err | interior: box / oracle |");
+    fprintf(md, "| scene | px | alpha | ref. deviation: measured / iid bound / share | oracle err | interior: box / oracle |");
     for (m = 0; m < SM_ORACLE; ++m) fprintf(md, " %s: err / flk |", sc_meth_name[m]);
     fprintf(md, " oracle flk |\n| --- | ---: | ---: | ---: | ---: | ---: |");
     for (m = 0; m < SM_ORACLE; ++m) fprintf(md, " ---: |");
     fprintf(md, " ---: |\n");
-    fprintf(csv, "scene,diameter_px,alpha,method,rel_rms_err,err_over_oracle,interior_err_over_oracle,flicker,flicker_over_ref,ref_rel_dev,ref_noise_share,pixels,frames,spp\n");
+    fprintf(csv, "scene,diameter_px,alpha,method,rel_rms_err,err_over_oracle,interior_err_over_oracle,flicker,flicker_over_ref,ref_rel_dev,ref_noise_share,pixels,frames,spp,ref_rel_dev_measured\n");
     for (scene = 0; scene < SC_NSCENE; ++scene)
         for (si = 0; si < SC_NSIZE; ++si)
             for (ai = 0; ai < SC_NALPHA; ++ai) {
@@ -460,8 +520,8 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
                     flk[m] = sqrt(d2[m] / nd) / rs;
                     erri[m] = ni ? sqrt(ei2[m] / ni) / rs : 0.0;
                 }
-                fprintf(md, "| %s | %g | %g | %.4f / %.2f | %.3f |", sc_scene_name[scene], sc_diam[si], sc_alpha[ai], sqrt(dv / np) / rs,
-                        sqrt(2.0 * dv / np) / rs / flk[SM_REF], err[SM_ORACLE]);
+                fprintf(md, "| %s | %g | %g | %.4f / %.4f / %.2f | %.4f |", sc_scene_name[scene], sc_diam[si], sc_alpha[ai],
+                        err[SM_REF2] / sqrt(2.0), sqrt(dv / np) / rs, sqrt(2.0 * dv / np) / rs / flk[SM_REF], err[SM_ORACLE]);
                 fprintf(md, " %.2f |", erri[SM_ORACLE] > 0 ? erri[SM_BOX] / erri[SM_ORACLE] : 0.0);
                 for (m = 0; m < SM_ORACLE; ++m)
                     fprintf(md, " %s%.2f%s / %s%.2f%s |", err[m] <= 1.5 * err[SM_ORACLE] ? "**" : "", err[m] / err[SM_ORACLE],
@@ -469,9 +529,9 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
                             flk[m] / flk[SM_REF], flk[m] <= 1.5 * flk[SM_REF] ? "**" : "");
                 fprintf(md, " %.2f |\n", flk[SM_ORACLE] / flk[SM_REF]);
                 for (m = 0; m < SM_REF; ++m)
-                    fprintf(csv, "\"%s\",%g,%g,\"%s\",%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%lld,%d,%d\n", sc_scene_name[scene], sc_diam[si], sc_alpha[ai],
+                    fprintf(csv, "\"%s\",%g,%g,\"%s\",%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%.5g,%lld,%d,%d,%.5g\n", sc_scene_name[scene], sc_diam[si], sc_alpha[ai],
                             sc_meth_name[m], err[m], err[m] / err[SM_ORACLE], erri[SM_ORACLE] > 0 ? erri[m] / erri[SM_ORACLE] : 0.0, flk[m], flk[m] / flk[SM_REF], sqrt(dv / np) / rs,
-                            sqrt(2.0 * dv / np) / rs / flk[SM_REF], np / sc_F, sc_F, sc_S * sc_S);
+                            sqrt(2.0 * dv / np) / rs / flk[SM_REF], np / sc_F, sc_F, sc_S * sc_S, err[SM_REF2] / sqrt(2.0));
             }
     fprintf(md, "\nThe previous sphere table's flicker measure, the deviation over the frames of the image's TOTAL radiance / "
                 "its mean, on the plain scenes: the box-filtered reference's total is nearly invariant under a sub-pixel shift "
@@ -490,3 +550,58 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
     (void)total;
     free(sc_img); free(sc_dev2); free(sc_full); free(sc_slope); free(sc_pyr); free(sc_npyr);
 }
+
+#ifdef SC_RUN_REF /* defined by the includer that calls it (an unused static function is an error) */
+/* sc_run for a caller that needs only the reference and the oracle (bench/frame/frame_curved.h,
+   which shades its own forms): job as sc_run; fills img[SM_REF] and img[SM_ORACLE] (NaN off the
+   surface; every other method's plane left as it was), dev2 and full. The same rays, seeds and
+   oracle moments as sc_run, so the two agree to the bit on those planes; without the second
+   reference and the methods (their texture reads) it costs about half of sc_run. */
+static void sc_run_ref(void *ctx, long long job)
+{
+    int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
+    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE));
+    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], bv = 0.5 * a * a;
+    int W = sc_W[si], px, py;
+    double cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    double *img = sc_img + job * sc_img_stride, *dev2 = sc_dev2 + job * sc_dev_stride;
+    unsigned char *full = sc_full + job * sc_dev_stride;
+    (void)ctx;
+    for (py = 0; py < W; ++py)
+        for (px = 0; px < W; ++px) {
+            long long p = (long long)py * W + px, WW = (long long)W * W;
+            double x = px + 0.5, y = py + 0.5, sum = 0, sum2 = 0, o[5] = { 0, 0, 0, 0, 0 };
+            sc_geo g;
+            int hits = 0, i, j;
+            img[SM_REF * WW + p] = img[SM_ORACLE * WW + p] = (double)NAN;
+            dev2[p] = (double)NAN;
+            full[p] = 0;
+            if (!sc_eval(scene, R, cx, cy, x, y, &g)) continue;
+            for (j = 0; j < sc_S; ++j)
+                for (i = 0; i < sc_S; ++i) {
+                    unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x5ce);
+                    double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
+                    sc_geo gr;
+                    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
+                    u1 = (double)(z >> 40) / 16777216.0;
+                    u2 = (double)(z & 0xFFFFFF) / 16777216.0;
+                    ox = (i + u1) / sc_S - 0.5;
+                    oy = (j + u2) / sc_S - 0.5;
+                    if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
+                    sc_normal(scene, &gr, n, &sx, &sy);
+                    f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
+                    sum += f; sum2 += f * f; ++hits;
+                    nz = sc_dot(n, g.N);
+                    if (nz < 1e-3) nz = 1e-3;
+                    qx = -sc_dot(n, g.T) / nz; qy = -sc_dot(n, g.B) / nz;
+                    o[0] += qx; o[1] += qy; o[2] += qx * qx; o[3] += qy * qy; o[4] += qx * qy;
+                }
+            full[p] = hits == sc_S * sc_S;
+            img[SM_REF * WW + p] = sum / hits;
+            dev2[p] = hits > 1 ? fmax(sum2 / hits - (sum / hits) * (sum / hits), 0.0) / (hits - 1) : 0.0;
+            for (i = 0; i < 5; ++i) o[i] /= hits;
+            img[SM_ORACLE * WW + p] = sc_shade(&g, pf_slope_moments_stats(pf_slope_moments_make((pf_real)o[0], (pf_real)o[1],
+                (pf_real)o[2], (pf_real)o[3], (pf_real)o[4]), (pf_real)bv));
+        }
+}
+#endif

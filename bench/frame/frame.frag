@@ -11,9 +11,10 @@
                  5 and 6 vMF m = 4 and 8 (lobe pyramids, texelFetch of the 8 texels of a
                  trilinear fetch at the driver's lod), 7 LEADR with the horizon
                  (pf_horizon_leadr_specular_lod: the HDF array texture texH, the two stored
-                 azimuths around wo and around wi, faded to LEADR by the driver's lod), 8 vMF
+                 azimuths around wo and around wi, faded to LEADR by the lod), 8 vMF
                  m = 4 with the horizon (pf_horizon_vmf_specular_lod: method 5's lobes, the
-                 slope-moment texel and method 7's HDF fetches)
+                 slope-moment texel and method 7's HDF fetches); 7 and 8 fetch at an
+                 explicit lod from the quad derivatives (main says why)
      PFF_ENCODED 1 (with PFF_METHOD 1): the moments stored in scaled UNORM (pf_encode.h:
                  16 or 8 bits, centred on the map's mean slope), decoded after the filtered
                  fetch with pf_slope_moments_decode and the map's encoding (uniform block Enc,
@@ -185,16 +186,31 @@ void main()
     float lod = textureGrad(texL, uv, gx / sz, gy / sz).r;
     float L;
     float base_var = pc.fwd.w, f0 = pc.light.w;
+    float lod_s = lod; /* the level the shading uses (the fade, the lobes' texelFetch level) */
+#if PFF_METHOD == 7 || PFF_METHOD == 8
+    /* The horizon methods fetch at an explicit lod, log2 of the longer texel derivative (the
+       Vulkan rule, clamped to the chain), the same formula as their CPU path, as engines do for
+       array textures; the sampler still filters (texels, wrap, bilinear weights, level blend).
+       With the driver's own lod (textureGrad) they were 1.144% (LEADR) and 1.182% (vMF 4) off the
+       CPU path at log2(rho_max) (full plane; 1.15% and 1.21% BENCH_QUICK): lavapipe's lod is off
+       by 0.022 level on average, and (BENCH_QUICK) the fade alone from the explicit lod left LEADR's at 1.16% (the moment and
+       HDF fetches carry it; the fade's share is 0.21%) while vMF's lobes at the explicit level
+       took that row to 0.18%. */
+    float lod_e = clamp(log2(max(max(length(gx), length(gy)), 1e-30)), 0.0, float(textureQueryLevels(texA) - 1));
+    lod_s = lod_e;
+    a = textureLod(texA, uv, lod_e);
+    b = textureLod(texB, uv, lod_e);
+#endif
     pf_vec3 vo = pf_vec3_make(wo.x, wo.y, wo.z), vi = pf_vec3_make(wi.x, wi.y, wi.z);
 #if PFF_METHOD == 7 || PFF_METHOD == 8
     /* the horizon methods' inputs: the slope-moment texel, and the HDF moments of the two stored
        azimuths around each direction, filtered by the same sampler and gradients as the slope
        moments (the HDF moments are linear: a blend of texels filters them), each pair mixed by
-       pf_hdf_moments_lerp */
+       pf_hdf_moments_lerp; all at the explicit lod_e above */
     pf_slope_stats hor_st = pf_slope_moments_stats(pf_slope_moments_make(a.x, a.y, a.z, a.w, b.x), base_var);
     pf_horizon_azimuth zo = pf_horizon_azimuth_of(vo, PFF_HOR_AZ), zi = pf_horizon_azimuth_of(vi, PFF_HOR_AZ);
-    vec4 h0 = textureGrad(texH, vec3(uv, float(zo.i0)), gx / sz, gy / sz), h1 = textureGrad(texH, vec3(uv, float(zo.i1)), gx / sz, gy / sz);
-    vec4 h2 = textureGrad(texH, vec3(uv, float(zi.i0)), gx / sz, gy / sz), h3 = textureGrad(texH, vec3(uv, float(zi.i1)), gx / sz, gy / sz);
+    vec4 h0 = textureLod(texH, vec3(uv, float(zo.i0)), lod_e), h1 = textureLod(texH, vec3(uv, float(zo.i1)), lod_e);
+    vec4 h2 = textureLod(texH, vec3(uv, float(zi.i0)), lod_e), h3 = textureLod(texH, vec3(uv, float(zi.i1)), lod_e);
     pf_hdf_moments hor_mo = pf_hdf_moments_lerp(pf_hdf_moments_make(h0.x, h0.y, h0.z), pf_hdf_moments_make(h1.x, h1.y, h1.z), zo.f);
     pf_hdf_moments hor_mi = pf_hdf_moments_lerp(pf_hdf_moments_make(h2.x, h2.y, h2.z), pf_hdf_moments_make(h3.x, h3.y, h3.z), zi.f);
 #endif
@@ -252,15 +268,15 @@ void main()
 #elif PFF_METHOD == 7
     /* LEADR with the reflecting facets' horizon visibility instead of Smith's G (pf_horizon.h),
        faded to LEADR between levels PFF_HOR_LOD_FULL and PFF_HOR_LOD_SMITH (hor_* above) */
-    L = pf_horizon_leadr_specular_lod(vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
+    L = pf_horizon_leadr_specular_lod(vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod_s, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
 #elif PFF_METHOD >= 5
     /* vMF lobes (Wu et al. 2019 eqs. 4-5, pf_vmf.h): a mixture is not filtered by averaging its
        parameters, so the 8 texels a trilinear fetch at the driver's lod touches are read with
        texelFetch and their lobes summed with the trilinear weights (bench/pictures.c's
        shade_vmf; texel centres, wrap) */
     pf_vmf_sum sum = pf_vmf_sum_zero();
-    int nl = textureQueryLevels(texV), l0 = int(floor(lod));
-    float fl = lod - float(l0);
+    int nl = textureQueryLevels(texV), l0 = int(floor(lod_s));
+    float fl = lod_s - float(l0);
     for (int lv = 0; lv < 2; ++lv) {
         int l = l0 + lv;
         float wl = lv == 1 ? fl : 1.0 - fl;
@@ -285,7 +301,7 @@ void main()
 #  if PFF_METHOD == 8
     /* the lobes' specular with the reflecting facets' horizon visibility (conditioned on the
        slope-moment texel's statistics, pf_horizon_vmf_specular), faded to pf_vmf_sum_specular */
-    L = pf_horizon_vmf_specular_lod(sum, vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
+    L = pf_horizon_vmf_specular_lod(sum, vo, vi, hor_st, base_var, hor_mo, hor_mi, f0, lod_s, PFF_HOR_LOD_FULL, PFF_HOR_LOD_SMITH);
 #  else
     L = pf_vmf_sum_specular(sum, vo, vi, f0);
 #  endif

@@ -8,7 +8,7 @@
 # Device: lavapipe (Mesa's CPU Vulkan driver, through VK_ICD_FILENAMES) unless PF_VK_DEVICE is
 # set (an index or a name substring, tests/gpu/vk_common.h), which leaves the loader alone so a
 # real GPU can be picked. BENCH_QUICK=1: small frames. Writes OUT_DIR/frame.md, frame.csv,
-# frame_plane.png, frame_sphere.png. Needs glslang-tools, spirv-tools, libvulkan-dev,
+# frame_plane.png, frame_sphere.png, frame_curved.csv, gpuspecaa.md. Needs glslang-tools, spirv-tools, libvulkan-dev,
 # mesa-vulkan-drivers, gnuplot (tests/deps.sh bench); a missing one stops the step (exit 1).
 set -u
 bin=${1:-build/bench}/frame
@@ -49,6 +49,24 @@ for s in 0 1; do
         bench/frame/frame.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
     spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
     echo "$sn leadr_unorm $(spirv-dis "$f.opt" | awk -f bench/gpu/spirv_ops.awk)" >> "$spv/ops.txt"
+done
+# the curved scenes of bench/specaa_scenes.h (bench/frame/curved.frag, one shader per form of
+# bench/frame/curved_shade.h at the lod computed in the shader; quad and cross_taps: anisotropic
+# reads in the shader by the EXT rule, PFC_TAPS; quad_drv16: quad's reads through the driver's 16x
+# sampler, PFC_ANISO; box: the box kernel's form at the driver's lod, PFC_DRIVER_LOD, and box_lod
+# the same at the shader's, the keys bench/report.sh reads)
+for m in 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14; do
+    mn=$(echo "none box_lod box_iso tk filament hdrp godot vmf_box curved surf cross quad cross_taps quad_drv16 box" | cut -d' ' -f$((m + 1)))
+    f="$spv/curved_$mn.spv"
+    d="-DPFC_METHOD=$m"
+    [ $m = 11 ] && d="-DPFC_METHOD=11 -DPFC_TAPS=1"
+    [ $m = 12 ] && d="-DPFC_METHOD=10 -DPFC_TAPS=1"
+    [ $m = 13 ] && d="-DPFC_METHOD=11 -DPFC_ANISO=1"
+    [ $m = 14 ] && d="-DPFC_METHOD=1 -DPFC_DRIVER_LOD=1"
+    glslangValidator -V --target-env vulkan1.0 -S frag $d -Iinclude -Ibench/frame -o "$f" \
+        bench/frame/curved.frag > "$f.log" 2>&1 || { cat "$f.log"; exit 1; }
+    spirv-opt -O "$f" -o "$f.opt" 2>> "$f.log" || { cat "$f.log"; exit 1; }
+    echo "curved $mn $(spirv-dis "$f.opt" | awk -f bench/gpu/spirv_ops.awk)" >> "$spv/ops.txt"
 done
 LP_NUM_THREADS=${LP_NUM_THREADS:-2} "$bin" "$spv" "$out" "$spv/ops.txt" || { echo "frame: $bin failed" >&2; exit 1; }
 for s in plane sphere; do

@@ -2172,6 +2172,35 @@ static void pfc_f_pf_specaa_leadr_specular(pfc_ctx *c)
     pf_vec3 a = pfc_deriv(c);
     pfc_ge0(c, pf_specaa_leadr_specular(wo, wi, s, f0, a, pfc_deriv(c)));
 }
+static void pfc_f_pf_specaa_mean_shift(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c);
+    pf_vec2 d = pf_specaa_mean_shift(wo, pfc_pos(c, 8));
+    pfc_in(c, d.x, -PF_SPECAA_SHIFT_MAX, PF_SPECAA_SHIFT_MAX);
+    pfc_in(c, d.y, -PF_SPECAA_SHIFT_MAX, PF_SPECAA_SHIFT_MAX);
+}
+static void pfc_f_pf_specaa_mean_shift_surface(pfc_ctx *c)
+{
+    pf_vec3 px = pfc_deriv(c), py = pfc_deriv(c), a = pfc_deriv(c), b = pfc_deriv(c), wo = pfc_dir(c);
+    pf_vec2 d = pf_specaa_mean_shift_surface(px, py, a, b, wo, pfc_u01(c));
+    pfc_in(c, d.x, -PF_SPECAA_SHIFT_MAX, PF_SPECAA_SHIFT_MAX);
+    pfc_in(c, d.y, -PF_SPECAA_SHIFT_MAX, PF_SPECAA_SHIFT_MAX);
+}
+static void pfc_f_pf_specaa_slope_stats_shift(pfc_ctx *c)
+{
+    pf_slope_stats s = pfc_stats(c, 0);
+    pf_vec2 d;
+    d.x = pfc_sym(c, 8); d.y = pfc_sym(c, 8);
+    pfc_out_stats(c, pf_specaa_slope_stats_shift(s, d));
+}
+static void pfc_f_pf_specaa_leadr_specular_curved(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_slope_stats s = pfc_leadr_stats(c);
+    pf_real f0 = pfc_u01(c);
+    pf_vec3 a = pfc_deriv(c);
+    pfc_ge0(c, pf_specaa_leadr_specular_curved(wo, wi, s, f0, a, pfc_deriv(c)));
+}
 static void pfc_f_pf_specaa_vmf_kappa(pfc_ctx *c) { pf_real k = pfc_kappa(c); pfc_ge0(c, pf_specaa_vmf_kappa(k, pfc_pos(c, 60))); }
 static void pfc_f_pf_specaa_vmf_lobe(pfc_ctx *c) { pf_vmf_lobe l = pfc_vmf_lobe(c); pfc_out_lobe(c, pf_specaa_vmf_lobe(l, pfc_pos(c, 60))); }
 /* ---- horizon: the specular (after pfc_vmf_sum, which it uses) */
@@ -2566,6 +2595,10 @@ static const pfc_entry pfc_table[] = {
     PFC_E(specaa, pf_specaa_slope_stats_cross, 0, "stats, kernels of pf_specaa_kernel_aniso and _cross", "finite, variances >= 0"),
     PFC_E(specaa, pf_specaa_slope_stats_quad, 0, "four filtered moments, base variance, derivatives as above, sigma2, kappa in [0, 1]", "finite"),
     PFC_E(specaa, pf_specaa_leadr_specular, 0, "as pf_leadr_specular, derivatives as above", ">= 0"),
+    PFC_E(specaa, pf_specaa_mean_shift, 0, "unit wo (grazing, below), k in [0, 2^8]", "each component in +-PF_SPECAA_SHIFT_MAX"),
+    PFC_E(specaa, pf_specaa_mean_shift_surface, 0, "position and normal derivatives as above, unit wo, sigma2 in [0, 1]", "each component in +-PF_SPECAA_SHIFT_MAX"),
+    PFC_E(specaa, pf_specaa_slope_stats_shift, 0, "stats, shift +-2^8", "finite"),
+    PFC_E(specaa, pf_specaa_leadr_specular_curved, 0, "as pf_leadr_specular, derivatives as above", ">= 0"),
     PFC_E(specaa, pf_specaa_vmf_kappa, 0, "kappa as pf_vmf's, k in [0, 2^60]", "clamped kappa"),
     PFC_E(specaa, pf_specaa_vmf_lobe, 0, "packed lobe, k in [0, 2^60]", "as pf_vmf_lobe_make"),
 };
