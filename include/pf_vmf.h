@@ -55,9 +55,9 @@
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
      (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
      Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
-     adds the same sums with the exact tangent variance (the texel path's rational is 1.3e-2
+     adds the same sums with the exact tangent variance (the texel path's rational is 1.9e-3
      off) and repairs a texel outside the fit's contract (NaN, an axis past the horizon, a
-     negative amplitude), at 2.8x the SPIR-V ops per lobe (119 against 43).
+     negative amplitude), at 2.7x the SPIR-V ops per lobe (119 against 44).
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
@@ -74,7 +74,9 @@
      BRDF        pf_vmf_sum_zero, pf_vmf_sum_add (slope form), pf_vmf_sum_add_vmf (vMF form),
                  pf_vmf_sum_add_masking, pf_vmf_sum_stats, pf_vmf_sum_g2 (one Gaussian),
                  pf_vmf_sum_g2_mixture, pf_vmf_sum_g1_mixture (exact mixture Smith),
-                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked
+                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked,
+                 pf_vmf_sum_without_base, pf_vmf_sum_specular_base (grazing: the base lobe's
+                 own masking kept apart)
      scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
                  pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
      facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
@@ -103,12 +105,14 @@
      Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
      spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
      the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
-     m = 1, 4, 8, 16: 161 / 164, 290 / 306, 462 / 494, 806 / 870, i.e. 1.39, 2.50, 3.98, 6.95x
-     pf_leadr_specular's 116 / 129 SPIR-V (43 ops per lobe, 118 per pixel, 2 branches); the
-     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 461 / 479, 833 / 883. Through
-     pf_vmf_lobe_make + pf_vmf_sum_add: 591 / 547 (m = 4), 1067 / 979 (m = 8). CPU (callgrind,
-     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 459, 944,
-     1578, 2843, mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
+     m = 1, 4, 8, 16: 156 / 164, 288 / 309, 464 / 501, 816 / 885, i.e. 1.34, 2.48, 4.00, 7.03x
+     pf_leadr_specular's 116 / 129 SPIR-V (44 ops per lobe, 112 per pixel, 2 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 467 / 488, 843 / 896. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 585 / 546 (m = 4), 1061 / 978 (m = 8). On the bench's
+     corpus the texel path is within 2% of pf_vmf_sum_add's specular error in every cell
+     (bench/microsurface.c's *_texel rows; docs/vmf.md). CPU (callgrind, float, x86-64 gcc -O2,
+     instructions per pixel, the previous texel path): m = 1, 4, 8, 16: 459, 944, 1578, 2843,
+     mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -590,15 +594,16 @@ PF_DEF pf_vmf_sum pf_vmf_sum_add(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec
 }
 
 /* A3(kappa) / kappa (pf_vmf_tangent_variance) without a branch or an exp, for a kappa in the
-   clamp range (a texel the fit wrote): the rational
-       (k + a) / (k (k + b) + c),   a = 1.80401518, b = 2.41260648, c = 5.48254123,
-   1/k (1 - 0.61/k) at large k as the exact 1/k (1 - 1/k), a / c = 0.329 at 0 (exact: 1/3);
-   a, b, c minimize the largest relative error over kappa in [1e-4, 1e5] (Nelder-Mead on 2001
-   log-spaced points): 1.29e-2 (tests/test_vmf.c measures it against pf_vmf_tangent_variance).
-   4 SPIR-V ops, against 10 for the exp form ((k coth k - 1) / k^2, one exp and a clamp) and
-   51 with 10 branches for pf_vmf_tangent_variance; every coefficient positive, no
-   cancellation. What the 1.3% costs the shading: docs/vmf.md (the bench's 4096-texel
-   specular errors through this path). */
+   clamp range (a texel the fit wrote): the [2/3] rational
+       (k^2 + a k + b) / (k^3 + (a + 1) k^2 + d k + 3 b),
+       a = 2.13881281, b = 4.2531533, d = 6.67286498,
+   exact at both ends: 1/3 at k = 0 and 1/k (1 - 1/k) + O(1/k^3) at large k (the exact
+   A3/k = (coth k - 1/k)/k); a, b, d minimize the largest relative error over kappa in
+   [1e-4, 1e5] (Nelder-Mead on 2001 log-spaced points): 1.92e-3 (tests/test_vmf.c measures it
+   against pf_vmf_tangent_variance). 6 SPIR-V ops (Horner, fused), against 4 for the [1/2]
+   rational (k + a) / (k (k + b) + c) this replaced (1.29e-2: the corpus' m = 4 cells moved up
+   to +2.35%), 10 for the exp form ((k coth k - 1) / k^2) and 51 with 10 branches for
+   pf_vmf_tangent_variance; every coefficient positive, no cancellation. */
 PF_DEF pf_real pfi_vmf_tangent_variance_lean(pf_real kappa)
 {
     return (kappa * (kappa + PF_R(2.13881281)) + PF_R(4.2531533)) /
@@ -622,14 +627,14 @@ PF_DEF pf_real pfi_vmf_texel_z2(pf_real mu_x, pf_real mu_y)
 
 /* Adds one lobe straight from its texel (amp, mu.x, mu.y, kappa), the lobe pyramid's packed
    form (pf_vmf_fit.h), with the pixel's shared terms p = pf_vmf_pixel_make(wo, wi, base_var):
-   the shader path, branch-free, 43 SPIR-V ops per lobe (docs/vmf.md). The same sums as
+   the shader path, branch-free, 44 SPIR-V ops per lobe (docs/vmf.md). The same sums as
    pf_vmf_sum_add(s, pf_vmf_lobe_make(amp, mu_x, mu_y, kappa), wo, wi, base_var) for a texel
    the fit wrote (amp >= 0, mu_x^2 + mu_y^2 <= 1, kappa in the clamp range), to rounding and
-   the tangent variance's 1.3e-2 (pfi_vmf_tangent_variance_lean: D' within 1.3e-2 of the
-   lobe's peak, the moments within 1.2e-2, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 -
-   mu_y^2 floored at 1e-6 as pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No decode: a texel
-   outside that contract (a negative amp, an axis past the horizon, NaN) is not repaired as
-   pf_vmf_lobe_make repairs it. */
+   the tangent variance's 1.92e-3 (pfi_vmf_tangent_variance_lean: D' within 1.9e-3 of the
+   lobe's peak, the moments within 1.8e-3, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 - mu_y^2
+   plus 1e-6 (pfi_vmf_texel_z2), where pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No
+   decode: a texel outside that contract (a negative amp, an axis past the horizon, NaN) is
+   not repaired as pf_vmf_lobe_make repairs it (an axis past the horizon gives NaN). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel(pf_vmf_sum s, pf_vmf_pixel p, pf_real amp, pf_real mu_x, pf_real mu_y,
                                        pf_real kappa)
 {
@@ -676,7 +681,7 @@ PF_DEF pf_real pfi_vmf_excess_fast(pf_real amp, pf_real sx, pf_real sy, pf_real 
 /* pf_vmf_sum_add_texel and the lobe's Smith excesses toward wo and wi (what
    pf_vmf_sum_add_masking adds), for pf_vmf_sum_specular_mixture: the mixture's exact Smith
    Lambda with each excess from the G1 fit (pfi_vmf_excess_fast) instead of erfc. The shader
-   path of the mixture form: one texel, branch-free, ~93 SPIR-V ops per lobe against ~650
+   path of the mixture form: one texel, branch-free, ~94 SPIR-V ops per lobe against ~650
    (docs/vmf.md). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel_mixture(pf_vmf_sum s, pf_vmf_pixel p, pf_vec3 wo, pf_vec3 wi, pf_real amp,
                                                pf_real mu_x, pf_real mu_y, pf_real kappa)
@@ -805,6 +810,31 @@ PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real
     /* one select for the conditions (both directions above the macrosurface, some facet facing
        the view); the values computed for the other case are discarded */
     return pf_min(pf_min(wo.z, wi.z), front) > PF_R(0.0) ? v : PF_R(0.0);
+}
+
+/* The sum with the base lobe's variance taken out of its second moments (sum amp base_var off
+   E[x^2] and E[y^2]: every lobe added with base_var carries it once), i.e. the moments of the
+   footprint's own slopes, for a G that leaves the base lobe's masking to
+   pf_beckmann_base_masking (pf_vmf_sum_specular_base). ndf and the first moments unchanged. */
+PF_DEF pf_vmf_sum pf_vmf_sum_without_base(pf_vmf_sum s, pf_real base_var)
+{
+    pf_real b = pf_max(base_var, PF_R(0.0)) * s.amp;
+    s.exx -= b;
+    s.eyy -= b;
+    return s;
+}
+
+/* pf_vmf_sum_specular with the two scales' visibility kept apart, as pf_leadr_specular_base
+   (pf_beckmann.h) for one Gaussian: Smith's G of the mixture's own slopes
+   (pf_vmf_sum_without_base) times the base lobe's masking-shadowing at the reflecting facets,
+   pf_beckmann_base_masking of the mixture's statistics with base_var (pf_vmf_sum_stats). s
+   summed with that base_var (pf_vmf_sum_add or pf_vmf_sum_add_texel). G of s itself would count
+   the base lobe's masking twice (at a one-texel footprint the factor squared). For grazing
+   views; pf_beckmann_base_masking's 16 G1 pairs once per pixel. */
+PF_DEF pf_real pf_vmf_sum_specular_base(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0)
+{
+    pf_real v = pf_vmf_sum_specular(pf_vmf_sum_without_base(s, base_var), wo, wi, f0);
+    return v > PF_R(0.0) ? v * pf_beckmann_base_masking(wo, wi, pf_vmf_sum_stats(s), base_var) : PF_R(0.0);
 }
 
 /* The same with the mixture's exact Smith G (pf_vmf_sum_g2_mixture; needs

@@ -411,6 +411,43 @@ static void test_specular_one_lobe_is_leadr(void)
     PF_CHECK(worst <= 0.02L, "rel %.3Le", worst); /* kappa_max's own variance 1e-5 against 0.01 */
 }
 
+/* pf_vmf_sum_specular_base on one sharp lobe (a one-texel footprint) against
+   pf_leadr_specular_base of that slope (pf_beckmann.h: G of the footprint's own slopes times
+   the base lobe's masking), views and lights to 85 degrees; the old composition,
+   pf_vmf_sum_specular times pf_beckmann_base_masking (G of the moments WITH the base variance,
+   the base lobe's masking counted twice), printed beside it: it must be the farther one */
+static void test_specular_base_one_lobe(void)
+{
+    long double worst = 0, worst_old = 0;
+    int i, j;
+    for (i = 0; i < 8; ++i)
+        for (j = 0; j < 8; ++j) {
+            double wo[3], wi[3];
+            pf_vmf_mixture m = mix_one(PF_R(1.0), PF_R(0.15), PF_R(-0.1), PF_VMF_KAPPA_MAX);
+            pf_slope_stats s = pf_vmf_lobe_slope_stats(m.lobe[0].mu, PF_VMF_KAPPA_MAX, PF_R(0.01));
+            pf_vmf_sum sum;
+            long double ref, got, old;
+            dir_deg(12.0 * i, 10.0, wo);
+            dir_deg(12.0 * j + 1.0, 190.0 + 5.0 * j, wi);
+            sum = mix_sum(&m, V(wo), V(wi), PF_R(0.01), 0, PF_R(0.0));
+            ref = (long double)pf_leadr_specular_base(V(wo), V(wi), s, PF_R(0.01), PF_R(0.04));
+            got = (long double)pf_vmf_sum_specular_base(sum, V(wo), V(wi), PF_R(0.01), PF_R(0.04));
+            old = (long double)pf_vmf_sum_specular(sum, V(wo), V(wi), PF_R(0.04)) *
+                  (long double)pf_beckmann_base_masking(V(wo), V(wi), pf_vmf_sum_stats(sum), PF_R(0.01));
+            if (ref > 1e-3L) {
+                worst = fmaxl(worst, fabsl(got - ref) / ref);
+                worst_old = fmaxl(worst_old, fabsl(old - ref) / ref);
+            }
+        }
+    pf_test_note("one sharp lobe, views 0-84, lights 1-85 deg: pf_vmf_sum_specular_base vs pf_leadr_specular_base max rel "
+                 "%.2Le (G of the moments with the base variance, times the factor: %.2Le)", worst, worst_old);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-10L && worst_old > 2.0L * worst, "rel %.3Le (old %.3Le)", worst, worst_old);
+#else
+    PF_CHECK(worst <= 1e-4L && worst_old > 2.0L * worst, "rel %.3Le (old %.3Le)", worst, worst_old);
+#endif
+}
+
 static void test_specular_vmf_form_vs_integration(void)
 {
     /* I = F D' G / (4 A_o) with D' from the 2D quadrature of the convolution (eq. 5's integral) */
@@ -1155,6 +1192,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_mixture_ndf_vmf_convolution);
     PF_TEST_RUN(test_mixture_lambda_quadrature);
     PF_TEST_RUN(test_specular_one_lobe_is_leadr);
+    PF_TEST_RUN(test_specular_base_one_lobe);
     PF_TEST_RUN(test_specular_vmf_form_vs_integration);
     PF_TEST_RUN(test_specular_view_below_mean_plane);
     PF_TEST_RUN(test_specular_light_below_mean_plane);
