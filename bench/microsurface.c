@@ -76,7 +76,11 @@
                sec. 6) at 4096-texel footprints (the unscaled lobes below), S per kind fitted
                to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_fit_level, a prior toward 1),
                T per pyramid texel (pf_vmf_scale_texel_t; see "scaling function"
-               below); vmf_m8_scaled_s = S alone (T = 1).
+               below); vmf_m8_scaled_s = S alone (T = 1). Each of these shades through
+               pf_vmf_lobe_make + pf_vmf_sum_add (the exact tangent variance); its twin
+               <name>_texel shades the same texels through the shader path bench/gpu/ prices
+               (pf_vmf_pixel_make, pf_vmf_sum_add_texel or _texel_mixture: the rational
+               tangent variance), the scaled twins with the same T and S.
                Grazing views (issue 28, item 2): leadr_base = pf_leadr_specular_base (LEADR
                times pf_beckmann_base_masking: the base lobe's own masking-shadowing averaged
                over the reflecting texels' slopes, which eq. 17's one Smith G of the summed
@@ -84,7 +88,10 @@
                vmf_m16_base = vmf_m16 with each lobe's NDF term times that factor for the
                lobe's own slope statistics (pf_vmf_lobe_slope_stats), vmf_m16_base_fp = vmf_m16
                times one factor of the footprint's slope moments (fetched), vmf_m16_base_sum =
-               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats).
+               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats;
+               pf_vmf_sum_specular_base); in all three Smith's G of the mixture reads its
+               moments without base_var (pf_vmf_sum_without_base), as pf_leadr_specular_base's
+               G, so the base lobe's masking is counted once.
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
