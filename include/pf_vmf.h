@@ -111,8 +111,8 @@
      pf_vmf_lobe_make + pf_vmf_sum_add: 585 / 546 (m = 4), 1061 / 978 (m = 8). On the bench's
      corpus the texel path is within 2% of pf_vmf_sum_add's specular error in every cell
      (bench/microsurface.c's *_texel rows; docs/vmf.md). CPU (callgrind, float, x86-64 gcc -O2,
-     instructions per pixel, the previous texel path): m = 1, 4, 8, 16: 459, 944, 1578, 2843,
-     mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
+     instructions per pixel, texel path): m = 1, 4, 8, 16: 469, 948, 1574, 2823 against
+     pf_leadr_specular's 273 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
