@@ -3330,12 +3330,14 @@ PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real
 /* The sum with the base lobe's variance taken out of its second moments (sum amp base_var off
    E[x^2] and E[y^2]: every lobe added with base_var carries it once), i.e. the moments of the
    footprint's own slopes, for a G that leaves the base lobe's masking to
-   pf_beckmann_base_masking (pf_vmf_sum_specular_base). ndf and the first moments unchanged. */
+   pf_beckmann_base_masking (pf_vmf_sum_specular_base). ndf and the first moments unchanged;
+   E[x^2] and E[y^2] floored at 0 (where base_var dominates the lobes' own variances, the
+   difference is the sum's rounding and can come out below 0). */
 PF_DEF pf_vmf_sum pf_vmf_sum_without_base(pf_vmf_sum s, pf_real base_var)
 {
     pf_real b = pf_max(base_var, PF_R(0.0)) * s.amp;
-    s.exx -= b;
-    s.eyy -= b;
+    s.exx = pf_max(s.exx - b, PF_R(0.0));
+    s.eyy = pf_max(s.eyy - b, PF_R(0.0));
     return s;
 }
 
