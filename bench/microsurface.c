@@ -76,7 +76,11 @@
                sec. 6) at 4096-texel footprints (the unscaled lobes below), S per kind fitted
                to the IN-FOOTPRINT effective BRDF (pf_vmf_scale_fit_level, a prior toward 1),
                T per pyramid texel (pf_vmf_scale_texel_t; see "scaling function"
-               below); vmf_m8_scaled_s = S alone (T = 1).
+               below); vmf_m8_scaled_s = S alone (T = 1). Each of these shades through
+               pf_vmf_lobe_make + pf_vmf_sum_add (the exact tangent variance); its twin
+               <name>_texel shades the same texels through the shader path bench/gpu/ prices
+               (pf_vmf_pixel_make, pf_vmf_sum_add_texel or _texel_mixture: the rational
+               tangent variance), the scaled twins with the same T and S.
                Grazing views (issue 28, item 2): leadr_base = pf_leadr_specular_base (LEADR
                times pf_beckmann_base_masking: the base lobe's own masking-shadowing averaged
                over the reflecting texels' slopes, which eq. 17's one Smith G of the summed
@@ -84,7 +88,10 @@
                vmf_m16_base = vmf_m16 with each lobe's NDF term times that factor for the
                lobe's own slope statistics (pf_vmf_lobe_slope_stats), vmf_m16_base_fp = vmf_m16
                times one factor of the footprint's slope moments (fetched), vmf_m16_base_sum =
-               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats).
+               vmf_m16 times one factor of the mixture's own moments (pf_vmf_sum_stats;
+               pf_vmf_sum_specular_base); in all three Smith's G of the mixture reads its
+               moments without base_var (pf_vmf_sum_without_base), as pf_leadr_specular_base's
+               G, so the base lobe's masking is counted once.
      diffuse   reference: Lambertian micro-BRDF, albedo 1, V_o V_i. leadr_gg_* =
                pf_gg_diffuse_directional on the footprint's slope stats (LEADR eq. 21, node
                set and N in the name), lambert_mesonormal = max(0, nbar.wi)/pi,
@@ -178,7 +185,7 @@
 #define NSIZE 7        /* n = 1 .. 64 */
 #define NVIEW 9
 #define NTASK 5
-#define MAX_TASK_METHODS 28 /* methods of one task at most (the registry is checked against it) */
+#define MAX_TASK_METHODS 40 /* methods of one task at most (the registry is checked against it) */
 #define NKIND PFM_KIND_COUNT
 #define KIND_MAP NKIND /* the user's map (--map): one more slot in the per-kind arrays */
 #define NREF 2         /* the full and the in-footprint reference */
@@ -859,14 +866,25 @@ static pf_scalar_moments fetch_height(const mctx *c)
 static const cmap *task_cmap(const mctx *c) { return &c->L->cm[c->task == T_BANDS]; }
 
 /* the lobes of texel (x0/n, y0/n) of level log2(n) of vMF pyramid p: m RGBA fetches, shaded
-   with Smith G of the mixture's moments (mix = 0) or the mixture's exact Smith (mix = 1) */
-static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix)
+   with Smith G of the mixture's moments (mix = 0) or the mixture's exact Smith (mix = 1);
+   texel = 0: through pf_vmf_lobe_make + pf_vmf_sum_add (+ pf_vmf_sum_add_masking), the exact
+   tangent variance; texel = 1: the shader path bench/gpu/ prices (pf_vmf_pixel_make once,
+   pf_vmf_sum_add_texel or _texel_mixture per fetched texel as stored, its rational tangent
+   variance) */
+static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix, int texel)
 {
     const int m = vmf_lobes[p], W = L->w, H = L->h;
     long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(n)) + (long long)(y0 / n) * (W / n) + x0 / n;
     const pf_real *tx = L->vmf[p] + id * 4 * m;
     pf_vmf_sum sum = pf_vmf_sum_zero();
     int j;
+    if (texel) {
+        pf_vmf_pixel px = pf_vmf_pixel_make(wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA));
+        for (j = 0; j < m; ++j) /* padding lobes (amp 0) add nothing */
+            sum = mix ? pf_vmf_sum_add_texel_mixture(sum, px, wo, wi, tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2])
+                      : pf_vmf_sum_add_texel(sum, px, tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
+        return mix ? pf_vmf_sum_specular_mixture(sum, wo, wi, PF_R(F0)) : pf_vmf_sum_specular(sum, wo, wi, PF_R(F0));
+    }
     if (!mix) /* the texel's lobes, Smith G of their moments (what the scaling function is fitted to) */
         return vs_texel_spec(L->vmf[p], W, H, m, ilog2(n), x0 / n, y0 / n, wo, wi, PF_R(BASE_SIGMA * BASE_SIGMA), PF_R(F0));
     for (j = 0; j < m; ++j) { /* padding lobes (amp 0) add nothing */
@@ -879,12 +897,14 @@ static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, p
 
 
 /* vMF lobe pyramid p (mix: the mixture's exact Smith), times the scaling function sc (-1: none;
-   use_t: T S, else S alone) at the scaled levels; the unscaled lobes elsewhere (sc_min_level) */
-static double vmf_method(const mctx *c, int p, int mix, int sc, int use_t)
+   use_t: T S, else S alone) at the scaled levels; the unscaled lobes elsewhere (sc_min_level);
+   texel: the shader path (vmf_texel_spec), the scaling function the same (fitted to the exact
+   path's lobes, applied to the shader path's value, as a shader would) */
+static double vmf_method(const mctx *c, int p, int mix, int sc, int use_t, int texel)
 {
     const lib_maps *L = c->L;
     const int lev = ilog2(c->n);
-    pf_real f = vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix);
+    pf_real f = vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix, texel);
     if (sc < 0 || lev < sc_min_level || lev > sc_max_level) return (double)f;
     /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
     return (double)pf_vmf_scale_apply(use_t ? scale_T(L, sc, c->x0, c->y0, c->n) : PF_R(1.0),
@@ -936,16 +956,27 @@ static pf_vec3 fetch_normal(const mctx *c)
 }
 static double m_toksvig(const mctx *c) { return (double)toksvig_spec(fetch_normal(c), c->wo, c->wi, 1); }
 static double m_naive_mip_normal(const mctx *c) { return (double)toksvig_spec(fetch_normal(c), c->wo, c->wi, 0); }
-static double m_vmf_m1(const mctx *c) { return vmf_method(c, V1, 0, -1, 0); }
-static double m_vmf_m2(const mctx *c) { return vmf_method(c, V2, 0, -1, 0); }
-static double m_vmf_m4(const mctx *c) { return vmf_method(c, V4, 0, -1, 0); }
-static double m_vmf_m8(const mctx *c) { return vmf_method(c, V8, 0, -1, 0); }
-static double m_vmf_m4_mix_smith(const mctx *c) { return vmf_method(c, V4, 1, -1, 0); }
-static double m_vmf_m8_mix_smith(const mctx *c) { return vmf_method(c, V8, 1, -1, 0); }
-static double m_vmf_m16(const mctx *c) { return vmf_method(c, V16, 0, -1, 0); }
-static double m_vmf_m4_scaled(const mctx *c) { return vmf_method(c, V4, 0, SC4, 1); }
-static double m_vmf_m8_scaled(const mctx *c) { return vmf_method(c, V8, 0, SC8, 1); }
-static double m_vmf_m8_scaled_s(const mctx *c) { return vmf_method(c, V8, 0, SC8, 0); }
+static double m_vmf_m1(const mctx *c) { return vmf_method(c, V1, 0, -1, 0, 0); }
+static double m_vmf_m2(const mctx *c) { return vmf_method(c, V2, 0, -1, 0, 0); }
+static double m_vmf_m4(const mctx *c) { return vmf_method(c, V4, 0, -1, 0, 0); }
+static double m_vmf_m8(const mctx *c) { return vmf_method(c, V8, 0, -1, 0, 0); }
+static double m_vmf_m4_mix_smith(const mctx *c) { return vmf_method(c, V4, 1, -1, 0, 0); }
+static double m_vmf_m8_mix_smith(const mctx *c) { return vmf_method(c, V8, 1, -1, 0, 0); }
+static double m_vmf_m16(const mctx *c) { return vmf_method(c, V16, 0, -1, 0, 0); }
+static double m_vmf_m4_scaled(const mctx *c) { return vmf_method(c, V4, 0, SC4, 1, 0); }
+static double m_vmf_m8_scaled(const mctx *c) { return vmf_method(c, V8, 0, SC8, 1, 0); }
+static double m_vmf_m8_scaled_s(const mctx *c) { return vmf_method(c, V8, 0, SC8, 0, 0); }
+/* the same rows through the shader path (pf_vmf_sum_add_texel: what bench/gpu/ counts) */
+static double m_vmf_m1_texel(const mctx *c) { return vmf_method(c, V1, 0, -1, 0, 1); }
+static double m_vmf_m2_texel(const mctx *c) { return vmf_method(c, V2, 0, -1, 0, 1); }
+static double m_vmf_m4_texel(const mctx *c) { return vmf_method(c, V4, 0, -1, 0, 1); }
+static double m_vmf_m8_texel(const mctx *c) { return vmf_method(c, V8, 0, -1, 0, 1); }
+static double m_vmf_m4_mix_smith_texel(const mctx *c) { return vmf_method(c, V4, 1, -1, 0, 1); }
+static double m_vmf_m8_mix_smith_texel(const mctx *c) { return vmf_method(c, V8, 1, -1, 0, 1); }
+static double m_vmf_m16_texel(const mctx *c) { return vmf_method(c, V16, 0, -1, 0, 1); }
+static double m_vmf_m4_scaled_texel(const mctx *c) { return vmf_method(c, V4, 0, SC4, 1, 1); }
+static double m_vmf_m8_scaled_texel(const mctx *c) { return vmf_method(c, V8, 0, SC8, 1, 1); }
+static double m_vmf_m8_scaled_s_texel(const mctx *c) { return vmf_method(c, V8, 0, SC8, 0, 1); }
 /* pf_horizon.h: the specular with the reflecting facets' horizon visibility instead of Smith's
    G (n = 32, two azimuths fetched toward wo and toward wi), alone or faded to the unshadowed
    method by mip level (HOR_LOD_FULL .. HOR_LOD_SMITH) */
@@ -999,13 +1030,16 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
     const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
     pf_vmf_sum sum = pf_vmf_sum_zero();
     int j;
-    if (per_lobe == 0)
-        return vmf_method(c, p, 0, -1, 0) * (double)pf_beckmann_base_masking(c->wo, c->wi, fetch_slope_spec(c), bv);
-    if (per_lobe == 2) { /* the factor of the mixture's own moments: no fetch beyond the lobes */
+    /* every form: Smith's G of the mixture's own slopes (pf_vmf_sum_without_base), the base
+       lobe's masking left to the factor (as pf_leadr_specular_base) */
+    if (per_lobe != 1) {
+        pf_real f;
         for (j = 0; j < m; ++j)
             sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
-        return (double)(pf_vmf_sum_specular(sum, c->wo, c->wi, PF_R(F0)) *
-                        pf_beckmann_base_masking(c->wo, c->wi, pf_vmf_sum_stats(sum), bv));
+        if (per_lobe == 2) /* the factor of the mixture's own moments: no fetch beyond the lobes */
+            return (double)pf_vmf_sum_specular_base(sum, c->wo, c->wi, bv, PF_R(F0));
+        f = pf_vmf_sum_specular(pf_vmf_sum_without_base(sum, bv), c->wo, c->wi, PF_R(F0));
+        return (double)f * (double)pf_beckmann_base_masking(c->wo, c->wi, fetch_slope_spec(c), bv);
     }
     for (j = 0; j < m; ++j) {
         pf_vmf_lobe lobe = pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]);
@@ -1015,7 +1049,7 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
         sum.ndf = before + (sum.ndf - before) *
                                pf_beckmann_base_masking(c->wo, c->wi, pf_vmf_lobe_slope_stats(lobe.mu, lobe.kappa, bv), bv);
     }
-    return (double)pf_vmf_sum_specular(sum, c->wo, c->wi, PF_R(F0));
+    return (double)pf_vmf_sum_specular(pf_vmf_sum_without_base(sum, bv), c->wo, c->wi, PF_R(F0));
 }
 static double m_vmf_m16_base(const mctx *c) { return vmf_base_method(c, V16, 1); }
 static double m_vmf_m16_base_fp(const mctx *c) { return vmf_base_method(c, V16, 0); }
@@ -1125,6 +1159,16 @@ static const method methods[] = {
     { TB(T_SPEC), "vmf_m4_scaled", m_vmf_m4_scaled, "4 vMF lobe texels, T, 8 nodes of S", 0 },
     { TB(T_SPEC), "vmf_m8_scaled", m_vmf_m8_scaled, "8 vMF lobe texels, T, 8 nodes of S", 0 },
     { TB(T_SPEC), "vmf_m8_scaled_s", m_vmf_m8_scaled_s, "8 vMF lobe texels, 8 nodes of S", 0 },
+    { TB(T_SPEC), "vmf_m1_texel", m_vmf_m1_texel, "1 vMF lobe texel", 0 },
+    { TB(T_SPEC), "vmf_m2_texel", m_vmf_m2_texel, "2 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4_texel", m_vmf_m4_texel, "4 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m8_texel", m_vmf_m8_texel, "8 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4_mix_smith_texel", m_vmf_m4_mix_smith_texel, "4 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m8_mix_smith_texel", m_vmf_m8_mix_smith_texel, "8 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m16_texel", m_vmf_m16_texel, "16 vMF lobe texels", 0 },
+    { TB(T_SPEC), "vmf_m4_scaled_texel", m_vmf_m4_scaled_texel, "4 vMF lobe texels, T, 8 nodes of S", 0 },
+    { TB(T_SPEC), "vmf_m8_scaled_texel", m_vmf_m8_scaled_texel, "8 vMF lobe texels, T, 8 nodes of S", 0 },
+    { TB(T_SPEC), "vmf_m8_scaled_s_texel", m_vmf_m8_scaled_s_texel, "8 vMF lobe texels, 8 nodes of S", 0 },
     { TB(T_SPEC), "leadr_horizon_n32", m_leadr_horizon_n32, "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },
     { TB(T_SPEC), "leadr_horizon_lod_n32", m_leadr_horizon_lod_n32,
       "slope moments, 2 x 2 azimuths of the n = 32 HDF moments", 0 },

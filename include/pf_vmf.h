@@ -55,9 +55,9 @@
      pf_real I = pf_vmf_sum_specular(s, wo, wi, f0);
      (pf_vmf_sum_add_texel_mixture and pf_vmf_sum_specular_mixture for the mixture's exact
      Smith term.) pf_vmf_sum_add(s, pf_vmf_lobe_make(t.w, t.x, t.y, t.z), wo, wi, sigma_b^2)
-     adds the same sums with the exact tangent variance (the texel path's rational is 1.3e-2
+     adds the same sums with the exact tangent variance (the texel path's rational is 1.9e-3
      off) and repairs a texel outside the fit's contract (NaN, an axis past the horizon, a
-     negative amplitude), at 2.8x the SPIR-V ops per lobe (119 against 43).
+     negative amplitude), at 2.7x the SPIR-V ops per lobe (119 against 44).
      The lobes are fitted on the CPU by pf_vmf_fit.h (pf_vmf_fit_normals, the lobe pyramid
      pf_vmf_pyramid_from_normals) and pf_vmf_scale.h (the scaling function).
 
@@ -74,7 +74,9 @@
      BRDF        pf_vmf_sum_zero, pf_vmf_sum_add (slope form), pf_vmf_sum_add_vmf (vMF form),
                  pf_vmf_sum_add_masking, pf_vmf_sum_stats, pf_vmf_sum_g2 (one Gaussian),
                  pf_vmf_sum_g2_mixture, pf_vmf_sum_g1_mixture (exact mixture Smith),
-                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked
+                 pf_vmf_sum_specular, pf_vmf_sum_specular_mixture, pf_vmf_sum_specular_unmasked,
+                 pf_vmf_sum_without_base, pf_vmf_sum_specular_base (grazing: the base lobe's
+                 own masking kept apart)
      scaling     pf_vmf_scale_coords, pf_vmf_scale_texel_pos, pf_vmf_scale_trilinear,
                  pf_vmf_scale_apply (T S f of Wu et al. 2019 eqs. 13-14, shader side)
      facet       pf_vmf_facet_specular (one facet's base BRDF: the effective BRDF's term)
@@ -103,12 +105,14 @@
      Shader cost per pixel (bench/gpu/count.sh on bench/gpu/pixel.h: SPIR-V ops after
      spirv-opt -O / PTX of nvcc -O3 --use_fast_math, texel fetches excluded; m fetches apart),
      the texel path (pf_vmf_pixel_make, pf_vmf_sum_add_texel x m, pf_vmf_sum_specular):
-     m = 1, 4, 8, 16: 161 / 164, 290 / 306, 462 / 494, 806 / 870, i.e. 1.39, 2.50, 3.98, 6.95x
-     pf_leadr_specular's 116 / 129 SPIR-V (43 ops per lobe, 118 per pixel, 2 branches); the
-     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 461 / 479, 833 / 883. Through
-     pf_vmf_lobe_make + pf_vmf_sum_add: 591 / 547 (m = 4), 1067 / 979 (m = 8). CPU (callgrind,
-     float, x86-64 gcc -O2, instructions per pixel): texel path m = 1, 4, 8, 16: 459, 944,
-     1578, 2843, mixture m = 4, 8: 1247, 2249, against pf_leadr_specular's 272 (docs/vmf.md).
+     m = 1, 4, 8, 16: 156 / 164, 288 / 309, 464 / 501, 816 / 885, i.e. 1.34, 2.48, 4.00, 7.03x
+     pf_leadr_specular's 116 / 129 SPIR-V (44 ops per lobe, 112 per pixel, 2 branches); the
+     mixture form (pf_vmf_sum_add_texel_mixture) m = 4, 8: 467 / 488, 843 / 896. Through
+     pf_vmf_lobe_make + pf_vmf_sum_add: 585 / 546 (m = 4), 1061 / 978 (m = 8). On the bench's
+     corpus the texel path is within 2% of pf_vmf_sum_add's specular error in every cell
+     (bench/microsurface.c's *_texel rows; docs/vmf.md). CPU (callgrind, float, x86-64 gcc -O2,
+     instructions per pixel, texel path): m = 1, 4, 8, 16: 469, 948, 1574, 2823 against
+     pf_leadr_specular's 273 (docs/vmf.md).
 
    SOURCES
      Wu, Zhao, Yan, Ramamoorthi 2019 (Accurate appearance preserving prefiltering for rendering
@@ -516,13 +520,14 @@ PF_DEF pf_vmf_pixel pf_vmf_pixel_make(pf_vec3 wo, pf_vec3 wi, pf_real base_var)
     pf_vec3 h = pf_vec3_add(wo, wi);
     /* 1/h.z with h.z floored at 1e-30: gx, gy finite for every pair (|h.xy| <= 2); q is then
        >= 1e12 or inf wherever h.z <= 1e-6 |h|, and ldn = -1e30 there */
-    pf_real iz = PF_R(1.0) / pf_max(h.z, PF_R(1.0e-30));
+    pf_real niz = PF_R(-1.0) / pf_max(h.z, PF_R(1.0e-30));
     /* 1 / cos^2 of h, in [1, 1e12) where used; |h|^2 + 1e-30, so that h = 0 gives q = inf
        (float) or 1e30 (double), never 0 */
-    pf_real q = (h.x * h.x + (h.y * h.y + (h.z * h.z + PF_R(1.0e-30)))) * (iz * iz);
-    p.gx = h.x * iz;
-    p.gy = h.y * iz;
-    p.ngx = -p.gx;
+    pf_real q = (h.x * h.x + (h.y * h.y + (h.z * h.z + PF_R(1.0e-30)))) * (niz * niz);
+    /* from -1/h.z: -gx and -gy are one multiply each (the lobes read -gx, -gy and gy) */
+    p.ngx = h.x * niz;
+    p.gx = -p.ngx;
+    p.gy = -(h.y * niz);
     /* h.z > 1e-6 |h| <=> 1 / cos^2 < 1e12 (q >= 1 otherwise: no test for q > 0);
        log(q^2 / (2 pi)) = 2 log q - log(2 pi) */
     p.ldn = q < PF_R(1.0e12) ? PF_R(2.0) * PF_LOG(q) - PF_R(1.837877066409345483560659472811235279)
@@ -589,35 +594,51 @@ PF_DEF pf_vmf_sum pf_vmf_sum_add(pf_vmf_sum s, pf_vmf_lobe l, pf_vec3 wo, pf_vec
 }
 
 /* A3(kappa) / kappa (pf_vmf_tangent_variance) without a branch or an exp, for a kappa in the
-   clamp range (a texel the fit wrote): the rational
-       (k + a) / (k (k + b) + c),   a = 1.80401518, b = 2.41260648, c = 5.48254123,
-   1/k (1 - 0.61/k) at large k as the exact 1/k (1 - 1/k), a / c = 0.329 at 0 (exact: 1/3);
-   a, b, c minimize the largest relative error over kappa in [1e-4, 1e5] (Nelder-Mead on 2001
-   log-spaced points): 1.29e-2 (tests/test_vmf.c measures it against pf_vmf_tangent_variance).
-   4 SPIR-V ops, against 10 for the exp form ((k coth k - 1) / k^2, one exp and a clamp) and
-   51 with 10 branches for pf_vmf_tangent_variance; every coefficient positive, no
-   cancellation. What the 1.3% costs the shading: docs/vmf.md (the bench's 4096-texel
-   specular errors through this path). */
+   clamp range (a texel the fit wrote): the [2/3] rational
+       (k^2 + a k + b) / (k^3 + (a + 1) k^2 + d k + 3 b),
+       a = 2.13881281, b = 4.2531533, d = 6.67286498,
+   exact at both ends: 1/3 at k = 0 and 1/k (1 - 1/k) + O(1/k^3) at large k (the exact
+   A3/k = (coth k - 1/k)/k); a, b, d minimize the largest relative error over kappa in
+   [1e-4, 1e5] (Nelder-Mead on 2001 log-spaced points): 1.92e-3 (tests/test_vmf.c measures it
+   against pf_vmf_tangent_variance). 6 SPIR-V ops (Horner, fused), against 4 for the [1/2]
+   rational (k + a) / (k (k + b) + c) this replaced (1.29e-2: the corpus' m = 4 cells moved up
+   to +2.35%), 10 for the exp form ((k coth k - 1) / k^2) and 51 with 10 branches for
+   pf_vmf_tangent_variance; every coefficient positive, no cancellation. */
 PF_DEF pf_real pfi_vmf_tangent_variance_lean(pf_real kappa)
 {
-    return (kappa + PF_R(1.80401518)) / (kappa * (kappa + PF_R(2.41260648)) + PF_R(5.48254123));
+    return (kappa * (kappa + PF_R(2.13881281)) + PF_R(4.2531533)) /
+           (kappa * (kappa * (kappa + PF_R(3.13881281)) + PF_R(6.67286498)) + PF_R(12.7594599));
+}
+
+/* mu.z^2 of a texel's axis (mu_x, mu_y), mu_x^2 + mu_y^2 <= 1: (1 + eps) - mu_x^2 - mu_y^2, i.e.
+   floored at eps = 1e-6 (float, 8 ulp of 1: an axis pf_vmf_lobe_make rescaled onto the horizon
+   has mu_x^2 + mu_y^2 within 3 ulp of 1; 1e-14 double) by an offset instead of a max (one
+   operation less per lobe): mu.z^2 + eps, a relative change of eps / mu.z^2 (1e-6 at the
+   normal, 1e-4 at 84 degrees in float), where pf_vmf_lobe_slope_stats floors mu.z at 1e-3.
+   An axis past the unit disc by more than eps (outside the fit's contract) gives NaN. */
+PF_DEF pf_real pfi_vmf_texel_z2(pf_real mu_x, pf_real mu_y)
+{
+#ifdef PF_DOUBLE
+    return PF_R(1.00000000000001) - (mu_x * mu_x + mu_y * mu_y);
+#else
+    return PF_R(1.000001) - (mu_x * mu_x + mu_y * mu_y);
+#endif
 }
 
 /* Adds one lobe straight from its texel (amp, mu.x, mu.y, kappa), the lobe pyramid's packed
    form (pf_vmf_fit.h), with the pixel's shared terms p = pf_vmf_pixel_make(wo, wi, base_var):
-   the shader path, branch-free, 43 SPIR-V ops per lobe (docs/vmf.md). The same sums as
+   the shader path, branch-free, 44 SPIR-V ops per lobe (docs/vmf.md). The same sums as
    pf_vmf_sum_add(s, pf_vmf_lobe_make(amp, mu_x, mu_y, kappa), wo, wi, base_var) for a texel
    the fit wrote (amp >= 0, mu_x^2 + mu_y^2 <= 1, kappa in the clamp range), to rounding and
-   the tangent variance's 1.3e-2 (pfi_vmf_tangent_variance_lean: D' within 1.3e-2 of the
-   lobe's peak, the moments within 1.2e-2, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 -
-   mu_y^2 floored at 1e-6 as pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No decode: a texel
-   outside that contract (a negative amp, an axis past the horizon, NaN) is not repaired as
-   pf_vmf_lobe_make repairs it. */
+   the tangent variance's 1.92e-3 (pfi_vmf_tangent_variance_lean: D' within 1.9e-3 of the
+   lobe's peak, the moments within 1.8e-3, tests/test_vmf.c); mu.z^2 = 1 - mu_x^2 - mu_y^2
+   plus 1e-6 (pfi_vmf_texel_z2), where pf_vmf_lobe_slope_stats floors mu.z at 1e-3. No
+   decode: a texel outside that contract (a negative amp, an axis past the horizon, NaN) is
+   not repaired as pf_vmf_lobe_make repairs it (an axis past the horizon gives NaN). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel(pf_vmf_sum s, pf_vmf_pixel p, pf_real amp, pf_real mu_x, pf_real mu_y,
                                        pf_real kappa)
 {
-    pf_real z2 = pf_max(PF_R(1.0) - (mu_x * mu_x + mu_y * mu_y), PF_R(1.0e-6));
-    return pfi_vmf_sum_add_slope(s, p, amp, mu_x, mu_y, z2, pfi_vmf_tangent_variance_lean(kappa));
+    return pfi_vmf_sum_add_slope(s, p, amp, mu_x, mu_y, pfi_vmf_texel_z2(mu_x, mu_y), pfi_vmf_tangent_variance_lean(kappa));
 }
 
 /* Adds one lobe, vMF form: convolved with a vMF base lobe of kappa_b (pf_vmf_kappa_from_sigma
@@ -660,12 +681,12 @@ PF_DEF pf_real pfi_vmf_excess_fast(pf_real amp, pf_real sx, pf_real sy, pf_real 
 /* pf_vmf_sum_add_texel and the lobe's Smith excesses toward wo and wi (what
    pf_vmf_sum_add_masking adds), for pf_vmf_sum_specular_mixture: the mixture's exact Smith
    Lambda with each excess from the G1 fit (pfi_vmf_excess_fast) instead of erfc. The shader
-   path of the mixture form: one texel, branch-free, ~93 SPIR-V ops per lobe against ~650
+   path of the mixture form: one texel, branch-free, ~94 SPIR-V ops per lobe against ~650
    (docs/vmf.md). */
 PF_DEF pf_vmf_sum pf_vmf_sum_add_texel_mixture(pf_vmf_sum s, pf_vmf_pixel p, pf_vec3 wo, pf_vec3 wi, pf_real amp,
                                                pf_real mu_x, pf_real mu_y, pf_real kappa)
 {
-    pf_real z2 = pf_max(PF_R(1.0) - (mu_x * mu_x + mu_y * mu_y), PF_R(1.0e-6));
+    pf_real z2 = pfi_vmf_texel_z2(mu_x, mu_y);
     pf_real v = pfi_vmf_tangent_variance_lean(kappa), iz = pfi_vmf_rsqrt(z2);
     pf_real w = v * (iz * iz), c = w + p.base_var;
     s = pfi_vmf_sum_add_slope(s, p, amp, mu_x, mu_y, z2, v);
@@ -765,28 +786,57 @@ PF_DEF pf_real pfi_vmf_sum_specular_mix(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf
 PF_DEF pf_real pf_vmf_sum_specular(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real f0)
 {
     /* 1 / sum amp; 0 for a sum amp below PF_REAL_MIN (subnormal, 0, negative, NaN: empty, D' = 0) */
-    pf_real ia = s.amp >= PF_REAL_MIN ? PF_R(1.0) / s.amp : PF_R(0.0), ia2 = ia + ia;
-    /* the mean slope projected on w.xy (pw), and twice the variance along w: 2 (E[(w.xy . x)^2]
-       - pw^2) from the sum's raw second moments */
+    pf_real ia = s.amp >= PF_REAL_MIN ? PF_R(1.0) / s.amp : PF_R(0.0), nia = -ia;
+    /* minus the mean slope projected on w.xy (np), and twice the variance along w:
+       -2 (np^2 - E[(w.xy . x)^2]) from the sum's raw second moments (written with -1/amp so
+       that every step is one multiply or fused multiply-add, no negation) */
     pf_real exy2 = s.exy + s.exy;
-    pf_real pw_o = (s.ex * wo.x + s.ey * wo.y) * ia, pw_i = (s.ex * wi.x + s.ey * wi.y) * ia;
+    pf_real np_o = (s.ex * wo.x + s.ey * wo.y) * nia, np_i = (s.ex * wi.x + s.ey * wi.y) * nia;
     pf_real e_o = wo.x * (wo.x * s.exx + wo.y * exy2) + wo.y * (wo.y * s.eyy);
     pf_real e_i = wi.x * (wi.x * s.exx + wi.y * exy2) + wi.y * (wi.y * s.eyy);
-    pf_real area_o = wo.z - pw_o, area_i = wi.z - pw_i;
-    pf_real rs_o = pfi_vmf_rsqrt(pf_clamp_nan_lo(e_o * ia2 - (pw_o + pw_o) * pw_o, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
-    pf_real rs_i = pfi_vmf_rsqrt(pf_clamp_nan_lo(e_i * ia2 - (pw_i + pw_i) * pw_i, PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    pf_real area_o = wo.z + np_o, area_i = wi.z + np_i;
+    pf_real rs_o = pfi_vmf_rsqrt(pf_clamp_nan_lo((np_o * np_o + e_o * nia) * PF_R(-2.0), PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
+    pf_real rs_i = pfi_vmf_rsqrt(pf_clamp_nan_lo((np_i * np_i + e_i * nia) * PF_R(-2.0), PF_REAL_MIN, PF_R(0.25) * PF_REAL_MAX));
     /* nu_o finite (|area_o| <= 3, rs_o <= 1/sqrt(PF_REAL_MIN)); pf_smith_nu_over_g1 takes any
        nu >= 0 (0 included) and is nu to rounding past 3.3 (float) / 2 (double), so that P_o is
        0 there with no floor on nu_o */
     pf_real nu_o = area_o * rs_o;
     pf_real front = (pf_smith_nu_over_g1(PF_FABS(nu_o)) - pf_max(-nu_o, PF_R(0.0))) / rs_o;
-    pf_real g = PF_R(1.0) / (front + pf_max(area_o, PF_R(0.0)) * pf_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
+    /* G / (4 A_o): the 1/4 of the BRDF as the division's numerator */
+    pf_real g = PF_R(0.25) / (front + pf_max(area_o, PF_R(0.0)) * pf_beckmann_light_lambda(area_i * rs_i, rs_i, wi.z));
     /* Schlick with cos = h.wi = sqrt((1 + wo.wi) / 2) */
     pf_real t = PF_R(1.0) - PF_SQRT(pf_saturate(PF_R(0.5) + PF_R(0.5) * pf_vec3_dot(wo, wi)));
-    pf_real v = pf_min((s.ndf * ia) * g * ((f0 + (PF_R(1.0) - f0) * ((t * t) * (t * t) * t)) * PF_R(0.25)), PF_REAL_MAX);
+    pf_real v = pf_min((s.ndf * ia) * g * (f0 + (PF_R(1.0) - f0) * ((t * t) * (t * t) * t)), PF_REAL_MAX);
     /* one select for the conditions (both directions above the macrosurface, some facet facing
        the view); the values computed for the other case are discarded */
     return pf_min(pf_min(wo.z, wi.z), front) > PF_R(0.0) ? v : PF_R(0.0);
+}
+
+/* The sum with the base lobe's variance taken out of its second moments (sum amp base_var off
+   E[x^2] and E[y^2]: every lobe added with base_var carries it once), i.e. the moments of the
+   footprint's own slopes, for a G that leaves the base lobe's masking to
+   pf_beckmann_base_masking (pf_vmf_sum_specular_base). ndf and the first moments unchanged;
+   E[x^2] and E[y^2] floored at 0 (where base_var dominates the lobes' own variances, the
+   difference is the sum's rounding and can come out below 0). */
+PF_DEF pf_vmf_sum pf_vmf_sum_without_base(pf_vmf_sum s, pf_real base_var)
+{
+    pf_real b = pf_max(base_var, PF_R(0.0)) * s.amp;
+    s.exx = pf_max(s.exx - b, PF_R(0.0));
+    s.eyy = pf_max(s.eyy - b, PF_R(0.0));
+    return s;
+}
+
+/* pf_vmf_sum_specular with the two scales' visibility kept apart, as pf_leadr_specular_base
+   (pf_beckmann.h) for one Gaussian: Smith's G of the mixture's own slopes
+   (pf_vmf_sum_without_base) times the base lobe's masking-shadowing at the reflecting facets,
+   pf_beckmann_base_masking of the mixture's statistics with base_var (pf_vmf_sum_stats). s
+   summed with that base_var (pf_vmf_sum_add or pf_vmf_sum_add_texel). G of s itself would count
+   the base lobe's masking twice (at a one-texel footprint the factor squared). For grazing
+   views; pf_beckmann_base_masking's 16 G1 pairs once per pixel. */
+PF_DEF pf_real pf_vmf_sum_specular_base(pf_vmf_sum s, pf_vec3 wo, pf_vec3 wi, pf_real base_var, pf_real f0)
+{
+    pf_real v = pf_vmf_sum_specular(pf_vmf_sum_without_base(s, base_var), wo, wi, f0);
+    return v > PF_R(0.0) ? v * pf_beckmann_base_masking(wo, wi, pf_vmf_sum_stats(s), base_var) : PF_R(0.0);
 }
 
 /* The same with the mixture's exact Smith G (pf_vmf_sum_g2_mixture; needs

@@ -411,6 +411,43 @@ static void test_specular_one_lobe_is_leadr(void)
     PF_CHECK(worst <= 0.02L, "rel %.3Le", worst); /* kappa_max's own variance 1e-5 against 0.01 */
 }
 
+/* pf_vmf_sum_specular_base on one sharp lobe (a one-texel footprint) against
+   pf_leadr_specular_base of that slope (pf_beckmann.h: G of the footprint's own slopes times
+   the base lobe's masking), views and lights to 85 degrees; the old composition,
+   pf_vmf_sum_specular times pf_beckmann_base_masking (G of the moments WITH the base variance,
+   the base lobe's masking counted twice), printed beside it: it must be the farther one */
+static void test_specular_base_one_lobe(void)
+{
+    long double worst = 0, worst_old = 0;
+    int i, j;
+    for (i = 0; i < 8; ++i)
+        for (j = 0; j < 8; ++j) {
+            double wo[3], wi[3];
+            pf_vmf_mixture m = mix_one(PF_R(1.0), PF_R(0.15), PF_R(-0.1), PF_VMF_KAPPA_MAX);
+            pf_slope_stats s = pf_vmf_lobe_slope_stats(m.lobe[0].mu, PF_VMF_KAPPA_MAX, PF_R(0.01));
+            pf_vmf_sum sum;
+            long double ref, got, old;
+            dir_deg(12.0 * i, 10.0, wo);
+            dir_deg(12.0 * j + 1.0, 190.0 + 5.0 * j, wi);
+            sum = mix_sum(&m, V(wo), V(wi), PF_R(0.01), 0, PF_R(0.0));
+            ref = (long double)pf_leadr_specular_base(V(wo), V(wi), s, PF_R(0.01), PF_R(0.04));
+            got = (long double)pf_vmf_sum_specular_base(sum, V(wo), V(wi), PF_R(0.01), PF_R(0.04));
+            old = (long double)pf_vmf_sum_specular(sum, V(wo), V(wi), PF_R(0.04)) *
+                  (long double)pf_beckmann_base_masking(V(wo), V(wi), pf_vmf_sum_stats(sum), PF_R(0.01));
+            if (ref > 1e-3L) {
+                worst = fmaxl(worst, fabsl(got - ref) / ref);
+                worst_old = fmaxl(worst_old, fabsl(old - ref) / ref);
+            }
+        }
+    pf_test_note("one sharp lobe, views 0-84, lights 1-85 deg: pf_vmf_sum_specular_base vs pf_leadr_specular_base max rel "
+                 "%.2Le (G of the moments with the base variance, times the factor: %.2Le)", worst, worst_old);
+#ifdef PF_DOUBLE
+    PF_CHECK(worst <= 1e-10L && worst_old > 2.0L * worst, "rel %.3Le (old %.3Le)", worst, worst_old);
+#else
+    PF_CHECK(worst <= 1e-4L && worst_old > 2.0L * worst, "rel %.3Le (old %.3Le)", worst, worst_old);
+#endif
+}
+
 static void test_specular_vmf_form_vs_integration(void)
 {
     /* I = F D' G / (4 A_o) with D' from the 2D quadrature of the convolution (eq. 5's integral) */
@@ -902,11 +939,11 @@ static void test_sum_add_closed_form(void)
 }
 
 /* pfi_vmf_tangent_variance_lean (the rational) against pf_vmf_tangent_variance over the
-   clamp range (its stated 1.29e-2); pf_vmf_sum_add_texel against pfi_vmf_sum_add_slope of the
+   clamp range (its stated 1.92e-3); pf_vmf_sum_add_texel against pfi_vmf_sum_add_slope of the
    same texel with that variance (the decode: to rounding); and against pf_vmf_sum_add of
    pf_vmf_lobe_make (the exact variance): the moments (relative to the sum of the fields'
    magnitudes) within the variance's error, and D' relative to the lobe's peak value
-   amp exp(ldn) / sqrt(c e) within dv (1 + 1/e), dv = 1.3e-2 the variance's relative error:
+   amp exp(ldn) / sqrt(c e) within dv (1 + 1/e), dv = 2e-3 the variance's relative error:
    at most dv through the normalization 1 / sqrt(c e), and, as the exponent moves by at most
    dv q/2 and q/2 exp(-q/2) <= 1/e, dv/e of the peak through the exponential (relative to D'
    itself the change reaches dv q/2 in the far tail, where D' is 1e-30 of the peak). */
@@ -927,7 +964,12 @@ static void test_sum_add_texel(void)
         pf_vmf_pixel p = pf_vmf_pixel_make(wo, wi, bv);
         pf_vmf_sum a = pf_vmf_sum_add_texel(pf_vmf_sum_zero(), p, amp, mu.x, mu.y, kappa);
         pf_vmf_sum b = pf_vmf_sum_add(pf_vmf_sum_zero(), pf_vmf_lobe_make(amp, mu.x, mu.y, kappa), wo, wi, bv);
-        pf_real z2 = pf_max(PF_R(1.0) - (mu.x * mu.x + mu.y * mu.y), PF_R(1.0e-6));
+        /* the texel path's mu.z^2: floored by an offset of 1e-6 (float) / 1e-14 (double) */
+#ifdef PF_DOUBLE
+        pf_real z2 = PF_R(1.00000000000001) - (mu.x * mu.x + mu.y * mu.y);
+#else
+        pf_real z2 = PF_R(1.000001) - (mu.x * mu.x + mu.y * mu.y);
+#endif
         pf_vmf_sum c = pfi_vmf_sum_add_slope(pf_vmf_sum_zero(), p, amp, mu.x, mu.y, z2, pfi_vmf_tangent_variance_lean(kappa));
         long double m = fabsl((long double)b.amp) + fabsl((long double)b.ex) + fabsl((long double)b.ey) +
                         fabsl((long double)b.exx) + fabsl((long double)b.eyy) + fabsl((long double)b.exy), d;
@@ -946,8 +988,9 @@ static void test_sum_add_texel(void)
                  "same variance %.2Le; vs pf_vmf_sum_add of pf_vmf_lobe_make, 20000 lobes (kappa 1e-4 .. 1e5): ndf %.2Le of "
                  "the peak, moments %.2Le",
                  worst_v, worst_dec, worst_ndf, worst_mom);
-    PF_CHECK(worst_v <= 1.3e-2L, "tangent variance rel %.3Le", worst_v);
-    PF_CHECK(worst_ndf <= 1.3e-2L * (1.0L + 1.0L / 2.718L) && worst_mom <= 1.3e-2L, "ndf %.3Le of the peak, moments %.3Le", worst_ndf, worst_mom);
+    /* the [2/3] rational's 1.92e-3 (the [1/2] rational before it, 1.29e-2, fails these) */
+    PF_CHECK(worst_v <= 2.0e-3L, "tangent variance rel %.3Le", worst_v);
+    PF_CHECK(worst_ndf <= 2.0e-3L * (1.0L + 1.0L / 2.718L) && worst_mom <= 2.0e-3L, "ndf %.3Le of the peak, moments %.3Le", worst_ndf, worst_mom);
 #ifdef PF_DOUBLE
     PF_CHECK(worst_dec <= 1e-12L, "decode %.3Le", worst_dec);
 #else
@@ -1029,7 +1072,7 @@ static void test_sum_add_texel_mixture(void)
             pf_vec3 mu = rand_dir(&st, 60.0);
             pf_real amp = (pf_real)urand(&st, 0.05, 1.0), kappa = (pf_real)pow(10.0, urand(&st, 0.0, 4.0));
             /* the reference lobe has the kappa whose exact tangent variance is the texel path's
-               (pfi_vmf_tangent_variance_lean, 1.3e-2 off), so that only the excesses differ */
+               (pfi_vmf_tangent_variance_lean, 1.9e-3 off), so that only the excesses differ */
             pf_vmf_lobe l = pf_vmf_lobe_make(amp, mu.x, mu.y, pf_vmf_kappa_from_tangent_variance(pfi_vmf_tangent_variance_lean(kappa)));
             a = pf_vmf_sum_add_texel_mixture(a, p, wo, wi, amp, mu.x, mu.y, kappa);
             b = pf_vmf_sum_add_masking(pf_vmf_sum_add(b, l, wo, wi, bv), l, wo, wi, bv);
@@ -1047,7 +1090,9 @@ static void test_sum_add_texel_mixture(void)
 #ifdef PF_DOUBLE
     PF_CHECK(worst_g <= 1e-12L && worst_spec <= 1e-10L, "G2 %.3Le spec %.3Le", worst_g, worst_spec);
 #else
-    PF_CHECK(worst_g <= 3e-6L && worst_spec <= 1e-4L, "G2 %.3Le spec %.3Le", worst_g, worst_spec);
+    /* beside the G1 fit, the texel path's mu.z^2 floor by an offset of 1e-6 (pfi_vmf_texel_z2):
+       axes to 60 degrees, 4e-6 relative in mu.z^2 (was 8.9e-7 and 1.6e-5 with a max floor) */
+    PF_CHECK(worst_g <= 1e-5L && worst_spec <= 2e-4L, "G2 %.3Le spec %.3Le", worst_g, worst_spec);
 #endif
 }
 
@@ -1147,6 +1192,7 @@ int main(int argc, char **argv)
     PF_TEST_RUN(test_mixture_ndf_vmf_convolution);
     PF_TEST_RUN(test_mixture_lambda_quadrature);
     PF_TEST_RUN(test_specular_one_lobe_is_leadr);
+    PF_TEST_RUN(test_specular_base_one_lobe);
     PF_TEST_RUN(test_specular_vmf_form_vs_integration);
     PF_TEST_RUN(test_specular_view_below_mean_plane);
     PF_TEST_RUN(test_specular_light_below_mean_plane);

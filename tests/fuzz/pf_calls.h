@@ -2039,6 +2039,20 @@ static void pfc_f_pf_vmf_sum_specular_mixture(pfc_ctx *c)
     pf_vmf_sum s = pfc_vmf_sum(c, wo, wi, pfc_var(c, 0), 1);
     pfc_ge0(c, pf_vmf_sum_specular_mixture(s, wo, wi, pfc_u01(c)));
 }
+/* the base lobe's own masking kept apart (grazing) */
+static void pfc_f_pf_vmf_sum_without_base(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_real bv = pfc_var(c, 0);
+    pfc_out_vmf_sum(c, pf_vmf_sum_without_base(pfc_vmf_sum(c, wo, wi, bv, 0), bv));
+}
+static void pfc_f_pf_vmf_sum_specular_base(pfc_ctx *c)
+{
+    pf_vec3 wo = pfc_dir(c), wi = pfc_dir(c);
+    pf_real bv = pfc_var(c, 0);
+    pf_vmf_sum s = pfc_vmf_sum(c, wo, wi, bv, 0);
+    pfc_ge0(c, pf_vmf_sum_specular_base(s, wo, wi, bv, pfc_u01(c)));
+}
 /* scaling function, shader side (helper J) */
 static void pfc_f_pf_vmf_sum_specular_unmasked(pfc_ctx *c)
 {
@@ -2569,6 +2583,8 @@ static const pfc_entry pfc_table[] = {
     PFC_E(vmf, pf_vmf_sum_g2_mixture, 0, "sums of 1-4 lobes, directions", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_g1_mixture, 0, "sums of 1-4 lobes, direction", "in [0, 1]"),
     PFC_E(vmf, pf_vmf_pixel_make, 0, "directions (grazing, below), base variance", "finite"),
+    PFC_E(vmf, pf_vmf_sum_without_base, 0, "sums of 1-4 lobes, base variance", "sums"),
+    PFC_E(vmf, pf_vmf_sum_specular_base, 0, "sums of 1-4 lobes, directions, base variance", ">= 0"),
     PFC_E(vmf, pf_vmf_sum_add_texel, 0, "1-4 texels as the fit writes them, directions, base variance", "sums; specular >= 0"),
     PFC_E(vmf, pf_vmf_sum_add_texel_mixture, 0, "1-4 texels as the fit writes them, directions, base variance", "sums, excesses >= 0; G2 in [0, 1]"),
     PFC_E(vmf, pf_vmf_sum_specular, 0, "sums of 1-4 lobes, directions, f0 [0, 1]", ">= 0, 0 below the macrosurface"),
