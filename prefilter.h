@@ -9638,8 +9638,11 @@ PF_DEF pf_specaa_kernel pf_specaa_kernel_cross(pf_vec3 dndx, pf_vec3 dndy, pf_ve
    (pf_specaa_kernel_cross, same sigma2): var += k.var + c.var, cov += k.cov + c.cov. Each
    diagonal cross term is clamped to |c| <= 2 sqrt(k.var s.var) (Cauchy-Schwarz: the variance of
    a sum of two parts of variances k.var and s.var), so the variances stay >= 0; a NaN or
-   infinite cross term reads as 0 on its axis (NaN derivatives: the kernel alone). The
-   covariance is left to pf_leadr_specular's determinant floor. */
+   infinite cross term reads as 0 on its axis (NaN derivatives: the kernel alone). The summed
+   covariance is clamped to |cov| <= sqrt(var_x var_y), so the matrix stays positive
+   semi-definite: unclamped, a silhouette quad's difference of reads (a helper lane's texel far
+   from the pixel's) gave a negative determinant, which pf_leadr_specular's floor turned into a
+   peak of 1e16 (bench/frame's curved scenes). */
 PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_kernel k, pf_specaa_kernel c)
 {
     pf_real bx = PF_R(2.0) * PF_SQRT(pf_max(k.var_x, PF_R(0.0)) * pf_max(s.var_x, PF_R(0.0)));
@@ -9648,8 +9651,9 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_cross(pf_slope_stats s, pf_specaa_ke
     pf_real cy = c.var_y - c.var_y == PF_R(0.0) ? pf_clamp_nan_lo(c.var_y, -by, by) : PF_R(0.0);
     pf_real cxy = c.cov_xy - c.cov_xy == PF_R(0.0) ? c.cov_xy : PF_R(0.0);
     /* (sqrt s - sqrt k)^2 >= 0 at the clamp, but its rounding can be -1e-10: floored at 0 */
-    return pf_slope_stats_make(s.mean_x, s.mean_y, pf_max(s.var_x + k.var_x + cx, PF_R(0.0)),
-                               pf_max(s.var_y + k.var_y + cy, PF_R(0.0)), s.cov_xy + k.cov_xy + cxy);
+    pf_real vx = pf_max(s.var_x + k.var_x + cx, PF_R(0.0)), vy = pf_max(s.var_y + k.var_y + cy, PF_R(0.0));
+    pf_real bxy = PF_SQRT(vx * vy);
+    return pf_slope_stats_make(s.mean_x, s.mean_y, vx, vy, pf_clamp_nan_lo(s.cov_xy + k.cov_xy + cxy, -bxy, bxy));
 }
 
 /* The pixel's slope statistics from four reads of the moment pyramid, one per quadrant of the
