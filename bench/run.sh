@@ -27,8 +27,8 @@
 # Every stage prints its start and end with the time of day and its wall time; steps longer than
 # a few seconds print progress with the time left on stderr (in place on a terminal).
 #
-# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: at
-# most 9 repetitions per timing and a 50 ms budget per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
+# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 3
+# repetitions per timing and 1 ms of warm-up per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
 # valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
 # PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
 #
@@ -124,7 +124,10 @@ stage() {
 quick=""
 case "${BENCH_QUICK:-0}" in
     ""|0|no|NO) ;;
-    *) quick="--reps 9 --budget-ms 50"; echo "bench: BENCH_QUICK set, at most 9 repetitions and a 50 ms budget per method (smoke run; do not publish these timings)" ;;
+    # 3 repetitions (the fewest with a median and quartiles) and 1 ms of warm-up: nothing reads
+    # the quick run's timings (docs/ take them from a full run; bench/determinism.sh compares the
+    # CSVs without their timing columns), so its timing loops only prove that they run
+    *) quick="--reps 3 --budget-ms 5 --warmup-ms 1"; echo "bench: BENCH_QUICK set, 3 repetitions per timing, 1 ms of warm-up (smoke run; do not publish these timings)" ;;
 esac
 echo "bench: $threads threads per stage (PFB_THREADS to change), output in $out/"
 
