@@ -14,12 +14,14 @@
 # spread over PFB_THREADS threads or processes (default: every online core; PFB_THREADS=1 runs
 # everything serially, the reference of the determinism check bench/determinism.sh):
 #   1 callgrind    instruction counts, one valgrind per bench binary, all binaries at once
-#   2 stability    the sweep's four builds, then their shards, at once (bench/stability.sh)
+#   2 stability    the sweep's shards, at once (bench/stability.sh; its four builds are made by
+#                  make bench-build beside the other builds, else here, at once)
 #   3 gpu          the SPIR-V counts of every function, at once (bench/gpu/cost.sh)
 #   4 vectorize    which timing loops the compiler vectorized (one compile per binary, at once)
 #   5 microsurface, 6 pictures: their brute force on every core, their cost timings alone
 #   7 modules      bench_<module>-float/-double one at a time: the accuracy grids on every core,
 #                  then the timing loops on one thread while nothing else of the bench runs
+#                  (BENCH_QUICK: PFB_THREADS modules at once, as nothing reads its timings)
 #   8 charts, summary.md, choosing.md, report.md
 # Nothing is timed while another process of the bench runs: every stage that times (5-7) runs
 # alone, after the untimed parallel ones. Results do not depend on the thread count: the CSVs of
@@ -247,17 +249,35 @@ sh bench/frame/run.sh "$dir" "$out"
 # ---------------------------------------------------------------- 7. per-module benches
 # One binary at a time: its accuracy grids on every core, then its timing loops on one thread
 # with nothing else of the bench running.
-stage "per-module benches (accuracy on every core, timings alone)"
+# BENCH_QUICK: nothing reads the quick run's timings (docs/ read a full run's), so there the
+# modules run PFB_THREADS at a time (bench/pool.sh; each module's float then double binary in one
+# job, as both append to <module>.csv and .notes in that order): same CSVs, less wall time.
+if [ -z "$quick" ]; then
+    stage "per-module benches (accuracy on every core, timings alone)"
+else
+    stage "per-module benches (quick: PFB_THREADS modules at once, timings not read)"
+fi
+: > "$jobs"
 for m in $modules; do
+    job=""
     for b in float double; do
         bin="$dir/bench_$m-$b"
-        if [ $use_cg = 1 ]; then
-            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
+        args="$quick --csv $out/$m.csv --notes $out/$m.notes"
+        [ $use_cg = 1 ] && args="$args --instr $out/$m-$b.instr"
+        if [ -z "$quick" ]; then
+            # shellcheck disable=SC2086
+            "$bin" $args
         else
-            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes"
+            job="$job${job:+ && }$bin $args"
         fi
     done
+    [ -z "$quick" ] || echo "{ $job; } > $out/$m.log 2>&1 || { cat $out/$m.log; exit 1; }" >> "$jobs"
 done
+if [ -n "$quick" ]; then
+    sh bench/pool.sh "bench: per-module benches" "$jobs" || { echo "bench: a per-module bench failed" >&2; exit 1; }
+    # their tables on stdout, in module order, as a serial run prints them
+    for m in $modules; do cat "$out/$m.log"; rm -f "$out/$m.log"; done
+fi
 
 # ---------------------------------------------------------------- 8. charts
 stage "charts, summary, method guide, report"
