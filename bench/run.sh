@@ -262,13 +262,16 @@ for m in $modules; do
     job=""
     for b in float double; do
         bin="$dir/bench_$m-$b"
-        args="$quick --csv $out/$m.csv --notes $out/$m.notes"
-        [ $use_cg = 1 ] && args="$args --instr $out/$m-$b.instr"
+        ins=""
+        [ $use_cg = 1 ] && ins="--instr $out/$m-$b.instr"
         if [ -z "$quick" ]; then
-            # shellcheck disable=SC2086
-            "$bin" $args
+            if [ $use_cg = 1 ]; then
+                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
+            else
+                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes"
+            fi
         else
-            job="$job${job:+ && }$bin $args"
+            job="$job${job:+ && }$bin $quick --csv $out/$m.csv --notes $out/$m.notes $ins"
         fi
     done
     [ -z "$quick" ] || echo "{ $job; } > $out/$m.log 2>&1 || { cat $out/$m.log; exit 1; }" >> "$jobs"
