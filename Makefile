@@ -181,7 +181,12 @@ bench:
 	@$(MAKE) --no-print-directory $(if $(MAP),bench-map,bench-run)
 # only the binaries (bench/times.sh builds first, so that it times the runs alone)
 .PHONY: bench-build
-bench-build: $(BENCH_BINS) $(REPORT_BINS)
+bench-build: $(BENCH_BINS) $(REPORT_BINS) bench-stability-build
+# the stability sweep's four -O2 builds (bench/stability.sh --build-only; each skipped when up to
+# date), beside the other builds, so that the bench's stability stage only runs the sweep
+.PHONY: bench-stability-build
+bench-stability-build:
+	@CC='$(CC)' sh bench/stability.sh --build-only $(BUILD)
 bench-map: $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' BENCH_QUICK='$(BENCH_QUICK)' MAP='$(MAP)' MAP_KIND='$(MAP_KIND)' \
 	    MAP_SCALE='$(MAP_SCALE)' MAP_RMS_SLOPE='$(MAP_RMS_SLOPE)' MAP_BORDER='$(MAP_BORDER)' \

@@ -19,7 +19,8 @@
                    method, fewer once they took PFB_WARMUP_MS, at least one) calibrate each
                    method's time per run, and the method gets budget / (time of its pair with
                    the baseline) repetitions, odd, clamped to [PFB_MIN_REPS, reps] (defaults:
-                   250 ms, 5, PFB_REPS = 101; --budget-ms, --reps; the quick run 50 ms and 9).
+                   250 ms, 5, PFB_REPS = 101; --budget-ms, --reps; the quick run, whose
+                   timings nothing publishes, 5 ms, 3 repetitions and 1 ms of warm-up).
                    So a 0.1 ms loop gets 101 repetitions and a 600 ms quadrature 5, and every
                    median rests on about the same measured time; the repetitions of every
                    method are printed under its table and kept in the notes (A/A line).
@@ -68,6 +69,8 @@
      --reps R            repetitions at most (default PFB_REPS)
      --budget-ms B       measured time per method and input order that sets its repetitions
                          (default PFB_BUDGET_MS; see REPETITIONS)
+     --warmup-ms W       warm-up of each method stops after W ms (default PFB_WARMUP_MS; at
+                         least one run, at most PFB_WARMUP)
 
    ORDER AND THREADS. pfb_main computes the accuracy columns of every family first, on
    PFB_THREADS threads (default: every core; bench/pf_parallel.h): the references in chunks of
@@ -434,6 +437,8 @@ typedef struct pfb_timing {
    budget replaced (PFB_WARMUP warm-up runs and `reps` repetitions of every slot) would take
    from the same calibration: planned / fixed is the saving, independent of the load. */
 static double pfb_loops_ns, pfb_planned_ns, pfb_fixed_ns;
+/* warm-up time per slot after which the warm-up stops (--warmup-ms; at least one run) */
+static double pfb_warmup_ms = PFB_WARMUP_MS;
 
 /* Repetitions that spend about budget_ms when one costs pair_ns: clamped to
    [min(PFB_MIN_REPS, reps), reps], odd below reps (the median is then one sample). */
@@ -451,7 +456,7 @@ PFB_FN int pfb_budget_reps(double pair_ns, double budget_ms, int reps)
    the baseline as a pair (which goes first alternates), so the ratio of a pair sees one
    machine state.
    TIME BUDGET. Warm-up first: each slot runs untimed until it has run PFB_WARMUP times or for
-   PFB_WARMUP_MS (at least once); the fastest warm-up run of each slot is its calibration. A
+   PFB_WARMUP_MS (--warmup-ms; at least once); the fastest warm-up run of each slot is its calibration. A
    slot then gets reps_i = budget_ms / (calibrated time of its pair) repetitions, clamped to
    [PFB_MIN_REPS, reps] (the baseline slot: its own time alone), so every median uses about the
    same measured time: a 0.1 ms loop gets the full `reps`, a 600 ms quadrature PFB_MIN_REPS.
@@ -472,7 +477,7 @@ PFB_FN void pfb_time_set(const pfb_family *f, int reps, double budget_ms, const 
     for (i = 0; i <= nm; ++i) {
         double used = 0.0;
         cal[i] = 1e300;
-        for (w = 0; w < PFB_WARMUP && (w == 0 || used < PFB_WARMUP_MS * 1e6); ++w) {
+        for (w = 0; w < PFB_WARMUP && (w == 0 || used < pfb_warmup_ms * 1e6); ++w) {
             double tw = pfb_time_once(PFB_SLOT_(i), a, b, c, out);
             used += tw * (double)PFB_PASSES * (double)PFB_N;
             if (tw < cal[i]) cal[i] = tw;
@@ -773,6 +778,7 @@ PFB_FN int pfb_main(int argc, char **argv, const char *module, const pfb_family 
         else if (strcmp(a, "--only") == 0) only = v;
         else if (strcmp(a, "--reps") == 0) reps = atoi(v);
         else if (strcmp(a, "--budget-ms") == 0) budget_ms = atof(v);
+        else if (strcmp(a, "--warmup-ms") == 0) pfb_warmup_ms = atof(v);
         else { fprintf(stderr, "%s: unknown option %s\n", argv[0], a); return 2; }
         ++i;
     }

@@ -14,12 +14,14 @@
 # spread over PFB_THREADS threads or processes (default: every online core; PFB_THREADS=1 runs
 # everything serially, the reference of the determinism check bench/determinism.sh):
 #   1 callgrind    instruction counts, one valgrind per bench binary, all binaries at once
-#   2 stability    the sweep's four builds, then their shards, at once (bench/stability.sh)
+#   2 stability    the sweep's shards, at once (bench/stability.sh; its four builds are made by
+#                  make bench-build beside the other builds, else here, at once)
 #   3 gpu          the SPIR-V counts of every function, at once (bench/gpu/cost.sh)
 #   4 vectorize    which timing loops the compiler vectorized (one compile per binary, at once)
 #   5 microsurface, 6 pictures: their brute force on every core, their cost timings alone
 #   7 modules      bench_<module>-float/-double one at a time: the accuracy grids on every core,
 #                  then the timing loops on one thread while nothing else of the bench runs
+#                  (BENCH_QUICK: PFB_THREADS modules at once, as nothing reads its timings)
 #   8 charts, summary.md, choosing.md, report.md
 # Nothing is timed while another process of the bench runs: every stage that times (5-7) runs
 # alone, after the untimed parallel ones. Results do not depend on the thread count: the CSVs of
@@ -27,8 +29,8 @@
 # Every stage prints its start and end with the time of day and its wall time; steps longer than
 # a few seconds print progress with the time left on stderr (in place on a terminal).
 #
-# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: at
-# most 9 repetitions per timing and a 50 ms budget per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
+# Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 3
+# repetitions per timing and 1 ms of warm-up per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
 # valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
 # PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
 #
@@ -124,7 +126,10 @@ stage() {
 quick=""
 case "${BENCH_QUICK:-0}" in
     ""|0|no|NO) ;;
-    *) quick="--reps 9 --budget-ms 50"; echo "bench: BENCH_QUICK set, at most 9 repetitions and a 50 ms budget per method (smoke run; do not publish these timings)" ;;
+    # 3 repetitions (the fewest with a median and quartiles) and 1 ms of warm-up: nothing reads
+    # the quick run's timings (docs/ take them from a full run; bench/determinism.sh compares the
+    # CSVs without their timing columns), so its timing loops only prove that they run
+    *) quick="--reps 3 --budget-ms 5 --warmup-ms 1"; echo "bench: BENCH_QUICK set, 3 repetitions per timing, 1 ms of warm-up (smoke run; do not publish these timings)" ;;
 esac
 echo "bench: $threads threads per stage (PFB_THREADS to change), output in $out/"
 
@@ -244,17 +249,38 @@ sh bench/frame/run.sh "$dir" "$out"
 # ---------------------------------------------------------------- 7. per-module benches
 # One binary at a time: its accuracy grids on every core, then its timing loops on one thread
 # with nothing else of the bench running.
-stage "per-module benches (accuracy on every core, timings alone)"
+# BENCH_QUICK: nothing reads the quick run's timings (docs/ read a full run's), so there the
+# modules run PFB_THREADS at a time (bench/pool.sh; each module's float then double binary in one
+# job, as both append to <module>.csv and .notes in that order): same CSVs, less wall time.
+if [ -z "$quick" ]; then
+    stage "per-module benches (accuracy on every core, timings alone)"
+else
+    stage "per-module benches (quick: PFB_THREADS modules at once, timings not read)"
+fi
+: > "$jobs"
 for m in $modules; do
+    job=""
     for b in float double; do
         bin="$dir/bench_$m-$b"
-        if [ $use_cg = 1 ]; then
-            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
+        ins=""
+        [ $use_cg = 1 ] && ins="--instr $out/$m-$b.instr"
+        if [ -z "$quick" ]; then
+            if [ $use_cg = 1 ]; then
+                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
+            else
+                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes"
+            fi
         else
-            "$bin" $quick --csv "$out/$m.csv" --notes "$out/$m.notes"
+            job="$job${job:+ && }$bin $quick --csv $out/$m.csv --notes $out/$m.notes $ins"
         fi
     done
+    [ -z "$quick" ] || echo "{ $job; } > $out/$m.log 2>&1 || { cat $out/$m.log; exit 1; }" >> "$jobs"
 done
+if [ -n "$quick" ]; then
+    sh bench/pool.sh "bench: per-module benches" "$jobs" || { echo "bench: a per-module bench failed" >&2; exit 1; }
+    # their tables on stdout, in module order, as a serial run prints them
+    for m in $modules; do cat "$out/$m.log"; rm -f "$out/$m.log"; done
+fi
 
 # ---------------------------------------------------------------- 8. charts
 stage "charts, summary, method guide, report"

@@ -6,7 +6,9 @@
 # and copies the fragment into docs/stability.md between its GENERATED markers when
 # STABILITY_UPDATE_DOCS=1 (make docs).
 #
-# usage: sh bench/stability.sh [BUILD_DIR]        (BUILD_DIR defaults to build)
+# usage: sh bench/stability.sh [--build-only] [BUILD_DIR]   (BUILD_DIR defaults to build)
+#   --build-only: the four builds only (make bench-build runs it beside the bench's other
+#   builds, so that the bench's stability stage finds them up to date and only runs the sweep)
 # Environment:
 #   BENCH_QUICK=1        10^5 inputs per evaluator and build instead of 10^8 (CI)
 #   STABILITY_N=N        inputs per evaluator and build (overrides both)
@@ -25,14 +27,16 @@
 set -u
 ROOT=$(cd "$(dirname "$0")/.." && pwd) || exit 2
 cd "$ROOT" || exit 2
+build_only=0
+[ "${1:-}" = --build-only ] && { build_only=1; shift; }
 BUILD=${1:-build}
 DIR=$BUILD/stability
 OUTDIR=${BENCH_OUT:-bench/out}
 CC=${CC:-gcc}
 mkdir -p "$DIR" "$OUTDIR" || exit 2
 
-sh tests/fuzz/coverage.sh || { echo "stability: coverage gap (see above)" >&2; cov=1; }
-cov=${cov:-0}
+cov=0
+[ $build_only = 1 ] || sh tests/fuzz/coverage.sh || { echo "stability: coverage gap (see above)" >&2; cov=1; }
 
 WARN="-std=c99 -pedantic -Wall -Wextra -Werror -Wdouble-promotion"
 builds="float double fastmath-float fastmath-double"
@@ -68,6 +72,7 @@ done
 sh bench/pool.sh "stability: builds" "$jobs" || {
     for n in $builds; do [ -x "$DIR/stability-$n" ] || cat "$DIR/build-$n.log" >&2; done
     echo "stability: a build failed" >&2; exit 2; }
+[ $build_only = 1 ] && exit 0
 
 # The sweep: every build cut into SHARDS shards (entries K modulo SHARDS; each entry draws from
 # its own seed, so the counts are those of one process), all run PFB_THREADS at a time, the

@@ -26,7 +26,8 @@
 
    COST. Every method is evaluated NSTORE times per sample instead of once (the references,
    which dominate, once); MICROSURFACE_STORAGE=0 in the environment skips the pass (no storage
-   files are written then).
+   files are written then). The quick run (store_max_kinds = 1) runs it on its first kind only:
+   every code path of the pass, a seventh of its work (nothing reads the quick run's tables).
 
    OUTPUT. microsurface_storage.csv: per kind, reference, task, method, footprint size, view
    and format: sum_sq_err (against the reference), sum_sq_ref, sum_sq_diff (against the same
@@ -80,6 +81,8 @@ typedef struct store_acc {
 } store_acc;
 static store_acc store_tot[NKIND + 1][NSIZE][NVIEW];
 static int store_ran[NKIND + 1];
+/* the kinds the pass runs on at most (the first ones run), and how many it has begun */
+static int store_max_kinds = NKIND + 1, store_built;
 
 static void store_fail(const char *what)
 {
@@ -215,6 +218,8 @@ static store_set *store_build(const lib_maps *L)
     int f;
     double t0 = pfb_now_ns();
     if (env && !strcmp(env, "0")) return NULL; /* MICROSURFACE_STORAGE=0: no storage pass */
+    if (store_built >= store_max_kinds) return NULL;
+    ++store_built;
     S = (store_set *)pfb_xcalloc(1, sizeof *S);
     for (f = 1; f < NSTORE; ++f) S->L[f] = *L;
     J.L = L;
