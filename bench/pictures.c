@@ -745,6 +745,134 @@ static double shade_leadr_box_horizon(const pic_maps *m, const pic_sample *p)
                                                  (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
 }
 
+/* ---------------------------------------------------------------- box taps
+   A footprint-following fetch a shader can do, in place of the trilinear one: at level l =
+   max(0, ceil(log2 side) - 1) the footprint's square is at most 2 texels of that level a side,
+   so it touches at most 3 of them per axis, and its covered-area weights over them are 2 x 2
+   bilinear taps at level l: per axis, the weights w0, w1, w2 of texels j0, j0 + 1, j0 + 2 are
+   tap A between j0 and j0 + 1 (weight w0 + w1/2, fraction (w1/2)/(w0 + w1/2)) and tap B between
+   j0 + 1 and j0 + 2 (weight w2 + w1/2, fraction w2/(w2 + w1/2)): 4 textureLod(..., l) fetches
+   instead of one trilinear lookup (two levels' bilinear mixes, a footprint up to twice as wide).
+   At level 0 (sides up to 2 texels) the taps are exactly the reference's square (sq_reference);
+   above, the square is rounded to the level's texels within its 3 x 3. The moments, the HDF
+   moments and the lobes' amplitudes are linear in the texels, so the weighted taps are that
+   mean. Each tap is a pic_sample at the tap's coordinate with a footprint of 2^l texels (lod l),
+   read through the same helpers as the trilinear rows (hdf_sample, vmf_sum_sample). */
+
+/* the 4 taps of pixel p, their weights (sum 1), and the level */
+static int box_taps(const pic_sample *p, pic_sample tap[4], double wt[4])
+{
+    double c[2][2], w[2][2], sc;
+    int a, t, l = 0;
+    while (l < 30 && p->fp > (double)(2 << l)) ++l; /* p->fp / 2^l in (1, 2], or <= 1 at level 0 */
+    sc = (double)(1 << l);
+    for (a = 0; a < 2; ++a) {
+        double f = p->fp / sc, x = (a ? p->ty : p->tx) / sc, lo = x - 0.5 * f, hi = x + 0.5 * f;
+        int j0 = (int)floor(lo);
+        double w0 = cover_1d(j0, lo, hi) / f, w1 = cover_1d(j0 + 1, lo, hi) / f, w2 = cover_1d(j0 + 2, lo, hi) / f;
+        double wa = w0 + 0.5 * w1, wb = w2 + 0.5 * w1;
+        w[a][0] = wa;
+        w[a][1] = wb;
+        c[a][0] = sc * ((double)j0 + 0.5 + (wa > 0.0 ? 0.5 * w1 / wa : 0.0));
+        c[a][1] = sc * ((double)j0 + 1.5 + (wb > 0.0 ? w2 / wb : 0.0));
+    }
+    for (t = 0; t < 4; ++t) {
+        tap[t] = *p;
+        tap[t].tx = c[0][t & 1];
+        tap[t].ty = c[1][t >> 1];
+        tap[t].fp = sc;
+        wt[t] = w[0][t & 1] * w[1][t >> 1];
+    }
+    return l;
+}
+
+/* LEADR's slope statistics from the box taps */
+static pf_slope_stats tap_stats(const pic_maps *m, const pic_sample *p)
+{
+    pic_sample tap[4];
+    double wt[4], mo[5] = {0, 0, 0, 0, 0};
+    int t;
+    int l = box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_slope_moments s = pf_slope_moments_sample(m->slope_pyr, m->surf.w, m->surf.h, (pf_real)l,
+                                                     (pf_real)(tap[t].tx / m->surf.w), (pf_real)(tap[t].ty / m->surf.h),
+                                                     PF_BORDER_WRAP);
+        mo[0] += wt[t] * (double)s.ex;
+        mo[1] += wt[t] * (double)s.ey;
+        mo[2] += wt[t] * (double)s.exx;
+        mo[3] += wt[t] * (double)s.eyy;
+        mo[4] += wt[t] * (double)s.exy;
+    }
+    return pf_slope_moments_stats(pf_slope_moments_make((pf_real)mo[0], (pf_real)mo[1], (pf_real)mo[2], (pf_real)mo[3],
+                                                        (pf_real)mo[4]),
+                                  (pf_real)(BASE_SIGMA * BASE_SIGMA));
+}
+
+/* the HDF moments toward w from the box taps */
+static pf_hdf_moments tap_hdf(const pic_maps *m, const pic_sample *p, const double w[3])
+{
+    pic_sample tap[4];
+    double wt[4], a[3] = {0, 0, 0};
+    int t;
+    box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_hdf_moments h = hdf_sample(m, &tap[t], w);
+        a[0] += wt[t] * (double)h.m1;
+        a[1] += wt[t] * (double)h.m2;
+        a[2] += wt[t] * (double)h.ms;
+    }
+    return pf_hdf_moments_make((pf_real)a[0], (pf_real)a[1], (pf_real)a[2]);
+}
+
+/* the lobes of the box taps: every field of a pf_vmf_sum is a
+   sum over lobes linear in their amplitudes, so the taps' sums weighted by the tap weights are
+   the sum of the taps' lobes with their amplitudes so weighted */
+static pf_vmf_sum tap_vmf_sum(const pic_maps *m, const pic_sample *p, int which)
+{
+    pic_sample tap[4];
+    double wt[4];
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    int t;
+    box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_vmf_sum q = vmf_sum_sample(m, &tap[t], which);
+        pf_real k = (pf_real)wt[t];
+        s.amp += k * q.amp;
+        s.ndf += k * q.ndf;
+        s.ex += k * q.ex;
+        s.ey += k * q.ey;
+        s.exx += k * q.exx;
+        s.eyy += k * q.eyy;
+        s.exy += k * q.exy;
+        s.excess_o += k * q.excess_o;
+        s.excess_i += k * q.excess_i;
+    }
+    return s;
+}
+
+static double shade_leadr_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_leadr_specular(to_pf(p->wo), to_pf(p->wi), tap_stats(m, p), (pf_real)F0);
+}
+static double shade_leadr_horizon_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_horizon_leadr_specular_lod(to_pf(p->wo), to_pf(p->wi), tap_stats(m, p),
+                                                 (pf_real)(BASE_SIGMA * BASE_SIGMA), tap_hdf(m, p, p->wo),
+                                                 tap_hdf(m, p, p->wi), (pf_real)F0, pic_lod(p->fp),
+                                                 (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
+}
+static double shade_vmf_m8_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_vmf_sum_specular(tap_vmf_sum(m, p, 1), to_pf(p->wo), to_pf(p->wi), (pf_real)F0);
+}
+static double shade_vmf_m8_horizon_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_horizon_vmf_specular_lod(tap_vmf_sum(m, p, 1), to_pf(p->wo), to_pf(p->wi), tap_stats(m, p),
+                                               (pf_real)(BASE_SIGMA * BASE_SIGMA), tap_hdf(m, p, p->wo),
+                                               tap_hdf(m, p, p->wi), (pf_real)F0, pic_lod(p->fp),
+                                               (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
+}
+
 /* ---------------------------------------------------------------- the method registry */
 /* Every method of the pictures is one row here and one shading function above; everything
    else (the value and timing passes, the error statistics, the tables, the self-check, the
@@ -788,6 +916,19 @@ static const pic_method pic_methods[] = {
     {"vmf8_hor", "vMF m = 8 + horizon (trilinear)", "vMF m = 8 + horizon", shade_vmf_m8_horizon,
      "vMF m = 8's, LEADR's moments, and 2 x 2 azimuths of the HDF moments (2 x 8 texels x 6 values)", 0, 3,
      "vMF m = 8 + horizon (pf_horizon.h)", "vMF m = 8 + horizon", VMF_CHECK_BOUND + HOR_CHECK_BOUND},
+    {"leadr_tap", "LEADR (box taps)", "LEADR, taps", shade_leadr_tap,
+     "5 slope moments, 4 bilinear taps at one level (16 texels x 5 values)", 0, 0, NULL,
+     NULL, 0.0},
+    {"leadr_hor_tap", "LEADR + horizon (box taps)", "LEADR + horizon, taps", shade_leadr_horizon_tap,
+     "LEADR + horizon's values, 4 bilinear taps at one level (16 texels)", 0, 0, NULL,
+     NULL, HOR_CHECK_BOUND},
+    {"vmf8_tap", "vMF m = 8 (box taps)", "vMF m = 8, taps", shade_vmf_m8_tap,
+     "8 lobes of the 16 texels of 4 bilinear taps at one level (16 x 8 x 4 values)", 0, 0, NULL, NULL,
+     VMF_CHECK_BOUND},
+    {"vmf8_hor_tap", "vMF m = 8 + horizon (box taps)", "vMF m = 8 + horizon, taps",
+     shade_vmf_m8_horizon_tap,
+     "vMF m = 8 + horizon's values, 4 bilinear taps at one level (16 texels)", 0, 0,
+     NULL, NULL, VMF_CHECK_BOUND + HOR_CHECK_BOUND},
     {"vmf4s", "vMF m = 4, scaling function", "vMF m = 4, scaled", shade_vmf_m4_scaled,
      "vMF m = 4's, and T bilinear (4 values) and S (a 6 x 6 x 5 table, 8 values)", 0, 0, NULL, NULL, VMF_CHECK_BOUND},
     {"vmf8s", "vMF m = 8, scaling function", "vMF m = 8, scaled", shade_vmf_m8_scaled,
