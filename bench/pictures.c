@@ -29,7 +29,10 @@
                  per map by pf_horizon_pyramid, docs/horizon.md). In the tables also LEADR + horizon
                  (pf_horizon_leadr_specular_lod) and its exact-box oracle (not drawn): the horizon
                  sees the bumps outside the footprint, which the full reference marches.
-   Also measured but not drawn: "LEADR, exact box", the same formula fed with the exact mean of
+   Also measured but not drawn: the "box taps" rows (LEADR, LEADR + horizon, vMF m = 8, vMF m = 8 +
+   horizon) with a footprint-following fetch in place of the trilinear one (box_taps: 4 bilinear
+   taps at the level where the footprint is 1-2 texels, weighted to the square's covered area);
+   "LEADR, exact box", the same formula fed with the exact mean of
    the level-0 moments over the reference's own box footprint (a summed-area table in double).
    Its error is the model's alone; the difference to the trilinear LEADR error is what the mip
    filter's footprint adds. The model's error is split further (ERRORS below).
