@@ -9,14 +9,16 @@
 #include "pf_test.h"
 #include "pf_microsurface.h"
 
-/* test_horizon_specular_brute_force: measured 0.486 (float and double) against 0.987 for Smith */
+/* test_horizon_specular_brute_force: measured 0.510 (float and double; 0.486 before the convexity term and
+   the 0.7 deviation of the conditional HDF) against 0.987 for Smith */
 #define HSPEC_BRUTE_BOUND 0.6
 /* test_horizon_specular_grazing_brute_force, views 75 and 80 degrees: |bias - 1| and pooled
-   error of V_h on the correlation-12 and -4 fields (measured, float and double: bias 0.987 /
-   1.080, error 0.047 / 0.275; bias 0.692 / 0.702, error 0.416 / 0.436); at 85 degrees on
-   correlation 12: error 0.257 */
-static const double HSPEC_GRAZE_BIAS[2] = { 0.15, 0.4 }, HSPEC_GRAZE_ERR[2] = { 0.35, 0.5 };
-#define HSPEC_GRAZE_ERR_85 0.35
+   error of V_h on the correlation-12 and -4 fields (measured, float: bias 1.008 / 1.078, error
+   0.034 / 0.205; bias 1.047 / 1.066, error 0.261 / 0.402; the linear conditioning without the
+   convexity term and the 0.7 deviation: 0.987 / 1.080, 0.047 / 0.275; 0.692 / 0.702,
+   0.416 / 0.436); at 85 degrees: error 0.199 and 0.548 (without: 0.257 and 0.781) */
+static const double HSPEC_GRAZE_BIAS[2] = { 0.12, 0.12 }, HSPEC_GRAZE_ERR[2] = { 0.25, 0.45 };
+static const double HSPEC_GRAZE_ERR_85[2] = { 0.24, 0.65 };
 
 #define TPI 3.14159265358979323846264338327950288L
 
@@ -715,6 +717,19 @@ static long double ora_cond_vis_b(long double wx, long double wy, long double wz
     long double cov = mst - es * mt, mu = mt + cov / vs * (sx * dx + sy * dy - es), var = sdt * sdt - cov * cov / vs;
     return 0.5L * erfcl((mu - e) / (sqrtl(var) * sqrtl(2.0L)));
 }
+/* the specular's conditional visibility (pfi_horizon_spec_cond_vis): the conditional mean
+   lowered by the convexity term beta Cov(S, T)/sqrt(Var(S) + b) = Cov^2/(Var(S) + b)^1.5 and
+   the conditional deviation times 0.7 (pf_horizon.h, SPECULAR) */
+static long double ora_spec_cond_vis(long double wx, long double wy, long double wz, long double mt, long double sdt,
+                                     long double mst, long double mx, long double my, long double vx, long double vy,
+                                     long double cxy, long double sx, long double sy, long double bv)
+{
+    long double r = sqrtl(wx * wx + wy * wy), dx = wx / r, dy = wy / r, e = atan2l(wz, r);
+    long double es = mx * dx + my * dy, vs = vx * dx * dx + vy * dy * dy + 2.0L * cxy * dx * dy + bv;
+    long double cov = mst - es * mt, mu = mt + cov / vs * (sx * dx + sy * dy - es) - cov * cov / (vs * sqrtl(vs));
+    long double var = sdt * sdt - cov * cov / vs;
+    return 0.5L * erfcl((mu - e) / (0.7L * sqrtl(var) * sqrtl(2.0L)));
+}
 static long double ora_cond_vis(long double wx, long double wy, long double wz, long double mt, long double sdt,
                                 long double mst, long double mx, long double my, long double vx, long double vy,
                                 long double cxy, long double sx, long double sy)
@@ -822,7 +837,7 @@ static void test_horizon_diffuse(void)
 /* ---------------------------------------------------------------- specular: the reflecting facets' horizon */
 /* Long-double oracle of pf_horizon_leadr_specular: the Beckmann NDF of the footprint's Gaussian
    slopes written out (P22 / cos^4 at the half vector's slope), the conditional visibilities by
-   ora_cond_vis (erfcl), eq. 28 written out, Schlick with h.wi from the normalized half vector. */
+   ora_spec_cond_vis (erfcl), eq. 28 written out, Schlick with h.wi from the normalized half vector. */
 static long double ora_horizon_spec(const long double wo[3], const long double wi[3], long double mto, long double sdo,
                                     long double msto, long double mti, long double sdi, long double msti, long double mx,
                                     long double my, long double vx, long double vy, long double cxy, long double bv,
@@ -839,8 +854,8 @@ static long double ora_horizon_spec(const long double wo[3], const long double w
     q = (Vy * X * X - 2.0L * cxy * X * Y + Vx * Y * Y) / det;
     p22 = expl(-0.5L * q) / (2.0L * TPI * sqrtl(det));
     d = p22 * powl(hl / h[2], 4.0L); /* / cos^4 of the half vector */
-    vo = ora_cond_vis_b(wo[0], wo[1], wo[2], mto, sdo, msto, mx, my, vx, vy, cxy, sx, sy, bv);
-    vi = ora_cond_vis_b(wi[0], wi[1], wi[2], mti, sdi, msti, mx, my, vx, vy, cxy, sx, sy, bv);
+    vo = ora_spec_cond_vis(wo[0], wo[1], wo[2], mto, sdo, msto, mx, my, vx, vy, cxy, sx, sy, bv);
+    vi = ora_spec_cond_vis(wi[0], wi[1], wi[2], mti, sdi, msti, mx, my, vx, vy, cxy, sx, sy, bv);
     al = 0.5L * (1.0L + wo[0] * wi[0] + wo[1] * wi[1] + wo[2] * wi[2]);
     both = al * (vo < vi ? vo : vi) + (1.0L - al) * (vo + vi - 1.0L > 0.0L ? vo + vi - 1.0L : 0.0L);
     c = (h[0] * wi[0] + h[1] * wi[1] + h[2] * wi[2]) / hl;
@@ -876,11 +891,11 @@ static void test_horizon_spec_cond_vis_matches(void)
         if (e == 1) { wx = wy = 0.0; wz = 1.0; }
         if (e == 5) vx = vy = cxy = vs = 0.0;
         ms = rho * sd * sqrt(vs) + es * m1;
-        want = ora_cond_vis_b((long double)wx, (long double)wy, (long double)wz, (long double)m1, (long double)sd, (long double)ms,
+        want = ora_spec_cond_vis((long double)wx, (long double)wy, (long double)wz, (long double)m1, (long double)sd, (long double)ms,
                               (long double)mx, (long double)my, (long double)vx, (long double)vy, (long double)cxy,
                               (long double)sx, (long double)sy, (long double)b);
-        if (e == 1) /* vertical: no azimuth, so no conditioning: Phi((pi/2 - E[T]) / sigma_T) */
-            want = 0.5L * erfcl(((long double)m1 - 1.57079632679489661923L) / ((long double)sd * sqrtl(2.0L)));
+        if (e == 1) /* vertical: no azimuth, so no conditioning: Phi((pi/2 - E[T]) / (0.7 sigma_T)) */
+            want = 0.5L * erfcl(((long double)m1 - 1.57079632679489661923L) / (0.7L * (long double)sd * sqrtl(2.0L)));
         {
             pf_slope_stats s = pf_slope_stats_make((pf_real)mx, (pf_real)my, (pf_real)(vx + b), (pf_real)(vy + b), (pf_real)cxy);
             pf_hdf_moments m = pf_hdf_moments_make((pf_real)m1, (pf_real)(m1 * m1 + sd * sd), (pf_real)ms);
@@ -973,8 +988,8 @@ static void test_horizon_specular_quadrature(void)
         hx = wo[0] + wi[0]; hy = wo[1] + wi[1]; hz = wo[2] + wi[2];
         {
             long double al = 0.5L * (1.0L + wo[0] * wi[0] + wo[1] * wi[1] + wo[2] * wi[2]);
-            long double vo = ora_cond_vis_b(wo[0], wo[1], wo[2], mto, sdo, msto, mx, my, vx, vy, cxy, -hx / hz, -hy / hz, bv);
-            long double vi = ora_cond_vis_b(wi[0], wi[1], wi[2], mti, sdi, msti, mx, my, vx, vy, cxy, -hx / hz, -hy / hz, bv);
+            long double vo = ora_spec_cond_vis(wo[0], wo[1], wo[2], mto, sdo, msto, mx, my, vx, vy, cxy, -hx / hz, -hy / hz, bv);
+            long double vi = ora_spec_cond_vis(wi[0], wi[1], wi[2], mti, sdi, msti, mx, my, vx, vy, cxy, -hx / hz, -hy / hz, bv);
             long double both = al * (vo < vi ? vo : vi) + (1.0L - al) * (vo + vi - 1.0L > 0.0L ? vo + vi - 1.0L : 0.0L);
             if (fabsl((long double)gv - both) > worst_v) worst_v = fabsl((long double)gv - both);
         }
@@ -1385,16 +1400,17 @@ static void test_horizon_specular_grazing_brute_force(void)
             pf_test_note("corr %.0f, %.0f deg (%.0f footprints): V_h bias %.3f, error %.3f (Smith G2 %.3f)", corr[c], deg[v],
                          o[c][v][3], o[c][v][0], o[c][v][1], o[c][v][2]);
             PF_CHECK(o[c][v][3] >= 30.0, "corr %g, %g deg: %g footprints", corr[c], deg[v], o[c][v][3]);
-            /* on the picture's field closer than Smith's G2 at every view (on the finer one it
-               is not at 75 degrees: 0.416 against 0.365) */
-            PF_CHECK(c == 1 || o[c][v][1] < 0.5 * o[c][v][2], "corr %g, %g deg: error %g, Smith's %g", corr[c], deg[v],
+            /* closer than Smith's G2 at every view: by half on the picture's field, and on the
+               finer one too (0.261 against 0.365 at 75 degrees; 0.416 without the convexity term) */
+            PF_CHECK(o[c][v][1] < (c == 0 ? 0.5 : 0.8) * o[c][v][2], "corr %g, %g deg: error %g, Smith's %g", corr[c], deg[v],
                      o[c][v][1], o[c][v][2]);
         }
         for (v = 0; v < 2; ++v)
             PF_CHECK(fabs(o[c][v][0] - 1.0) <= HSPEC_GRAZE_BIAS[c] && o[c][v][1] <= HSPEC_GRAZE_ERR[c],
                      "corr %g, %g deg: bias %g, error %g", corr[c], deg[v], o[c][v][0], o[c][v][1]);
     }
-    PF_CHECK(o[0][2][1] <= HSPEC_GRAZE_ERR_85, "corr 12, 85 deg: error %g", o[0][2][1]);
+    for (c = 0; c < 2; ++c)
+        PF_CHECK(o[c][2][1] <= HSPEC_GRAZE_ERR_85[c], "corr %g, 85 deg: error %g", corr[c], o[c][2][1]);
 }
 
 static void test_horizon_azimuth_of(void)
