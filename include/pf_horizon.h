@@ -204,11 +204,13 @@
      pf_horizon_leadr_specular 0.148 (per kind 0.084-0.211), pf_horizon_vmf_specular with 16
      lobes 0.121 (0.063-0.157), against 0.517 and 0.499 with Smith's G. With the pyramids in
      half or unorm16 (pf_encode.h), at most 1.024x the float32 error (every kind and footprint,
-     both references). Against the long-double formula: the per-direction visibility 7.8e-4 abs,
-     V_h 3.5e-4 abs, radiance 3.5e-4 of the unshadowed lobe (float and double: the arcsine and
-     CDF approximations). GPU: pf_horizon_leadr_specular 174 SPIR-V ops (pf_leadr_specular 116:
-     1.50x), pf_horizon_vmf_specular 149 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add
-     lobe in both).
+     both references). (Those bench figures predate SPECULAR's convexity term and 0.7
+     deviation; with them, gaussian_fine: 0.214 and 0.153, docs/horizon.md.) Against the
+     long-double formula: the per-direction visibility 1.1e-3 abs, V_h 4.1e-4 abs, radiance
+     4.1e-4 of the unshadowed lobe (float and double: the arcsine and CDF approximations).
+     GPU: pf_horizon_leadr_specular 172 SPIR-V ops (pf_leadr_specular 116: 1.48x),
+     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 99, plus 150 per pf_vmf_sum_add lobe in
+     both).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
@@ -673,8 +675,8 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
    Written for the shader: no branch; the elevation asin(w.z) by Abramowitz & Stegun 4.4.45
    (|error| <= 5e-5 rad), the Gaussian CDF by the logistic of Bowling, Khasawneh, Kaewkuekool
    & Cho 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 + 0.070566 z^2))) (|error| <= 1.4e-4); the
-   visibility is within 7.8e-4 of the long-double formula (float and double: the arcsine's
-   error over the deviation, at deviations from 0.02 rad), far below the model's error against
+   visibility is within 1.1e-3 of the long-double formula (float and double: the arcsine's
+   error over 0.7 times the deviation, at deviations from 0.02 rad), far below the model's error against
    the brute force. A zero deviation is the step (1/2 at e = E[T | S + B] exactly). */
 /* The conditional visibility toward unit w (w.z > 0: the caller's select), at the slope
    offset (X, Y) = E[s] - s_h (the sign pfi_beckmann_d_up's X, Y have: the shader shares them),
