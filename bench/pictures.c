@@ -29,7 +29,10 @@
                  per map by pf_horizon_pyramid, docs/horizon.md). In the tables also LEADR + horizon
                  (pf_horizon_leadr_specular_lod) and its exact-box oracle (not drawn): the horizon
                  sees the bumps outside the footprint, which the full reference marches.
-   Also measured but not drawn: "LEADR, exact box", the same formula fed with the exact mean of
+   Also measured but not drawn: the "box taps" rows (LEADR, LEADR + horizon, vMF m = 8, vMF m = 8 +
+   horizon) with a footprint-following fetch in place of the trilinear one (box_taps: 4 bilinear
+   taps at the level where the footprint is 1-2 texels, weighted to the square's covered area);
+   "LEADR, exact box", the same formula fed with the exact mean of
    the level-0 moments over the reference's own box footprint (a summed-area table in double).
    Its error is the model's alone; the difference to the trilinear LEADR error is what the mip
    filter's footprint adds. The model's error is split further (ERRORS below).
@@ -52,9 +55,15 @@
    intersected with the tangent plane at the hit point; the two offsets, converted to texels, give
    the isotropic footprint side f = max(|dP/dx|, |dP/dy|) in texels (the GPU's level-of-detail
    rule), capped at the map size. LEADR and naive sample the pyramid at lod = log2(f)
-   (trilinear). The reference shades the n x n texel box centred on the hit point, n = round(f)
-   (at least 1); beyond ref_max texels on a side (REF_MAX_SAMPLES, SPHERE_REF_MAX) it shades an
-   evenly spaced ref_max x ref_max subset of the box (stride n / ref_max texels). Texels whose
+   (trilinear). The reference integrates the footprint's square, side f centred on the hit point,
+   over the texels it touches, each weighted by the area it covers (sq_reference: a 0.74-texel
+   footprint is the covered parts of up to four texels, as bench/frame/frame.c's pixel reference
+   integrates its parallelogram), for squares touching fewer than REF_MAX_SAMPLES texels a side;
+   wider footprints shade the n x n texel box centred on the hit point, n = round(f), and beyond
+   ref_max texels on a side (REF_MAX_SAMPLES, SPHERE_REF_MAX) an evenly spaced ref_max x ref_max
+   subset of the box (stride n / ref_max texels; shade_reference, bench/pic_scenes.h). Before,
+   every footprint took the round(f)^2 box (a 0.74-texel footprint was one whole texel): the
+   numbers of docs/horizon.md "Specular in the pictures" give both. Texels whose
    base lobe at the half vector is below exp(-LOBE_CUTOFF) of its peak are not marched (their
    term would be below 1e-13 of the peak whatever their visibility).
 
@@ -411,18 +420,159 @@ static double shade_naive(const pic_maps *m, const pic_sample *p)
     return (double)pf_leadr_specular(to_pf(p->wo), to_pf(p->wi), st, (pf_real)F0);
 }
 
-/* The exact slope statistics of the reference's box (summed-area table), base lobe added. */
+/* 1 when the reference integrates the pixel's footprint square, [t - fp/2, t + fp/2] on each
+   axis (texel i spans [i, i + 1)), over the texels it touches by covered area (sq_reference):
+   squares touching fewer than REF_MAX_SAMPLES texels per side, in both scenes; 0 for wider
+   footprints, whose reference is shade_reference's round(fp)^2 box (subsampled beyond ref_max). */
+static int sq_covered(const pic_sample *p)
+{
+    return (int)floor(p->tx + 0.5 * p->fp) - (int)floor(p->tx - 0.5 * p->fp) < REF_MAX_SAMPLES &&
+           (int)floor(p->ty + 0.5 * p->fp) - (int)floor(p->ty - 0.5 * p->fp) < REF_MAX_SAMPLES;
+}
+
+/* Overlap of texel i, [i, i + 1), with [a, b]. */
+static double cover_1d(int i, double a, double b)
+{
+    double lo = a > (double)i ? a : (double)i, hi = b < (double)(i + 1) ? b : (double)(i + 1);
+    return hi > lo ? hi - lo : 0.0;
+}
+
+/* The brute force of shade_reference over the footprint square (sq_covered) instead of the
+   round(fp)^2 box: every texel the square touches weighted by the area it covers (a 0.74-texel
+   footprint is up to four texels' parts, not one whole texel; a 2.6-texel one 2.6^2 texels, not
+   3^2), the value sum_t c_t V_o V_i spec_t a_t / sum_t c_t a_t, as bench/frame/frame.c's pixel
+   reference (shade_reference_cover) integrates its parallelogram, here for the isotropic square
+   that a trilinear lookup at lod log2(fp) stands for. The in-box variant marches the texels
+   occluded in the full march again with only the integer box of the touched texels as occluder
+   (pfm_visible_box; its side the larger of the two extents). Every texel is shaded (no
+   subsampling: r.noise 0); the NDF terms weighted by c_t. Marching order and lobe cutoff as in
+   shade_reference. */
+static ref_result sq_reference(const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p)
+{
+    double h = 0.5 * p->fp, X0 = p->tx - h, X1 = p->tx + h, Y0 = p->ty - h, Y1 = p->ty + h;
+    int x0 = (int)floor(X0), x1 = (int)floor(X1), y0 = (int)floor(Y0), y1 = (int)floor(Y1);
+    int nb = (x1 - x0 > y1 - y0 ? x1 - x0 : y1 - y0) + 1, bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h), xu, yu;
+    double num = 0.0, area = 0.0, num_box = 0.0, t0 = pfb_now_s(), ndf = 0.0, cw = 0.0, mom[5] = {0, 0, 0, 0, 0};
+    double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
+    int lit = p->wi[2] > 0.0 && hz > 0.0;
+    int light_first = vis_light != NULL ||
+                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
+                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
+    ref_result r;
+    memset(&r, 0, sizeof r);
+    if (lit) {
+        shx = -(p->wo[0] + p->wi[0]) / hz;
+        shy = -(p->wo[1] + p->wi[1]) / hz;
+    }
+    for (yu = y0; yu <= y1; ++yu) {
+        double cy = cover_1d(yu, Y0, Y1);
+        int y = wrap_index(yu, s->h);
+        if (!(cy > 0.0)) continue;
+        for (xu = x0; xu <= x1; ++xu) {
+            double c = cy * cover_1d(xu, X0, X1), sx, sy, at, qq, term;
+            int x = wrap_index(xu, s->w), vo, vi;
+            if (!(c > 0.0)) continue;
+            pfm_slope(s, x, y, &sx, &sy);
+            at = p->wo[2] - sx * p->wo[0] - sy * p->wo[1];
+            area += c * at;
+            cw += c;
+            mom[0] += c * sx;
+            mom[1] += c * sy;
+            mom[2] += c * sx * sx;
+            mom[3] += c * sy * sy;
+            mom[4] += c * sx * sy;
+            qq = ((sx - shx) * (sx - shx) + (sy - shy) * (sy - shy)) / (2.0 * BASE_SIGMA * BASE_SIGMA);
+            if (lit) ndf += c * exp(-qq);
+            if (!lit || !(at > 0.0) || qq > LOBE_CUTOFF) continue;
+            term = c * at * pfm_reference_shade(s, NULL, NULL, x, y, 1, p->wo, p->wi, BASE_SIGMA, F0).spec;
+            /* the full march (the second direction only when the first sees), then the box's
+               for the directions the full march found hidden */
+            if (light_first) {
+                vi = vis_light ? vis_light[(size_t)y * s->w + x] : pfm_visible(s, x, y, p->wi);
+                vo = vi ? pfm_visible(s, x, y, p->wo) : -1;
+                if (vi && vo) {
+                    num += term;
+                    num_box += term;
+                    continue;
+                }
+                if (!vi && !pfm_visible_box(s, x, y, p->wi, bx0, by0, nb)) continue;
+                if (vo != 1 && !pfm_visible_box(s, x, y, p->wo, bx0, by0, nb)) continue;
+            } else {
+                vo = pfm_visible(s, x, y, p->wo);
+                vi = vo ? pfm_visible(s, x, y, p->wi) : -1;
+                if (vo && vi) {
+                    num += term;
+                    num_box += term;
+                    continue;
+                }
+                if (!vo && !pfm_visible_box(s, x, y, p->wo, bx0, by0, nb)) continue;
+                if (vi != 1 && !pfm_visible_box(s, x, y, p->wi, bx0, by0, nb)) continue;
+            }
+            num_box += term;
+        }
+    }
+    r.full = area > 0.0 ? num / area : 0.0;
+    r.inbox = area > 0.0 ? num_box / area : 0.0;
+    r.t_full = pfb_now_s() - t0;
+    if (lit && cw > 0.0) { /* P22 at s_h: the texels' lobes, and the Gaussian of their moments */
+        double var = BASE_SIGMA * BASE_SIGMA, mx = mom[0] / cw, my = mom[1] / cw;
+        double cxx = mom[2] / cw - mx * mx + var, cyy = mom[3] / cw - my * my + var;
+        double cxy = mom[4] / cw - mx * my, det = cxx * cyy - cxy * cxy;
+        double dx = shx - mx, dy = shy - my;
+        r.ndf_texels = ndf / cw / (2.0 * pic_pi * var);
+        r.ndf_gauss = exp(-0.5 * (cyy * dx * dx - 2.0 * cxy * dx * dy + cxx * dy * dy) / det) /
+                      (2.0 * pic_pi * sqrt(det));
+    }
+    return r;
+}
+
+/* The picture's reference of pixel p: sq_reference for footprints sq_covered takes, else
+   shade_reference's (subsampled) box. */
+static ref_result pic_reference(const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p, int ref_max,
+                                ref_texel *scratch)
+{
+    return sq_covered(p) ? sq_reference(s, vis_light, p) : shade_reference(s, vis_light, p, ref_max, 0, scratch);
+}
+
+/* sat_periodic at a fractional corner: the texels are constant, so the integral over
+   [0, x) x [0, y) is bilinear between the integer corners */
+static void sat_frac(const pic_maps *m, double x, double y, double out[5])
+{
+    long ix = (long)floor(x), iy = (long)floor(y);
+    double fx = x - (double)ix, fy = y - (double)iy, a[5], b[5], c[5], d[5];
+    int k;
+    sat_periodic(m, ix, iy, a);
+    sat_periodic(m, ix + 1, iy, b);
+    sat_periodic(m, ix, iy + 1, c);
+    sat_periodic(m, ix + 1, iy + 1, d);
+    for (k = 0; k < 5; ++k)
+        out[k] = (1.0 - fy) * ((1.0 - fx) * a[k] + fx * b[k]) + fy * ((1.0 - fx) * c[k] + fx * d[k]);
+}
+
+/* The exact slope statistics of the reference's footprint (summed-area table), base lobe added:
+   the covered square weighted by area (sq_covered), else the round(fp)^2 box. */
 static pf_slope_stats box_stats(const pic_maps *m, const pic_sample *p)
 {
-    int n = footprint_side(p->fp), k;
-    long x0 = footprint_start(p->tx, n), y0 = footprint_start(p->ty, n);
-    double a[5], b[5], c[5], d[5], inv = 1.0 / ((double)n * (double)n);
+    int k;
+    double a[5], b[5], c[5], d[5], inv;
     pf_real mo[5];
     pf_slope_stats st;
-    sat_periodic(m, x0 + n, y0 + n, a);
-    sat_periodic(m, x0, y0 + n, b);
-    sat_periodic(m, x0 + n, y0, c);
-    sat_periodic(m, x0, y0, d);
+    if (sq_covered(p)) {
+        double h = 0.5 * p->fp;
+        sat_frac(m, p->tx + h, p->ty + h, a);
+        sat_frac(m, p->tx - h, p->ty + h, b);
+        sat_frac(m, p->tx + h, p->ty - h, c);
+        sat_frac(m, p->tx - h, p->ty - h, d);
+        inv = 1.0 / (p->fp * p->fp);
+    } else {
+        int n = footprint_side(p->fp);
+        long x0 = footprint_start(p->tx, n), y0 = footprint_start(p->ty, n);
+        sat_periodic(m, x0 + n, y0 + n, a);
+        sat_periodic(m, x0, y0 + n, b);
+        sat_periodic(m, x0 + n, y0, c);
+        sat_periodic(m, x0, y0, d);
+        inv = 1.0 / ((double)n * (double)n);
+    }
     for (k = 0; k < 5; ++k) mo[k] = (pf_real)((a[k] - b[k] - c[k] + d[k]) * inv);
     st = pf_slope_moments_stats(pf_slope_moments_make(mo[0], mo[1], mo[2], mo[3], mo[4]),
                                 (pf_real)(BASE_SIGMA * BASE_SIGMA));
@@ -548,6 +698,134 @@ static double shade_leadr_box_horizon(const pic_maps *m, const pic_sample *p)
                                                  (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
 }
 
+/* ---------------------------------------------------------------- box taps
+   A footprint-following fetch a shader can do, in place of the trilinear one: at level l =
+   max(0, ceil(log2 side) - 1) the footprint's square is at most 2 texels of that level a side,
+   so it touches at most 3 of them per axis, and its covered-area weights over them are 2 x 2
+   bilinear taps at level l: per axis, the weights w0, w1, w2 of texels j0, j0 + 1, j0 + 2 are
+   tap A between j0 and j0 + 1 (weight w0 + w1/2, fraction (w1/2)/(w0 + w1/2)) and tap B between
+   j0 + 1 and j0 + 2 (weight w2 + w1/2, fraction w2/(w2 + w1/2)): 4 textureLod(..., l) fetches
+   instead of one trilinear lookup (two levels' bilinear mixes, a footprint up to twice as wide).
+   At level 0 (sides up to 2 texels) the taps are exactly the reference's square (sq_reference);
+   above, the square is rounded to the level's texels within its 3 x 3. The moments, the HDF
+   moments and the lobes' amplitudes are linear in the texels, so the weighted taps are that
+   mean. Each tap is a pic_sample at the tap's coordinate with a footprint of 2^l texels (lod l),
+   read through the same helpers as the trilinear rows (hdf_sample, vmf_sum_sample). */
+
+/* the 4 taps of pixel p, their weights (sum 1), and the level */
+static int box_taps(const pic_sample *p, pic_sample tap[4], double wt[4])
+{
+    double c[2][2], w[2][2], sc;
+    int a, t, l = 0;
+    while (l < 30 && p->fp > (double)(2 << l)) ++l; /* p->fp / 2^l in (1, 2], or <= 1 at level 0 */
+    sc = (double)(1 << l);
+    for (a = 0; a < 2; ++a) {
+        double f = p->fp / sc, x = (a ? p->ty : p->tx) / sc, lo = x - 0.5 * f, hi = x + 0.5 * f;
+        int j0 = (int)floor(lo);
+        double w0 = cover_1d(j0, lo, hi) / f, w1 = cover_1d(j0 + 1, lo, hi) / f, w2 = cover_1d(j0 + 2, lo, hi) / f;
+        double wa = w0 + 0.5 * w1, wb = w2 + 0.5 * w1;
+        w[a][0] = wa;
+        w[a][1] = wb;
+        c[a][0] = sc * ((double)j0 + 0.5 + (wa > 0.0 ? 0.5 * w1 / wa : 0.0));
+        c[a][1] = sc * ((double)j0 + 1.5 + (wb > 0.0 ? w2 / wb : 0.0));
+    }
+    for (t = 0; t < 4; ++t) {
+        tap[t] = *p;
+        tap[t].tx = c[0][t & 1];
+        tap[t].ty = c[1][t >> 1];
+        tap[t].fp = sc;
+        wt[t] = w[0][t & 1] * w[1][t >> 1];
+    }
+    return l;
+}
+
+/* LEADR's slope statistics from the box taps */
+static pf_slope_stats tap_stats(const pic_maps *m, const pic_sample *p)
+{
+    pic_sample tap[4];
+    double wt[4], mo[5] = {0, 0, 0, 0, 0};
+    int t;
+    int l = box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_slope_moments s = pf_slope_moments_sample(m->slope_pyr, m->surf.w, m->surf.h, (pf_real)l,
+                                                     (pf_real)(tap[t].tx / m->surf.w), (pf_real)(tap[t].ty / m->surf.h),
+                                                     PF_BORDER_WRAP);
+        mo[0] += wt[t] * (double)s.ex;
+        mo[1] += wt[t] * (double)s.ey;
+        mo[2] += wt[t] * (double)s.exx;
+        mo[3] += wt[t] * (double)s.eyy;
+        mo[4] += wt[t] * (double)s.exy;
+    }
+    return pf_slope_moments_stats(pf_slope_moments_make((pf_real)mo[0], (pf_real)mo[1], (pf_real)mo[2], (pf_real)mo[3],
+                                                        (pf_real)mo[4]),
+                                  (pf_real)(BASE_SIGMA * BASE_SIGMA));
+}
+
+/* the HDF moments toward w from the box taps */
+static pf_hdf_moments tap_hdf(const pic_maps *m, const pic_sample *p, const double w[3])
+{
+    pic_sample tap[4];
+    double wt[4], a[3] = {0, 0, 0};
+    int t;
+    box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_hdf_moments h = hdf_sample(m, &tap[t], w);
+        a[0] += wt[t] * (double)h.m1;
+        a[1] += wt[t] * (double)h.m2;
+        a[2] += wt[t] * (double)h.ms;
+    }
+    return pf_hdf_moments_make((pf_real)a[0], (pf_real)a[1], (pf_real)a[2]);
+}
+
+/* the lobes of the box taps: every field of a pf_vmf_sum is a
+   sum over lobes linear in their amplitudes, so the taps' sums weighted by the tap weights are
+   the sum of the taps' lobes with their amplitudes so weighted */
+static pf_vmf_sum tap_vmf_sum(const pic_maps *m, const pic_sample *p, int which)
+{
+    pic_sample tap[4];
+    double wt[4];
+    pf_vmf_sum s = pf_vmf_sum_zero();
+    int t;
+    box_taps(p, tap, wt);
+    for (t = 0; t < 4; ++t) {
+        pf_vmf_sum q = vmf_sum_sample(m, &tap[t], which);
+        pf_real k = (pf_real)wt[t];
+        s.amp += k * q.amp;
+        s.ndf += k * q.ndf;
+        s.ex += k * q.ex;
+        s.ey += k * q.ey;
+        s.exx += k * q.exx;
+        s.eyy += k * q.eyy;
+        s.exy += k * q.exy;
+        s.excess_o += k * q.excess_o;
+        s.excess_i += k * q.excess_i;
+    }
+    return s;
+}
+
+static double shade_leadr_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_leadr_specular(to_pf(p->wo), to_pf(p->wi), tap_stats(m, p), (pf_real)F0);
+}
+static double shade_leadr_horizon_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_horizon_leadr_specular_lod(to_pf(p->wo), to_pf(p->wi), tap_stats(m, p),
+                                                 (pf_real)(BASE_SIGMA * BASE_SIGMA), tap_hdf(m, p, p->wo),
+                                                 tap_hdf(m, p, p->wi), (pf_real)F0, pic_lod(p->fp),
+                                                 (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
+}
+static double shade_vmf_m8_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_vmf_sum_specular(tap_vmf_sum(m, p, 1), to_pf(p->wo), to_pf(p->wi), (pf_real)F0);
+}
+static double shade_vmf_m8_horizon_tap(const pic_maps *m, const pic_sample *p)
+{
+    return (double)pf_horizon_vmf_specular_lod(tap_vmf_sum(m, p, 1), to_pf(p->wo), to_pf(p->wi), tap_stats(m, p),
+                                               (pf_real)(BASE_SIGMA * BASE_SIGMA), tap_hdf(m, p, p->wo),
+                                               tap_hdf(m, p, p->wi), (pf_real)F0, pic_lod(p->fp),
+                                               (pf_real)HOR_LOD_FULL, (pf_real)HOR_LOD_SMITH);
+}
+
 /* ---------------------------------------------------------------- the method registry */
 /* Every method of the pictures is one row here and one shading function above; everything
    else (the value and timing passes, the error statistics, the tables, the self-check, the
@@ -591,6 +869,19 @@ static const pic_method pic_methods[] = {
     {"vmf8_hor", "vMF m = 8 + horizon (trilinear)", "vMF m = 8 + horizon", shade_vmf_m8_horizon,
      "vMF m = 8's, LEADR's moments, and 2 x 2 azimuths of the HDF moments (2 x 8 texels x 6 values)", 0, 3,
      "vMF m = 8 + horizon (pf_horizon.h)", "vMF m = 8 + horizon", VMF_CHECK_BOUND + HOR_CHECK_BOUND},
+    {"leadr_tap", "LEADR (box taps)", "LEADR, taps", shade_leadr_tap,
+     "5 slope moments, 4 bilinear taps at one level (16 texels x 5 values)", 0, 0, NULL,
+     NULL, 0.0},
+    {"leadr_hor_tap", "LEADR + horizon (box taps)", "LEADR + horizon, taps", shade_leadr_horizon_tap,
+     "LEADR + horizon's values, 4 bilinear taps at one level (16 texels)", 0, 0, NULL,
+     NULL, HOR_CHECK_BOUND},
+    {"vmf8_tap", "vMF m = 8 (box taps)", "vMF m = 8, taps", shade_vmf_m8_tap,
+     "8 lobes of the 16 texels of 4 bilinear taps at one level (16 x 8 x 4 values)", 0, 0, NULL, NULL,
+     VMF_CHECK_BOUND},
+    {"vmf8_hor_tap", "vMF m = 8 + horizon (box taps)", "vMF m = 8 + horizon, taps",
+     shade_vmf_m8_horizon_tap,
+     "vMF m = 8 + horizon's values, 4 bilinear taps at one level (16 texels)", 0, 0,
+     NULL, NULL, VMF_CHECK_BOUND + HOR_CHECK_BOUND},
     {"vmf4s", "vMF m = 4, scaling function", "vMF m = 4, scaled", shade_vmf_m4_scaled,
      "vMF m = 4's, and T bilinear (4 values) and S (a 6 x 6 x 5 table, 8 values)", 0, 0, NULL, NULL, VMF_CHECK_BOUND},
     {"vmf8s", "vMF m = 8, scaling function", "vMF m = 8, scaled", shade_vmf_m8_scaled,
@@ -757,7 +1048,7 @@ static void bf_row(const pic_maps *m, const pic_scene *sc, pic_result *r, int j)
         ref_result q;
         r->val[M_REF][i] = r->inbox[i] = r->noise[i] = r->ndf_t[i] = r->ndf_g[i] = 0.0;
         if (!sc->px[i].hit) continue;
-        q = shade_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, 0, scratch);
+        q = pic_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
         r->val[M_REF][i] = q.full;
         r->inbox[i] = q.inbox;
         r->noise[i] = q.noise;
@@ -841,7 +1132,7 @@ static void time_scene(const pic_maps *m, const pic_scene *sc, pic_result *r)
     if (stride < 1) stride = 1;
     for (i = 0, k = 0; i < n; ++i)
         if (sc->px[i].hit && k++ % stride_ref == 0) {
-            ref_result q = shade_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, 0, scratch);
+            ref_result q = pic_reference(&m->surf, sc->vis_light, &sc->px[i], sc->ref_max, scratch);
             t_full += q.t_full;
             t_inbox += q.t_inbox;
             ++nt;
@@ -881,11 +1172,16 @@ static void render_scene(const pic_maps *m, const pic_scene *sc, pic_result *r, 
     pfb_parallel_for(sc->h, methods_item, &ms, label);
     for (i = 0; i < n; ++i)
         if (sc->px[i].hit) {
-            int side = footprint_side(sc->px[i].fp);
+            const pic_sample *p = &sc->px[i];
+            int side = footprint_side(p->fp);
             int ns = side < sc->ref_max ? side : sc->ref_max;
-            fps[r->n_surface] = sc->px[i].fp;
+            fps[r->n_surface] = p->fp;
             tmp[r->n_surface++] = r->val[M_REF][i];
-            samples += (double)ns * ns;
+            if (sq_covered(p)) /* the texels the square touches (sq_reference) */
+                samples += (double)((int)floor(p->tx + 0.5 * p->fp) - (int)floor(p->tx - 0.5 * p->fp) + 1) *
+                           (double)((int)floor(p->ty + 0.5 * p->fp) - (int)floor(p->ty - 0.5 * p->fp) + 1);
+            else
+                samples += (double)ns * ns;
             if (side > sc->ref_max) r->n_subsampled++;
         }
     r->samples_per_pixel = r->n_surface ? samples / r->n_surface : 0.0;
@@ -1147,7 +1443,7 @@ static double small_err(const pic_result *r, int k, int lit_only)
 /* The horizon methods against their unshadowed methods under 16 texels, and which method to
    draw: the non-oracle method with the smallest error there over the pixels lit in either
    reference (the set where a shadow cast from outside the footprint counts). */
-static void describe_horizon(FILE *md, const pic_scene *sc, const pic_result *r)
+static void describe_horizon(FILE *md, const pic_scene *sc, const pic_result *r, const pic_maps *m)
 {
     const int pairs[3][2] = {{method_index("leadr"), method_index("leadr_hor")},
                              {method_index("vmf8"), method_index("vmf8_hor")},
@@ -1166,7 +1462,7 @@ static void describe_horizon(FILE *md, const pic_scene *sc, const pic_result *r)
                 "lit in either reference, without and with the horizon:",
             sc->name, HOR_N, HOR_STEPS, pow(2.0, HOR_LOD_FULL), pow(2.0, HOR_LOD_SMITH), lit_s);
     for (k = 0; k < 3; ++k)
-        fprintf(md, "%s %s %.0f%% -> %.0f%%", k ? ";" : "", pic_methods[pairs[k][0]].column,
+        fprintf(md, "%s %s %.1f%% -> %.1f%%", k ? ";" : "", pic_methods[pairs[k][0]].column,
                 100.0 * small_err(r, pairs[k][0], 0), 100.0 * small_err(r, pairs[k][1], 0));
     fprintf(md, ". Over the lit pixels alone (the reference above the floor: a pixel the full reference "
                 "leaves in shadow does not count, however bright a method draws it):");
@@ -1178,6 +1474,40 @@ static void describe_horizon(FILE *md, const pic_scene *sc, const pic_result *r)
                 "gap to the trilinear rows is the mip filter's footprint, which no visibility term "
                 "repairs.\n\n",
             pic_methods[best].label, 100.0 * small_err(r, best, 0), 1e9 * r->seconds[best] / r->n_surface);
+    { /* the bias of the 4-16-texel rows: pixels whose footprint faces away from the view on average */
+        const int lh = method_index("leadr_hor"), ll = method_index("leadr"), vh = method_index("vmf8_hor");
+        int b, i, n_away[2] = {0, 0}, n_all[2] = {0, 0};
+        double s_ref[2] = {0, 0}, s_away[2][3] = {{0, 0, 0}, {0, 0, 0}}, s_face[2][3] = {{0, 0, 0}, {0, 0, 0}};
+        for (i = 0; i < sc->w * sc->h; ++i) {
+            const pic_sample *p = &sc->px[i];
+            pf_slope_stats st;
+            int away;
+            if (!p->hit || p->fp < 4.0 || p->fp >= 16.0) continue;
+            b = p->fp < 8.0 ? 0 : 1;
+            st = box_stats(m, p);
+            away = !(p->wo[2] - (double)st.mean_x * p->wo[0] - (double)st.mean_y * p->wo[1] > 0.0);
+            n_all[b]++;
+            n_away[b] += away;
+            s_ref[b] += r->val[M_REF][i];
+            s_away[b][0] += away ? r->val[lh][i] : 0.0, s_face[b][0] += away ? 0.0 : r->val[lh][i];
+            s_away[b][1] += away ? r->val[ll][i] : 0.0, s_face[b][1] += away ? 0.0 : r->val[ll][i];
+            s_away[b][2] += away ? r->val[vh][i] : 0.0, s_face[b][2] += away ? 0.0 : r->val[vh][i];
+        }
+        if (n_all[0] > 0 && n_all[1] > 0 && s_ref[0] > 0.0 && s_ref[1] > 0.0)
+            fprintf(md, "**Bias at 4-16 texels (%s).** Of the surface pixels with footprint sides of 4-8 and 8-16 "
+                        "texels, %d of %d and %d of %d have a footprint whose mean plane faces away from the view "
+                        "(its texels' projected areas sum to 0 or less, from the exact moments): the reference is 0 "
+                        "there by its normalization (sum V a spec / sum a, LEADR eqs. 1-3), while a method whose "
+                        "trilinear moments have another mean slope still shades them. Their sums, over the row's "
+                        "reference sum (4-8, 8-16): LEADR + horizon %.2f, %.2f; LEADR %.2f, %.2f; vMF m = 8 + "
+                        "horizon %.2f, %.2f. The bias over the other pixels: LEADR + horizon %.2f, %.2f; LEADR "
+                        "%.2f, %.2f; vMF m = 8 + horizon %.2f, %.2f (the sums of the two parts are the table's bias "
+                        "column).\n\n",
+                    sc->name, n_away[0], n_all[0], n_away[1], n_all[1], s_away[0][0] / s_ref[0], s_away[1][0] / s_ref[1],
+                    s_away[0][1] / s_ref[0], s_away[1][1] / s_ref[1], s_away[0][2] / s_ref[0], s_away[1][2] / s_ref[1],
+                    s_face[0][0] / s_ref[0], s_face[1][0] / s_ref[1], s_face[0][1] / s_ref[0], s_face[1][1] / s_ref[1],
+                    s_face[0][2] / s_ref[0], s_face[1][2] / s_ref[1]);
+    }
 }
 
 static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, const char *png,
@@ -1223,15 +1553,16 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
     fprintf(md,
             "Image %dx%d pixels: %d on the surface, %d lit (reference >= %.0f%% of its 99th "
             "percentile). Footprint side in texels: min %.2f, median %.1f, 95th percentile %.0f, "
-            "max %.0f; the reference shades the round(side)^2 texel box (%d pixels with a side "
-            "over %d subsampled to %dx%d evenly spaced texels; %.0f texels shaded per pixel on "
-            "average). Base lobe deviation %.2f, no Fresnel. Top: reference, LEADR, the 8-lobe "
+            "max %.0f; the reference shades the footprint's square (side the footprint, centred on the hit) "
+            "with every texel it touches weighted by the area it covers, up to %d texels a side, and beyond "
+            "that the round(side)^2 texel box (%d pixels subsampled to %dx%d evenly spaced texels; %.0f texels "
+            "shaded per pixel on average). Base lobe deviation %.2f, no Fresnel. Top: reference, LEADR, the 8-lobe "
             "vMF mixture of `pf_vmf.h`, the same with the horizon visibility of `pf_horizon.h`, naive mip-mapped normal (same fixed exposure %.2f, display 1 - exp(-exposure L), gamma "
             "2.2; the colour bar gives the radiance). Bottom: the footprint side in texels (log scale), "
             "the error of LEADR, vMF m = 8, vMF m = 8 + horizon and naive (%s). Every panel carries its title and colour "
             "bar.\n\n",
             sc->w, sc->h, r->n_surface, r->n_lit, 100.0 * LIT_FRACTION, r->fp_min, r->fp_med,
-            r->fp_p95, r->fp_max, r->n_subsampled, sc->ref_max, sc->ref_max, sc->ref_max,
+            r->fp_p95, r->fp_max, REF_MAX_SAMPLES, r->n_subsampled, sc->ref_max, sc->ref_max,
             r->samples_per_pixel, BASE_SIGMA, sc->exposure, err_scale_text);
     fprintf(
         md,
@@ -1286,7 +1617,7 @@ static void describe_scene(FILE *md, const pic_scene *sc, const pic_result *r, c
         fprintf(md, "\n");
     }
     fprintf(md, "\n");
-    describe_horizon(md, sc, r);
+    describe_horizon(md, sc, r, m);
     /* what the error is made of */
     for (k = 0; k < PIC_BINS; ++k) {
         if (k < SMALL_BINS) lit_s += r->bin_lit_u[k];

@@ -113,6 +113,17 @@
    wide mixture's conditional Gaussians at large footprints). With B in the conditioning the
    method keeps its float32 error with the pyramids stored in 16 bits (conditioned on S alone,
    one texel's rounded Var(S) set the regression: see pf_horizon_specular_visibility).
+   Two corrections of the linear conditioning, measured on Gaussian fields against the
+   reflecting texels' own stored horizons (tests/test_horizon.c, grazing brute force): the
+   stored tan Theta = max(S, march) makes E[T | S] convex in S, so the regression line lies
+   above it near the reflecting slopes (on a field of correlation 4 texels by 0.02-0.04 rad,
+   about beta^2 sigma_S): the conditional mean is lowered by beta Cov(S, T)/sqrt(Var(S) + b)
+   (= beta^2 sqrt(Var(S) + b)); and the reflecting texels' horizons spread 0.53-0.75 times the
+   regression's residual deviation (both fields, views 75-85 degrees): the deviation is taken
+   times 0.7. Together: grazing V_h error 0.416/0.436/0.781 -> 0.261/0.402/0.548 at 75/80/85
+   degrees on correlation 4, 0.047/0.275/0.257 -> 0.034/0.205/0.199 on correlation 12; both
+   cost no shader op over the plain conditioning (the rsqrt's operand is shared, the 0.7 is in
+   the logistic's constants, the signs are folded).
 
    CONVENTIONS
      Azimuths: n equally spaced, phi_i = 2 pi i / n, i = 0 .. n - 1, measured from the +x axis
@@ -193,11 +204,13 @@
      pf_horizon_leadr_specular 0.148 (per kind 0.084-0.211), pf_horizon_vmf_specular with 16
      lobes 0.121 (0.063-0.157), against 0.517 and 0.499 with Smith's G. With the pyramids in
      half or unorm16 (pf_encode.h), at most 1.024x the float32 error (every kind and footprint,
-     both references). Against the long-double formula: the per-direction visibility 7.8e-4 abs,
-     V_h 3.5e-4 abs, radiance 3.5e-4 of the unshadowed lobe (float and double: the arcsine and
-     CDF approximations). GPU: pf_horizon_leadr_specular 174 SPIR-V ops (pf_leadr_specular 116:
-     1.50x), pf_horizon_vmf_specular 149 (pf_vmf_sum_specular 101, plus 150 per pf_vmf_sum_add
-     lobe in both).
+     both references). (Those bench figures predate SPECULAR's convexity term and 0.7
+     deviation; with them, gaussian_fine: 0.214 and 0.153, docs/horizon.md.) Against the
+     long-double formula: the per-direction visibility 1.1e-3 abs, V_h 4.1e-4 abs, radiance
+     4.1e-4 of the unshadowed lobe (float and double: the arcsine and CDF approximations).
+     GPU: pf_horizon_leadr_specular 172 SPIR-V ops (pf_leadr_specular 116: 1.48x),
+     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 99, plus 150 per pf_vmf_sum_add lobe in
+     both).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
@@ -662,8 +675,8 @@ PF_DEF pf_real pf_horizon_diffuse_lod(pf_gg_grid g, pf_vec3 wi, pf_hdf_moments m
    Written for the shader: no branch; the elevation asin(w.z) by Abramowitz & Stegun 4.4.45
    (|error| <= 5e-5 rad), the Gaussian CDF by the logistic of Bowling, Khasawneh, Kaewkuekool
    & Cho 2009, Phi(z) ~ 1/(1 + exp(-z (1.5976 + 0.070566 z^2))) (|error| <= 1.4e-4); the
-   visibility is within 7.8e-4 of the long-double formula (float and double: the arcsine's
-   error over the deviation, at deviations from 0.02 rad), far below the model's error against
+   visibility is within 1.1e-3 of the long-double formula (float and double: the arcsine's
+   error over 0.7 times the deviation, at deviations from 0.02 rad), far below the model's error against
    the brute force. A zero deviation is the step (1/2 at e = E[T | S + B] exactly). */
 /* The conditional visibility toward unit w (w.z > 0: the caller's select), at the slope
    offset (X, Y) = E[s] - s_h (the sign pfi_beckmann_d_up's X, Y have: the shader shares them),
@@ -672,31 +685,36 @@ PF_DEF pf_real pfi_horizon_spec_cond_vis(pf_vec3 w, pf_hdf_moments m, pf_slope_s
                                          pf_real Y)
 {
     pf_real ir = pfi_beckmann_rsqrt(pf_max(w.x * w.x + w.y * w.y, PF_REAL_MIN)), dx = w.x * ir, dy = w.y * ir;
-    pf_real c = pf_max(PF_R(1.0) - w.z, PF_R(0.0));
-    /* A&S 4.4.45: asin(x) = pi/2 - sqrt(1 - x) (a0 + a1 x + a2 x^2 + a3 x^3), 0 <= x <= 1 */
-    pf_real e = PF_R(1.5707963267948966) - PF_SQRT(c) * (PF_R(1.5707288) + w.z * (PF_R(-0.2121144) + w.z * (PF_R(0.0742610) +
-                                                                                       w.z * PF_R(-0.0187293))));
+    pf_real c = pf_max(PF_R(1.0) - w.z, PF_R(0.0)), nm1 = -m.m1;
+    /* A&S 4.4.45: asin(x) = pi/2 - sqrt(1 - x) (a0 + a1 x + a2 x^2 + a3 x^3), 0 <= x <= 1;
+       here e - E[T] = (pi/2 - E[T]) + sqrt(1 - x) (-a0 - a1 x - ...) (the signs folded into the
+       constants, and -E[T] shared with the variance and the covariance: fewer shader ops) */
+    pf_real em = (PF_R(1.5707963267948966) + nm1) +
+                 PF_SQRT(c) * (PF_R(-1.5707288) + w.z * (PF_R(0.2121144) + w.z * (PF_R(-0.0742610) + w.z * PF_R(0.0187293))));
     pf_real es = s.mean_x * dx + s.mean_y * dy;
     pf_real vs = dx * (s.var_x * dx + PF_R(2.0) * s.cov_xy * dy) + s.var_y * dy * dy; /* Var(S) + b */
-    pf_real var = m.m2 - m.m1 * m.m1;
+    pf_real var = m.m2 + nm1 * m.m1;
     /* Cauchy-Schwarz, |Cov(S, T)| <= sigma_S sigma_T, with the texels' own Var(S) */
     pf_real lim = PF_SQRT(pf_max(var, PF_R(0.0)) * pf_max(vs - b, PF_R(0.0)));
-    pf_real cov = pf_clamp(m.ms - es * m.m1, -lim, lim);
-    pf_real beta = cov / pf_max(vs, PF_REAL_MIN);
+    pf_real cov = pf_clamp(m.ms + es * nm1, -lim, lim);
+    pf_real vsm = pf_max(vs, PF_REAL_MIN);
+    pf_real beta = cov / vsm;
     pf_real vc = var - cov * beta;
-    /* (e - mean) / deviation; the variance floored at 1e-30 (GLSL's inversesqrt(0) is
-       undefined; max(1e-30, NaN) keeps the NaN in C), so a zero deviation is the step within
-       1e-15 rad. Phi = exp(t)/(1 + exp(t)), t = z (1.5976 + 0.070566 z^2), with z clamped to
-       [-24, 9] (a NaN, from NaN moments or slopes, to -24): at -24 exp(t) = exp(-1013)
-       underflows to 0 and Phi is 0 exactly; from z = 5 (float; 7.1 in double) on Phi rounds to 1
-       exactly, and at 9 exp(t) = exp(66) is finite. So no step makes an infinity (within 4 ulp
-       of 1/(1 + exp(-t))): that form took exp(1013) = inf to 1/inf = 0, which
+    /* (e - mean) / deviation, mean = E[T] - beta (s_h - E[S]) - beta Cov(S, T)/sqrt(Var(S) + b)
+       (the last term: the convexity correction, see SPECULAR above); the variance floored at
+       1e-30 (GLSL's inversesqrt(0) is undefined; max(1e-30, NaN) keeps the NaN in C), so a
+       zero deviation is the step within 1e-15 rad. Phi(z / 0.7) (the deviation times 0.7, see
+       SPECULAR above) by the logistic, Phi = exp(t)/(1 + exp(t)), t = z (1.5976/0.7 +
+       (0.070566/0.7^3) z^2), with z clamped to [-24, 7] (a NaN, from NaN moments or slopes, to
+       -24): at -24 exp(t) = exp(-2900) underflows to 0 and Phi is 0 exactly; from z = 3.5 (float)
+       on Phi rounds to 1, and at 7 exp(t) = exp(86.5) is finite in float. So no step makes an
+       infinity: the form 1/(1 + exp(-t)) took exp(+large) = inf to 1/inf = 0, which
        -ffinite-math-only does not keep (clang and gcc -ffast-math divide float vectors by a
        reciprocal estimate and one Newton step, r + r (1 - d r): inf * 0 = NaN for every
        occluded direction; here 0 times the estimate is 0). */
-    pf_real z = (e - m.m1 + beta * (X * dx + Y * dy)) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc)), ez;
-    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(9.0));
-    ez = PF_EXP(z * (PF_R(1.5976) + PF_R(0.070566) * z * z));
+    pf_real z = (em + beta * (X * dx + Y * dy + cov * pfi_beckmann_rsqrt(vsm))) * pfi_beckmann_rsqrt(pf_max(PF_R(1e-30), vc)), ez;
+    z = pf_clamp_nan_lo(z, PF_R(-24.0), PF_R(7.0));
+    ez = PF_EXP(z * (PF_R(2.2822857) + PF_R(0.20573178) * z * z));
     return ez / (PF_R(1.0) + ez);
 }
 
