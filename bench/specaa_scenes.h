@@ -235,6 +235,47 @@ static pf_slope_moments sc_fetch_aniso(double s, double t, double dst[2][2], dou
 
 static long long sc_njobs(void) { return (long long)SC_NSCENE * SC_NSIZE * SC_NALPHA * sc_F; }
 
+/* One pixel's stratified reference: sc_S x sc_S jittered rays through pixel (x, y) (the jitter a
+   hash of pixel p, ray, frame fr and seed), each shading its own texel with the base lobe
+   (variance bv). Sums the shade and its square over the hits; with a centre frame g, also the
+   rays' slope moments in that frame (o: the oracle's), their texel slopes (q) and the sub-pixel
+   offset moments (c: E[ox], E[oy], E[ox sx], E[ox sy], E[oy sx], E[oy sy]), all unnormalised. */
+typedef struct {
+    double sum, sum2, o[5], q[5], c[6];
+    int hits;
+} sc_rays;
+
+static sc_rays sc_pixel_rays(int scene, double R, double cx, double cy, double x, double y, long long p, int fr,
+                             unsigned long long seed, const sc_geo *g, double bv)
+{
+    sc_rays r;
+    int i, j;
+    memset(&r, 0, sizeof r);
+    for (j = 0; j < sc_S; ++j)
+        for (i = 0; i < sc_S; ++i) {
+            unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + seed);
+            double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
+            sc_geo gr;
+            z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
+            u1 = (double)(z >> 40) / 16777216.0;
+            u2 = (double)(z & 0xFFFFFF) / 16777216.0;
+            ox = (i + u1) / sc_S - 0.5;
+            oy = (j + u2) / sc_S - 0.5;
+            if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
+            sc_normal(scene, &gr, n, &sx, &sy);
+            f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
+            r.sum += f; r.sum2 += f * f; ++r.hits;
+            if (!g) continue;
+            nz = sc_dot(n, g->N);
+            if (nz < 1e-3) nz = 1e-3;
+            qx = -sc_dot(n, g->T) / nz; qy = -sc_dot(n, g->B) / nz;
+            r.o[0] += qx; r.o[1] += qy; r.o[2] += qx * qx; r.o[3] += qy * qy; r.o[4] += qx * qy;
+            r.q[0] += sx; r.q[1] += sy; r.q[2] += sx * sx; r.q[3] += sy * sy; r.q[4] += sx * sy;
+            r.c[0] += ox; r.c[1] += oy; r.c[2] += ox * sx; r.c[3] += ox * sy; r.c[4] += oy * sx; r.c[5] += oy * sy;
+        }
+    return r;
+}
+
 static void sc_run(void *ctx, long long job)
 {
     int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
@@ -252,7 +293,8 @@ static void sc_run(void *ctx, long long job)
             double c[6] = { 0, 0, 0, 0, 0, 0 }; /* sub-pixel offset moments: E[ox], E[oy], E[ox sx], E[ox sy], E[oy sx], E[oy sy] */
             double dN[2][3], dst[2][2], res[SM_COUNT];
             sc_geo g, gp, gm;
-            int hits = 0, i, j, d;
+            sc_rays rays;
+            int hits = 0, i, d;
             for (m = 0; m < SM_COUNT; ++m) img[m * (long long)W * W + p] = NAN;
             dev2[p] = NAN;
             full[p] = 0;
@@ -268,47 +310,14 @@ static void sc_run(void *ctx, long long job)
                 dst[d][1] = (A->t - Bm->t) / den;
             }
             /* the reference and the oracle's moments, in the centre frame */
-            for (j = 0; j < sc_S; ++j)
-                for (i = 0; i < sc_S; ++i) {
-                    unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x5ce);
-                    double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
-                    sc_geo gr;
-                    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
-                    u1 = (double)(z >> 40) / 16777216.0;
-                    u2 = (double)(z & 0xFFFFFF) / 16777216.0;
-                    ox = (i + u1) / sc_S - 0.5;
-                    oy = (j + u2) / sc_S - 0.5;
-                    if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
-                    sc_normal(scene, &gr, n, &sx, &sy);
-                    f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
-                    sum += f; sum2 += f * f; ++hits;
-                    nz = sc_dot(n, g.N);
-                    if (nz < 1e-3) nz = 1e-3;
-                    qx = -sc_dot(n, g.T) / nz; qy = -sc_dot(n, g.B) / nz;
-                    o[0] += qx; o[1] += qy; o[2] += qx * qx; o[3] += qy * qy; o[4] += qx * qy;
-                    q[0] += sx; q[1] += sy; q[2] += sx * sx; q[3] += sy * sy; q[4] += sx * sy;
-                    c[0] += ox; c[1] += oy; c[2] += ox * sx; c[3] += ox * sy; c[4] += oy * sx; c[5] += oy * sy;
-                }
+            rays = sc_pixel_rays(scene, R, cx, cy, x, y, p, fr, 0x5ceULL, &g, bv);
+            sum = rays.sum; sum2 = rays.sum2; hits = rays.hits;
+            for (i = 0; i < 5; ++i) { o[i] = rays.o[i]; q[i] = rays.q[i]; }
+            for (i = 0; i < 6; ++i) c[i] = rays.c[i];
             {   /* a second, independent reference (other jitter): its difference to the first measures the
-                       stratified reference's true sampling deviation */
-                double sb = 0;
-                int hb = 0;
-                for (j = 0; j < sc_S; ++j)
-                    for (i = 0; i < sc_S; ++i) {
-                        unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x9e3779b97f4a7c15ULL);
-                        double u1, u2, n[3], sx, sy, ox, oy;
-                        sc_geo gr;
-                        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
-                        u1 = (double)(z >> 40) / 16777216.0;
-                        u2 = (double)(z & 0xFFFFFF) / 16777216.0;
-                        ox = (i + u1) / sc_S - 0.5;
-                        oy = (j + u2) / sc_S - 0.5;
-                        if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
-                        sc_normal(scene, &gr, n, &sx, &sy);
-                        sb += sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
-                        ++hb;
-                    }
-                res[SM_REF2] = hb ? sb / hb : 0.0;
+                   stratified reference's true sampling deviation */
+                sc_rays r2 = sc_pixel_rays(scene, R, cx, cy, x, y, p, fr, 0x9e3779b97f4a7c15ULL, NULL, bv);
+                res[SM_REF2] = r2.hits ? r2.sum / r2.hits : 0.0;
             }
             full[p] = hits == sc_S * sc_S;
             res[SM_REF] = sum / hits;
@@ -555,8 +564,8 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
 /* sc_run for a caller that needs only the reference and the oracle (bench/frame/frame_curved.h,
    which shades its own forms): job as sc_run; fills img[SM_REF] and img[SM_ORACLE] (NaN off the
    surface; every other method's plane left as it was), dev2 and full. The same rays, seeds and
-   oracle moments as sc_run, so the two agree to the bit on those planes; without the second
-   reference and the methods (their texture reads) it costs about half of sc_run. */
+   oracle moments as sc_run (sc_pixel_rays), so the two agree to the bit on those planes; without
+   the second reference and the methods (their texture reads) it costs about half of sc_run. */
 static void sc_run_ref(void *ctx, long long job)
 {
     int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
@@ -570,36 +579,19 @@ static void sc_run_ref(void *ctx, long long job)
     for (py = 0; py < W; ++py)
         for (px = 0; px < W; ++px) {
             long long p = (long long)py * W + px, WW = (long long)W * W;
-            double x = px + 0.5, y = py + 0.5, sum = 0, sum2 = 0, o[5] = { 0, 0, 0, 0, 0 };
+            double x = px + 0.5, y = py + 0.5, o[5];
             sc_geo g;
-            int hits = 0, i, j;
+            sc_rays r;
+            int i;
             img[SM_REF * WW + p] = img[SM_ORACLE * WW + p] = (double)NAN;
             dev2[p] = (double)NAN;
             full[p] = 0;
             if (!sc_eval(scene, R, cx, cy, x, y, &g)) continue;
-            for (j = 0; j < sc_S; ++j)
-                for (i = 0; i < sc_S; ++i) {
-                    unsigned long long z = (unsigned long long)(((p * 131071 + j) * 8191 + i) * 4099 + (unsigned long long)fr * 977 + 0x5ce);
-                    double u1, u2, n[3], sx, sy, f, nz, qx, qy, ox, oy;
-                    sc_geo gr;
-                    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL; z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL; z ^= z >> 31;
-                    u1 = (double)(z >> 40) / 16777216.0;
-                    u2 = (double)(z & 0xFFFFFF) / 16777216.0;
-                    ox = (i + u1) / sc_S - 0.5;
-                    oy = (j + u2) / sc_S - 0.5;
-                    if (!sc_eval(scene, R, cx, cy, x + ox, y + oy, &gr)) continue;
-                    sc_normal(scene, &gr, n, &sx, &sy);
-                    f = sc_shade(&gr, pf_slope_stats_make((pf_real)sx, (pf_real)sy, (pf_real)bv, (pf_real)bv, PF_R(0.0)));
-                    sum += f; sum2 += f * f; ++hits;
-                    nz = sc_dot(n, g.N);
-                    if (nz < 1e-3) nz = 1e-3;
-                    qx = -sc_dot(n, g.T) / nz; qy = -sc_dot(n, g.B) / nz;
-                    o[0] += qx; o[1] += qy; o[2] += qx * qx; o[3] += qy * qy; o[4] += qx * qy;
-                }
-            full[p] = hits == sc_S * sc_S;
-            img[SM_REF * WW + p] = sum / hits;
-            dev2[p] = hits > 1 ? fmax(sum2 / hits - (sum / hits) * (sum / hits), 0.0) / (hits - 1) : 0.0;
-            for (i = 0; i < 5; ++i) o[i] /= hits;
+            r = sc_pixel_rays(scene, R, cx, cy, x, y, p, fr, 0x5ceULL, &g, bv);
+            full[p] = r.hits == sc_S * sc_S;
+            img[SM_REF * WW + p] = r.sum / r.hits;
+            dev2[p] = r.hits > 1 ? fmax(r.sum2 / r.hits - (r.sum / r.hits) * (r.sum / r.hits), 0.0) / (r.hits - 1) : 0.0;
+            for (i = 0; i < 5; ++i) o[i] = r.o[i] / r.hits;
             img[SM_ORACLE * WW + p] = sc_shade(&g, pf_slope_moments_stats(pf_slope_moments_make((pf_real)o[0], (pf_real)o[1],
                 (pf_real)o[2], (pf_real)o[3], (pf_real)o[4]), (pf_real)bv));
         }
