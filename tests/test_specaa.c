@@ -59,6 +59,30 @@ static long double dot3(const long double a[3], const long double b[3])
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
+/* The box-filtered pixel (x0, y0) of the orthographic sphere (the brute force the LEADR tests
+   compare with): the mean over an n x n midpoint rule of pf_leadr_specular with each point's
+   exact slope in the pixel centre's frame (T, B, N) and base variance bv; mo gets the points'
+   slope moments (mean x, y; second moments xx, yy, xy) for the oracle. */
+static long double sphere_pixel_box(long double R, long double x0, long double y0, int n, const long double T[3],
+                                    const long double B[3], const long double N[3], pf_vec3 wo, pf_vec3 wi,
+                                    long double bv, long double mo[5])
+{
+    long double ref = 0.0L, w = 1.0L / ((long double)n * n);
+    int i, j, c;
+    for (c = 0; c < 5; ++c) mo[c] = 0.0L;
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            long double m[3], u, v;
+            sphere_n(R, x0 + (i + 0.5L) / n - 0.5L, y0 + (j + 0.5L) / n - 0.5L, m);
+            u = -dot3(m, T) / dot3(m, N);
+            v = -dot3(m, B) / dot3(m, N);
+            mo[0] += w * u; mo[1] += w * v; mo[2] += w * u * u; mo[3] += w * v * v; mo[4] += w * u * v;
+            ref += (long double)pf_leadr_specular(wo, wi, pf_slope_stats_make((pf_real)u, (pf_real)v, (pf_real)bv, (pf_real)bv, 0),
+                                                  PF_R(1.0));
+        }
+    return ref * w;
+}
+
 static void test_kernel_sphere(void)
 {
     static const long double radii[] = { 10.0L, 30.0L, 100.0L };
@@ -539,8 +563,8 @@ static void test_leadr_default_box(void)
         for (oi = 0; oi < sizeof offs / sizeof offs[0]; ++oi) {
             long double R = radii[ri], x0 = offs[oi] * R, y0 = 0.35L * offs[oi] * R, N[3], T[3], B[3], ref = 0.0L, h = 1e-4L;
             long double L[3] = { 0.35L, 0.3L, 0.887412L }, V[3] = { 0.0L, 0.0L, 1.0L }, np[3], nm[3], dx[3], dy[3];
-            long double mo[5] = { 0, 0, 0, 0, 0 }, w = 1.0L / (96.0L * 96.0L);
-            int i, j, n = 96, c;
+            long double mo[5];
+            int n = 96, c;
             pf_vec3 wo, wi, dnx, dny;
             pf_slope_stats s0;
             pf_real a, b, o;
@@ -549,18 +573,8 @@ static void test_leadr_default_box(void)
             sphere_n(R, x0, y0, N);
             frame_at(N, T, B);
             wo = v3(dot3(V, T), dot3(V, B), dot3(V, N));
-            wi = v3(dot3(L, T) / 1.0L, dot3(L, B), dot3(L, N));
-            for (j = 0; j < n; ++j)
-                for (i = 0; i < n; ++i) {
-                    long double m[3], u, v;
-                    sphere_n(R, x0 + (i + 0.5L) / n - 0.5L, y0 + (j + 0.5L) / n - 0.5L, m);
-                    u = -dot3(m, T) / dot3(m, N);
-                    v = -dot3(m, B) / dot3(m, N);
-                    mo[0] += w * u; mo[1] += w * v; mo[2] += w * u * u; mo[3] += w * v * v; mo[4] += w * u * v;
-                    ref += (long double)pf_leadr_specular(wo, wi, pf_slope_stats_make((pf_real)u, (pf_real)v, (pf_real)bv, (pf_real)bv, 0),
-                                                          PF_R(1.0));
-                }
-            ref /= n * n;
+            wi = v3(dot3(L, T), dot3(L, B), dot3(L, N));
+            ref = sphere_pixel_box(R, x0, y0, n, T, B, N, wo, wi, bv, mo);
             sphere_n(R, x0 + h, y0, np); sphere_n(R, x0 - h, y0, nm);
             for (c = 0; c < 3; ++c) dx[c] = (np[c] - nm[c]) / (2.0L * h);
             sphere_n(R, x0, y0 + h, np); sphere_n(R, x0, y0 - h, nm);
@@ -609,27 +623,17 @@ static void test_leadr_curved(void)
     for (py = -7; py <= 7; ++py)
         for (px = -7; px <= 7; ++px) {
             long double x0 = floorl(hx) + px + 0.5L - 0.13L, y0 = floorl(hy) + py + 0.5L - 0.41L, N[3], T[3], B[3];
-            long double mo[5] = { 0, 0, 0, 0, 0 }, ref = 0, w, dx[3], dy[3];
-            int i, j, n = 64;
+            long double mo[5], ref, dx[3], dy[3];
+            int n = 64;
             pf_vec3 wo, wi, a, b;
             pf_slope_stats s0 = pf_slope_stats_make(0, 0, (pf_real)bv, (pf_real)bv, 0);
             pf_real cv, an, o;
             if ((x0 * x0 + y0 * y0) > 0.8L * R * R || px * px + py * py > 49) continue;
-            w = 1.0L / (n * n);
             sphere_n(R, x0, y0, N);
             frame_at(N, T, B);
             wo = v3(dot3(V, T), dot3(V, B), dot3(V, N));
             wi = v3(dot3(L, T), dot3(L, B), dot3(L, N));
-            for (j = 0; j < n; ++j)
-                for (i = 0; i < n; ++i) {
-                    long double m[3], u, v;
-                    sphere_n(R, x0 + (i + 0.5L) / n - 0.5L, y0 + (j + 0.5L) / n - 0.5L, m);
-                    u = -dot3(m, T) / dot3(m, N);
-                    v = -dot3(m, B) / dot3(m, N);
-                    mo[0] += w * u; mo[1] += w * v; mo[2] += w * u * u; mo[3] += w * v * v; mo[4] += w * u * v;
-                    ref += w * (long double)pf_leadr_specular(wo, wi, pf_slope_stats_make((pf_real)u, (pf_real)v, (pf_real)bv,
-                                                                                          (pf_real)bv, 0), PF_R(1.0));
-                }
+            ref = sphere_pixel_box(R, x0, y0, n, T, B, N, wo, wi, bv, mo);
             /* exact derivatives of the orthographic sphere's normal */
             dx[0] = 1.0L / R; dx[1] = 0.0L; dx[2] = -x0 / (R * R * N[2]);
             dy[0] = 0.0L; dy[1] = 1.0L / R; dy[2] = -y0 / (R * R * N[2]);
