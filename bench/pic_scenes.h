@@ -311,6 +311,26 @@ typedef struct {
     double ndf_texels, ndf_gauss;
 } ref_result;
 
+/* The half vector's slope s_h = -(wo + wi).xy / (wo + wi).z of a sample, 0 when it is not lit
+   (light below the surface or half vector at or below it); returns whether it is lit. */
+static int pic_half_slope(const pic_sample *p, double *shx, double *shy)
+{
+    double hz = p->wo[2] + p->wi[2];
+    int lit = p->wi[2] > 0.0 && hz > 0.0;
+    *shx = lit ? -(p->wo[0] + p->wi[0]) / hz : 0.0;
+    *shy = lit ? -(p->wo[1] + p->wi[1]) / hz : 0.0;
+    return lit;
+}
+
+/* Which direction the reference marches first: the light when its visibility is a map lookup
+   (vis_light) or when it is the flatter direction (more often occluded, and an occluded march
+   stops early), else the view. */
+static int pic_light_first(const pic_sample *p, const unsigned char *vis_light)
+{
+    return vis_light != NULL || p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
+                                    p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
+}
+
 /* Brute force: the n x n box (or an evenly spaced ref_max^2 subset), one texel at a time
    through pfm_reference_shade (n = 1, visibility handled here), recombined with the texels'
    projected areas a_t = (m_t . wo)/(m_t . z) = wo.z - sx wo.x - sy wo.y (LEADR eq. 1): the
@@ -334,19 +354,10 @@ static ref_result shade_reference(const pfm_surface *s, const unsigned char *vis
     double num_box = 0.0, t0 = pfb_now_s(), t1, ndf = 0.0, mom[5] = {0, 0, 0, 0, 0};
     /* slope of the half vector: the texel's lobe at h is exp(-q) of its peak, q = |s_t -
        s_h|^2 / (2 sigma^2) (eq. 10) */
-    double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
-    int lit = p->wi[2] > 0.0 && hz > 0.0;
-    /* march toward the light first when its visibility is a map lookup, or when it is the
-       flatter direction (more often occluded, and an occluded march stops early) */
-    int light_first = vis_light != NULL ||
-                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
-                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
+    double shx, shy;
+    int lit = pic_half_slope(p, &shx, &shy), light_first = pic_light_first(p, vis_light);
     ref_result r;
     memset(&r, 0, sizeof r);
-    if (lit) {
-        shx = -(p->wo[0] + p->wi[0]) / hz;
-        shy = -(p->wo[1] + p->wi[1]) / hz;
-    }
     for (b = 0; b < ns; ++b) {
         int yu = y0 + (int)(((double)b + 0.5) * n / ns), y = wrap_index(yu, s->h);
         for (a = 0; a < ns; ++a, ++k) {

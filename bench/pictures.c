@@ -453,17 +453,10 @@ static ref_result sq_reference(const pfm_surface *s, const unsigned char *vis_li
     int x0 = (int)floor(X0), x1 = (int)floor(X1), y0 = (int)floor(Y0), y1 = (int)floor(Y1);
     int nb = (x1 - x0 > y1 - y0 ? x1 - x0 : y1 - y0) + 1, bx0 = wrap_index(x0, s->w), by0 = wrap_index(y0, s->h), xu, yu;
     double num = 0.0, area = 0.0, num_box = 0.0, t0 = pfb_now_s(), ndf = 0.0, cw = 0.0, mom[5] = {0, 0, 0, 0, 0};
-    double hz = p->wo[2] + p->wi[2], shx = 0.0, shy = 0.0;
-    int lit = p->wi[2] > 0.0 && hz > 0.0;
-    int light_first = vis_light != NULL ||
-                      p->wi[2] * sqrt(p->wo[0] * p->wo[0] + p->wo[1] * p->wo[1]) <
-                          p->wo[2] * sqrt(p->wi[0] * p->wi[0] + p->wi[1] * p->wi[1]);
+    double shx, shy;
+    int lit = pic_half_slope(p, &shx, &shy), light_first = pic_light_first(p, vis_light);
     ref_result r;
     memset(&r, 0, sizeof r);
-    if (lit) {
-        shx = -(p->wo[0] + p->wi[0]) / hz;
-        shy = -(p->wo[1] + p->wi[1]) / hz;
-    }
     for (yu = y0; yu <= y1; ++yu) {
         double cy = cover_1d(yu, Y0, Y1);
         int y = wrap_index(yu, s->h);

@@ -201,13 +201,11 @@ typedef struct {
 
 static void ref_begin(fr_ref_acc *r, const pfm_surface *s, const unsigned char *vis_light, const pic_sample *p)
 {
-    double hz = p->wo[2] + p->wi[2];
     memset(r, 0, sizeof *r);
     r->s = s;
     r->vis_light = vis_light;
     r->p = p;
-    r->lit = p->wi[2] > 0.0 && hz > 0.0;
-    if (r->lit) r->shx = -(p->wo[0] + p->wi[0]) / hz, r->shy = -(p->wo[1] + p->wi[1]) / hz;
+    r->lit = pic_half_slope(p, &r->shx, &r->shy);
 }
 
 /* one texel with weight wt (1, or the covered fraction): its projected area, and its shaded
