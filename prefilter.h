@@ -9580,8 +9580,8 @@ PF_DEF pf_slope_stats pf_specaa_slope_stats_aniso(pf_slope_stats s, pf_specaa_ke
    second differences the shift is made of; (5) and (6) get them from the geometry instead.
    On the plain curved scenes of bench/specaa_scenes.h at alpha 0.1, the box kernel with (6) is
    1.04-1.14x the oracle's error where the kernel alone is 1.26-1.82x; given the oracle's exact
-   mean instead, 1.00-1.07x: the kernel's covariance was right, the mean was the gap
-   (docs/specaa.md). */
+   mean instead, 1.00-1.07x: the kernel's covariance holds there, and the mean is what (5)
+   and (6) add (docs/specaa.md). */
 
 /* Largest |component| of a mean shift (5)/(6): sqrt(PF_SPECAA_KAPPA/2), the per-axis deviation
    of the clamped kernel; a shift is clamped to it componentwise (near the silhouette wo.z -> 0
