@@ -96,9 +96,7 @@
 /* ---------------------------------------------------------------- settings (the scenes': bench/pic_scenes.h) */
 #define MAX_ANISO        16.0
 #define PLUMBING_BOUND   1e-3   /* GPU LEADR vs the CPU path at the driver's lod, mean (main) */
-#ifndef MOTION_FRAMES
 #define MOTION_FRAMES    16
-#endif
 #define MOTION_SPT       2      /* the supersampled reference compared with the exact one: samples per texel per axis */
 #define MOTION_ROWS      9      /* LEADR, naive, Toksvig, vMF 4, vMF 8 (isotropic), LEADR 16x, the two horizon methods (plane); the oracle (CPU) */
 #define MR_LEADR16       5
@@ -218,17 +216,19 @@ static void scene_make(fr_scene *sc, int which, int w, int h, const pfm_surface 
 /* ---------------------------------------------------------------- the brute force over the pixel's
    footprint (pictures.c's box reference, shade_reference, is bench/pic_scenes.h's) */
 
-/* The texels already marched for one pair of directions (wo, wi): whether each is visible both
-   ways, which depends on nothing else (the texel's wrapped position, wo, wi, the scene's light
-   map). The still frames compute a pixel's box and pixel-footprint references together
-   (ref_row), so a texel of both footprints is marched once; a motion pixel keeps its wo and wi
+/* The texels already shaded and marched for one pair of directions (wo, wi): each one's term
+   (pfm_reference_shade times its projected area) and whether it is visible both ways, which
+   depend on nothing else (the texel's wrapped position, wo, wi, the scene's light map). The still
+   frames compute a pixel's box and pixel-footprint references together (ref_row), so a texel of
+   both footprints is shaded and marched once; a motion pixel keeps its wo and wi
    in every frame (the plane's camera moves without turning, the sphere turns under a fixed
-   camera and light), so its footprint's texels are marched once for all its frames
+   camera and light), so its footprint's texels are shaded and marched once for all its frames
    (motion_ref_row). Open addressing on the wrapped texel index; entries carry the stamp of the
    directions they were marched for, so the table is not cleared when they change; past 3/4
    full nothing more is stored (lookups still answer). A cache: the references' values are the
    same with or without it, to the bit. */
-#define MEMO_SIZE 32768 /* entries, a power of 2: two footprints of 4096 texels and their edges */
+#define MEMO_BITS 15
+#define MEMO_SIZE (1 << MEMO_BITS) /* entries: two footprints of 4096 texels and their edges, or a motion pixel's 16 */
 typedef struct {
     unsigned stamp;
     int key;
@@ -250,7 +250,7 @@ static void memo_use(fr_memo *m, const pic_sample *p)
 }
 static fr_memo_e *memo_find(fr_memo *m, int key)
 {
-    unsigned h = ((unsigned)key * 0x9E3779B1u) >> (32 - 15);
+    unsigned h = ((unsigned)key * 0x9E3779B1u) >> (32 - MEMO_BITS);
     while (m->e[h].stamp == m->stamp && m->e[h].key != key) h = (h + 1) & (MEMO_SIZE - 1);
     return &m->e[h];
 }
@@ -263,7 +263,7 @@ typedef struct {
     int lit, light_first; /* light_first: shade_reference's march order (pic_light_first) */
     double num, area;
     pfb_hist hist; /* the same texels without visibility, for the exact-histogram oracle */
-    fr_memo *memo; /* optional: the pixel's texels already marched */
+    fr_memo *memo; /* optional: the texels already shaded and marched for these directions */
 } fr_ref_acc;
 
 /* texel (x, y) (wrapped, above the lobe cutoff, projected area at): its shaded term times at into
