@@ -1194,6 +1194,63 @@ static void test_horizon_specular_limits(void)
     }
 }
 
+/* The field the two specular brute-force tests shade: a periodic Gaussian field of HS_W^2
+   texels (pfm corpus defaults, RMS slope 0.4) with correlation corr texels, its heights as
+   pf_real and its HDF-moment pyramid (HS_NAZ azimuths, march 64 texels, wrap). 0 (and a
+   failed "setup" check, nothing left allocated) if it cannot be built. */
+#define HS_W 128
+#define HS_NAZ 32
+typedef struct hs_field {
+    pfm_surface surf;
+    pf_real *hm, *pyr;
+} hs_field;
+static void hs_field_free(hs_field *F)
+{
+    pfm_surface_free(&F->surf);
+    free(F->pyr);
+    free(F->hm);
+    F->pyr = F->hm = NULL;
+}
+static int hs_field_make(hs_field *F, double corr)
+{
+    pfm_params p = pfm_params_default(PFM_GAUSSIAN);
+    int i;
+    p.corr_texels = corr;
+    memset(F, 0, sizeof *F);
+    F->hm = (pf_real *)malloc(sizeof(pf_real) * (size_t)(HS_W * HS_W));
+    F->pyr = (pf_real *)malloc(sizeof(pf_real) * (size_t)(pf_mip_texel_count(HS_W, HS_W) * 3 * HS_NAZ));
+    if (!F->hm || !F->pyr || pfm_surface_make(&F->surf, HS_W, HS_W, 1.0, p) != 0) {
+        PF_CHECK(0, "setup");
+        hs_field_free(F);
+        return 0;
+    }
+    for (i = 0; i < HS_W * HS_W; ++i) F->hm[i] = (pf_real)F->surf.height[i];
+    PF_CHECK(pf_horizon_pyramid(F->hm, HS_W, HS_W, PF_R(1.0), HS_NAZ, 64, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, F->pyr)
+                 == PF_OK, "pyramid");
+    return 1;
+}
+/* The HDF moments toward w of the footprint of n x n texels at (x0, y0) (its texel of the level
+   log2 n): the two stored azimuths around w's, mixed as a shader does (pf_hdf_moments_lerp). */
+static pf_hdf_moments hs_hdf(const hs_field *F, int x0, int y0, int n, pf_vec3 w)
+{
+    int lev = 0;
+    const pf_real *tx;
+    pf_horizon_azimuth a = pf_horizon_azimuth_of(w, HS_NAZ);
+    while ((1 << lev) < n) ++lev;
+    tx = F->pyr + (pf_mip_level_offset(HS_W, HS_W, lev) + (long long)(y0 / n) * (HS_W / n) + x0 / n) * (3 * HS_NAZ);
+    return pf_hdf_moments_lerp(pf_hdf_moments_make(tx[3 * a.i0], tx[3 * a.i0 + 1], tx[3 * a.i0 + 2]),
+                               pf_hdf_moments_make(tx[3 * a.i1], tx[3 * a.i1 + 1], tx[3 * a.i1 + 2]), a.f);
+}
+/* The footprint's exact slope moments (the reference's central differences) as statistics with
+   the base lobe's variance bv added; m5 gets the moments. */
+static pf_slope_stats hs_stats(const hs_field *F, int x0, int y0, int n, double bv, double m5[5])
+{
+    pfm_footprint_moments(&F->surf, x0, y0, n, m5);
+    return pf_slope_moments_stats(pf_slope_moments_make((pf_real)m5[0], (pf_real)m5[1], (pf_real)m5[2], (pf_real)m5[3],
+                                                        (pf_real)m5[4]),
+                                  (pf_real)bv);
+}
+
 /* Against the brute force (tests/reference/pf_microsurface.h): a fine Gaussian height field
    (correlation 4 texels, RMS slope 0.4, 128^2), its n = 32 HDF-moment pyramid, 4 x 4-texel
    footprints, views 30-75 degrees, the light at the mirror of the view about the footprint's
@@ -1203,38 +1260,24 @@ static void test_horizon_specular_limits(void)
    the occlusion by bumps outside the footprint. */
 static void test_horizon_specular_brute_force(void)
 {
-    const int W = 128, N = 4, NAZ = 32, C = 3 * 32;
+    const int W = HS_W, N = 4;
     const double base_sigma = 0.1, view_deg[4] = { 30.0, 45.0, 60.0, 75.0 };
-    pfm_params p = pfm_params_default(PFM_GAUSSIAN);
-    pfm_surface surf;
-    pf_real *hm = (pf_real *)malloc(sizeof(pf_real) * (size_t)(W * W)), *pyr;
+    hs_field F;
     unsigned char *vo = (unsigned char *)malloc((size_t)(W * W)), *vi = (unsigned char *)malloc((size_t)(W * W));
-    long long texels = pf_mip_texel_count(W, W), off;
     double e_h = 0.0, e_s = 0.0, r2 = 0.0;
     pf_test_rng r;
     int f, v, li, i, j, used = 0;
-    p.corr_texels = 4.0;
-    memset(&surf, 0, sizeof surf);
-    pyr = (pf_real *)malloc(sizeof(pf_real) * (size_t)(texels * C));
-    if (!hm || !vo || !vi || !pyr || pfm_surface_make(&surf, W, W, 1.0, p) != 0) {
-        PF_CHECK(0, "setup");
-        free(pyr);
-        free(hm);
+    if (!vo || !vi || !hs_field_make(&F, 4.0)) {
+        if (!vo || !vi) PF_CHECK(0, "setup");
         free(vo);
         free(vi);
         return;
     }
-    for (i = 0; i < W * W; ++i) hm[i] = (pf_real)surf.height[i];
-    PF_CHECK(pf_horizon_pyramid(hm, W, W, PF_R(1.0), NAZ, 64, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, pyr) == PF_OK, "pyramid");
-    off = pf_mip_level_offset(W, W, 2);
     r.state = 5u;
     for (f = 0; f < 24; ++f) {
         int x0 = N * (int)(pf_test_uniform(&r, 0.0, 0.999) * (W / N)), y0 = N * (int)(pf_test_uniform(&r, 0.0, 0.999) * (W / N));
         double m5[5];
-        pf_slope_stats st;
-        pfm_footprint_moments(&surf, x0, y0, N, m5);
-        st = pf_slope_moments_stats(pf_slope_moments_make((pf_real)m5[0], (pf_real)m5[1], (pf_real)m5[2], (pf_real)m5[3], (pf_real)m5[4]),
-                                    (pf_real)(base_sigma * base_sigma));
+        pf_slope_stats st = hs_stats(&F, x0, y0, N, base_sigma * base_sigma, m5);
         for (v = 0; v < 4; ++v) {
             double phi = pf_test_uniform(&r, 0.0, 6.283), t = view_deg[v] * 3.14159265358979323846 / 180.0;
             double wo[3] = { sin(t) * cos(phi), sin(t) * sin(phi), cos(t) }, nb[3], nl, dn, wl[2][3];
@@ -1249,25 +1292,18 @@ static void test_horizon_specular_brute_force(void)
             }
             if (wo[2] - m5[0] * wo[0] - m5[1] * wo[1] < 0.25 * wo[2]) continue; /* the bench's cull */
             for (li = 0; li < 2; ++li) {
-                pf_vec3 o = pf_vec3_make((pf_real)wo[0], (pf_real)wo[1], (pf_real)wo[2]);
-                pf_vec3 l = pf_vec3_make((pf_real)wl[li][0], (pf_real)wl[li][1], (pf_real)wl[li][2]);
-                const pf_real *tx = pyr + (off + (long long)(y0 / N) * (W / N) + x0 / N) * C;
-                pf_horizon_azimuth ao = pf_horizon_azimuth_of(o, NAZ), al = pf_horizon_azimuth_of(l, NAZ);
-                pf_hdf_moments mo, ml;
+                pf_vec3 o = pf_test_vec3(wo), l = pf_test_vec3(wl[li]);
                 pfm_shade ref;
                 double hz, sm;
                 if (wl[li][2] < 0.05) continue;
                 for (j = y0; j < y0 + N; ++j)
                     for (i = x0; i < x0 + N; ++i) {
-                        vo[j * W + i] = (unsigned char)pfm_visible(&surf, i, j, wo);
-                        vi[j * W + i] = (unsigned char)pfm_visible(&surf, i, j, wl[li]);
+                        vo[j * W + i] = (unsigned char)pfm_visible(&F.surf, i, j, wo);
+                        vi[j * W + i] = (unsigned char)pfm_visible(&F.surf, i, j, wl[li]);
                     }
-                ref = pfm_reference_shade(&surf, vo, vi, x0, y0, N, wo, wl[li], base_sigma, 1.0);
-                mo = pf_hdf_moments_lerp(pf_hdf_moments_make(tx[3 * ao.i0], tx[3 * ao.i0 + 1], tx[3 * ao.i0 + 2]),
-                                         pf_hdf_moments_make(tx[3 * ao.i1], tx[3 * ao.i1 + 1], tx[3 * ao.i1 + 2]), ao.f);
-                ml = pf_hdf_moments_lerp(pf_hdf_moments_make(tx[3 * al.i0], tx[3 * al.i0 + 1], tx[3 * al.i0 + 2]),
-                                         pf_hdf_moments_make(tx[3 * al.i1], tx[3 * al.i1 + 1], tx[3 * al.i1 + 2]), al.f);
-                hz = (double)pf_horizon_leadr_specular(o, l, st, (pf_real)(base_sigma * base_sigma), mo, ml, PF_R(1.0));
+                ref = pfm_reference_shade(&F.surf, vo, vi, x0, y0, N, wo, wl[li], base_sigma, 1.0);
+                hz = (double)pf_horizon_leadr_specular(o, l, st, (pf_real)(base_sigma * base_sigma), hs_hdf(&F, x0, y0, N, o),
+                                                       hs_hdf(&F, x0, y0, N, l), PF_R(1.0));
                 sm = (double)pf_leadr_specular(o, l, st, PF_R(1.0));
                 e_h += (hz - ref.spec) * (hz - ref.spec);
                 e_s += (sm - ref.spec) * (sm - ref.spec);
@@ -1282,9 +1318,7 @@ static void test_horizon_specular_brute_force(void)
                  used, e_h, e_s);
     PF_CHECK(used >= 100, "%d samples", used);
     PF_CHECK(e_h <= HSPEC_BRUTE_BOUND && e_h <= 0.6 * e_s, "horizon %g, Smith %g", e_h, e_s);
-    pfm_surface_free(&surf);
-    free(pyr);
-    free(hm);
+    hs_field_free(&F);
     free(vo);
     free(vi);
 }
@@ -1310,69 +1344,45 @@ static void test_horizon_specular_brute_force(void)
    are wide and recorded, not a claim. */
 static void graze_field(double corr, double out[3][4])
 {
-    const int W = 128, N = 8, NAZ = 32, C = 3 * 32;
+    const int W = HS_W, N = 8;
     const double base_sigma = 0.1, view_deg[3] = { 75.0, 80.0, 85.0 }, pi = 3.14159265358979323846;
-    pfm_params p = pfm_params_default(PFM_GAUSSIAN);
-    pfm_surface surf;
-    pf_real *hm = (pf_real *)malloc(sizeof(pf_real) * (size_t)(W * W)), *pyr;
-    long long texels = pf_mip_texel_count(W, W), off;
-    double sv[3] = { 0, 0, 0 }, sh[3] = { 0, 0, 0 }, se[3] = { 0, 0, 0 }, sg[3] = { 0, 0, 0 }, sge[3] = { 0, 0, 0 };
+    hs_field F;
+    double sv[3] = { 0, 0, 0 }, sh[3] = { 0, 0, 0 }, se[3] = { 0, 0, 0 }, sge[3] = { 0, 0, 0 };
     pf_test_rng r;
     int f, v, i, j, used[3] = { 0, 0, 0 };
-    p.corr_texels = corr;
-    memset(&surf, 0, sizeof surf);
-    pyr = (pf_real *)malloc(sizeof(pf_real) * (size_t)(texels * C));
-    if (!hm || !pyr || pfm_surface_make(&surf, W, W, 1.0, p) != 0) {
-        PF_CHECK(0, "setup");
-        free(pyr);
-        free(hm);
-        return;
-    }
-    for (i = 0; i < W * W; ++i) hm[i] = (pf_real)surf.height[i];
-    PF_CHECK(pf_horizon_pyramid(hm, W, W, PF_R(1.0), NAZ, 64, PF_BORDER_WRAP, PF_HORIZON_MOMENTS, 0, pyr) == PF_OK, "pyramid");
-    off = pf_mip_level_offset(W, W, 3);
+    memset(out, 0, sizeof(double) * 3 * 4);
+    if (!hs_field_make(&F, corr)) return;
     r.state = corr > 8.0 ? 12u : 11u;
     for (f = 0; f < 64; ++f) {
         int x0 = N * (int)(pf_test_uniform(&r, 0.0, 0.999) * (W / N)), y0 = N * (int)(pf_test_uniform(&r, 0.0, 0.999) * (W / N));
         double m5[5];
-        pf_slope_stats st;
-        pfm_footprint_moments(&surf, x0, y0, N, m5);
-        st = pf_slope_moments_stats(pf_slope_moments_make((pf_real)m5[0], (pf_real)m5[1], (pf_real)m5[2], (pf_real)m5[3], (pf_real)m5[4]),
-                                    (pf_real)(base_sigma * base_sigma));
+        pf_slope_stats st = hs_stats(&F, x0, y0, N, base_sigma * base_sigma, m5);
         for (v = 0; v < 3; ++v) {
             double phi = pf_test_uniform(&r, 0.0, 2.0 * pi), t = view_deg[v] * pi / 180.0;
             double pl = phi + pi + pf_test_uniform(&r, -pi / 6.0, pi / 6.0), el = 20.0 * pi / 180.0;
             double wo[3] = { sin(t) * cos(phi), sin(t) * sin(phi), cos(t) }, wl[3] = { cos(el) * cos(pl), cos(el) * sin(pl), sin(el) };
             double sw = 0.0, sa = 0.0, svis = 0.0, u, vh, g2;
-            pf_vec3 o = pf_vec3_make((pf_real)wo[0], (pf_real)wo[1], (pf_real)wo[2]);
-            pf_vec3 l = pf_vec3_make((pf_real)wl[0], (pf_real)wl[1], (pf_real)wl[2]);
-            const pf_real *tx = pyr + (off + (long long)(y0 / N) * (W / N) + x0 / N) * C;
-            pf_horizon_azimuth ao = pf_horizon_azimuth_of(o, NAZ), al = pf_horizon_azimuth_of(l, NAZ);
-            pf_hdf_moments mo, ml;
+            pf_vec3 o = pf_test_vec3(wo), l = pf_test_vec3(wl);
             for (j = y0; j < y0 + N; ++j)
                 for (i = x0; i < x0 + N; ++i) {
                     double sx, sy, at, wt;
-                    pfm_slope(&surf, i, j, &sx, &sy);
+                    pfm_slope(&F.surf, i, j, &sx, &sy);
                     at = wo[2] - sx * wo[0] - sy * wo[1];
                     sa += at;
                     if (!(at > 0.0)) continue;
-                    wt = pfm_reference_shade(&surf, NULL, NULL, i, j, 1, wo, wl, base_sigma, 1.0).spec * at;
+                    wt = pfm_reference_shade(&F.surf, NULL, NULL, i, j, 1, wo, wl, base_sigma, 1.0).spec * at;
                     if (!(wt > 0.0)) continue;
                     sw += wt;
-                    if (pfm_visible(&surf, i, j, wo) && pfm_visible(&surf, i, j, wl)) svis += wt;
+                    if (pfm_visible(&F.surf, i, j, wo) && pfm_visible(&F.surf, i, j, wl)) svis += wt;
                 }
             if (!(sa > 0.25 * N * N * wo[2]) || !(sw > 0.0)) continue; /* the bench's cull */
-            mo = pf_hdf_moments_lerp(pf_hdf_moments_make(tx[3 * ao.i0], tx[3 * ao.i0 + 1], tx[3 * ao.i0 + 2]),
-                                     pf_hdf_moments_make(tx[3 * ao.i1], tx[3 * ao.i1 + 1], tx[3 * ao.i1 + 2]), ao.f);
-            ml = pf_hdf_moments_lerp(pf_hdf_moments_make(tx[3 * al.i0], tx[3 * al.i0 + 1], tx[3 * al.i0 + 2]),
-                                     pf_hdf_moments_make(tx[3 * al.i1], tx[3 * al.i1 + 1], tx[3 * al.i1 + 2]), al.f);
             u = sw / sa;
-            vh = (double)pf_horizon_specular_visibility(o, l, mo, ml, st, (pf_real)(base_sigma * base_sigma));
+            vh = (double)pf_horizon_specular_visibility(o, l, hs_hdf(&F, x0, y0, N, o), hs_hdf(&F, x0, y0, N, l), st,
+                                                        (pf_real)(base_sigma * base_sigma));
             g2 = (double)pf_beckmann_masking_shadowing(o, l, st);
             sv[v] += u * svis / sw;
             sh[v] += u * vh;
             se[v] += u * fabs(vh - svis / sw);
-            sg[v] += u * g2;
             sge[v] += u * fabs(g2 - svis / sw);
             ++used[v];
         }
@@ -1382,11 +1392,8 @@ static void graze_field(double corr, double out[3][4])
         out[v][1] = se[v] / sv[v];
         out[v][2] = sge[v] / sv[v];
         out[v][3] = used[v];
-        (void)sg;
     }
-    pfm_surface_free(&surf);
-    free(pyr);
-    free(hm);
+    hs_field_free(&F);
 }
 
 static void test_horizon_specular_grazing_brute_force(void)
