@@ -189,9 +189,9 @@
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
      than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
-     0.012-0.039 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
+     0.012-0.037 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
      (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
-     0.025-0.077 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
+     0.020-0.078 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
      at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
      abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
      the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
