@@ -6591,9 +6591,9 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
      than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
-     0.012-0.039 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
+     0.012-0.037 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
      (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
-     0.025-0.077 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
+     0.020-0.078 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
      at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
      abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
      the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
@@ -6611,8 +6611,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      long-double formula: the per-direction visibility 1.1e-3 abs, V_h 4.1e-4 abs, radiance
      4.1e-4 of the unshadowed lobe (float and double: the arcsine and CDF approximations).
      GPU: pf_horizon_leadr_specular 172 SPIR-V ops (pf_leadr_specular 116: 1.48x),
-     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 99, plus 150 per pf_vmf_sum_add lobe in
-     both).
+     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 94, plus 142 per pf_vmf_sum_add lobe in
+     both: 1.02x with 16 lobes).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier

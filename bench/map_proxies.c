@@ -36,7 +36,7 @@
    form (E[(T - mu)/sigma; T < e] = -phi(z) (1 + g z^3/6)): g the footprint's own skewness
    counted on its level-0 horizons (what a stored E[T^3] would give; clamped to [0, 1.2]), and
    g = sigma_T/E[T] (1 - rho^2) from the stored moments (rho the slope-horizon correlation
-   along the view's azimuth; capped at 1). Relative L2 and the relative bias (sum of method -
+   along the view's azimuth; capped at 1, and 1 where E[T] <= 0). Relative L2 and the relative bias (sum of method -
    reference over sum of reference) per view and azimuth, then pooled; last, the footprints'
    mean skewness of T. One thread, a few seconds per 256^2 map. */
 #include "pf_bench_base.h" /* first: _POSIX_C_SOURCE */
