@@ -155,10 +155,10 @@ static double percentile(const double *h, double q)
 /* ---------------------------------------------------------------- --masking-parts (see the header) */
 #define MP_NAZ 32
 #define MP_NV 7
-#define MP_NROW 6
+#define MP_NROW 10
 static const char *mp_row[MP_NROW] = { "method Re Se (pf_horizon_masking)", "Rt Se (Smith's part alone)",
-                                        "Re St (the horizon's part alone)", "Rh St (counted level-0 horizons)",
-                                        "scratch: Gram-Charlier, counted skew", "scratch: Gram-Charlier, g = cv (1 - rho^2)" };
+                                        "Re St (the horizon's part alone, Gaussian HDF)", "Rh St (counted level-0 horizons)",
+                                        "scratch: Gram-Charlier, counted skew", "scratch: Gram-Charlier, g = cv (1 - rho^2)", "cap 0.7", "cap 0.5", "g = cv, no rho", "Gaussian HDF (pf_horizon_visible_area x g1)" };
 /* E[V a]/E[a] with the Gram-Charlier HDF of skewness g (g = 0: pf_horizon_visible_area's formula) */
 static double mp_area_gc(const double w[3], pf_hdf_moments m, pf_slope_stats s, double g)
 {
@@ -293,6 +293,11 @@ static int masking_parts(const char *what)
                     m[3] = mp_sat(Rh * St);
                     m[4] = mp_sat(mp_area_gc(wd, hm, ss, sk < 0.0 ? 0.0 : (sk > 1.2 ? 1.2 : sk)) * Se);
                     m[5] = mp_sat(mp_area_gc(wd, hm, ss, cv < 1.0 ? cv : 1.0) * Se);
+                    m[6] = mp_sat(mp_area_gc(wd, hm, ss, cv < 0.7 ? cv : 0.7) * Se);
+                    m[7] = mp_sat(mp_area_gc(wd, hm, ss, cv < 0.5 ? cv : 0.5) * Se);
+                    { double c0 = (double)hm.m1 > 0.0 ? sqrt(var > 0.0 ? var : 0.0) / (double)hm.m1 : 1.0;
+                      m[8] = mp_sat(mp_area_gc(wd, hm, ss, c0 < 1.0 ? c0 : 1.0) * Se); }
+                    m[9] = mp_sat(Re * Se);
                     for (k = 0; k < MP_NROW; ++k) {
                         E[k][v][a] += (m[k] - ref) * (m[k] - ref);
                         B[k][v][a] += m[k] - ref;

@@ -572,14 +572,16 @@ static void test_horizon_lod_weight(void)
 
 /* pf_horizon_masking_lod: at weight 1 it is pf_horizon_masking bit for bit, at weight 0
    pf_beckmann_g1 bit for bit; between, Smith's G1 times the blend of 1 and the area ratio,
-   the ratio taken from the bivariate-Gaussian quadrature (the oracle of
-   test_horizon_visible_area_quadrature) and the blend done in long double. */
+   the ratio taken by quadrature over T of the Gram-Charlier density phi(z) (1 + g/6 (z^3 -
+   3 z)) (g = 0: the bivariate Gaussian of test_horizon_visible_area_quadrature) and the blend
+   done in long double; the probability clamped to [0, 1] and the partial mean to at most z P
+   (what pf_horizon.h states), g = sigma_T/E[T] (1 - rho^2) capped at 1 from the moments. */
 static long double ora_area_ratio(long double wx, long double wy, long double wz, long double mt, long double sdt,
-                                  long double mst, long double mx, long double my)
+                                  long double mst, long double mx, long double my, long double g)
 {
     long double r = sqrtl(wx * wx + wy * wy), e = atan2l(wz, r), rs = wx * mx + wy * my;
     /* r Cov(S, T), S the slope along w's azimuth: r E[S T] - (r E[S]) E[T] */
-    long double ea = wz - rs, cov = r * mst - rs * mt, sum = 0.0L, h, lo, hi, ref;
+    long double ea = wz - rs, cov = r * mst - rs * mt, P = 0.0L, M = 0.0L, h, lo, hi, ref, ze = (e - mt) / sdt;
     int i, n = 4000;
     lo = mt - 12.0L * sdt;
     hi = e < mt + 12.0L * sdt ? e : mt + 12.0L * sdt;
@@ -587,15 +589,30 @@ static long double ora_area_ratio(long double wx, long double wy, long double wz
         h = (hi - lo) / n;
         for (i = 0; i <= n; ++i) {
             long double T = lo + h * i, z = (T - mt) / sdt;
-            long double pdf = expl(-0.5L * z * z) / (sdt * sqrtl(2.0L * TPI));
+            long double pdf = expl(-0.5L * z * z) / (sdt * sqrtl(2.0L * TPI)) * (1.0L + g / 6.0L * (z * z * z - 3.0L * z));
             long double wgt = (i == 0 || i == n) ? 1.0L : ((i & 1) ? 4.0L : 2.0L);
-            /* E[a | T] = wz - (r E[S] + r Cov(S, T) z / sigma_T) */
-            sum += wgt * pdf * (wz - (rs + cov * z / sdt));
+            P += wgt * pdf;
+            M += wgt * pdf * z;
         }
-        sum *= h / 3.0L;
+        P *= h / 3.0L;
+        M *= h / 3.0L;
     }
-    ref = sum / ea;
+    if (ze > 12.0L) P = 1.0L; /* the quadrature stops at 12 deviations */
+    P = P < 0.0L ? 0.0L : (P > 1.0L ? 1.0L : P);
+    if (M > ze * P) M = ze * P;
+    /* E[a; T < e] = wz P - (r E[S] P + r Cov(S, T)/sigma_T E[z; T < e]) */
+    ref = (wz * P - (rs * P + cov / sdt * M)) / ea;
     return ref < 0.0L ? 0.0L : (ref > 2.0L ? 2.0L : ref);
+}
+/* pf_horizon_masking's skewness from the moments and statistics, in long double */
+static long double ora_skew(long double wx, long double wy, long double mt, long double sdt, long double mst, long double mx,
+                            long double my, long double vx, long double vy, long double cxy)
+{
+    long double r = sqrtl(wx * wx + wy * wy), rs = wx * mx + wy * my, covr = r * mst - rs * mt;
+    long double vs = wx * wx * vx + wy * wy * vy + 2.0L * wx * wy * cxy, d = sdt * sdt * vs, u;
+    u = d > 1e-30L ? sdt * (1.0L - covr * covr / d) : sdt;
+    if (u < 0.0L) u = 0.0L;
+    return (mt <= 0.0L || u >= mt) ? 1.0L : u / mt;
 }
 static void test_horizon_masking_lod(void)
 {
@@ -616,7 +633,8 @@ static void test_horizon_masking_lod(void)
         pf_slope_stats s = pf_slope_stats_make((pf_real)mx, (pf_real)my, PF_R(0.16), PF_R(0.12), PF_R(0.01));
         pf_real k = pf_horizon_lod_weight(lod, PF_R(2.0), PF_R(6.0)), got = pf_horizon_masking_lod(w, m, s, lod, PF_R(2.0), PF_R(6.0));
         long double g1 = (long double)pf_beckmann_g1(w, s), ratio, ref;
-        ratio = ora_area_ratio((long double)w.x, (long double)w.y, (long double)w.z, mt, sdt, mst, mx, my);
+        long double g = ora_skew((long double)w.x, (long double)w.y, mt, sdt, mst, mx, my, 0.16L, 0.12L, 0.01L);
+        ratio = ora_area_ratio((long double)w.x, (long double)w.y, (long double)w.z, mt, sdt, mst, mx, my, g);
         ref = g1 * ((long double)k * ratio + 1.0L - (long double)k);
         if (ref > 1.0L) ref = 1.0L;
         if (fabsl((long double)got - ref) > worst) worst = fabsl((long double)got - ref);
