@@ -29,7 +29,8 @@
    and the masking term of a microfacet BRDF (see COMBINING WITH SMITH):
      pf_horizon_visible_area         the footprint's visible projected area over its mean
                                      projected area, from E[T], E[T^2], E[S T] (bivariate Gaussian)
-     pf_horizon_masking              that times Smith's pf_beckmann_g1: the masking G1.
+     pf_horizon_masking              the same ratio with a skewed (Gram-Charlier) HDF times
+                                     Smith's pf_beckmann_g1: the masking G1.
      pf_horizon_lod_weight           the horizon term's weight by mip level (1 small, 0 large)
      pf_horizon_masking_lod          pf_horizon_masking faded to Smith by that weight
    and the Lambertian diffuse of a footprint (see DIFFUSE):
@@ -56,7 +57,14 @@
    viewer and weigh more in the projected area), and V_A * G1 counts the footprint's own
    occlusion twice. pf_horizon_visible_area estimates the ratio with (T, S) jointly Gaussian:
        E[V a] = c Phi(z) - sum_xy (E[S] Phi(z) - Cov(S, T)/sigma_T phi(z)),   z = (e - mu)/sigma_T
-   with c = w.z and sum_xy the factor sin(zenith) of the slope term.
+   with c = w.z and sum_xy the factor sin(zenith) of the slope term. pf_horizon_masking skews
+   that HDF (pfi_horizon_area): a horizon is a maximum over the march, so a footprint's T is
+   right-skewed (mean skewness 0.74-0.99 over 4 x 4 footprints of fBm maps), and the Gaussian
+   of the same mean and variance over-masks views just above E[T] and under-masks far above
+   it. The Gram-Charlier series of skewness g = sigma_T/E[T] (1 - rho^2) (capped at 1) keeps
+   the closed form; masking at 16 texels on the seven user-map proxies 0.032-0.051 ->
+   0.031-0.047 (every 4 x 4 footprint, full reference), the corpus kinds equal or lower but
+   tiles 0.0109 -> 0.0118 (docs/horizon.md, "User maps").
 
    FADING BY LEVEL OF DETAIL (pf_horizon_lod_weight, pf_horizon_masking_lod; measured:
    docs/horizon.md). The area ratio R is what the horizon adds to Smith, and it matters only
@@ -190,7 +198,8 @@
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
      than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
      0.012-0.037 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
-     (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
+     (in-footprint reference). (These masking figures are the Gaussian HDF's; the skewed one
+     changes them by -0.0014 to +0.0009 at 16 texels, every footprint: docs/horizon.md.) Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
      0.020-0.078 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
      at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
      abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
@@ -216,10 +225,12 @@
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
      1992 (HDF mean and deviation, the ramp, the product); Tan, Lin, Quan, Guo & Shum 2008
      (Gaussian HDF, eq. 28); Ashikhmin, Premoze & Shirley 2000 (the beta form);
-     Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Smith 1967 and Dupuy et al.
+     Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Cramer 1946 sec. 17.6 and
+     Kendall & Stuart vol. 1 sec. 6.17 (the Gram-Charlier series of the masking's HDF). Smith 1967 and Dupuy et al.
      2013 eqs. 1, 13 for the masking decomposition; Dupuy et al. 2013 (LEADR) eqs. 2-3 and 21
      for the diffuse's slope grid and normalization. The lod fade and the slope-conditioned
-     HDF are ours (measured in bench/microsurface.c). */
+     HDF are ours (measured in bench/microsurface.c), as is the masking HDF's skewness from the
+     stored moments (bench/map_proxies.c --masking-parts). */
 #ifndef PF_HORIZON_H
 #define PF_HORIZON_H
 
