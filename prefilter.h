@@ -6431,7 +6431,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    and the masking term of a microfacet BRDF (see COMBINING WITH SMITH):
      pf_horizon_visible_area         the footprint's visible projected area over its mean
                                      projected area, from E[T], E[T^2], E[S T] (bivariate Gaussian)
-     pf_horizon_masking              that times Smith's pf_beckmann_g1: the masking G1.
+     pf_horizon_masking              the same ratio with a skewed (Gram-Charlier) HDF times
+                                     Smith's pf_beckmann_g1: the masking G1.
      pf_horizon_lod_weight           the horizon term's weight by mip level (1 small, 0 large)
      pf_horizon_masking_lod          pf_horizon_masking faded to Smith by that weight
    and the Lambertian diffuse of a footprint (see DIFFUSE):
@@ -6458,7 +6459,14 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
    viewer and weigh more in the projected area), and V_A * G1 counts the footprint's own
    occlusion twice. pf_horizon_visible_area estimates the ratio with (T, S) jointly Gaussian:
        E[V a] = c Phi(z) - sum_xy (E[S] Phi(z) - Cov(S, T)/sigma_T phi(z)),   z = (e - mu)/sigma_T
-   with c = w.z and sum_xy the factor sin(zenith) of the slope term.
+   with c = w.z and sum_xy the factor sin(zenith) of the slope term. pf_horizon_masking skews
+   that HDF (pfi_horizon_area): a horizon is a maximum over the march, so a footprint's T is
+   right-skewed (mean skewness 0.74-0.99 over 4 x 4 footprints of fBm maps), and the Gaussian
+   of the same mean and variance over-masks views just above E[T] and under-masks far above
+   it. The Gram-Charlier series of skewness g = sigma_T/E[T] (1 - rho^2) (capped at 1) keeps
+   the closed form; masking at 16 texels on the seven user-map proxies 0.032-0.051 ->
+   0.031-0.047 (every 4 x 4 footprint, full reference), the corpus kinds equal or lower but
+   tiles 0.0109 -> 0.0118 (docs/horizon.md, "User maps").
 
    FADING BY LEVEL OF DETAIL (pf_horizon_lod_weight, pf_horizon_masking_lod; measured:
    docs/horizon.md). The area ratio R is what the horizon adds to Smith, and it matters only
@@ -6591,9 +6599,10 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      0.040 with n = 32 azimuths, 0.023-0.067 with n = 16, against 0.081-0.195 for Smith alone;
      256 texels: 0.024-0.037 (n = 16) against 0.031-0.111. 4096 texels: 0.018-0.037, no better
      than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
-     0.012-0.039 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
-     (in-footprint reference). Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
-     0.025-0.077 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
+     0.012-0.037 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
+     (in-footprint reference). (These masking figures are the Gaussian HDF's; the skewed one
+     changes them by -0.0014 to +0.0009 at 16 texels, every footprint: docs/horizon.md.) Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
+     0.020-0.078 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
      at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
      abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
      the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
@@ -6611,17 +6620,19 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      long-double formula: the per-direction visibility 1.1e-3 abs, V_h 4.1e-4 abs, radiance
      4.1e-4 of the unshadowed lobe (float and double: the arcsine and CDF approximations).
      GPU: pf_horizon_leadr_specular 172 SPIR-V ops (pf_leadr_specular 116: 1.48x),
-     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 99, plus 150 per pf_vmf_sum_add lobe in
-     both).
+     pf_horizon_vmf_specular 147 (pf_vmf_sum_specular 94, plus 142 per pf_vmf_sum_add lobe in
+     both: 1.02x with 16 lobes).
 
    SOURCES
      Bruneton & Neyret 2012 sec. 4, eqs. 23-30, surveying: Max 1988 (horizon maps); Fournier
      1992 (HDF mean and deviation, the ramp, the product); Tan, Lin, Quan, Guo & Shum 2008
      (Gaussian HDF, eq. 28); Ashikhmin, Premoze & Shirley 2000 (the beta form);
-     Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Smith 1967 and Dupuy et al.
+     Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Cramer 1946 sec. 17.6 and
+     Kendall & Stuart vol. 1 sec. 6.17 (the Gram-Charlier series of the masking's HDF). Smith 1967 and Dupuy et al.
      2013 eqs. 1, 13 for the masking decomposition; Dupuy et al. 2013 (LEADR) eqs. 2-3 and 21
      for the diffuse's slope grid and normalization. The lod fade and the slope-conditioned
-     HDF are ours (measured in bench/microsurface.c). */
+     HDF are ours (measured in bench/microsurface.c), as is the masking HDF's skewness from the
+     stored moments (bench/map_proxies.c --masking-parts). */
 #ifndef PF_HORIZON_H
 #define PF_HORIZON_H
 
@@ -6862,44 +6873,84 @@ PF_DEF pf_real pf_horizon_bidir_ashikhmin(pf_real vl, pf_real vv, pf_real cos_lv
 }
 
 /* ---------------------------------------------------------------- masking (see COMBINING WITH SMITH)
-   Visible projected area over mean projected area of a footprint seen from w (any length,
+   E[V a]/E[a] for the view w (see pf_horizon_visible_area) with the HDF of w's azimuth the
+   Gram-Charlier series of skewness g (Cramer 1946 sec. 17.6; Kendall & Stuart, The Advanced
+   Theory of Statistics vol. 1, sec. 6.17): with z = (e - E[T])/sigma_T,
+       P(T < e)              = Phi(z) - g/6 (z^2 - 1) phi(z),
+       E[(T - mu)/sigma_T; T < e] = -phi(z) (1 + g z^3/6)
+   (the density phi(z) (1 + g/6 He_3(z)) integrated; the second by parts), and S's regression
+   on T as in the Gaussian, so E[V a] = w.z P - r (E[S] P + Cov(S, T)/sigma_T E[(T - mu)/sigma_T; T < e]).
+   The series' density is negative far in the left tail (z below -2.4 at g = 1), where its CDF
+   is negative: P is clamped to [0, 1] and the partial mean to at most z P (what any
+   distribution gives: (T - mu)/sigma_T < z below e), so both are 0 together, continuous, and P
+   is non-decreasing in e (the density is positive for z > -2.4 at g <= 1). g is estimated from the stored moments (ours; measured,
+   docs/horizon.md "User maps"): g = sigma_T/E[T] (1 - rho^2), at most 1 (1 for E[T] <= 0),
+   rho the correlation of T and the slope S along w's azimuth: a horizon is a maximum over the
+   march, right-skewed where it is set by distant bumps (sigma_T comparable to E[T]), and the
+   part of T that the texel's own slope explains is as symmetric as the slopes. vs = r^2
+   Var(S) (r = |w_xy|); vs < 0 gives g = 0, the bivariate Gaussian. No division by a possibly
+   zero operand, so no inf under -ffast-math. */
+PF_DEF pf_real pfi_horizon_area(pf_vec3 w, pf_hdf_moments m, pf_real mean_x, pf_real mean_y, pf_real vs)
+{
+    pf_real r = PF_SQRT(w.x * w.x + w.y * w.y);
+    pf_real rs = w.x * mean_x + w.y * mean_y; /* r E[S] */
+    pf_real ea = w.z - rs, e = PF_ATAN2(w.z, r);
+    pf_real var = m.m2 - m.m1 * m.m1, sd, cdf, pdf, cov, pm, z, eva;
+    if (!(ea > PF_R(0.0)) || !(var == var) || !(m.ms == m.ms)) return PF_R(0.0);
+    sd = PF_SQRT(pf_max(var, PF_R(0.0)));
+    if (!(sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(m.m1)))) {
+        cdf = e >= m.m1 ? PF_R(1.0) : PF_R(0.0);
+        pm = PF_R(0.0);
+        cov = PF_R(0.0);
+    } else {
+        /* r Cov(S, T) = r E[S T] - (r E[S]) E[T] */
+        pf_real covr = r * m.ms - rs * m.m1, d = var * vs, g = PF_R(0.0), u;
+        if (vs >= PF_R(0.0)) {
+            /* sigma_T (1 - rho^2), rho^2 = (r Cov)^2/(Var(T) r^2 Var(S)); d NaN or tiny: rho = 0 */
+            u = d > PF_R(1e-30) ? sd * pf_max(d - covr * covr, PF_R(0.0)) / d : sd;
+            g = u >= m.m1 ? PF_R(1.0) : u / m.m1; /* u < E[T] here, so E[T] > 0 */
+        }
+        z = pf_clamp((e - m.m1) / sd, PF_R(-12.0), PF_R(12.0));
+        /* beyond |z| = 12 Phi is 0 or 1 and phi < 1e-31 (and the tails of erfc and exp would
+           be subnormal: slow on x86) */
+        cdf = z > PF_R(-12.0) ? (z < PF_R(12.0) ? PF_R(0.5) * pf_erfc(-z * PF_INV_SQRT2) : PF_R(1.0)) : PF_R(0.0);
+        pdf = PF_FABS(z) < PF_R(12.0) ? pf_exp_neg_sq(z * PF_INV_SQRT2) * (PF_R(1.0) / PF_SQRT_2PI) : PF_R(0.0);
+        cdf = pf_saturate(cdf - g * (PF_R(1.0) / PF_R(6.0)) * (z * z - PF_R(1.0)) * pdf);
+        pm = pf_min(-pdf * (PF_R(1.0) + g * (PF_R(1.0) / PF_R(6.0)) * z * z * z), z * cdf);
+        cov = covr / sd;
+    }
+    eva = w.z * cdf - (rs * cdf + cov * pm);
+    return pf_clamp(eva / ea, PF_R(0.0), PF_R(2.0));
+}
+
+/* Visible projected area over mean projected area of a footprint seen from w (any length,
    w.z > 0), from the HDF moments m of w's azimuth and the mean slope (mean_x, mean_y) of the
    footprint (pf_slope_stats): with (T, S) jointly Gaussian, z = (e - E[T])/sigma_T,
      E[V a] = w.z Phi(z) - r (E[S] Phi(z) - Cov(S, T)/sigma_T phi(z)),
      E[a]   = w.z - r E[S],        r = |w_xy|, r E[S] = w.x mean_x + w.y mean_y,
    returned as E[V a]/E[a] clamped to [0, 2] (the exact ratio exceeds 1 where the footprint is
    also seen through its sides). 0 when E[a] <= 0 (the view at or below the mean plane) or for
-   NaN inputs. */
+   NaN inputs. The Gaussian shape: pf_horizon_masking uses the skewed one (pfi_horizon_area),
+   which needs the slope variance as well. */
 PF_DEF pf_real pf_horizon_visible_area(pf_vec3 w, pf_hdf_moments m, pf_real mean_x, pf_real mean_y)
 {
-    pf_real r = PF_SQRT(w.x * w.x + w.y * w.y);
-    pf_real rs = w.x * mean_x + w.y * mean_y; /* r E[S] */
-    pf_real ea = w.z - rs, e = PF_ATAN2(w.z, r);
-    pf_real var = m.m2 - m.m1 * m.m1, sd, cdf, pdf, cov, z, eva;
-    if (!(ea > PF_R(0.0)) || !(var == var) || !(m.ms == m.ms)) return PF_R(0.0);
-    sd = PF_SQRT(pf_max(var, PF_R(0.0)));
-    if (!(sd > PF_R(1e-6) * (PF_R(1.0) + PF_FABS(m.m1)))) {
-        cdf = e >= m.m1 ? PF_R(1.0) : PF_R(0.0);
-        pdf = PF_R(0.0);
-        cov = PF_R(0.0);
-    } else {
-        z = pf_clamp((e - m.m1) / sd, PF_R(-12.0), PF_R(12.0));
-        /* beyond |z| = 12 Phi is 0 or 1 and phi < 1e-31 (and the tails of erfc and exp would
-           be subnormal: slow on x86) */
-        cdf = z > PF_R(-12.0) ? (z < PF_R(12.0) ? PF_R(0.5) * pf_erfc(-z * PF_INV_SQRT2) : PF_R(1.0)) : PF_R(0.0);
-        pdf = PF_FABS(z) < PF_R(12.0) ? pf_exp_neg_sq(z * PF_INV_SQRT2) * (PF_R(1.0) / PF_SQRT_2PI) : PF_R(0.0);
-        /* r Cov(S, T) = r E[S T] - (r E[S]) E[T] */
-        cov = (r * m.ms - rs * m.m1) / sd;
-    }
-    eva = w.z * cdf - (rs * cdf - cov * pdf);
-    return pf_clamp(eva / ea, PF_R(0.0), PF_R(2.0));
+    return pfi_horizon_area(w, m, mean_x, mean_y, PF_R(-1.0));
 }
 
-/* Masking G1 of the footprint: pf_horizon_visible_area times Smith's 1/(1 + Lambda) of its
-   slope statistics (pf_beckmann_g1), clamped to [0, 1]. */
+/* The area ratio of pf_horizon_masking: pfi_horizon_area with the skewness from the slope
+   statistics s (r^2 Var(S) along w's azimuth). */
+PF_DEF pf_real pfi_horizon_area_skew(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s)
+{
+    pf_real vs = w.x * w.x * s.var_x + w.y * w.y * s.var_y + PF_R(2.0) * w.x * w.y * s.cov_xy;
+    return pfi_horizon_area(w, m, s.mean_x, s.mean_y, pf_max(vs, PF_R(0.0)));
+}
+
+/* Masking G1 of the footprint: the visible area ratio with the skewed (Gram-Charlier) HDF
+   (pfi_horizon_area; the Gaussian's pf_horizon_visible_area at g = 0) times Smith's
+   1/(1 + Lambda) of its slope statistics (pf_beckmann_g1), clamped to [0, 1]. */
 PF_DEF pf_real pf_horizon_masking(pf_vec3 w, pf_hdf_moments m, pf_slope_stats s)
 {
-    return pf_saturate(pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) * pf_beckmann_g1(w, s));
+    return pf_saturate(pfi_horizon_area_skew(w, m, s) * pf_beckmann_g1(w, s));
 }
 
 /* ---------------------------------------------------------------- fading to Smith by footprint size
@@ -6923,7 +6974,7 @@ PF_DEF pf_real pf_horizon_lod_weight(pf_real lod, pf_real lod_full, pf_real lod_
 
 /* Masking G1 with the horizon term faded to Smith by footprint size:
        G1 = clamp(G1_smith (k R + 1 - k), 0, 1),   k = pf_horizon_lod_weight(lod, lod_full, lod_smith),
-   R = pf_horizon_visible_area(w, m, mean slope), G1_smith = pf_beckmann_g1(w, s). k = 1 is
+   R = pf_horizon_masking's area ratio (the skewed HDF), G1_smith = pf_beckmann_g1(w, s). k = 1 is
    pf_horizon_masking exactly, k = 0 is pf_beckmann_g1 exactly (R is not evaluated then: the
    shader may skip the HDF fetch above lod_smith). The same inputs as pf_horizon_masking; a
    view at or below the mean plane or NaN moments give R = 0, hence (1 - k) G1_smith. */
@@ -6931,7 +6982,7 @@ PF_DEF pf_real pf_horizon_masking_lod(pf_vec3 w, pf_hdf_moments m, pf_slope_stat
                                       pf_real lod_smith)
 {
     pf_real k = pf_horizon_lod_weight(lod, lod_full, lod_smith);
-    pf_real r = k > PF_R(0.0) ? pf_horizon_visible_area(w, m, s.mean_x, s.mean_y) : PF_R(1.0);
+    pf_real r = k > PF_R(0.0) ? pfi_horizon_area_skew(w, m, s) : PF_R(1.0);
     return pf_saturate(pf_beckmann_g1(w, s) * (k * r + (PF_R(1.0) - k)));
 }
 

@@ -6,7 +6,11 @@
    1. MAPPED: words mapped into the documented domains (moments with a non-negative variance,
       unit directions, visibilities in [0, 1], cos in [-1, 1], Legendre x in [-1, 1]); every
       result must be finite and in its documented range ([0, 1]; [0, 2] for the visible area;
-      the hotspot and fully-lit limits of the bidirectional forms to 1e-5), else trap.
+      the hotspot and fully-lit limits of the bidirectional forms to 1e-5), else trap. The
+      masking's skewed HDF (hz_skew): E[T] near 0 and negative, sigma_T down to 0, the
+      slope-horizon correlation through +-1 and beyond, Var(S) from 0 to 4: in [0, 1]; with no
+      covariance and a zero mean slope the area ratio is the clamped Gram-Charlier CDF,
+      non-decreasing in the view's elevation.
    2. RAW: the words as floats (NaN, inf, subnormal) and small ints; only crashes and
       undefined behaviour count (ASan, UBSan). Build and run: sh tests/fuzz/run.sh. */
 #include <stdio.h>
@@ -127,6 +131,40 @@ static void hz_mapped(hz_src *s)
     }
 }
 
+/* pf_horizon_masking's skewness g = sigma_T/E[T] (1 - rho^2) at its degenerate inputs */
+static void hz_skew(hz_src *s)
+{
+    unsigned sel = hz_word(s);
+    pf_real mu = (sel & 1u) ? hz_in(s, PF_R(-1e-6), PF_R(1e-6)) : hz_in(s, PF_R(-0.5), PF_R(1.5));
+    pf_real sd = (sel & 2u) ? hz_in(s, PF_R(0.0), PF_R(1e-5)) : hz_in(s, PF_R(0.0), PF_R(1.0));
+    pf_real rho = hz_in(s, PF_R(-1.2), PF_R(1.2)), vx = hz_in(s, PF_R(0.0), PF_R(4.0)), vy = hz_in(s, PF_R(0.0), PF_R(4.0));
+    pf_real cxy = hz_in(s, PF_R(-1.0), PF_R(1.0)) * PF_SQRT(vx * vy), mx = hz_in(s, PF_R(-1.0), PF_R(1.0)), my = hz_in(s, PF_R(-1.0), PF_R(1.0));
+    pf_real th = hz_in(s, PF_R(0.0), PF_R(1.57)), ph = hz_in(s, PF_R(0.0), PF_R(6.3)), th2 = hz_in(s, PF_R(0.0), PF_R(1.57));
+    pf_real cp = PF_COS(ph), sp = PF_SIN(ph), vs = pf_max(vx * cp * cp + vy * sp * sp + PF_R(2.0) * cxy * cp * sp, PF_R(0.0));
+    pf_real ms = rho * PF_SQRT(vs) * sd + mu * (mx * cp + my * sp), r, r1, r2;
+    pf_vec3 w = pf_vec3_make(PF_SIN(th) * cp, PF_SIN(th) * sp, PF_COS(th));
+    pf_slope_stats st = pf_slope_stats_make(mx, my, vx, vy, cxy);
+    pf_hdf_moments m = pf_hdf_moments_make(mu, mu * mu + sd * sd, ms);
+    r = pf_horizon_masking(w, m, st);
+    HZ_01(r, "skew masking");
+    r = pf_horizon_masking_lod(w, m, st, PF_R(3.0), PF_R(2.0), PF_R(6.0));
+    HZ_01(r, "skew masking lod");
+    /* no covariance, zero mean slope: masking / Smith's G1 is the clamped CDF at the elevation */
+    if (sd > PF_R(1e-3) && PF_FABS(th - th2) > PF_R(1e-3)) {
+        pf_slope_stats s0 = pf_slope_stats_make(PF_R(0.0), PF_R(0.0), vx, vy, cxy);
+        pf_hdf_moments m0 = pf_hdf_moments_make(mu, mu * mu + sd * sd, PF_R(0.0));
+        pf_vec3 w2 = pf_vec3_make(PF_SIN(th2) * cp, PF_SIN(th2) * sp, PF_COS(th2));
+        pf_real g1 = pf_beckmann_g1(w, s0), g2 = pf_beckmann_g1(w2, s0);
+        if (g1 > PF_R(0.01) && g2 > PF_R(0.01)) {
+            r1 = pf_horizon_masking(w, m0, s0) / g1;
+            r2 = pf_horizon_masking(w2, m0, s0) / g2;
+            /* th < th2: w is the higher elevation; the ratio saturates at 1 with G1 */
+            if (pf_max(r1, r2) < PF_R(0.999))
+                hz_check(th < th2 ? r1 >= r2 - PF_R(1e-4) : r2 >= r1 - PF_R(1e-4), "skew CDF monotone", r1 - r2);
+        }
+    }
+}
+
 static volatile pf_real hz_sink;
 static void hz_rawcalls(hz_src *s)
 {
@@ -165,6 +203,7 @@ int LLVMFuzzerTestOneInput(const unsigned char *data, size_t size)
     s.rng = 0x9E3779B97F4A7C15ULL ^ (unsigned long long)size;
     hz_bad = 0;
     hz_mapped(&s);
+    hz_skew(&s);
     if (hz_bad) __builtin_trap();
     s.at = 0;
     hz_rawcalls(&s);
