@@ -149,7 +149,9 @@
    timing loop runs alone on one thread, after every parallel step. Steps that run longer than
    2 s print progress with an estimate of the time left on stderr. MICROSURFACE_CHECK=1 compares
    the shortcuts (patches sampled in parallel, the n = 16 horizon pyramid read from the n = 32
-   one) with the serial calls they replace, bit for bit.
+   one, in float32 and in the storage formats, and every method's value with what its sample's
+   methods share (mmemo) against the method alone) with the serial calls they replace, bit for
+   bit.
 
    OUTPUT (directory --out, default bench/out): microsurface_errors.csv, microsurface_cost.csv,
    microsurface.md (report fragment), microsurface_*.svg (gnuplot, bench/microsurface.gp; the
@@ -377,6 +379,7 @@ static int check_on(void)
     const char *e = getenv("MICROSURFACE_CHECK");
     return e && *e && strcmp(e, "0") != 0;
 }
+static int check_mode; /* check_on(), read once by main (the footprints' items read it) */
 static void check_same(const void *a, const void *b, size_t bytes, const char *what)
 {
     if (memcmp(a, b, bytes) != 0) {
@@ -845,11 +848,25 @@ static pf_real horizon_area(const lib_maps *L, int i, int x0, int y0, int n, pf_
    T_BANDS with the banded one), the footprint (texel (x0/n, y0/n) of level log2 n), the view and
    the light; oracles also the reference shading with every texel visible (NULL in the cost
    section, which times shader methods only) */
+/* what the methods of one sample (one footprint, view, light and set of pyramids) share,
+   computed once by the first method that needs it and read by the others: the fetched slope
+   statistics (without and with the base variance), the value of each vMF pyramid per path (mix,
+   texel), the exact-path lobe sum of each pyramid (the horizon and grazing rows sum the same 16
+   lobes as vmf_m16; the scaled rows shade the same lobes as their unscaled twins). The same
+   calls on the same inputs: every value is the one the method computes alone. NULL (the cost
+   section): each method does all its own work, as a shader would. */
+typedef struct mmemo {
+    unsigned char have_slope[2], have_f[NVMF][2][2], have_sum[NVMF];
+    pf_slope_stats slope[2];
+    pf_real f[NVMF][2][2];
+    pf_vmf_sum sum[NVMF];
+} mmemo;
 typedef struct mctx {
     const lib_maps *L;
     int task, x0, y0, n;
     pf_vec3 wo, wi;
     const pfm_shade *novis;
+    mmemo *memo; /* NULL: nothing shared */
 } mctx;
 static pf_real ctx_lod(const mctx *c) { return PF_R(ilog2(c->n)); }
 static pf_real ctx_u(const mctx *c) { return (PF_R(c->x0 / c->n) + PF_R(0.5)) / PF_R(c->L->w / c->n); }
@@ -858,8 +875,17 @@ static pf_real ctx_v(const mctx *c) { return (PF_R(c->y0 / c->n) + PF_R(0.5)) / 
 static pf_slope_stats fetch_slope(const mctx *c, pf_real base_var)
 {
     const lib_maps *L = c->L;
-    return pf_slope_moments_stats(pf_slope_moments_sample(L->slope, L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP),
-                                  base_var);
+    const int b = base_var != PF_R(0.0); /* the two variances the methods ask for: 0, BASE_SIGMA^2 */
+    mmemo *memo = base_var == PF_R(0.0) || base_var == PF_R(BASE_SIGMA * BASE_SIGMA) ? c->memo : NULL;
+    pf_slope_stats s;
+    if (memo && memo->have_slope[b]) return memo->slope[b];
+    s = pf_slope_moments_stats(pf_slope_moments_sample(L->slope, L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP),
+                               base_var);
+    if (memo) {
+        memo->slope[b] = s;
+        memo->have_slope[b] = 1;
+    }
+    return s;
 }
 static pf_slope_stats fetch_slope_spec(const mctx *c) { return fetch_slope(c, PF_R(BASE_SIGMA * BASE_SIGMA)); }
 /* the footprint's (E[h], E[h^2]) texel and the task's colour map */
@@ -875,6 +901,27 @@ static const cmap *task_cmap(const mctx *c) { return &c->L->cm[c->task == T_BAND
    tangent variance; texel = 1: the shader path bench/gpu/ prices (pf_vmf_pixel_make once,
    pf_vmf_sum_add_texel or _texel_mixture per fetched texel as stored, its rational tangent
    variance) */
+/* the exact path's sum of texel (x0/n, y0/n) of vMF pyramid p's lobes (pf_vmf_lobe_make +
+   pf_vmf_sum_add, base variance added: vs_texel_spec's loop), shared through the memo */
+static pf_vmf_sum vmf_sum_exact(const mctx *c, int p)
+{
+    const lib_maps *L = c->L;
+    const int m = vmf_lobes[p], W = L->w, H = L->h;
+    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
+    const pf_real *tx = L->vmf[p] + id * 4 * m;
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int j;
+    if (c->memo && c->memo->have_sum[p]) return c->memo->sum[p];
+    for (j = 0; j < m; ++j) /* padding lobes (amp 0) add nothing */
+        sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi,
+                             PF_R(BASE_SIGMA * BASE_SIGMA));
+    if (c->memo) {
+        c->memo->sum[p] = sum;
+        c->memo->have_sum[p] = 1;
+    }
+    return sum;
+}
+
 static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix, int texel)
 {
     const int m = vmf_lobes[p], W = L->w, H = L->h;
@@ -908,7 +955,16 @@ static double vmf_method(const mctx *c, int p, int mix, int sc, int use_t, int t
 {
     const lib_maps *L = c->L;
     const int lev = ilog2(c->n);
-    pf_real f = vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix, texel);
+    pf_real f;
+    if (c->memo && c->memo->have_f[p][mix][texel]) f = c->memo->f[p][mix][texel];
+    else {
+        f = c->memo && !mix && !texel ? pf_vmf_sum_specular(vmf_sum_exact(c, p), c->wo, c->wi, PF_R(F0)) /* vs_texel_spec */
+                                      : vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix, texel);
+        if (c->memo) {
+            c->memo->f[p][mix][texel] = f;
+            c->memo->have_f[p][mix][texel] = 1;
+        }
+    }
     if (sc < 0 || lev < sc_min_level || lev > sc_max_level) return (double)f;
     /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
     return (double)pf_vmf_scale_apply(use_t ? scale_T(L, sc, c->x0, c->y0, c->n) : PF_R(1.0),
@@ -999,15 +1055,8 @@ static double m_leadr_horizon_lod_n32(const mctx *c)
    on the slope-moment texel's statistics (lod: faded) */
 static double vmf_horizon_method(const mctx *c, int p, int lod)
 {
-    const lib_maps *L = c->L;
-    const int m = vmf_lobes[p], W = L->w, H = L->h;
-    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
-    const pf_real *tx = L->vmf[p] + id * 4 * m;
-    pf_vmf_sum sum = pf_vmf_sum_zero();
+    const pf_vmf_sum sum = vmf_sum_exact(c, p);
     const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
-    int j;
-    for (j = 0; j < m; ++j)
-        sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
     pf_slope_stats st = fetch_slope_spec(c);
     if (!lod)
         return (double)pf_horizon_vmf_specular(sum, c->wo, c->wi, st, bv, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), PF_R(F0));
@@ -1038,8 +1087,7 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
        lobe's masking left to the factor (as pf_leadr_specular_base) */
     if (per_lobe != 1) {
         pf_real f;
-        for (j = 0; j < m; ++j)
-            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
+        sum = vmf_sum_exact(c, p);
         if (per_lobe == 2) /* the factor of the mixture's own moments: no fetch beyond the lobes */
             return (double)pf_vmf_sum_specular_base(sum, c->wo, c->wi, bv, PF_R(F0));
         f = pf_vmf_sum_specular(pf_vmf_sum_without_base(sum, bv), c->wo, c->wi, PF_R(F0));
@@ -1219,6 +1267,23 @@ static void registry_init(void)
 }
 static const method *meth(int t, int k) { return &methods[task_meth[t][k]]; }
 static const char *mname(int t, int k) { return meth(t, k)->name; }
+/* MICROSURFACE_CHECK=1: the values of task t's methods in vals (computed through the memo of
+   c) against each method alone (no memo), bit for bit */
+static void check_memo(const mctx *c, int t, const double *vals)
+{
+    mctx a = *c;
+    int k;
+    a.memo = NULL;
+    a.task = t;
+    for (k = 0; k < task_n[t]; ++k) {
+        double v = meth(t, k)->eval(&a);
+        if (memcmp(&v, &vals[k], sizeof v) != 0) {
+            fprintf(stderr, "microsurface: MICROSURFACE_CHECK: %s through the shared values (mmemo) differs from the "
+                            "method alone\n", mname(t, k));
+            exit(1);
+        }
+    }
+}
 /* the index of method `name` in task t (the report's named columns); a missing name is a bug */
 static int mk(int t, const char *name)
 {
@@ -1466,6 +1531,7 @@ static void fp_item_run(void *ctx, long long it)
             const unsigned char *vo_set[3], *vi_set[3];
             pfm_shade sh[3];
             mctx c;
+            mmemo memo;
             if (li < J->nlights) {
                 memcpy(wi_d, J->lights[li], sizeof wi_d);
                 vi_set[0] = J->vis_l[li];
@@ -1515,11 +1581,14 @@ static void fp_item_run(void *ctx, long long it)
             c.wo = wo;
             c.wi = v3(wi_d);
             c.novis = &sh[2];
+            memset(&memo, 0, sizeof memo);
+            c.memo = &memo;
             if (first) { /* masking depends on the view only */
                 c.task = T_MASK;
                 row = item_row(I, T_MASK);
                 for (r = 0; r < NREF; ++r) row[r] = sh[r].masking;
                 for (k = 0; k < task_n[T_MASK]; ++k) row[NREF + k] = meth(T_MASK, k)->eval(&c);
+                if (check_mode) check_memo(&c, T_MASK, row + NREF);
                 store_rows(J->store, &I->store, T_MASK, &c, row);
                 for (r = 0; r < NREF; ++r) rec->mask[r] = sh[r].masking;
                 rec->vis_num = sh[0].visible_area * sh[0].area;
@@ -1531,6 +1600,7 @@ static void fp_item_run(void *ctx, long long it)
                 row = item_row(I, t);
                 for (r = 0; r < NREF; ++r) row[r] = t == T_SPEC ? sh[r].spec : sh[r].diffuse;
                 for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                if (check_mode) check_memo(&c, t, row + NREF);
                 store_rows(J->store, &I->store, t, &c, row);
             }
             if (sh[0].joint > 1e-9)
@@ -1540,6 +1610,7 @@ static void fp_item_run(void *ctx, long long it)
                     for (r = 0; r < NREF; ++r)
                         row[r] = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
                     for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                    if (check_mode) check_memo(&c, t, row + NREF);
                     store_rows(J->store, &I->store, t, &c, row);
                 }
         }
@@ -1939,6 +2010,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
                         c.wo = wo;
                         c.wi = wil[lq];
                         c.novis = NULL;
+                        c.memo = NULL; /* each method timed with all its own work */
                         acc += cr->m->eval(&c);
                     }
                 }
@@ -2809,6 +2881,7 @@ int main(int argc, char **argv)
     double t0 = pfb_now_ns();
     char err[1024];
     registry_init();
+    check_mode = check_on();
     map_opt = pfmap_options_default();
     memset(&S, 0, sizeof S);
     S.quick = q && *q && strcmp(q, "0") != 0 && strcmp(q, "no") != 0;
