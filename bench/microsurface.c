@@ -407,7 +407,7 @@ static pf_vmf_scale_desc scale_desc(const lib_maps *L)
    pf_vmf_scale_texel_t per texel, each work item with its own scratch */
 typedef struct scale_job {
     const lib_maps *L;
-    pf_vmf_scale_desc d;
+    pf_vmf_scale_desc d, r; /* the description, resolved (pfi_vmf_scale_resolve) */
     int level;
     long long scratch_len;
     const long long *texels; /* item i: texel texels[i] of the level (row-major) */
@@ -418,28 +418,43 @@ static void scale_texel_item(void *ctx, long long i)
 {
     const scale_job *J = (const scale_job *)ctx;
     const lib_maps *L = J->L;
-    const long long gw = L->w >> J->level;
+    const long long gw = L->w >> J->level, tx = J->texels[i] % gw, ty = J->texels[i] / gw;
+    const long long cnt = pf_vmf_scale_sample_count(J->r.nt, J->r.np);
     const pf_real *s_tab[NSCALE];
-    pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)J->scratch_len, sizeof(pf_real));
+    /* pf_vmf_scale_texel_t's work with the hoisted sampler (vs_texel_samples): the texel's
+       samples, then T per lobe count from them (pfi_vmf_scale_t) */
+    pf_real *smp = (pf_real *)pfb_xcalloc((size_t)((1 + NSCALE) * cnt + vs_samples_work(&J->r, J->level)), sizeof(pf_real));
     int j;
     for (j = 0; j < NSCALE; ++j) s_tab[j] = L->sc_S[J->level][j];
-    if (pf_vmf_scale_texel_t(&J->d, J->level, J->texels[i] % gw, J->texels[i] / gw, s_tab, L->sc_prior[J->level],
-                             J->t_out + i * NSCALE, scratch, J->scratch_len) != PF_OK)
+    if (tx >= gw || ty >= (L->h >> J->level) ||
+        vs_texel_samples(&J->r, J->level, tx, ty, smp, smp + cnt, cnt, smp + (1 + NSCALE) * cnt) != PF_OK)
         fatal("the scaling function's T failed");
-    free(scratch);
+    for (j = 0; j < NSCALE; ++j)
+        J->t_out[i * NSCALE + j] = pfi_vmf_scale_t(smp, smp + (1 + j) * cnt, J->r.nt, J->r.np, s_tab[j], L->sc_prior[J->level][j]);
+    free(smp);
+    if (check_mode) { /* MICROSURFACE_CHECK=1: against the library's pf_vmf_scale_texel_t */
+        pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)J->scratch_len, sizeof(pf_real)), t[NSCALE];
+        if (pf_vmf_scale_texel_t(&J->d, J->level, tx, ty, s_tab, L->sc_prior[J->level], t, scratch, J->scratch_len) != PF_OK)
+            fatal("the scaling function's T failed");
+        if (memcmp(t, J->t_out + i * NSCALE, sizeof t) != 0) check_same(t, J->t_out + i * NSCALE, sizeof t, "a texel's T");
+        free(scratch);
+    }
 }
 
 /* ---- the scaling function's fit on every core (bench-side driver of pf_vmf_scale_fit_level)
    S and the prior per lobe count at the scaled levels, and the training patches' T; every other
    texel's T NaN (scale_T_fill computes them). pf_vmf_scale_fit_level does, per level: the
-   samples of VS_TRAIN evenly spaced training patches (pfi_vmf_scale_texel_samples: the marches,
-   nearly all its time), then per lobe count the factorization (pfi_vmf_scale_factor) and the
-   training patches' T (pfi_vmf_scale_t). This driver makes the same calls in the same order on
-   the same inputs, with the patches' samples as the parallel work items (one per training patch
-   of every scaled level, each writing only its own slot, with its own scratch) and the
-   factorizations after the loop in level and lobe-count order: S, prior and T are those of
+   samples of VS_TRAIN evenly spaced training patches (pfi_vmf_scale_texel_samples: the marches
+   and the effective BRDF, nearly all its time), then per lobe count the factorization
+   (pfi_vmf_scale_factor) and the training patches' T (pfi_vmf_scale_t). This driver makes the
+   same calls in the same order on the same inputs, with the patches' samples as the parallel
+   work items (one per training patch of every scaled level, each writing only its own slot,
+   with its own scratch; the samples by vs_texel_samples, bench/vmf_scaling.h: the library's
+   values with the per-facet work hoisted out of the direction pairs) and the factorizations
+   after the loop in level and lobe-count order: S, prior and T are those of
    pf_vmf_scale_fit_level bit for bit, for any thread count (MICROSURFACE_CHECK=1 compares them
-   with the serial call). One work item per level would leave all but one core idle. */
+   with the serial call). One work item per level would leave all but one core idle. The other
+   texels' T (scale_T_fill) are pf_vmf_scale_texel_t's the same way (checked too). */
 typedef struct {
     pf_vmf_scale_desc r; /* the resolved description (pfi_vmf_scale_resolve) */
     int level[NSIZE];    /* per scaled level (index si - sc_min_level): */
@@ -467,8 +482,8 @@ static void scale_patch_item(void *ctx, long long i)
     gh = r->h >> J->level[li];
     c = (p * gw * gh) / J->P[li];
     work = (pf_real *)pfb_xcalloc((size_t)J->work_len, sizeof(pf_real));
-    J->patch_rc[i] = pfi_vmf_scale_texel_samples(r, J->level[li], c % gw, c / gw, J->f_eff[li] + p * J->cnt,
-                                                 J->f_l[li] + p * J->cnt, J->P[li] * J->cnt, work);
+    J->patch_rc[i] = vs_texel_samples(r, J->level[li], c % gw, c / gw, J->f_eff[li] + p * J->cnt, J->f_l[li] + p * J->cnt,
+                                      J->P[li] * J->cnt, work);
     free(work);
 }
 
@@ -544,11 +559,9 @@ static void scale_build(lib_maps *L, const char *kind_name)
     J.work_len = 0;
     for (li = 0; li < J.nlevels; ++li) {
         const int s = sc_max_level - li; /* the largest patches first */
-        const long long gp = (long long)(L->w >> s) * (L->h >> s), n = 1LL << s;
+        const long long gp = (long long)(L->w >> s) * (L->h >> s);
         /* pfi_vmf_scale_texel_samples' work: normals, a junk f_lobes, the visibility bytes */
-        const long long wl = 3 * n * n + J.cnt +
-                             (pf_vmf_scale_vis_bytes(J.r.nt, J.r.np, (int)n) + (long long)sizeof(pf_real) - 1) /
-                                 (long long)sizeof(pf_real);
+        const long long wl = vs_samples_work(&J.r, s); /* vs_texel_samples' work */
         if (pfi_vmf_scale_check(&J.r, s) != PF_OK || pf_vmf_scale_scratch_size(&J.r, s) <= 0)
             fatal("the scaling function's fit failed");
         J.level[li] = s;
@@ -618,7 +631,8 @@ static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long 
         J.d = scale_desc(L);
         J.level = si;
         J.scratch_len = pf_vmf_scale_scratch_size(&J.d, si);
-        if (J.scratch_len <= 0) fatal("the scaling function's T failed");
+        if (J.scratch_len <= 0 || !pfi_vmf_scale_resolve(&J.d, &J.r) || pfi_vmf_scale_check(&J.r, si) != PF_OK)
+            fatal("the scaling function's T failed");
         J.texels = texels;
         t = (pf_real *)pfb_xcalloc((size_t)m * NSCALE, sizeof(pf_real));
         J.t_out = t;

@@ -100,15 +100,16 @@ static void store_channels(pf_real *p, long long n, int C, int f)
     pf_real *off = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real)), *sc = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real));
     void *q = pfb_xcalloc((size_t)n * (size_t)C, 2);
     int fmt = f == ST_HALF ? PF_ENCODE_HALF : (f == ST_U16 ? PF_ENCODE_UNORM16 : PF_ENCODE_UNORM8);
-    long long i;
+    long long t, i;
+    int c;
     if (pf_encode_ranges(p, n, C, off, sc) != PF_OK || pf_encode_channels(p, n, C, off, sc, fmt, q) != PF_OK)
         store_fail("pf_encode_channels");
-    for (i = 0; i < n * C; ++i) {
-        int c = (int)(i % C);
-        if (fmt == PF_ENCODE_HALF) p[i] = pf_real_from_half(((unsigned short *)q)[i]);
-        else if (fmt == PF_ENCODE_UNORM16) p[i] = pf_unorm_decode((pf_real)((unsigned short *)q)[i] / PF_R(65535.0), off[c], sc[c]);
-        else p[i] = pf_unorm_decode((pf_real)((unsigned char *)q)[i] / PF_R(255.0), off[c], sc[c]);
-    }
+    for (t = 0, i = 0; t < n; ++t) /* texel by texel, channel c of texel t at i = t C + c */
+        for (c = 0; c < C; ++c, ++i) {
+            if (fmt == PF_ENCODE_HALF) p[i] = pf_real_from_half(((unsigned short *)q)[i]);
+            else if (fmt == PF_ENCODE_UNORM16) p[i] = pf_unorm_decode((pf_real)((unsigned short *)q)[i] / PF_R(65535.0), off[c], sc[c]);
+            else p[i] = pf_unorm_decode((pf_real)((unsigned char *)q)[i] / PF_R(255.0), off[c], sc[c]);
+        }
     free(off);
     free(sc);
     free(q);
