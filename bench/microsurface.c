@@ -380,6 +380,46 @@ static int check_on(void)
     return e && *e && strcmp(e, "0") != 0;
 }
 static int check_mode; /* check_on(), read once by main (the footprints' items read it) */
+
+/* ---- CPU and wall seconds per pass (over every kind), printed on stderr at the end: where the
+   run's time goes (process CPU time: the passes run one after the other, each on every core) */
+enum { PS_MAPS, PS_SCALE_FIT, PS_STORE, PS_VIS, PS_T, PS_BOX, PS_FP, PS_COST_VIS, PS_COST, NPASS };
+static const char *pass_name[NPASS] = { "lobe fits + horizon pyramid", "scaling function fit (patches)",
+                                        "storage pass: pyramids", "full visibility maps", "scaling function T (texels)",
+                                        "in-footprint maps toward the lights", "footprints (references, methods, storage)",
+                                        "cost: visibility maps", "cost: timings (one thread)" };
+static double pass_cpu[NPASS], pass_wall[NPASS];
+static double cpu_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+static void pass_add(int pass, double cpu0, double wall0)
+{
+    pass_cpu[pass] += cpu_s() - cpu0;
+    pass_wall[pass] += pfb_wall_s() - wall0;
+}
+/* pfb_parallel_for, timed into pass `pass` */
+static void ms_parallel_for(int pass, long long n, pfb_item_fn fn, void *ctx, const char *label)
+{
+    const double c0 = cpu_s(), w0 = pfb_wall_s();
+    pfb_parallel_for(n, fn, ctx, label);
+    pass_add(pass, c0, w0);
+}
+static void pass_report(double cpu0, double wall0)
+{
+    double c = cpu_s() - cpu0, w = pfb_wall_s() - wall0, rc = c, rw = w;
+    int k;
+    fprintf(stderr, "microsurface: CPU and wall seconds per pass (%d threads):\n", pfb_thread_count());
+    for (k = 0; k < NPASS; ++k) {
+        fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", pass_name[k], pass_cpu[k], pass_wall[k]);
+        rc -= pass_cpu[k];
+        rw -= pass_wall[k];
+    }
+    fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", "the rest (serial)", rc, rw);
+    fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", "total", c, w);
+}
 static void check_same(const void *a, const void *b, size_t bytes, const char *what)
 {
     if (memcmp(a, b, bytes) != 0) {
@@ -574,7 +614,7 @@ static void scale_build(lib_maps *L, const char *kind_name)
         J.work_len = wl > J.work_len ? wl : J.work_len;
     }
     snprintf(label, sizeof label, "%s: scaling function fit (training patches)", kind_name);
-    pfb_parallel_for(items, scale_patch_item, &J, label);
+    ms_parallel_for(PS_SCALE_FIT, items, scale_patch_item, &J, label);
     /* in level order after the loop: the first failed patch, else the factorizations */
     for (li = 0; li < J.nlevels; ++li) {
         J.status[li] = PF_OK;
@@ -636,7 +676,7 @@ static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long 
         J.texels = texels;
         t = (pf_real *)pfb_xcalloc((size_t)m * NSCALE, sizeof(pf_real));
         J.t_out = t;
-        pfb_parallel_for(m, scale_texel_item, &J, label);
+        ms_parallel_for(PS_T, m, scale_texel_item, &J, label);
         for (k = 0; k < m; ++k)
             for (j = 0; j < NSCALE; ++j)
                 L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[k]] = t[k * NSCALE + j];
@@ -748,7 +788,7 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s, const char *kind_n
     J.hr = hr;
     J.texel = s->texel;
     snprintf(label, sizeof label, "microsurface: %s: vMF lobe fits and horizon pyramid", kind_name);
-    pfb_parallel_for(MAPS_ITEMS, maps_item, &J, label);
+    ms_parallel_for(PS_MAPS, MAPS_ITEMS, maps_item, &J, label);
     horizon_even_azimuths(L, hr, s->texel);
     fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8, 16: %.2f %.2f %.2f %.2f %.2f s\n", w, h,
             L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3],
@@ -1725,7 +1765,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     for (li = 0; li < S->nlights; ++li) J.vis_l[li] = (unsigned char *)pfb_xcalloc(npix, 1);
     for (v = 0; v < nviews; ++v) J.vis_v[v] = (unsigned char *)pfb_xcalloc(npix, 1);
     snprintf(label, sizeof label, "microsurface: %s: full visibility maps", kn);
-    pfb_parallel_for(S->nlights + nviews, vis_item, &J, label);
+    ms_parallel_for(PS_VIS, S->nlights + nviews, vis_item, &J, label);
     /* the distinct footprints per size over every view: their in-footprint visibility toward
        each light (box_item), and the scaling function's T at the scaled levels */
     J.used_x0 = (int *)pfb_xcalloc((size_t)npos_all, sizeof(int));
@@ -1761,7 +1801,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
         }
         J.box_item_off[nb] = q;
         snprintf(label, sizeof label, "microsurface: %s: in-footprint visibility toward the lights", kn);
-        pfb_parallel_for(nb, box_item, &J, label);
+        ms_parallel_for(PS_BOX, nb, box_item, &J, label);
     }
     /* footprint items, in the serial loop's order: view (and azimuth), size, runs of positions */
     for (i = 0; i < 2; ++i) { /* pass 0 counts, pass 1 fills */
@@ -1784,7 +1824,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
         }
     }
     snprintf(label, sizeof label, "microsurface: %s: footprints (references and methods)", kn);
-    pfb_parallel_for(J.nitems, fp_item_run, &J, label);
+    ms_parallel_for(PS_FP, J.nitems, fp_item_run, &J, label);
     /* the reduction, in item order (the serial loop's) */
     for (i = 0; i < J.nitems; ++i) {
         fp_item *I = &J.items[i];
@@ -1902,6 +1942,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
     double *times = (double *)pfb_xcalloc((size_t)S->cost_reps, sizeof(double));
     pf_vec3 wo, wil[COST_LIGHTS];
     pfb_rng r = pfb_rng_make(0xc057c057ULL);
+    double cost_c0, cost_w0;
     cost_vis_job VJ;
     pfb_progress prog;
     /* the rows */
@@ -1942,7 +1983,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         VJ.dirs[VJ.n] = lights[li];
         VJ.maps[VJ.n++] = vis_l[li];
     }
-    pfb_parallel_for(VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
+    ms_parallel_for(PS_COST_VIS, VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
     /* the seeded footprints and lights of every size (drawn in the order of the timing loop) */
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si, g = W / n;
@@ -1955,6 +1996,8 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         /* the scaling function's T of these footprints, computed (and cached) before timing */
         scale_T_fill(L, n, fx[si], fy[si], COST_FP, "microsurface: cost: scaling function T of the timed texels");
     }
+    cost_c0 = cpu_s();
+    cost_w0 = pfb_wall_s();
     prog = pfb_progress_start("microsurface: cost (timed alone, one thread)", (long long)NSIZE * ncost);
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si;
@@ -2040,6 +2083,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         }
     }
     pfb_progress_end(&prog);
+    pass_add(PS_COST, cost_c0, cost_w0);
     for (li = 0; li < COST_LIGHTS; ++li) free(vis_l[li]);
     free(vis_o);
     free(sv_o);
@@ -2892,7 +2936,7 @@ int main(int argc, char **argv)
     pfm_surface gauss_surf;
     lib_maps gauss_maps;
     int have_gauss = 0;
-    double t0 = pfb_now_ns();
+    double t0 = pfb_now_ns(), cpu0 = cpu_s(), wall0 = pfb_wall_s();
     char err[1024];
     registry_init();
     check_mode = check_on();
@@ -3050,6 +3094,7 @@ int main(int argc, char **argv)
             kept_views_free();
             pfm_surface_free(&gauss_surf);
         }
+        pass_report(cpu0, wall0);
         printf("microsurface: wrote %s/microsurface_errors.csv%s (%.1f s)\n", S.out,
                have_gauss && !no_cost ? ", microsurface_cost.csv" : "", (pfb_now_ns() - t0) * 1e-9);
         return 0;
@@ -3062,6 +3107,7 @@ int main(int argc, char **argv)
     kept_views_free();
     pfm_surface_free(&gauss_surf);
     pfm_surface_free(&map_surf);
+    pass_report(cpu0, wall0);
     printf("microsurface: wrote %s/microsurface.md, microsurface_errors.csv, microsurface_cost.csv, %d charts (%.1f s)\n",
            S.out, charts_made, (pfb_now_ns() - t0) * 1e-9);
     return 0;

@@ -247,7 +247,7 @@ static store_set *store_build(const lib_maps *L)
     for (f = 1; f < NSTORE; ++f) S->L[f] = *L;
     J.L = L;
     J.S = S;
-    pfb_parallel_for((long long)(NSTORE - 1) * STORE_PYRS, store_item, &J, "microsurface: storage pass: pyramids");
+    ms_parallel_for(PS_STORE, (long long)(NSTORE - 1) * STORE_PYRS, store_item, &J, "microsurface: storage pass: pyramids");
     fprintf(stderr, "microsurface: storage pass: pyramids encoded and decoded in %d formats: %.2f s\n", NSTORE - 1,
             (pfb_now_ns() - t0) * 1e-9);
     return S;
