@@ -1543,6 +1543,40 @@ static void box_item(void *ctx, long long i)
                                    J->box_l[si * J->nlights + li]);
 }
 
+/* pfm_reference_visible_mean (tests/reference/pf_microsurface.h) of both colour attributes for
+   the NREF visibility pairs, in one pass over the footprint instead of four: per texel the
+   slope and the projected area ao once, then for each pair that sees the texel the same long
+   double sums (num += ao a, den += ao) in the same texel order, so each mean is the
+   function's, bit for bit (MICROSURFACE_CHECK=1 compares them). out[a][r]: attribute a, pair r. */
+static void colour_reference(const pfm_surface *s, const unsigned char *const *vo, const unsigned char *const *vi, int x0,
+                             int y0, int n, const double wo[3], double *const *attr, double out[2][NREF])
+{
+    long double num[2][NREF], den[NREF];
+    int i, j, r, a;
+    for (r = 0; r < NREF; ++r) num[0][r] = num[1][r] = den[r] = 0.0L;
+    for (j = 0; j < n; ++j) {
+        int y = pfmi_wrap(y0 + j, s->h);
+        for (i = 0; i < n; ++i) {
+            int x = pfmi_wrap(x0 + i, s->w), seen = 0;
+            size_t id = (size_t)y * s->w + x;
+            double sx, sy;
+            long double ao;
+            for (r = 0; r < NREF; ++r) seen |= (vo[r][id] && vi[r][id]) << r;
+            if (!seen) continue;
+            pfm_slope(s, x, y, &sx, &sy);
+            ao = (long double)wo[2] - (long double)sx * (long double)wo[0] - (long double)sy * (long double)wo[1];
+            if (!(ao > 0.0L)) continue;
+            for (r = 0; r < NREF; ++r)
+                if (seen >> r & 1) {
+                    for (a = 0; a < 2; ++a) num[a][r] += ao * (long double)attr[a][id];
+                    den[r] += ao;
+                }
+        }
+    }
+    for (a = 0; a < 2; ++a)
+        for (r = 0; r < NREF; ++r) out[a][r] = den[r] > 0.0L ? (double)(num[a][r] / den[r]) : 0.0;
+}
+
 static double *item_row(fp_item *I, int t)
 {
     const int w = ROWW(t);
@@ -1657,16 +1691,28 @@ static void fp_item_run(void *ctx, long long it)
                 if (check_mode) check_memo(&c, t, row + NREF);
                 store_rows(J->store, &I->store, t, &c, row);
             }
-            if (sh[0].joint > 1e-9)
+            if (sh[0].joint > 1e-9) {
+                double cref[2][NREF];
+                colour_reference(surf, vo_set, vi_set, x0, y0, n, wo_d, L->attr_d, cref);
                 for (t = T_RAMP; t <= T_BANDS; ++t) {
                     c.task = t;
                     row = item_row(I, t);
-                    for (r = 0; r < NREF; ++r)
-                        row[r] = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
+                    for (r = 0; r < NREF; ++r) {
+                        row[r] = cref[t - T_RAMP][r];
+                        if (check_mode) {
+                            double v = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
+                            if (memcmp(&v, &row[r], sizeof v) != 0) {
+                                fprintf(stderr, "microsurface: MICROSURFACE_CHECK: the colour reference differs from "
+                                                "pfm_reference_visible_mean\n");
+                                exit(1);
+                            }
+                        }
+                    }
                     for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
                     if (check_mode) check_memo(&c, t, row + NREF);
                     store_rows(J->store, &I->store, t, &c, row);
                 }
+            }
         }
     }
     free(box_o);
