@@ -733,18 +733,25 @@ static void maps_item(void *ctx, long long item)
    pf_mip_build filters each channel alone, so its channels are those of pf_horizon_pyramid at
    n = 16 bit for bit (MICROSURFACE_CHECK=1 builds both and compares) without marching
    the same rays twice. */
+/* the n = 16 channels of tc texels of n = 32 HDF moments: its even azimuths (allocated) */
+static pf_real *hdf_even_azimuths(const pf_real *h32, long long tc)
+{
+    const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
+    const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
+    pf_real *h16 = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
+    long long t;
+    int a, q;
+    for (t = 0; t < tc; ++t)
+        for (a = 0; a < hor_n[H16]; ++a)
+            for (q = 0; q < 3; ++q) h16[t * C16 + 3 * a + q] = h32[t * C32 + 3 * (2 * a) + q];
+    return h16;
+}
 static void horizon_even_azimuths(lib_maps *L, const pf_real *hr, double texel)
 {
     const long long tc = pf_mip_texel_count(L->w, L->h);
     const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
-    const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
-    long long t;
-    int a, q;
     double t0 = pfb_now_ns();
-    L->hor[H16] = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
-    for (t = 0; t < tc; ++t)
-        for (a = 0; a < hor_n[H16]; ++a)
-            for (q = 0; q < 3; ++q) L->hor[H16][t * C16 + 3 * a + q] = L->hor[H32][t * C32 + 3 * (2 * a) + q];
+    L->hor[H16] = hdf_even_azimuths(L->hor[H32], tc);
     L->hor_seconds[H16] = (pfb_now_ns() - t0) * 1e-9;
     if (check_on()) {
         pf_real *ref = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));

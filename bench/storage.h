@@ -215,14 +215,9 @@ static void store_item(void *ctx, long long item)
            stored channels are the n = 32 one's even azimuths, bit for bit */
         const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
         const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
-        long long t;
-        int a, q;
         D->hor[H32] = store_copy(L->hor[H32], tc * C32);
         store_channels(D->hor[H32], tc, C32, f);
-        D->hor[H16] = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
-        for (t = 0; t < tc; ++t)
-            for (a = 0; a < hor_n[H16]; ++a)
-                for (q = 0; q < 3; ++q) D->hor[H16][t * C16 + 3 * a + q] = D->hor[H32][t * C32 + 3 * (2 * a) + q];
+        D->hor[H16] = hdf_even_azimuths(D->hor[H32], tc);
         if (check_mode) { /* MICROSURFACE_CHECK=1: against the n = 16 pyramid stored alone */
             pf_real *ref = store_copy(L->hor[H16], tc * C16);
             store_channels(ref, tc, C16, f);
