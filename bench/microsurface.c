@@ -600,7 +600,6 @@ static void scale_build(lib_maps *L, const char *kind_name)
     for (li = 0; li < J.nlevels; ++li) {
         const int s = sc_max_level - li; /* the largest patches first */
         const long long gp = (long long)(L->w >> s) * (L->h >> s);
-        /* pfi_vmf_scale_texel_samples' work: normals, a junk f_lobes, the visibility bytes */
         const long long wl = vs_samples_work(&J.r, s); /* vs_texel_samples' work */
         if (pfi_vmf_scale_check(&J.r, s) != PF_OK || pf_vmf_scale_scratch_size(&J.r, s) <= 0)
             fatal("the scaling function's fit failed");
