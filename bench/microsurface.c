@@ -149,7 +149,9 @@
    timing loop runs alone on one thread, after every parallel step. Steps that run longer than
    2 s print progress with an estimate of the time left on stderr. MICROSURFACE_CHECK=1 compares
    the shortcuts (patches sampled in parallel, the n = 16 horizon pyramid read from the n = 32
-   one) with the serial calls they replace, bit for bit.
+   one, in float32 and in the storage formats, and every method's value with what its sample's
+   methods share (mmemo) against the method alone) with the serial calls they replace, bit for
+   bit.
 
    OUTPUT (directory --out, default bench/out): microsurface_errors.csv, microsurface_cost.csv,
    microsurface.md (report fragment), microsurface_*.svg (gnuplot, bench/microsurface.gp; the
@@ -377,6 +379,47 @@ static int check_on(void)
     const char *e = getenv("MICROSURFACE_CHECK");
     return e && *e && strcmp(e, "0") != 0;
 }
+static int check_mode; /* check_on(), read once by main (the footprints' items read it) */
+
+/* ---- CPU and wall seconds per pass (over every kind), printed on stderr at the end: where the
+   run's time goes (process CPU time: the passes run one after the other, each on every core) */
+enum { PS_MAPS, PS_SCALE_FIT, PS_STORE, PS_VIS, PS_T, PS_BOX, PS_FP, PS_COST_VIS, PS_COST, NPASS };
+static const char *pass_name[NPASS] = { "lobe fits + horizon pyramid", "scaling function fit (patches)",
+                                        "storage pass: pyramids", "full visibility maps", "scaling function T (texels)",
+                                        "in-footprint maps toward the lights", "footprints (references, methods, storage)",
+                                        "cost: visibility maps", "cost: timings (one thread)" };
+static double pass_cpu[NPASS], pass_wall[NPASS];
+static double cpu_s(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+static void pass_add(int pass, double cpu0, double wall0)
+{
+    pass_cpu[pass] += cpu_s() - cpu0;
+    pass_wall[pass] += pfb_wall_s() - wall0;
+}
+/* pfb_parallel_for, timed into pass `pass` */
+static void ms_parallel_for(int pass, long long n, pfb_item_fn fn, void *ctx, const char *label)
+{
+    const double c0 = cpu_s(), w0 = pfb_wall_s();
+    pfb_parallel_for(n, fn, ctx, label);
+    pass_add(pass, c0, w0);
+}
+static void pass_report(double cpu0, double wall0)
+{
+    double c = cpu_s() - cpu0, w = pfb_wall_s() - wall0, rc = c, rw = w;
+    int k;
+    fprintf(stderr, "microsurface: CPU and wall seconds per pass (%d threads):\n", pfb_thread_count());
+    for (k = 0; k < NPASS; ++k) {
+        fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", pass_name[k], pass_cpu[k], pass_wall[k]);
+        rc -= pass_cpu[k];
+        rw -= pass_wall[k];
+    }
+    fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", "the rest (serial)", rc, rw);
+    fprintf(stderr, "microsurface:   %-44s CPU %8.1f s  wall %7.1f s\n", "total", c, w);
+}
 static void check_same(const void *a, const void *b, size_t bytes, const char *what)
 {
     if (memcmp(a, b, bytes) != 0) {
@@ -404,7 +447,7 @@ static pf_vmf_scale_desc scale_desc(const lib_maps *L)
    pf_vmf_scale_texel_t per texel, each work item with its own scratch */
 typedef struct scale_job {
     const lib_maps *L;
-    pf_vmf_scale_desc d;
+    pf_vmf_scale_desc d, r; /* the description, resolved (pfi_vmf_scale_resolve) */
     int level;
     long long scratch_len;
     const long long *texels; /* item i: texel texels[i] of the level (row-major) */
@@ -415,28 +458,43 @@ static void scale_texel_item(void *ctx, long long i)
 {
     const scale_job *J = (const scale_job *)ctx;
     const lib_maps *L = J->L;
-    const long long gw = L->w >> J->level;
+    const long long gw = L->w >> J->level, tx = J->texels[i] % gw, ty = J->texels[i] / gw;
+    const long long cnt = pf_vmf_scale_sample_count(J->r.nt, J->r.np);
     const pf_real *s_tab[NSCALE];
-    pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)J->scratch_len, sizeof(pf_real));
+    /* pf_vmf_scale_texel_t's work with the hoisted sampler (vs_texel_samples): the texel's
+       samples, then T per lobe count from them (pfi_vmf_scale_t) */
+    pf_real *smp = (pf_real *)pfb_xcalloc((size_t)((1 + NSCALE) * cnt + vs_samples_work(&J->r, J->level)), sizeof(pf_real));
     int j;
     for (j = 0; j < NSCALE; ++j) s_tab[j] = L->sc_S[J->level][j];
-    if (pf_vmf_scale_texel_t(&J->d, J->level, J->texels[i] % gw, J->texels[i] / gw, s_tab, L->sc_prior[J->level],
-                             J->t_out + i * NSCALE, scratch, J->scratch_len) != PF_OK)
+    if (tx >= gw || ty >= (L->h >> J->level) ||
+        vs_texel_samples(&J->r, J->level, tx, ty, smp, smp + cnt, cnt, smp + (1 + NSCALE) * cnt) != PF_OK)
         fatal("the scaling function's T failed");
-    free(scratch);
+    for (j = 0; j < NSCALE; ++j)
+        J->t_out[i * NSCALE + j] = pfi_vmf_scale_t(smp, smp + (1 + j) * cnt, J->r.nt, J->r.np, s_tab[j], L->sc_prior[J->level][j]);
+    free(smp);
+    if (check_mode) { /* MICROSURFACE_CHECK=1: against the library's pf_vmf_scale_texel_t */
+        pf_real *scratch = (pf_real *)pfb_xcalloc((size_t)J->scratch_len, sizeof(pf_real)), t[NSCALE];
+        if (pf_vmf_scale_texel_t(&J->d, J->level, tx, ty, s_tab, L->sc_prior[J->level], t, scratch, J->scratch_len) != PF_OK)
+            fatal("the scaling function's T failed");
+        if (memcmp(t, J->t_out + i * NSCALE, sizeof t) != 0) check_same(t, J->t_out + i * NSCALE, sizeof t, "a texel's T");
+        free(scratch);
+    }
 }
 
 /* ---- the scaling function's fit on every core (bench-side driver of pf_vmf_scale_fit_level)
    S and the prior per lobe count at the scaled levels, and the training patches' T; every other
    texel's T NaN (scale_T_fill computes them). pf_vmf_scale_fit_level does, per level: the
-   samples of VS_TRAIN evenly spaced training patches (pfi_vmf_scale_texel_samples: the marches,
-   nearly all its time), then per lobe count the factorization (pfi_vmf_scale_factor) and the
-   training patches' T (pfi_vmf_scale_t). This driver makes the same calls in the same order on
-   the same inputs, with the patches' samples as the parallel work items (one per training patch
-   of every scaled level, each writing only its own slot, with its own scratch) and the
-   factorizations after the loop in level and lobe-count order: S, prior and T are those of
+   samples of VS_TRAIN evenly spaced training patches (pfi_vmf_scale_texel_samples: the marches
+   and the effective BRDF, nearly all its time), then per lobe count the factorization
+   (pfi_vmf_scale_factor) and the training patches' T (pfi_vmf_scale_t). This driver makes the
+   same calls in the same order on the same inputs, with the patches' samples as the parallel
+   work items (one per training patch of every scaled level, each writing only its own slot,
+   with its own scratch; the samples by vs_texel_samples, bench/vmf_scaling.h: the library's
+   values with the per-facet work hoisted out of the direction pairs) and the factorizations
+   after the loop in level and lobe-count order: S, prior and T are those of
    pf_vmf_scale_fit_level bit for bit, for any thread count (MICROSURFACE_CHECK=1 compares them
-   with the serial call). One work item per level would leave all but one core idle. */
+   with the serial call). One work item per level would leave all but one core idle. The other
+   texels' T (scale_T_fill) are pf_vmf_scale_texel_t's the same way (checked too). */
 typedef struct {
     pf_vmf_scale_desc r; /* the resolved description (pfi_vmf_scale_resolve) */
     int level[NSIZE];    /* per scaled level (index si - sc_min_level): */
@@ -464,8 +522,8 @@ static void scale_patch_item(void *ctx, long long i)
     gh = r->h >> J->level[li];
     c = (p * gw * gh) / J->P[li];
     work = (pf_real *)pfb_xcalloc((size_t)J->work_len, sizeof(pf_real));
-    J->patch_rc[i] = pfi_vmf_scale_texel_samples(r, J->level[li], c % gw, c / gw, J->f_eff[li] + p * J->cnt,
-                                                 J->f_l[li] + p * J->cnt, J->P[li] * J->cnt, work);
+    J->patch_rc[i] = vs_texel_samples(r, J->level[li], c % gw, c / gw, J->f_eff[li] + p * J->cnt, J->f_l[li] + p * J->cnt,
+                                      J->P[li] * J->cnt, work);
     free(work);
 }
 
@@ -541,11 +599,8 @@ static void scale_build(lib_maps *L, const char *kind_name)
     J.work_len = 0;
     for (li = 0; li < J.nlevels; ++li) {
         const int s = sc_max_level - li; /* the largest patches first */
-        const long long gp = (long long)(L->w >> s) * (L->h >> s), n = 1LL << s;
-        /* pfi_vmf_scale_texel_samples' work: normals, a junk f_lobes, the visibility bytes */
-        const long long wl = 3 * n * n + J.cnt +
-                             (pf_vmf_scale_vis_bytes(J.r.nt, J.r.np, (int)n) + (long long)sizeof(pf_real) - 1) /
-                                 (long long)sizeof(pf_real);
+        const long long gp = (long long)(L->w >> s) * (L->h >> s);
+        const long long wl = vs_samples_work(&J.r, s); /* vs_texel_samples' work */
         if (pfi_vmf_scale_check(&J.r, s) != PF_OK || pf_vmf_scale_scratch_size(&J.r, s) <= 0)
             fatal("the scaling function's fit failed");
         J.level[li] = s;
@@ -558,7 +613,7 @@ static void scale_build(lib_maps *L, const char *kind_name)
         J.work_len = wl > J.work_len ? wl : J.work_len;
     }
     snprintf(label, sizeof label, "%s: scaling function fit (training patches)", kind_name);
-    pfb_parallel_for(items, scale_patch_item, &J, label);
+    ms_parallel_for(PS_SCALE_FIT, items, scale_patch_item, &J, label);
     /* in level order after the loop: the first failed patch, else the factorizations */
     for (li = 0; li < J.nlevels; ++li) {
         J.status[li] = PF_OK;
@@ -615,11 +670,12 @@ static void scale_T_fill(lib_maps *L, int n, const int *x0, const int *y0, long 
         J.d = scale_desc(L);
         J.level = si;
         J.scratch_len = pf_vmf_scale_scratch_size(&J.d, si);
-        if (J.scratch_len <= 0) fatal("the scaling function's T failed");
+        if (J.scratch_len <= 0 || !pfi_vmf_scale_resolve(&J.d, &J.r) || pfi_vmf_scale_check(&J.r, si) != PF_OK)
+            fatal("the scaling function's T failed");
         J.texels = texels;
         t = (pf_real *)pfb_xcalloc((size_t)m * NSCALE, sizeof(pf_real));
         J.t_out = t;
-        pfb_parallel_for(m, scale_texel_item, &J, label);
+        ms_parallel_for(PS_T, m, scale_texel_item, &J, label);
         for (k = 0; k < m; ++k)
             for (j = 0; j < NSCALE; ++j)
                 L->sc_T[j][pf_vmf_pyramid_level_offset(L->w, L->h, si) + texels[k]] = t[k * NSCALE + j];
@@ -676,18 +732,25 @@ static void maps_item(void *ctx, long long item)
    pf_mip_build filters each channel alone, so its channels are those of pf_horizon_pyramid at
    n = 16 bit for bit (MICROSURFACE_CHECK=1 builds both and compares) without marching
    the same rays twice. */
+/* the n = 16 channels of tc texels of n = 32 HDF moments: its even azimuths (allocated) */
+static pf_real *hdf_even_azimuths(const pf_real *h32, long long tc)
+{
+    const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
+    const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
+    pf_real *h16 = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
+    long long t;
+    int a, q;
+    for (t = 0; t < tc; ++t)
+        for (a = 0; a < hor_n[H16]; ++a)
+            for (q = 0; q < 3; ++q) h16[t * C16 + 3 * a + q] = h32[t * C32 + 3 * (2 * a) + q];
+    return h16;
+}
 static void horizon_even_azimuths(lib_maps *L, const pf_real *hr, double texel)
 {
     const long long tc = pf_mip_texel_count(L->w, L->h);
     const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
-    const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
-    long long t;
-    int a, q;
     double t0 = pfb_now_ns();
-    L->hor[H16] = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
-    for (t = 0; t < tc; ++t)
-        for (a = 0; a < hor_n[H16]; ++a)
-            for (q = 0; q < 3; ++q) L->hor[H16][t * C16 + 3 * a + q] = L->hor[H32][t * C32 + 3 * (2 * a) + q];
+    L->hor[H16] = hdf_even_azimuths(L->hor[H32], tc);
     L->hor_seconds[H16] = (pfb_now_ns() - t0) * 1e-9;
     if (check_on()) {
         pf_real *ref = (pf_real *)pfb_xcalloc((size_t)tc * (size_t)C16, sizeof(pf_real));
@@ -731,7 +794,7 @@ static void lib_maps_build(lib_maps *L, const pfm_surface *s, const char *kind_n
     J.hr = hr;
     J.texel = s->texel;
     snprintf(label, sizeof label, "microsurface: %s: vMF lobe fits and horizon pyramid", kind_name);
-    pfb_parallel_for(MAPS_ITEMS, maps_item, &J, label);
+    ms_parallel_for(PS_MAPS, MAPS_ITEMS, maps_item, &J, label);
     horizon_even_azimuths(L, hr, s->texel);
     fprintf(stderr, "microsurface: vMF lobe pyramids %d x %d, m = 1, 2, 4, 8, 16: %.2f %.2f %.2f %.2f %.2f s\n", w, h,
             L->vmf_fit_seconds[0], L->vmf_fit_seconds[1], L->vmf_fit_seconds[2], L->vmf_fit_seconds[3],
@@ -845,11 +908,25 @@ static pf_real horizon_area(const lib_maps *L, int i, int x0, int y0, int n, pf_
    T_BANDS with the banded one), the footprint (texel (x0/n, y0/n) of level log2 n), the view and
    the light; oracles also the reference shading with every texel visible (NULL in the cost
    section, which times shader methods only) */
+/* what the methods of one sample (one footprint, view, light and set of pyramids) share,
+   computed once by the first method that needs it and read by the others: the fetched slope
+   statistics (without and with the base variance), the value of each vMF pyramid per path (mix,
+   texel), the exact-path lobe sum of each pyramid (the horizon and grazing rows sum the same 16
+   lobes as vmf_m16; the scaled rows shade the same lobes as their unscaled twins). The same
+   calls on the same inputs: every value is the one the method computes alone. NULL (the cost
+   section): each method does all its own work, as a shader would. */
+typedef struct mmemo {
+    unsigned char have_slope[2], have_f[NVMF][2][2], have_sum[NVMF];
+    pf_slope_stats slope[2];
+    pf_real f[NVMF][2][2];
+    pf_vmf_sum sum[NVMF];
+} mmemo;
 typedef struct mctx {
     const lib_maps *L;
     int task, x0, y0, n;
     pf_vec3 wo, wi;
     const pfm_shade *novis;
+    mmemo *memo; /* NULL: nothing shared */
 } mctx;
 static pf_real ctx_lod(const mctx *c) { return PF_R(ilog2(c->n)); }
 static pf_real ctx_u(const mctx *c) { return (PF_R(c->x0 / c->n) + PF_R(0.5)) / PF_R(c->L->w / c->n); }
@@ -858,8 +935,17 @@ static pf_real ctx_v(const mctx *c) { return (PF_R(c->y0 / c->n) + PF_R(0.5)) / 
 static pf_slope_stats fetch_slope(const mctx *c, pf_real base_var)
 {
     const lib_maps *L = c->L;
-    return pf_slope_moments_stats(pf_slope_moments_sample(L->slope, L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP),
-                                  base_var);
+    const int b = base_var != PF_R(0.0); /* the two variances the methods ask for: 0, BASE_SIGMA^2 */
+    mmemo *memo = base_var == PF_R(0.0) || base_var == PF_R(BASE_SIGMA * BASE_SIGMA) ? c->memo : NULL;
+    pf_slope_stats s;
+    if (memo && memo->have_slope[b]) return memo->slope[b];
+    s = pf_slope_moments_stats(pf_slope_moments_sample(L->slope, L->w, L->h, ctx_lod(c), ctx_u(c), ctx_v(c), PF_BORDER_WRAP),
+                               base_var);
+    if (memo) {
+        memo->slope[b] = s;
+        memo->have_slope[b] = 1;
+    }
+    return s;
 }
 static pf_slope_stats fetch_slope_spec(const mctx *c) { return fetch_slope(c, PF_R(BASE_SIGMA * BASE_SIGMA)); }
 /* the footprint's (E[h], E[h^2]) texel and the task's colour map */
@@ -875,6 +961,27 @@ static const cmap *task_cmap(const mctx *c) { return &c->L->cm[c->task == T_BAND
    tangent variance; texel = 1: the shader path bench/gpu/ prices (pf_vmf_pixel_make once,
    pf_vmf_sum_add_texel or _texel_mixture per fetched texel as stored, its rational tangent
    variance) */
+/* the exact path's sum of texel (x0/n, y0/n) of vMF pyramid p's lobes (pf_vmf_lobe_make +
+   pf_vmf_sum_add, base variance added: vs_texel_spec's loop), shared through the memo */
+static pf_vmf_sum vmf_sum_exact(const mctx *c, int p)
+{
+    const lib_maps *L = c->L;
+    const int m = vmf_lobes[p], W = L->w, H = L->h;
+    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
+    const pf_real *tx = L->vmf[p] + id * 4 * m;
+    pf_vmf_sum sum = pf_vmf_sum_zero();
+    int j;
+    if (c->memo && c->memo->have_sum[p]) return c->memo->sum[p];
+    for (j = 0; j < m; ++j) /* padding lobes (amp 0) add nothing */
+        sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi,
+                             PF_R(BASE_SIGMA * BASE_SIGMA));
+    if (c->memo) {
+        c->memo->sum[p] = sum;
+        c->memo->have_sum[p] = 1;
+    }
+    return sum;
+}
+
 static pf_real vmf_texel_spec(const lib_maps *L, int p, int x0, int y0, int n, pf_vec3 wo, pf_vec3 wi, int mix, int texel)
 {
     const int m = vmf_lobes[p], W = L->w, H = L->h;
@@ -908,7 +1015,16 @@ static double vmf_method(const mctx *c, int p, int mix, int sc, int use_t, int t
 {
     const lib_maps *L = c->L;
     const int lev = ilog2(c->n);
-    pf_real f = vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix, texel);
+    pf_real f;
+    if (c->memo && c->memo->have_f[p][mix][texel]) f = c->memo->f[p][mix][texel];
+    else {
+        f = c->memo && !mix && !texel ? pf_vmf_sum_specular(vmf_sum_exact(c, p), c->wo, c->wi, PF_R(F0)) /* vs_texel_spec */
+                                      : vmf_texel_spec(L, p, c->x0, c->y0, c->n, c->wo, c->wi, mix, texel);
+        if (c->memo) {
+            c->memo->f[p][mix][texel] = f;
+            c->memo->have_f[p][mix][texel] = 1;
+        }
+    }
     if (sc < 0 || lev < sc_min_level || lev > sc_max_level) return (double)f;
     /* T: one texel of level log2(n); S: 8 nodes of the level's table, trilinear */
     return (double)pf_vmf_scale_apply(use_t ? scale_T(L, sc, c->x0, c->y0, c->n) : PF_R(1.0),
@@ -999,15 +1115,8 @@ static double m_leadr_horizon_lod_n32(const mctx *c)
    on the slope-moment texel's statistics (lod: faded) */
 static double vmf_horizon_method(const mctx *c, int p, int lod)
 {
-    const lib_maps *L = c->L;
-    const int m = vmf_lobes[p], W = L->w, H = L->h;
-    long long id = pf_vmf_pyramid_level_offset(W, H, ilog2(c->n)) + (long long)(c->y0 / c->n) * (W / c->n) + c->x0 / c->n;
-    const pf_real *tx = L->vmf[p] + id * 4 * m;
-    pf_vmf_sum sum = pf_vmf_sum_zero();
+    const pf_vmf_sum sum = vmf_sum_exact(c, p);
     const pf_real bv = PF_R(BASE_SIGMA * BASE_SIGMA);
-    int j;
-    for (j = 0; j < m; ++j)
-        sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
     pf_slope_stats st = fetch_slope_spec(c);
     if (!lod)
         return (double)pf_horizon_vmf_specular(sum, c->wo, c->wi, st, bv, ctx_hdf(c, H32, c->wo), ctx_hdf(c, H32, c->wi), PF_R(F0));
@@ -1038,8 +1147,7 @@ static double vmf_base_method(const mctx *c, int p, int per_lobe)
        lobe's masking left to the factor (as pf_leadr_specular_base) */
     if (per_lobe != 1) {
         pf_real f;
-        for (j = 0; j < m; ++j)
-            sum = pf_vmf_sum_add(sum, pf_vmf_lobe_make(tx[4 * j + 3], tx[4 * j], tx[4 * j + 1], tx[4 * j + 2]), c->wo, c->wi, bv);
+        sum = vmf_sum_exact(c, p);
         if (per_lobe == 2) /* the factor of the mixture's own moments: no fetch beyond the lobes */
             return (double)pf_vmf_sum_specular_base(sum, c->wo, c->wi, bv, PF_R(F0));
         f = pf_vmf_sum_specular(pf_vmf_sum_without_base(sum, bv), c->wo, c->wi, PF_R(F0));
@@ -1219,6 +1327,23 @@ static void registry_init(void)
 }
 static const method *meth(int t, int k) { return &methods[task_meth[t][k]]; }
 static const char *mname(int t, int k) { return meth(t, k)->name; }
+/* MICROSURFACE_CHECK=1: the values of task t's methods in vals (computed through the memo of
+   c) against each method alone (no memo), bit for bit */
+static void check_memo(const mctx *c, int t, const double *vals)
+{
+    mctx a = *c;
+    int k;
+    a.memo = NULL;
+    a.task = t;
+    for (k = 0; k < task_n[t]; ++k) {
+        double v = meth(t, k)->eval(&a);
+        if (memcmp(&v, &vals[k], sizeof v) != 0) {
+            fprintf(stderr, "microsurface: MICROSURFACE_CHECK: %s through the shared values (mmemo) differs from the "
+                            "method alone\n", mname(t, k));
+            exit(1);
+        }
+    }
+}
 /* the index of method `name` in task t (the report's named columns); a missing name is a bug */
 static int mk(int t, const char *name)
 {
@@ -1424,6 +1549,40 @@ static void box_item(void *ctx, long long i)
                                    J->box_l[si * J->nlights + li]);
 }
 
+/* pfm_reference_visible_mean (tests/reference/pf_microsurface.h) of both colour attributes for
+   the NREF visibility pairs, in one pass over the footprint instead of four: per texel the
+   slope and the projected area ao once, then for each pair that sees the texel the same long
+   double sums (num += ao a, den += ao) in the same texel order, so each mean is the
+   function's, bit for bit (MICROSURFACE_CHECK=1 compares them). out[a][r]: attribute a, pair r. */
+static void colour_reference(const pfm_surface *s, const unsigned char *const *vo, const unsigned char *const *vi, int x0,
+                             int y0, int n, const double wo[3], double *const *attr, double out[2][NREF])
+{
+    long double num[2][NREF], den[NREF];
+    int i, j, r, a;
+    for (r = 0; r < NREF; ++r) num[0][r] = num[1][r] = den[r] = 0.0L;
+    for (j = 0; j < n; ++j) {
+        int y = pfmi_wrap(y0 + j, s->h);
+        for (i = 0; i < n; ++i) {
+            int x = pfmi_wrap(x0 + i, s->w), seen = 0;
+            size_t id = (size_t)y * s->w + x;
+            double sx, sy;
+            long double ao;
+            for (r = 0; r < NREF; ++r) seen |= (vo[r][id] && vi[r][id]) << r;
+            if (!seen) continue;
+            pfm_slope(s, x, y, &sx, &sy);
+            ao = (long double)wo[2] - (long double)sx * (long double)wo[0] - (long double)sy * (long double)wo[1];
+            if (!(ao > 0.0L)) continue;
+            for (r = 0; r < NREF; ++r)
+                if (seen >> r & 1) {
+                    for (a = 0; a < 2; ++a) num[a][r] += ao * (long double)attr[a][id];
+                    den[r] += ao;
+                }
+        }
+    }
+    for (a = 0; a < 2; ++a)
+        for (r = 0; r < NREF; ++r) out[a][r] = den[r] > 0.0L ? (double)(num[a][r] / den[r]) : 0.0;
+}
+
 static double *item_row(fp_item *I, int t)
 {
     const int w = ROWW(t);
@@ -1466,6 +1625,7 @@ static void fp_item_run(void *ctx, long long it)
             const unsigned char *vo_set[3], *vi_set[3];
             pfm_shade sh[3];
             mctx c;
+            mmemo memo;
             if (li < J->nlights) {
                 memcpy(wi_d, J->lights[li], sizeof wi_d);
                 vi_set[0] = J->vis_l[li];
@@ -1515,11 +1675,14 @@ static void fp_item_run(void *ctx, long long it)
             c.wo = wo;
             c.wi = v3(wi_d);
             c.novis = &sh[2];
+            memset(&memo, 0, sizeof memo);
+            c.memo = &memo;
             if (first) { /* masking depends on the view only */
                 c.task = T_MASK;
                 row = item_row(I, T_MASK);
                 for (r = 0; r < NREF; ++r) row[r] = sh[r].masking;
                 for (k = 0; k < task_n[T_MASK]; ++k) row[NREF + k] = meth(T_MASK, k)->eval(&c);
+                if (check_mode) check_memo(&c, T_MASK, row + NREF);
                 store_rows(J->store, &I->store, T_MASK, &c, row);
                 for (r = 0; r < NREF; ++r) rec->mask[r] = sh[r].masking;
                 rec->vis_num = sh[0].visible_area * sh[0].area;
@@ -1531,17 +1694,31 @@ static void fp_item_run(void *ctx, long long it)
                 row = item_row(I, t);
                 for (r = 0; r < NREF; ++r) row[r] = t == T_SPEC ? sh[r].spec : sh[r].diffuse;
                 for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                if (check_mode) check_memo(&c, t, row + NREF);
                 store_rows(J->store, &I->store, t, &c, row);
             }
-            if (sh[0].joint > 1e-9)
+            if (sh[0].joint > 1e-9) {
+                double cref[2][NREF];
+                colour_reference(surf, vo_set, vi_set, x0, y0, n, wo_d, L->attr_d, cref);
                 for (t = T_RAMP; t <= T_BANDS; ++t) {
                     c.task = t;
                     row = item_row(I, t);
-                    for (r = 0; r < NREF; ++r)
-                        row[r] = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
+                    for (r = 0; r < NREF; ++r) {
+                        row[r] = cref[t - T_RAMP][r];
+                        if (check_mode) {
+                            double v = pfm_reference_visible_mean(surf, vo_set[r], vi_set[r], x0, y0, n, wo_d, L->attr_d[t - T_RAMP]);
+                            if (memcmp(&v, &row[r], sizeof v) != 0) {
+                                fprintf(stderr, "microsurface: MICROSURFACE_CHECK: the colour reference differs from "
+                                                "pfm_reference_visible_mean\n");
+                                exit(1);
+                            }
+                        }
+                    }
                     for (k = 0; k < task_n[t]; ++k) row[NREF + k] = meth(t, k)->eval(&c);
+                    if (check_mode) check_memo(&c, t, row + NREF);
                     store_rows(J->store, &I->store, t, &c, row);
                 }
+            }
         }
     }
     free(box_o);
@@ -1640,7 +1817,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
     for (li = 0; li < S->nlights; ++li) J.vis_l[li] = (unsigned char *)pfb_xcalloc(npix, 1);
     for (v = 0; v < nviews; ++v) J.vis_v[v] = (unsigned char *)pfb_xcalloc(npix, 1);
     snprintf(label, sizeof label, "microsurface: %s: full visibility maps", kn);
-    pfb_parallel_for(S->nlights + nviews, vis_item, &J, label);
+    ms_parallel_for(PS_VIS, S->nlights + nviews, vis_item, &J, label);
     /* the distinct footprints per size over every view: their in-footprint visibility toward
        each light (box_item), and the scaling function's T at the scaled levels */
     J.used_x0 = (int *)pfb_xcalloc((size_t)npos_all, sizeof(int));
@@ -1676,7 +1853,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
         }
         J.box_item_off[nb] = q;
         snprintf(label, sizeof label, "microsurface: %s: in-footprint visibility toward the lights", kn);
-        pfb_parallel_for(nb, box_item, &J, label);
+        ms_parallel_for(PS_BOX, nb, box_item, &J, label);
     }
     /* footprint items, in the serial loop's order: view (and azimuth), size, runs of positions */
     for (i = 0; i < 2; ++i) { /* pass 0 counts, pass 1 fills */
@@ -1699,7 +1876,7 @@ static void run_kind(int kind, const settings *S, pfm_surface *keep, lib_maps *k
         }
     }
     snprintf(label, sizeof label, "microsurface: %s: footprints (references and methods)", kn);
-    pfb_parallel_for(J.nitems, fp_item_run, &J, label);
+    ms_parallel_for(PS_FP, J.nitems, fp_item_run, &J, label);
     /* the reduction, in item order (the serial loop's) */
     for (i = 0; i < J.nitems; ++i) {
         fp_item *I = &J.items[i];
@@ -1817,6 +1994,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
     double *times = (double *)pfb_xcalloc((size_t)S->cost_reps, sizeof(double));
     pf_vec3 wo, wil[COST_LIGHTS];
     pfb_rng r = pfb_rng_make(0xc057c057ULL);
+    double cost_c0, cost_w0;
     cost_vis_job VJ;
     pfb_progress prog;
     /* the rows */
@@ -1857,7 +2035,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         VJ.dirs[VJ.n] = lights[li];
         VJ.maps[VJ.n++] = vis_l[li];
     }
-    pfb_parallel_for(VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
+    ms_parallel_for(PS_COST_VIS, VJ.n, cost_vis_item, &VJ, "microsurface: cost: visibility maps");
     /* the seeded footprints and lights of every size (drawn in the order of the timing loop) */
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si, g = W / n;
@@ -1870,6 +2048,8 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         /* the scaling function's T of these footprints, computed (and cached) before timing */
         scale_T_fill(L, n, fx[si], fy[si], COST_FP, "microsurface: cost: scaling function T of the timed texels");
     }
+    cost_c0 = cpu_s();
+    cost_w0 = pfb_wall_s();
     prog = pfb_progress_start("microsurface: cost (timed alone, one thread)", (long long)NSIZE * ncost);
     for (si = 0; si < NSIZE; ++si) {
         int n = 1 << si;
@@ -1939,6 +2119,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
                         c.wo = wo;
                         c.wi = wil[lq];
                         c.novis = NULL;
+                        c.memo = NULL; /* each method timed with all its own work */
                         acc += cr->m->eval(&c);
                     }
                 }
@@ -1954,6 +2135,7 @@ static void run_cost(const settings *S, const pfm_surface *surf, lib_maps *L)
         }
     }
     pfb_progress_end(&prog);
+    pass_add(PS_COST, cost_c0, cost_w0);
     for (li = 0; li < COST_LIGHTS; ++li) free(vis_l[li]);
     free(vis_o);
     free(sv_o);
@@ -2806,9 +2988,10 @@ int main(int argc, char **argv)
     pfm_surface gauss_surf;
     lib_maps gauss_maps;
     int have_gauss = 0;
-    double t0 = pfb_now_ns();
+    double t0 = pfb_now_ns(), cpu0 = cpu_s(), wall0 = pfb_wall_s();
     char err[1024];
     registry_init();
+    check_mode = check_on();
     map_opt = pfmap_options_default();
     memset(&S, 0, sizeof S);
     S.quick = q && *q && strcmp(q, "0") != 0 && strcmp(q, "no") != 0;
@@ -2963,6 +3146,7 @@ int main(int argc, char **argv)
             kept_views_free();
             pfm_surface_free(&gauss_surf);
         }
+        pass_report(cpu0, wall0);
         printf("microsurface: wrote %s/microsurface_errors.csv%s (%.1f s)\n", S.out,
                have_gauss && !no_cost ? ", microsurface_cost.csv" : "", (pfb_now_ns() - t0) * 1e-9);
         return 0;
@@ -2975,6 +3159,7 @@ int main(int argc, char **argv)
     kept_views_free();
     pfm_surface_free(&gauss_surf);
     pfm_surface_free(&map_surf);
+    pass_report(cpu0, wall0);
     printf("microsurface: wrote %s/microsurface.md, microsurface_errors.csv, microsurface_cost.csv, %d charts (%.1f s)\n",
            S.out, charts_made, (pfb_now_ns() - t0) * 1e-9);
     return 0;

@@ -67,6 +67,9 @@ static int method_family(const method *m)
     return FAM_NONE;
 }
 
+/* the family of each task's methods (method_family, looked up once by store_build) */
+static int store_fam[NTASK][MAX_TASK_METHODS];
+
 /* the kind's pyramids decoded from each format (index 0 unused: float32 is the kind's own) */
 typedef struct store_set {
     lib_maps L[NSTORE];
@@ -97,15 +100,16 @@ static void store_channels(pf_real *p, long long n, int C, int f)
     pf_real *off = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real)), *sc = (pf_real *)pfb_xcalloc((size_t)C, sizeof(pf_real));
     void *q = pfb_xcalloc((size_t)n * (size_t)C, 2);
     int fmt = f == ST_HALF ? PF_ENCODE_HALF : (f == ST_U16 ? PF_ENCODE_UNORM16 : PF_ENCODE_UNORM8);
-    long long i;
+    long long t, i;
+    int c;
     if (pf_encode_ranges(p, n, C, off, sc) != PF_OK || pf_encode_channels(p, n, C, off, sc, fmt, q) != PF_OK)
         store_fail("pf_encode_channels");
-    for (i = 0; i < n * C; ++i) {
-        int c = (int)(i % C);
-        if (fmt == PF_ENCODE_HALF) p[i] = pf_real_from_half(((unsigned short *)q)[i]);
-        else if (fmt == PF_ENCODE_UNORM16) p[i] = pf_unorm_decode((pf_real)((unsigned short *)q)[i] / PF_R(65535.0), off[c], sc[c]);
-        else p[i] = pf_unorm_decode((pf_real)((unsigned char *)q)[i] / PF_R(255.0), off[c], sc[c]);
-    }
+    for (t = 0, i = 0; t < n; ++t) /* texel by texel, channel c of texel t at i = t C + c */
+        for (c = 0; c < C; ++c, ++i) {
+            if (fmt == PF_ENCODE_HALF) p[i] = pf_real_from_half(((unsigned short *)q)[i]);
+            else if (fmt == PF_ENCODE_UNORM16) p[i] = pf_unorm_decode((pf_real)((unsigned short *)q)[i] / PF_R(65535.0), off[c], sc[c]);
+            else p[i] = pf_unorm_decode((pf_real)((unsigned char *)q)[i] / PF_R(255.0), off[c], sc[c]);
+        }
     free(off);
     free(sc);
     free(q);
@@ -204,27 +208,41 @@ static void store_item(void *ctx, long long item)
         const long long lobes = pf_vmf_pyramid_texel_count(L->w, L->h) * vmf_lobes[k];
         D->vmf[k] = store_copy(L->vmf[k], lobes * 4);
         store_vmf(D->vmf[k], lobes, f);
-    } else {
-        const int k = p - 5 - NVMF, C = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[k], 0);
-        D->hor[k] = store_copy(L->hor[k], tc * C);
-        store_channels(D->hor[k], tc, C, f);
-    }
+    } else if (p - 5 - NVMF == H32) {
+        /* the n = 32 HDF moments, and the n = 16 ones from them: the n = 16 pyramid is the n = 32
+           one's even azimuths (microsurface.c's horizon_even_azimuths), and store_channels
+           encodes and decodes each channel alone with its own range, so the n = 16 pyramid's
+           stored channels are the n = 32 one's even azimuths, bit for bit */
+        const int C16 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H16], 0);
+        const int C32 = pf_horizon_channels(PF_HORIZON_MOMENTS, hor_n[H32], 0);
+        D->hor[H32] = store_copy(L->hor[H32], tc * C32);
+        store_channels(D->hor[H32], tc, C32, f);
+        D->hor[H16] = hdf_even_azimuths(D->hor[H32], tc);
+        if (check_mode) { /* MICROSURFACE_CHECK=1: against the n = 16 pyramid stored alone */
+            pf_real *ref = store_copy(L->hor[H16], tc * C16);
+            store_channels(ref, tc, C16, f);
+            check_same(ref, D->hor[H16], (size_t)tc * (size_t)C16 * sizeof(pf_real), "the stored n = 16 HDF moments");
+            free(ref);
+        }
+    } /* else the n = 16 HDF moments: with the n = 32 ones' item */
 }
 static store_set *store_build(const lib_maps *L)
 {
     store_set *S;
     store_job J;
     const char *env = getenv("MICROSURFACE_STORAGE");
-    int f;
+    int f, t, k;
     double t0 = pfb_now_ns();
     if (env && !strcmp(env, "0")) return NULL; /* MICROSURFACE_STORAGE=0: no storage pass */
     if (store_built >= store_max_kinds) return NULL;
     ++store_built;
+    for (t = 0; t < NTASK; ++t)
+        for (k = 0; k < task_n[t]; ++k) store_fam[t][k] = method_family(meth(t, k));
     S = (store_set *)pfb_xcalloc(1, sizeof *S);
     for (f = 1; f < NSTORE; ++f) S->L[f] = *L;
     J.L = L;
     J.S = S;
-    pfb_parallel_for((long long)(NSTORE - 1) * STORE_PYRS, store_item, &J, "microsurface: storage pass: pyramids");
+    ms_parallel_for(PS_STORE, (long long)(NSTORE - 1) * STORE_PYRS, store_item, &J, "microsurface: storage pass: pyramids");
     fprintf(stderr, "microsurface: storage pass: pyramids encoded and decoded in %d formats: %.2f s\n", NSTORE - 1,
             (pfb_now_ns() - t0) * 1e-9);
     return S;
@@ -252,7 +270,9 @@ static void store_rows(const store_set *S, store_acc **acc, int t, const mctx *c
 {
     int f, k, r;
     store_acc *A;
+    mmemo memo[NSTORE]; /* per format: what its methods share (microsurface.c's mmemo) */
     if (!S) return;
+    memset(memo, 0, sizeof memo);
     if (!*acc) *acc = (store_acc *)pfb_xcalloc(1, sizeof(store_acc));
     A = *acc;
     A->n[t]++;
@@ -261,10 +281,21 @@ static void store_rows(const store_set *S, store_acc **acc, int t, const mctx *c
         const double f32 = row[NREF + k];
         for (f = 0; f < NSTORE; ++f) {
             double v = f32;
-            if (f > 0 && method_family(meth(t, k)) != FAM_NONE) {
+            if (f > 0 && store_fam[t][k] != FAM_NONE) {
                 mctx cf = *c;
                 cf.L = &S->L[f];
+                cf.memo = &memo[f];
                 v = meth(t, k)->eval(&cf);
+                if (check_mode) {
+                    double alone;
+                    cf.memo = NULL;
+                    alone = meth(t, k)->eval(&cf);
+                    if (memcmp(&alone, &v, sizeof v) != 0) {
+                        fprintf(stderr, "microsurface: MICROSURFACE_CHECK: %s (%s) through the shared values differs\n",
+                                mname(t, k), store_name[f]);
+                        exit(1);
+                    }
+                }
             }
             for (r = 0; r < NREF; ++r) A->d2[f][r][t][k] += (v - row[r]) * (v - row[r]);
             A->dd2[f][t][k] += (v - f32) * (v - f32);

@@ -9,7 +9,8 @@
      T   one value per texel of the level.
    Shading: pf_vmf_scale_apply(T, pf_vmf_scale_lookup(S, ...), f) (docs/vmf.md).
    Cost: a 64 x 64 patch's samples march 4096 texels toward 48 directions and shade 2304
-   direction pairs; 16 training patches plus T for 64 texels take ~30 s (512^2 map, level 6).
+   direction pairs; through the library's sampler 16 training patches take 6.2 s of CPU, through
+   vs_texel_samples (below) 1.75 s (bench/microsurface.c's stderr, 2026-11-28, busy machine).
    Needs <math.h> and <string.h> before it. */
 #ifndef PF_BENCH_VMF_SCALING_H
 #define PF_BENCH_VMF_SCALING_H
@@ -112,6 +113,105 @@ static inline int vs_texel_t(const pf_real *heights, int w, int h, int level, lo
     for (k = 0; k < npyr; ++k) s[k] = s_tab[k];
     return pf_vmf_scale_texel_t(&d, level, tx, ty, s, prior, t_out, vs_scratch,
                                 (long long)(sizeof vs_scratch / sizeof(pf_real))) != PF_OK;
+}
+
+/* ---- one texel's samples, the effective BRDF's per-facet work hoisted (the bench's fit and T)
+   vs_texel_samples(r, level, tx, ty, f_eff, f_lobes, stride, work) writes what
+   pfi_vmf_scale_texel_samples (pf_vmf_scale.h) writes for a resolved description r, bit for bit
+   (bench/microsurface.c compares them under MICROSURFACE_CHECK=1), with less work: the library
+   evaluates pf_vmf_facet_specular for every facet of the patch and every one of the (2 nt
+   (np - 1))^2 direction pairs, reading the facet's node slope and recomputing its two Smith
+   Lambdas (an erfc each) per pair, although the slope depends on the facet only, the projected
+   area a = w.z - s.w on (facet, direction) and the Lambda toward w on (facet, w) only, and the
+   half vector, its Fresnel factor and the NDF's cut point on the pair only. Here the slopes,
+   the areas and the Lambdas are computed once per facet and direction (2 nt (np - 1) n^2, not
+   (2 nt (np - 1))^2 n^2), the pair's terms once per pair, and per facet and pair only the
+   visibility, the cut and, for the facets it keeps, the NDF: the same functions on the same
+   arguments in the same order (pf_vmf_facet_specular's expression F D / (4 (1 + lo + li)), the
+   patch's area summed facet by facet in the same order), so every value is the library's.
+   What pfi_vmf_scale_patch also computes and pfi_vmf_scale_texel_samples discards (the patch's
+   own one-lobe fit and its f_lobes) is not computed. work: vs_samples_work(r, level) pf_reals. */
+static inline long long vs_samples_work(const pf_vmf_scale_desc *r, int level)
+{
+    const long long n = 1LL << level, dirs = 2LL * r->nt * (r->np - 1);
+    /* slope stats (as pf_reals), per direction: a and Lambda per facet, the area; the visibility bytes */
+    const long long st = ((long long)sizeof(pf_slope_stats) * n * n + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    return st + 2 * n * n + 2 * dirs * n * n + dirs + (dirs * n * n + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+}
+
+static inline int vs_texel_samples(const pf_vmf_scale_desc *r, int level, long long tx, long long ty, pf_real *f_eff,
+                                   pf_real *f_lobes, long long stride, pf_real *work)
+{
+    const long long n = 1LL << level, nn = n * n, A = 2LL * (r->np - 1), dirs = r->nt * A;
+    const long long count = pf_vmf_scale_sample_count(r->nt, r->np), x0 = tx * n, y0 = ty * n;
+    const long long stw = ((long long)sizeof(pf_slope_stats) * nn + (long long)sizeof(pf_real) - 1) / (long long)sizeof(pf_real);
+    const pf_real bv = r->base_sigma * r->base_sigma, cut = PF_R(80.0) * bv;
+    pf_slope_stats *st = (pf_slope_stats *)(void *)work;
+    pf_real *sx = work + stw, *sy = sx + nn, *ad = sy + nn, *lam = ad + dirs * nn, *area = lam + dirs * nn;
+    unsigned char *vis = (unsigned char *)(void *)(area + dirs);
+    pf_real top = PF_R(0.0);
+    long long d, q, s;
+    int rc, k;
+    /* pfi_vmf_scale_patch's checks (r is resolved and checked by the caller) */
+    if (r->nt < 2 || r->np < 2 || !(r->theta_max > PF_R(0.0)) || !(r->theta_max < PF_R(0.5) * PF_PI) ||
+        r->masking < PF_VMF_SCALE_G_GAUSSIAN || r->masking > PF_VMF_SCALE_UNMASKED)
+        return PF_ERR_ARG;
+    if (!(r->base_sigma > PF_R(0.0)) || !(r->base_sigma < PF_R(1.0e15))) return PF_ERR_ARG;
+    rc = pfi_vmf_patch_sizes(r->heights, r->w, r->h, r->texel, n);
+    if (rc != PF_OK) return rc;
+    if (count == 0 || pf_vmf_scale_vis_bytes(r->nt, r->np, (int)n) == 0 || pf_size_mul(nn, 3) < 0) return PF_ERR_SIZE;
+    rc = pfi_vmf_patch_top(r->heights, r->w, r->h, x0, y0, n, &top);
+    if (rc != PF_OK) return rc;
+    /* per facet: its node slope and slope statistics (pf_vmf_facet_specular's st) */
+    for (q = 0; q < nn; ++q) {
+        pf_map_node_slope(r->heights, r->w, r->h, r->texel, x0 + q % n, y0 + q / n, &sx[q], &sy[q]);
+        st[q] = pf_slope_stats_make(sx[q], sy[q], bv, bv, PF_R(0.0));
+    }
+    /* per direction: the visibility map (the same marches), each facet's projected area a and
+       Lambda (where a > 0: a pair with a <= 0 toward either direction is 0 before its Lambdas),
+       and the patch's area, summed facet by facet as pfi_vmf_effective sums it */
+    for (d = 0; d < dirs; ++d) {
+        pf_vec3 w = pfi_vmf_scale_dir((int)(d / A), (int)(d % A), r->nt, r->np, r->theta_max);
+        unsigned char *vm = vis + d * nn;
+        pf_real *a = ad + d * nn, *l = lam + d * nn, sum = PF_R(0.0);
+        for (q = 0; q < nn; ++q)
+            vm[q] = (unsigned char)pf_map_visible(r->heights, r->w, r->h, r->texel, x0 + q % n, y0 + q / n, w, x0, y0, n, top);
+        for (q = 0; q < nn; ++q) {
+            a[q] = w.z - sx[q] * w.x - sy[q] * w.y;
+            sum += a[q];
+            l[q] = a[q] > PF_R(0.0) ? pf_vmf_lambda(pfi_vmf_excess_stats(PF_R(1.0), st[q], w), a[q]) : PF_R(0.0);
+        }
+        area[d] = sum;
+    }
+    for (s = 0; s < count; ++s) {
+        const long long ai = s % A, ti = (s / A) % r->nt, ao = (s / (A * r->nt)) % A, to = s / (A * r->nt * A);
+        const long long dO = to * A + ao, dI = ti * A + ai;
+        const pf_vec3 wo = pfi_vmf_scale_dir((int)to, (int)ao, r->nt, r->np, r->theta_max);
+        const pf_vec3 wi = pfi_vmf_scale_dir((int)ti, (int)ai, r->nt, r->np, r->theta_max);
+        const unsigned char *vo = vis + dO * nn, *vi = vis + dI * nn;
+        const pf_real *a_o = ad + dO * nn, *a_i = ad + dI * nn, *l_o = lam + dO * nn, *l_i = lam + dI * nn;
+        pf_real num = PF_R(0.0);
+        if (wo.z > PF_R(0.0) && wi.z > PF_R(0.0)) {
+            const pf_vec3 hv = pfi_vmf_half(wo, wi);
+            const pf_real hx = -hv.x / pf_max(hv.z, PF_R(1.0e-6)), hy = -hv.y / pf_max(hv.z, PF_R(1.0e-6));
+            const pf_real F = pf_fresnel_schlick(r->f0, pf_vec3_dot(hv, wi));
+            for (q = 0; q < nn; ++q) {
+                /* the filters of pfi_vmf_effective and pf_vmf_facet_specular, the one that drops
+                   most facets (the narrow lobe's cut) first: each only skips a facet */
+                const pf_real ex = hx - sx[q], ey = hy - sy[q];
+                pf_real term;
+                if (ex * ex + ey * ey > cut) continue;
+                if (!vo[q] || !vi[q]) continue;
+                if (!(a_o[q] > PF_R(0.0)) || !(a_i[q] > PF_R(0.0))) continue;
+                term = F * pfi_vmf_ndf_stats(PF_R(1.0), st[q], hv) / (PF_R(4.0) * (PF_R(1.0) + l_o[q] + l_i[q]));
+                if (!(term > PF_R(0.0))) continue;
+                num += term;
+            }
+        }
+        f_eff[s] = area[dO] > PF_R(0.0) ? num / area[dO] : PF_R(0.0);
+    }
+    for (k = 0; k < r->pyramid_count; ++k) pfi_vmf_scale_texel_lobes(r, k, level, tx, ty, f_lobes + k * stride);
+    return PF_OK;
 }
 
 #endif
