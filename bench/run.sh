@@ -210,8 +210,11 @@ fi
 # ---------------------------------------------------------------- 3. GPU cost
 # SPIR-V (and PTX where nvcc exists) instruction counts of every public function and of the
 # textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
+# The counts of shaders whose source, tools and counting rules did not change since the last
+# run are kept in BUILD/gpu-cache (PF_GPU_CACHE; empty: none), so a run after a change to one
+# header compiles that header's shaders only.
 stage "GPU cost (SPIR-V counts)"
-sh bench/gpu/cost.sh "$out"
+PF_GPU_CACHE=${PF_GPU_CACHE-$(dirname "$dir")/gpu-cache} sh bench/gpu/cost.sh "$out"
 
 # ---------------------------------------------------------------- 4. vectorized timing loops
 # Which timing loops did the compiler vectorize? (gcc only: -fopt-info-vec-optimized names the
