@@ -179,9 +179,11 @@ bench:
 	@$(MAKE) --no-print-directory $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(BENCH_JOBS)) \
 	    $(if $(MAP),$(REPORT_BINS),bench-build)
 	@$(MAKE) --no-print-directory $(if $(MAP),bench-map,bench-run)
-# only the binaries (bench/times.sh builds first, so that it times the runs alone)
+# only the binaries (bench/times.sh builds first, so that it times the runs alone): the
+# stability sweep's four builds first (the longest: make -j starts prerequisites in order), the
+# frame's host too (else built alone by bench-run, after the parallel builds)
 .PHONY: bench-build
-bench-build: $(BENCH_BINS) $(REPORT_BINS) bench-stability-build
+bench-build: bench-stability-build $(BENCH_BINS) $(REPORT_BINS) $(FRAME_BIN)
 # the stability sweep's four -O2 builds (bench/stability.sh --build-only; each skipped when up to
 # date), beside the other builds, so that the bench's stability stage only runs the sweep
 .PHONY: bench-stability-build
