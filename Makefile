@@ -100,6 +100,9 @@ test:
 #                               per-method profiles (callgrind_annotate), bench/out/profile/, which
 #                               nothing in docs/ or the report reads
 #   make bench PFB_THREADS=N    threads (and processes) per stage; default every core; 1 = serial
+#   make bench BENCH_BUDGET_MS=B   measured ms per method and input order of the per-module timings
+#                               (default bench/pf_bench.h's PFB_BUDGET_MS; sh bench/times.sh spread
+#                               shows how repeatable the medians are at a budget)
 #   Every stage runs on every core except the timing loops, which run alone on one core after
 #   the untimed stages (bench/run.sh's header has the order); builds run in parallel too.
 #   make bench BENCH_OPT="-O3 -march=native"   other optimisation flags (recorded in summary.md)
@@ -195,7 +198,7 @@ bench-map: $(REPORT_BINS)
 	    MAP_RAW_SIZE='$(MAP_RAW_SIZE)' MAP_OUT='$(MAP_OUT)' sh bench/map.sh $(BUILD)/bench
 bench-run: $(BENCH_BINS) $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' PROFILE='$(PROFILE)' BENCH_QUICK='$(BENCH_QUICK)' \
-	    sh bench/run.sh $(BUILD)/bench
+	    BENCH_BUDGET_MS='$(BENCH_BUDGET_MS)' sh bench/run.sh $(BUILD)/bench
 
 # The determinism check (bench/determinism.sh): the quick bench with PFB_THREADS=1 and with every
 # core (instruction counts included), then every CSV of the two runs compared except the timing

@@ -32,7 +32,9 @@
 # Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 3
 # repetitions per timing and 1 ms of warm-up per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
 # valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
-# PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
+# PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out),
+# BENCH_BUDGET_MS=B (a full run's time budget per method and input order, --budget-ms; default
+# pf_bench.h's PFB_BUDGET_MS; `sh bench/times.sh spread` measures the medians' repeatability).
 #
 # INSTRUCTION COUNTS. The instr/eval column of every method, float and double, is read: the
 # report's family tables (float) and its appendix (both builds), and the generated tables of the
@@ -281,11 +283,8 @@ for m in $modules; do
         ins=""
         [ $use_cg = 1 ] && ins="--instr $out/$m-$b.instr"
         if [ -z "$quick" ]; then
-            if [ $use_cg = 1 ]; then
-                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
-            else
-                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes"
-            fi
+            # shellcheck disable=SC2086
+            "$bin" ${BENCH_BUDGET_MS:+--budget-ms "$BENCH_BUDGET_MS"} --csv "$out/$m.csv" --notes "$out/$m.notes" $ins
         else
             job="$job${job:+ && }$bin $quick --csv $out/$m.csv --notes $out/$m.notes $ins"
         fi
