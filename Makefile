@@ -203,10 +203,11 @@ bench-run: $(BENCH_BINS) $(REPORT_BINS)
 # The determinism check (bench/determinism.sh): the quick bench with PFB_THREADS=1 and with every
 # core (instruction counts included), then every CSV of the two runs compared except the timing
 # columns; fails on any difference. About twice a quick run.
+# (PF_GPU_CACHE empty: both runs count every shader, none reads the other's counts)
 .PHONY: bench-determinism
 bench-determinism:
 	@sh tests/deps.sh bench
-	@sh bench/determinism.sh
+	@PF_GPU_CACHE= sh bench/determinism.sh
 
 # The stability table (docs/stability.md): every public evaluator swept with seeded inputs from
 # its documented domain in float, double and both under -ffast-math (bench/stability.sh; make
