@@ -100,6 +100,9 @@ test:
 #                               per-method profiles (callgrind_annotate), bench/out/profile/, which
 #                               nothing in docs/ or the report reads
 #   make bench PFB_THREADS=N    threads (and processes) per stage; default every core; 1 = serial
+#   make bench BENCH_BUDGET_MS=B   measured ms per method and input order of the per-module timings
+#                               (default bench/pf_bench.h's PFB_BUDGET_MS; sh bench/times.sh spread
+#                               shows how repeatable the medians are at a budget)
 #   Every stage runs on every core except the timing loops, which run alone on one core after
 #   the untimed stages (bench/run.sh's header has the order); builds run in parallel too.
 #   make bench BENCH_OPT="-O3 -march=native"   other optimisation flags (recorded in summary.md)
@@ -179,9 +182,11 @@ bench:
 	@$(MAKE) --no-print-directory $(if $(findstring jobserver,$(MAKEFLAGS)),,-j$(BENCH_JOBS)) \
 	    $(if $(MAP),$(REPORT_BINS),bench-build)
 	@$(MAKE) --no-print-directory $(if $(MAP),bench-map,bench-run)
-# only the binaries (bench/times.sh builds first, so that it times the runs alone)
+# only the binaries (bench/times.sh builds first, so that it times the runs alone): the
+# stability sweep's four builds first (the longest: make -j starts prerequisites in order), the
+# frame's host too (else built alone by bench-run, after the parallel builds)
 .PHONY: bench-build
-bench-build: $(BENCH_BINS) $(REPORT_BINS) bench-stability-build
+bench-build: bench-stability-build $(BENCH_BINS) $(REPORT_BINS) $(FRAME_BIN)
 # the stability sweep's four -O2 builds (bench/stability.sh --build-only; each skipped when up to
 # date), beside the other builds, so that the bench's stability stage only runs the sweep
 .PHONY: bench-stability-build
@@ -193,15 +198,16 @@ bench-map: $(REPORT_BINS)
 	    MAP_RAW_SIZE='$(MAP_RAW_SIZE)' MAP_OUT='$(MAP_OUT)' sh bench/map.sh $(BUILD)/bench
 bench-run: $(BENCH_BINS) $(REPORT_BINS)
 	@CC='$(CC)' BENCH_FLAGS='$(BENCH_FLAGS)' CALLGRIND='$(CALLGRIND)' PROFILE='$(PROFILE)' BENCH_QUICK='$(BENCH_QUICK)' \
-	    sh bench/run.sh $(BUILD)/bench
+	    BENCH_BUDGET_MS='$(BENCH_BUDGET_MS)' sh bench/run.sh $(BUILD)/bench
 
 # The determinism check (bench/determinism.sh): the quick bench with PFB_THREADS=1 and with every
 # core (instruction counts included), then every CSV of the two runs compared except the timing
 # columns; fails on any difference. About twice a quick run.
+# (PF_GPU_CACHE empty: both runs count every shader, none reads the other's counts)
 .PHONY: bench-determinism
 bench-determinism:
 	@sh tests/deps.sh bench
-	@sh bench/determinism.sh
+	@PF_GPU_CACHE= sh bench/determinism.sh
 
 # The stability table (docs/stability.md): every public evaluator swept with seeded inputs from
 # its documented domain in float, double and both under -ffast-math (bench/stability.sh; make

@@ -514,6 +514,64 @@ static size_t grid_lookups(pf_real *a, pf_real *b, pf_real *c)
     return NL;
 }
 
+/* ---------------------------------------------------------------- setup cache (callgrind only)
+   The tables above take about 1 s natively but 15-30 s under valgrind (long double scene sums,
+   even with the instrumentation stopped), and the callgrind stage runs `--only all` once per
+   build. With PFB_SETUP_CACHE=FILE and --only, the tables are read from FILE when it holds this
+   build's tables, else computed and written there: bench/run.sh fills FILE by a native `--only`
+   run before the valgrind one, so the counted loops read the tables of the native computation
+   (valgrind evaluates long double at double precision). */
+#define SC_TABLE(X) \
+    X(g_lookups, NL) X(g_zc, NL) X(g_vsm, NL) X(g_evsm2, NL) X(g_evsm4, NL) X(g_msm, NL) X(g_msm_z, NL) \
+    X(g_esm, NL) X(g_csm, NL) X(g_csm_all, NL * 4 * CSM_MAX_PAIRS) X(g_msm16, NL) X(g_msm16_z, NL) \
+    X(g_msm16_f, NL) X(g_msm_h, NL) X(g_vsm_h, NL) X(g_vsm_hf, NL) X(g_evsm2_h, NL) X(g_evsm2_e16, NL) \
+    X(g_evsm4_h, NL) X(g_evsm4_e16, NL) X(g_msm17, NL)
+static const char sc_magic[] = "pf-bench-shadow-setup-" PFB_BUILD;
+static size_t sc_bytes(void)
+{
+    size_t n = 0;
+#define SC_SIZE(g, cnt) n += sizeof *g * (size_t)(cnt);
+    SC_TABLE(SC_SIZE)
+#undef SC_SIZE
+    return n;
+}
+/* 1 when every table was read from file (allocated here), else 0 (nothing allocated) */
+static int sc_load(const char *file)
+{
+    FILE *fp = file ? fopen(file, "rb") : NULL;
+    char magic[sizeof sc_magic];
+    size_t bytes = 0;
+    int ok;
+    if (!fp) return 0;
+    ok = fread(magic, 1, sizeof magic, fp) == sizeof magic && memcmp(magic, sc_magic, sizeof magic) == 0 &&
+         fread(&bytes, sizeof bytes, 1, fp) == 1 && bytes == sc_bytes();
+#define SC_READ(g, cnt) \
+    if (ok) { g = pfb_alloc(sizeof *g * (size_t)(cnt)); ok = fread(g, sizeof *g, (size_t)(cnt), fp) == (size_t)(cnt); }
+    SC_TABLE(SC_READ)
+#undef SC_READ
+    ok = ok && fgetc(fp) == EOF;
+    fclose(fp);
+    if (!ok) {
+        fprintf(stderr, "bench_shadow: setup cache %s unusable, computing the tables\n", file);
+#define SC_FREE(g, cnt) free(g); g = NULL;
+        SC_TABLE(SC_FREE)
+#undef SC_FREE
+    }
+    return ok;
+}
+static void sc_save(const char *file)
+{
+    FILE *fp = fopen(file, "wb");
+    size_t bytes = sc_bytes();
+    int ok;
+    if (!fp) return;
+    ok = fwrite(sc_magic, 1, sizeof sc_magic, fp) == sizeof sc_magic && fwrite(&bytes, sizeof bytes, 1, fp) == 1;
+#define SC_WRITE(g, cnt) ok = ok && fwrite(g, sizeof *g, (size_t)(cnt), fp) == (size_t)(cnt);
+    SC_TABLE(SC_WRITE)
+#undef SC_WRITE
+    if (fclose(fp) != 0 || !ok) remove(file);
+}
+
 /* A lit fraction is often 0: with PFB_ENTRY_ABS (pf_bench.h, when present) the CSV and the
    chart carry the mean absolute error instead of a meaningless relative one. */
 #ifdef PFB_ENTRY_ABS
@@ -639,9 +697,10 @@ static void build_notes(void)
     families[6].notes = g_storage_notes;
 }
 
-int main(int argc, char **argv)
+/* The lookups of every scene and the tables the methods read (see the setup cache above). */
+static void setup_tables(void)
 {
-    int s, rc;
+    int s;
     size_t i;
     g_lookups = (shs_lookup *)pfb_alloc(sizeof(shs_lookup) * NL);
     for (s = 0; s < SHS_N_SCENES; ++s) shs_scene_lookups(s, g_lookups + (size_t)s * SHS_LOOKUPS_PER_SCENE);
@@ -676,7 +735,22 @@ int main(int argc, char **argv)
     csm_fill();
     storage_fill();
     msm17_fill();
-    build_notes();
+}
+
+int main(int argc, char **argv)
+{
+    int s, rc, only = 0;
+    const char *cache = getenv("PFB_SETUP_CACHE");
+    for (s = 1; s < argc; ++s) only |= strcmp(argv[s], "--only") == 0;
+    if (only && cache && *cache) {
+        if (!sc_load(cache)) {
+            setup_tables();
+            sc_save(cache);
+        }
+    } else {
+        setup_tables();
+        build_notes();
+    }
     rc = pfb_main(argc, argv, "shadow", families, (int)(sizeof families / sizeof families[0]));
     free(g_lookups); free(g_zc); free(g_vsm); free(g_evsm2); free(g_evsm4); free(g_msm); free(g_msm_z); free(g_esm);
     free(g_csm); free(g_csm_all);

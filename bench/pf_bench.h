@@ -19,7 +19,7 @@
                    method, fewer once they took PFB_WARMUP_MS, at least one) calibrate each
                    method's time per run, and the method gets budget / (time of its pair with
                    the baseline) repetitions, odd, clamped to [PFB_MIN_REPS, reps] (defaults:
-                   250 ms, 5, PFB_REPS = 101; --budget-ms, --reps; the quick run, whose
+                   125 ms, 5, PFB_REPS = 101; --budget-ms, --reps; the quick run, whose
                    timings nothing publishes, 5 ms, 3 repetitions and 1 ms of warm-up).
                    So a 0.1 ms loop gets 101 repetitions and a 600 ms quadrature 5, and every
                    median rests on about the same measured time; the repetitions of every
@@ -132,7 +132,11 @@ __attribute__((constructor)) static void pfb_instr_stop_at_start(void) { CALLGRI
 #  define PFB_MIN_REPS 5  /* timed repetitions of a method at least, whatever the budget */
 #endif
 #ifndef PFB_BUDGET_MS
-#  define PFB_BUDGET_MS 250.0 /* measured ms per method and input order (pairs with the baseline) */
+/* measured ms per method and input order (pairs with the baseline). 125 ms: in two runs each of
+   bench_smith-float, bench_masks-double and bench_height-float (`sh bench/times.sh spread`), the
+   median over the methods of the run-to-run difference of ns/eval was 0.1-0.3% (0.1-0.6% at
+   250 ms), and the timing phase took 8%, 46% and 21% less CPU */
+#  define PFB_BUDGET_MS 125.0
 #endif
 #define PFB_MAX_METHODS 12
 #define PFB_SEED 0x5eed2024u

@@ -32,13 +32,21 @@
 # Environment: CC and BENCH_FLAGS (recorded in the summary), BENCH_QUICK=1 (CI smoke run: 3
 # repetitions per timing and 1 ms of warm-up per method, smaller sweeps), CALLGRIND=0/1 (instruction counts; default: on in a full run when
 # valgrind is installed, off under BENCH_QUICK), PROFILE=1 (opt-in profile mode, below),
-# PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out).
+# PFB_THREADS=N (threads and processes per stage), BENCH_OUT=dir (default bench/out),
+# BENCH_BUDGET_MS=B (a full run's time budget per method and input order, --budget-ms; default
+# pf_bench.h's PFB_BUDGET_MS; `sh bench/times.sh spread` measures the medians' repeatability).
 #
 # INSTRUCTION COUNTS. The instr/eval column of every method, float and double, is read: the
 # report's family tables (float) and its appendix (both builds), and the generated tables of the
 # module pages in docs/ (both builds). So a full run counts them all, in one callgrind run per
 # binary: `--only all` runs every method's loop once and callgrind dumps after each
 # (--dump-after=pfb_measured), with LD_BIND_NOW=1 so that no lazy symbol binding is counted.
+# A binary that names PFB_SETUP_CACHE (bench_shadow.c) first runs one method natively to write
+# its setup's tables to a file that the valgrind run reads: its setup (long double sums over the
+# shadow scenes) took 15-30 s of CPU per build under valgrind, and valgrind evaluates long double
+# at double precision, so the counted loops now read the same tables as the timed ones.
+# Fewer evaluations per method would not give the same instr/eval: every costly method's count
+# depends on its inputs (a prefix of 2048 or 8192 of the 65536 inputs moved the second decimal).
 # PROFILE=1 (make bench PROFILE=1) adds what nothing in docs/ or the report reads: callgrind's
 # branch simulation (conditional branches and mispredictions per evaluation, with the random
 # inputs of the timing loops) and the per-method profiles kept for callgrind_annotate, in
@@ -54,7 +62,13 @@ if [ "${1:-}" = --count-instr ]; then
     set -- --tool=callgrind --callgrind-out-file="$tmp/cg" --collect-atstart=no \
         --toggle-collect=pfb_measured --dump-after=pfb_measured
     [ -n "$pdir" ] && set -- "$@" --branch-sim=yes --dump-instr=yes
-    if ! LD_BIND_NOW=1 valgrind "$@" "$bin" --only all > "$tmp/stdout" 2> "$tmp/log"; then
+    # A bench whose setup is slow under valgrind (bench_shadow.c: 15-30 s of long double scene
+    # sums) reads its tables from PFB_SETUP_CACHE, filled here by a native run of one method;
+    # the other benches do not name it.
+    if grep -q PFB_SETUP_CACHE "$bin"; then
+        PFB_SETUP_CACHE="$tmp/setup" "$bin" --only "$("$bin" --list | head -n 1)" > /dev/null 2>&1 || true
+    fi
+    if ! PFB_SETUP_CACHE="$tmp/setup" LD_BIND_NOW=1 valgrind "$@" "$bin" --only all > "$tmp/stdout" 2> "$tmp/log"; then
         echo "bench: callgrind failed on $bin:" >&2; tail -n 5 "$tmp/log" >&2; rm -rf "$tmp"; exit 1
     fi
     n=$(grep -c . "$tmp/stdout")
@@ -172,8 +186,9 @@ jobs="$out/jobs.tmp"
 if [ $use_cg = 1 ]; then
     stage "callgrind (instruction counts of every method, float and double)"
     : > "$jobs"
-    # the slowest binaries first (their setup and quadrature tiers run under valgrind too)
-    for m in height masks shadow gaussgrid $modules; do
+    # the slowest binaries first (the most instructions counted: height's quadrature tiers,
+    # vmf's lobe mixtures; bench_shadow's setup is read from a native run's cache)
+    for m in height vmf shadow gaussgrid masks $modules; do
         for b in double float; do
             grep -q "bench_$m-$b " "$jobs" 2>/dev/null && continue
             p=""
@@ -197,8 +212,11 @@ fi
 # ---------------------------------------------------------------- 3. GPU cost
 # SPIR-V (and PTX where nvcc exists) instruction counts of every public function and of the
 # textbook formulas (bench/gpu/; gpu_cost.csv, gpu_cost.md, gpu_cost.svg, gpu_methods.csv).
+# The counts of shaders whose source, tools and counting rules did not change since the last
+# run are kept in BUILD/gpu-cache (PF_GPU_CACHE; empty: none), so a run after a change to one
+# header compiles that header's shaders only.
 stage "GPU cost (SPIR-V counts)"
-sh bench/gpu/cost.sh "$out"
+PF_GPU_CACHE=${PF_GPU_CACHE-$(dirname "$dir")/gpu-cache} sh bench/gpu/cost.sh "$out"
 
 # ---------------------------------------------------------------- 4. vectorized timing loops
 # Which timing loops did the compiler vectorize? (gcc only: -fopt-info-vec-optimized names the
@@ -265,11 +283,8 @@ for m in $modules; do
         ins=""
         [ $use_cg = 1 ] && ins="--instr $out/$m-$b.instr"
         if [ -z "$quick" ]; then
-            if [ $use_cg = 1 ]; then
-                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes" --instr "$out/$m-$b.instr"
-            else
-                "$bin" --csv "$out/$m.csv" --notes "$out/$m.notes"
-            fi
+            # shellcheck disable=SC2086
+            "$bin" ${BENCH_BUDGET_MS:+--budget-ms "$BENCH_BUDGET_MS"} --csv "$out/$m.csv" --notes "$out/$m.notes" $ins
         else
             job="$job${job:+ && }$bin $quick --csv $out/$m.csv --notes $out/$m.notes $ins"
         fi

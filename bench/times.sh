@@ -3,12 +3,19 @@
 # Run it on an idle machine (nothing else running: the numbers are the README's); it takes
 # about the sum of the times it measures.
 #
-# usage: sh bench/times.sh [WHAT...]      WHAT: quick full map ci (default: quick full map)
+# usage: sh bench/times.sh [WHAT...]      WHAT: quick full map ci spread (default: quick full map)
 # Each bench command runs with PFB_THREADS=1, 2 and every core (duplicates dropped: on a 2-core
 # machine 1 and 2), after one
 # untimed build (`make bench-build`), so the times are the runs' own; `ci` runs `bash .ci/run`
 # once (it builds everything itself, on every core). Prints the README's table rows (markdown)
 # on stdout and each run's log under bench/out/times/.
+#   spread: how repeatable the per-module medians are at each time budget (pf_bench.h's
+#        --budget-ms; make bench BENCH_BUDGET_MS=B): each of SPREAD_MODULES (default
+#        "smith-float masks-double", binaries of build/bench) runs twice at each of
+#        SPREAD_BUDGETS (default "250 125" ms), alone; prints per budget and module the median
+#        and largest difference between the two runs over the methods, of ns/eval (relative)
+#        and of x baseline (absolute), random and sorted inputs, and the timing phase's CPU
+#        seconds (what the budget buys). Idle machine only: load moves medians more than budgets.
 #   map: TIMES_MAP=path (with TIMES_MAP_ARGS="MAP_KIND=... MAP_SCALE=..."), default a 512 x 512
 #        Gaussian height field (tests/reference/pf_microsurface.h) written as raw float32.
 set -u
@@ -60,10 +67,45 @@ run() { # label threads command...
         echo "failed ($logs/$l-$t.log)"
     fi
 }
-echo "| command | $(for t in $threads; do printf '%s thread%s | ' "$t" "$([ "$t" = 1 ] || echo s)"; done)"
-echo "|---|$(for t in $threads; do printf -- '--:|'; done)"
+if [ "$what" != spread ]; then
+    echo "| command | $(for t in $threads; do printf '%s thread%s | ' "$t" "$([ "$t" = 1 ] || echo s)"; done)"
+    echo "|---|$(for t in $threads; do printf -- '--:|'; done)"
+fi
+# spread_rows MODULE BUDGET CSV1 CSV2 CPU1 CPU2: one markdown row (see the header)
+spread_row() {
+    awk -F, -v m="$1" -v b="$2" -v c1="$5" -v c2="$6" '
+        function med(v, n,   i, j, t) { for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++) if (v[j] < v[i]) { t = v[i]; v[i] = v[j]; v[j] = t }
+                                        return n % 2 ? v[(n + 1) / 2] : (v[n / 2] + v[n / 2 + 1]) / 2 }
+        function mx(v, n,   i, x) { x = 0; for (i = 1; i <= n; i++) if (v[i] > x) x = v[i]; return x }
+        FNR == 1 { f++; next }
+        f == 1 { ns[$1 "/" $2] = $4; r[$1 "/" $2] = $5; nss[$1 "/" $2] = $15; rs[$1 "/" $2] = $16; next }
+        f == 2 && ($1 "/" $2) in ns {
+            k = $1 "/" $2; n++
+            dn[n] = ($4 + ns[k] > 0) ? 200 * ($4 - ns[k]) / ($4 + ns[k]) : 0; if (dn[n] < 0) dn[n] = -dn[n]
+            dr[n] = $5 - r[k]; if (dr[n] < 0) dr[n] = -dr[n]
+            ds[n] = ($15 + nss[k] > 0) ? 200 * ($15 - nss[k]) / ($15 + nss[k]) : 0; if (ds[n] < 0) ds[n] = -ds[n]
+            drs[n] = $16 - rs[k]; if (drs[n] < 0) drs[n] = -drs[n] }
+        END { printf "| %s | %s ms | %d | %.1f%% / %.1f%% | %.3f / %.3f | %.1f%% / %.1f%% | %.3f / %.3f | %s s, %s s |\n",
+                     m, b, n, med(dn, n), mx(dn, n), med(dr, n), mx(dr, n), med(ds, n), mx(ds, n), med(drs, n), mx(drs, n), c1, c2 }' "$3" "$4"
+}
+spread() {
+    echo "| binary | budget | methods | ns/eval: median / largest difference | x baseline: median / largest | sorted ns/eval | sorted x baseline | timing CPU, run 1, run 2 |"
+    echo "|---|--:|--:|--:|--:|--:|--:|--:|"
+    for b in ${SPREAD_BUDGETS:-250 125}; do
+        for m in ${SPREAD_MODULES:-smith-float masks-double}; do
+            for r in 1 2; do
+                rm -f "$logs/spread-$m-$b-$r.csv"
+                "build/bench/bench_$m" --budget-ms "$b" --csv "$logs/spread-$m-$b-$r.csv" > "$logs/spread-$m-$b-$r.log" 2>&1 ||
+                    { echo "times: build/bench/bench_$m failed ($logs/spread-$m-$b-$r.log)" >&2; return 1; }
+            done
+            cpu() { sed -n 's/.*timing \([0-9.]*\) s (one thread).*/\1/p' "$logs/spread-$m-$b-$1.log" | tail -n 1; }
+            spread_row "$m" "$b" "$logs/spread-$m-$b-1.csv" "$logs/spread-$m-$b-2.csv" "$(cpu 1)" "$(cpu 2)"
+        done
+    done
+}
 for w in $what; do
     case $w in
+        spread) spread; continue ;;
         quick) row="| \`make bench BENCH_QUICK=1\` |"
                for t in $threads; do row="$row $(run quick "$t" make --no-print-directory bench BENCH_QUICK=1) s |"; done ;;
         full)  row="| \`make bench\` |"

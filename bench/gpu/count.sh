@@ -26,7 +26,7 @@
 # written without a cuobjdump to try it on: check its counts the first time it runs).
 # The textbook baselines go through exactly the same wrapper generator and counting.
 #
-# Environment: NVCC (default: nvcc on PATH, else /usr/local/cuda/bin/nvcc; none: no CUDA),
+# Environment: PF_GPU_CACHE (below, at UNITS), NVCC (default: nvcc on PATH, else /usr/local/cuda/bin/nvcc; none: no CUDA),
 # PF_NVCC_ARCH, PF_GPU_JOBS (shaders compiled at once; default PFB_THREADS, else every core;
 # bench/pool.sh, with progress on stderr), PF_GPU_WORK (work
 # directory, kept; default a fresh one under ${TMPDIR:-/tmp}, removed at the end).
@@ -46,13 +46,26 @@ spirv_count() {
     spirv-dis "$1.opt" 2>> "$1.log" | awk -f bench/gpu/spirv_ops.awk
 }
 
+# cache_key FILE: the key of FILE's counts in PF_GPU_CACHE (its content with PF_GPU_TOOLS:
+# the tools' versions and the counting rules)
+cache_key() {
+    { cat "$1"; echo "${PF_GPU_TOOLS:-}"; } | cksum | awk '{ print $1 "-" $2 }'
+}
+
 # spirv_file F.comp: compile, optimize, count; writes F.count ("ops branches", or "n/a n/a"
-# with a message on stderr). Run in parallel through `count.sh --spirv F.comp`.
+# with a message on stderr). Run in parallel through `count.sh --spirv F.comp`. With
+# PF_GPU_CACHE, a shader counted before (same source, tools and rules) is not compiled again.
 spirv_file() {
     b=${1%.comp}
+    key=""
+    if [ -n "${PF_GPU_CACHE:-}" ]; then
+        key=$PF_GPU_CACHE/$(cache_key "$1").spirv
+        [ -s "$key" ] && cp "$key" "$b.count" && return 0
+    fi
     if glslangValidator -S comp -V --target-env vulkan1.0 -o "$b.spv" "$1" > "$b.glslang.log" 2>&1 &&
         r=$(spirv_count "$b.spv") && [ -n "$r" ]; then
         echo "$r" > "$b.count"
+        [ -z "$key" ] || { cp "$b.count" "$key.$$" && mv "$key.$$" "$key"; }
     else
         echo "count.sh: $(basename "$b"): SPIR-V failed (log $b.glslang.log)" >&2
         echo "n/a n/a" > "$b.count"
@@ -182,6 +195,14 @@ cuda_unit() {
         nk=$((nk + 1))
     done
     [ $nk -gt 0 ] || [ "$u" = textbook.h ] || return 0
+    key=""
+    if [ -n "${PF_GPU_CACHE:-}" ]; then
+        key=$PF_GPU_CACHE/$(cache_key "$W/$m.cu").cuda
+        if [ -f "$key.ptx" ]; then
+            for k in ptx regs sass; do [ -f "$key.$k" ] && cp "$key.$k" "$W/$m.$k.txt"; done
+            return 0
+        fi
+    fi
     if "$NVCC" -O3 --use_fast_math -arch="$ARCH" -ptx -I"$INC" -o "$W/$m.ptx" "$W/$m.cu" > "$W/$m.nvcc.log" 2>&1; then
         ptx_count "$W/$m.ptx" > "$W/$m.ptx.txt"
         if [ -n "$PTXAS" ] && "$PTXAS" -O3 -arch="$ARCH" -v -o "$W/$m.cubin" "$W/$m.ptx" > "$W/$m.ptxas.log" 2>&1; then
@@ -189,6 +210,9 @@ cuda_unit() {
                  /Used [0-9]+ registers/ && cur != "" { for (i = 1; i <= NF; i++) if ($(i + 1) ~ /^registers/) print cur, $i; cur = "" }' \
                 "$W/$m.ptxas.log" > "$W/$m.regs.txt"
             [ -n "$CUOBJDUMP" ] && "$CUOBJDUMP" -sass "$W/$m.cubin" 2> /dev/null | sass_count > "$W/$m.sass.txt"
+        fi
+        if [ -n "$key" ]; then # the PTX file last: its presence marks a complete entry
+            for k in regs sass ptx; do [ -f "$W/$m.$k.txt" ] && cp "$W/$m.$k.txt" "$key.$k.$$" && mv "$key.$k.$$" "$key.$k"; done
         fi
     else
         : > "$W/$m.nvcc.failed"
@@ -198,6 +222,20 @@ cuda_unit() {
 if [ "${1:-}" = "--cuda-unit" ]; then
     cuda_unit "$2"
     exit 0
+fi
+
+# PF_GPU_CACHE (a directory; bench/run.sh: BUILD/gpu-cache): counts of shaders and CUDA units
+# already counted, keyed by their source and PF_GPU_TOOLS (the tools' versions, nvcc's
+# architecture and the counting rules: this script and spirv_ops.awk), so a run after a change
+# compiles only the functions whose source changed.
+if [ -n "${PF_GPU_CACHE:-}" ] && [ -z "${PF_GPU_TOOLS:-}" ]; then
+    if mkdir -p "$PF_GPU_CACHE" 2> /dev/null; then
+        PF_GPU_TOOLS=$( { glslangValidator --version; spirv-opt --version; cat "$ROOT/bench/gpu/spirv_ops.awk" "$ROOT/bench/gpu/count.sh"
+                          [ -n "$NVCC" ] && { "$NVCC" --version; echo "$ARCH $PTXAS $CUOBJDUMP"; }; } 2>&1 | cksum)
+        export PF_GPU_CACHE PF_GPU_TOOLS
+    else
+        PF_GPU_CACHE=""
+    fi
 fi
 
 UNITS="$HEADERS textbook.h pixel.h"
