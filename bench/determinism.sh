@@ -47,7 +47,7 @@ norm() { # file -> the file without its timing columns (each table's header line
 
 compare() { # dirA dirB -> 0 when every CSV matches
     a=$1; b=$2; bad=0; n=0
-    for f in $( (cd "$a" && ls *.csv 2>/dev/null; cd "$b" && ls *.csv 2>/dev/null) | sort -u); do
+    for f in $( { (cd "$a" && ls *.csv 2>/dev/null); (cd "$b" && ls *.csv 2>/dev/null); } | sort -u); do
         n=$((n + 1))
         if [ ! -f "$a/$f" ] || [ ! -f "$b/$f" ]; then
             echo "determinism: $f: written by one run only" >&2; bad=1; continue
