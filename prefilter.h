@@ -6601,9 +6601,10 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      than Smith (0.012-0.036). pf_horizon_masking_lod (n = 32, lod 2 -> 6; bench/microsurface.c):
      0.012-0.037 at 16 texels (full reference), Smith's own 0.007-0.032 at 4096 texels
      (in-footprint reference). (These masking figures are the Gaussian HDF's; the skewed one
-     changes them by -0.0014 to +0.0009 at 16 texels, every footprint: docs/horizon.md.) Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod
-     0.020-0.078 on the seven kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional;
-     at 4096 texels LEADR's own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
+     changes them by -0.0014 to +0.0009 at 16 texels, every footprint: docs/horizon.md.)
+     Diffuse at 16 texels, full reference: pf_horizon_diffuse_lod 0.020-0.078 on the seven
+     kinds against 0.173-0.255 for LEADR's pf_gg_diffuse_directional; at 4096 texels LEADR's
+     own numbers. Evaluators against long double: Gaussian HDF 2.1e-6
      abs (float), visible area 3.5e-7 abs (float), visibility given slope 3.6e-7 abs (float),
      the diffuse (9 x 9 Gauss-Hermite) within 0.8% of a 2D quadrature of its integral. Cost:
      pf_horizon_visible_area ~5x pf_beckmann_g1 in instructions (atan2, erfc, exp);
@@ -6628,8 +6629,8 @@ PF_CPU_DEF pf_real pf_esm_log_sample(const pf_real *pyr, int w, int h, pf_real l
      1992 (HDF mean and deviation, the ramp, the product); Tan, Lin, Quan, Guo & Shum 2008
      (Gaussian HDF, eq. 28); Ashikhmin, Premoze & Shirley 2000 (the beta form);
      Nowrouzezahrai & Snyder 2009 (Legendre expansion, eqs. 29-30). Cramer 1946 sec. 17.6 and
-     Kendall & Stuart vol. 1 sec. 6.17 (the Gram-Charlier series of the masking's HDF). Smith 1967 and Dupuy et al.
-     2013 eqs. 1, 13 for the masking decomposition; Dupuy et al. 2013 (LEADR) eqs. 2-3 and 21
+     Kendall & Stuart vol. 1 sec. 6.17 (the Gram-Charlier series of the masking's HDF). Smith
+     1967 and Dupuy et al. 2013 eqs. 1, 13 for the masking decomposition; Dupuy et al. 2013 (LEADR) eqs. 2-3 and 21
      for the diffuse's slope grid and normalization. The lod fade and the slope-conditioned
      HDF are ours (measured in bench/microsurface.c), as is the masking HDF's skewness from the
      stored moments (bench/map_proxies.c --masking-parts). */
@@ -6879,12 +6880,13 @@ PF_DEF pf_real pf_horizon_bidir_ashikhmin(pf_real vl, pf_real vv, pf_real cos_lv
        P(T < e)              = Phi(z) - g/6 (z^2 - 1) phi(z),
        E[(T - mu)/sigma_T; T < e] = -phi(z) (1 + g z^3/6)
    (the density phi(z) (1 + g/6 He_3(z)) integrated; the second by parts), and S's regression
-   on T as in the Gaussian, so E[V a] = w.z P - r (E[S] P + Cov(S, T)/sigma_T E[(T - mu)/sigma_T; T < e]).
+   on T as in the Gaussian, so
+       E[V a] = w.z P - r (E[S] P + Cov(S, T)/sigma_T E[(T - mu)/sigma_T; T < e]).
    The series' density is negative far in the left tail (z below -2.4 at g = 1), where its CDF
    is negative: P is clamped to [0, 1] and the partial mean to at most z P (what any
    distribution gives: (T - mu)/sigma_T < z below e), so both are 0 together, continuous, and P
-   is non-decreasing in e (the density is positive for z > -2.4 at g <= 1). g is estimated from the stored moments (ours; measured,
-   docs/horizon.md "User maps"): g = sigma_T/E[T] (1 - rho^2), at most 1 (1 for E[T] <= 0),
+   is non-decreasing in e (the density is positive for z > -2.4 at g <= 1). g is estimated
+   from the stored moments (ours; measured, docs/horizon.md "User maps"): g = sigma_T/E[T] (1 - rho^2), at most 1 (1 for E[T] <= 0),
    rho the correlation of T and the slope S along w's azimuth: a horizon is a maximum over the
    march, right-skewed where it is set by distant bumps (sigma_T comparable to E[T]), and the
    part of T that the texel's own slope explains is as symmetric as the slopes. vs = r^2
