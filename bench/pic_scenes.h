@@ -311,6 +311,20 @@ typedef struct {
     double ndf_texels, ndf_gauss;
 } ref_result;
 
+/* The ndf_texels / ndf_gauss pair of a ref_result: from the shaded texels' sums (weight w:
+   their count or covered area) of the NDF at s_h = (shx, shy) (ndf, base lobes' exponentials)
+   and of the slope moments mom = {sx, sy, sx^2, sy^2, sx sy}, the Gaussian with those moments
+   plus the base variance (LEADR eqs. 8-10). */
+static void pic_ndf_pair(ref_result *r, double ndf, const double mom[5], double w, double shx, double shy)
+{
+    double var = BASE_SIGMA * BASE_SIGMA, mx = mom[0] / w, my = mom[1] / w;
+    double cxx = mom[2] / w - mx * mx + var, cyy = mom[3] / w - my * my + var;
+    double cxy = mom[4] / w - mx * my, det = cxx * cyy - cxy * cxy;
+    double dx = shx - mx, dy = shy - my;
+    r->ndf_texels = ndf / w / (2.0 * pic_pi * var);
+    r->ndf_gauss = exp(-0.5 * (cyy * dx * dx - 2.0 * cxy * dx * dy + cxx * dy * dy) / det) / (2.0 * pic_pi * sqrt(det));
+}
+
 /* The half vector's slope s_h = -(wo + wi).xy / (wo + wi).z of a sample, 0 when it is not lit
    (light below the surface or half vector at or below it); returns whether it is lit. */
 static int pic_half_slope(const pic_sample *p, double *shx, double *shy)
@@ -416,15 +430,7 @@ static ref_result shade_reference(const pfm_surface *s, const unsigned char *vis
     if (ns < n && half_area[0] > 0.0 && half_area[1] > 0.0)
         r.noise = 0.5 * fabs(half_num[0] / half_area[0] - half_num[1] / half_area[1]);
     if (full_only) return r;
-    if (lit) { /* P22 at s_h: the texels' lobes, and the Gaussian of their moments */
-        double var = BASE_SIGMA * BASE_SIGMA, mx = mom[0] / k, my = mom[1] / k;
-        double cxx = mom[2] / k - mx * mx + var, cyy = mom[3] / k - my * my + var;
-        double cxy = mom[4] / k - mx * my, det = cxx * cyy - cxy * cxy;
-        double dx = shx - mx, dy = shy - my;
-        r.ndf_texels = ndf / k / (2.0 * pic_pi * var);
-        r.ndf_gauss = exp(-0.5 * (cyy * dx * dx - 2.0 * cxy * dx * dy + cxx * dy * dy) / det) /
-                      (2.0 * pic_pi * sqrt(det));
-    }
+    if (lit) pic_ndf_pair(&r, ndf, mom, (double)k, shx, shy); /* P22 at s_h: texels' lobes, Gaussian of their moments */
     for (q = 0; q < k; ++q) {
         const ref_texel *e = &scratch[q];
         int x = wrap_index(e->x, s->w), y = wrap_index(e->y, s->h);

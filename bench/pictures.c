@@ -512,15 +512,7 @@ static ref_result sq_reference(const pfm_surface *s, const unsigned char *vis_li
     r.full = area > 0.0 ? num / area : 0.0;
     r.inbox = area > 0.0 ? num_box / area : 0.0;
     r.t_full = pfb_now_s() - t0;
-    if (lit && cw > 0.0) { /* P22 at s_h: the texels' lobes, and the Gaussian of their moments */
-        double var = BASE_SIGMA * BASE_SIGMA, mx = mom[0] / cw, my = mom[1] / cw;
-        double cxx = mom[2] / cw - mx * mx + var, cyy = mom[3] / cw - my * my + var;
-        double cxy = mom[4] / cw - mx * my, det = cxx * cyy - cxy * cxy;
-        double dx = shx - mx, dy = shy - my;
-        r.ndf_texels = ndf / cw / (2.0 * pic_pi * var);
-        r.ndf_gauss = exp(-0.5 * (cyy * dx * dx - 2.0 * cxy * dx * dy + cxx * dy * dy) / det) /
-                      (2.0 * pic_pi * sqrt(det));
-    }
+    if (lit && cw > 0.0) pic_ndf_pair(&r, ndf, mom, cw, shx, shy); /* P22 at s_h: texels' lobes, Gaussian of their moments */
     return r;
 }
 

@@ -235,6 +235,16 @@ static pf_slope_moments sc_fetch_aniso(double s, double t, double dst[2][2], dou
 
 static long long sc_njobs(void) { return (long long)SC_NSCENE * SC_NSIZE * SC_NALPHA * sc_F; }
 
+/* job's frame, roughness, size and scene indices (job order of sc_njobs: frame fastest) */
+static void sc_job_indices(long long job, int *fr, int *ai, int *si, int *scene)
+{
+    *fr = (int)(job % sc_F);
+    *ai = (int)(job / sc_F % SC_NALPHA);
+    *si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
+    *scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE));
+}
+
+
 /* One pixel's stratified reference: sc_S x sc_S jittered rays through pixel (x, y) (the jitter a
    hash of pixel p, ray, frame fr and seed), each shading its own texel with the base lobe
    (variance bv). Sums the shade and its square over the hits; with a centre frame g, also the
@@ -278,13 +288,17 @@ static sc_rays sc_pixel_rays(int scene, double R, double cx, double cy, double x
 
 static void sc_run(void *ctx, long long job)
 {
-    int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
-    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE));
-    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], bv = 0.5 * a * a;
-    int W = sc_W[si], px, py, m;
-    double cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    int fr, ai, si, scene, W, px, py, m;
+    double R, a, bv, cx, cy;
     double *img = sc_img + job * sc_img_stride, *dev2 = sc_dev2 + job * sc_dev_stride;
     unsigned char *full = sc_full + job * sc_dev_stride;
+    sc_job_indices(job, &fr, &ai, &si, &scene);
+    R = 0.5 * sc_diam[si];
+    a = sc_alpha[ai];
+    bv = 0.5 * a * a;
+    W = sc_W[si];
+    cx = 0.5 * W + 0.13 + (double)fr / sc_F;
+    cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
     (void)ctx;
     for (py = 0; py < W; ++py)
         for (px = 0; px < W; ++px) {
@@ -568,13 +582,17 @@ static void sc_bench(int quick, FILE *md, FILE *csv)
    the second reference and the methods (their texture reads) it costs about half of sc_run. */
 static void sc_run_ref(void *ctx, long long job)
 {
-    int fr = (int)(job % sc_F), ai = (int)(job / sc_F % SC_NALPHA), si = (int)(job / (sc_F * SC_NALPHA) % SC_NSIZE);
-    int scene = (int)(job / ((long long)sc_F * SC_NALPHA * SC_NSIZE));
-    double R = 0.5 * sc_diam[si], a = sc_alpha[ai], bv = 0.5 * a * a;
-    int W = sc_W[si], px, py;
-    double cx = 0.5 * W + 0.13 + (double)fr / sc_F, cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
+    int fr, ai, si, scene, W, px, py;
+    double R, a, bv, cx, cy;
     double *img = sc_img + job * sc_img_stride, *dev2 = sc_dev2 + job * sc_dev_stride;
     unsigned char *full = sc_full + job * sc_dev_stride;
+    sc_job_indices(job, &fr, &ai, &si, &scene);
+    R = 0.5 * sc_diam[si];
+    a = sc_alpha[ai];
+    bv = 0.5 * a * a;
+    W = sc_W[si];
+    cx = 0.5 * W + 0.13 + (double)fr / sc_F;
+    cy = 0.5 * W + 0.41 + 0.37 * fr / sc_F;
     (void)ctx;
     for (py = 0; py < W; ++py)
         for (px = 0; px < W; ++px) {
